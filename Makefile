@@ -1,0 +1,41 @@
+# Thin wrapper: every target installs missing Debian packages first (scripts/install-deps.sh is a
+# no-op when all are present), so `make demo` and `make test` work on a fresh machine as root.
+BUILD ?= build
+BUILD_TYPE ?= Release
+JOBS ?= 2
+GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
+
+.PHONY: all deps configure build test demo bench asan asan-test format clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	$(BUILD)/bin/smart demo
+
+bench: build
+	$(BUILD)/bin/smart_bench
+
+asan: deps
+	@cmake --preset asan >/dev/null
+	@cmake --build --preset asan
+
+asan-test: asan
+	ctest --preset asan
+
+format:
+	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD) build-asan

@@ -1,0 +1,69 @@
+// Contract: DomainConfig describes how one process joins a DDS domain (network interfaces,
+// discovery peers, multicast, reliability timers, simulated packet loss); render_cyclone_config()
+// turns it into Cyclone DDS XML. Domain creates that domain in this process with
+// dds_create_domain() and keeps it alive while any copy (or any Participant in it) exists.
+//
+// Loopback by default: this machine kind has a second interface Cyclone would multicast on
+// (../shared/design/architecture.md, "Tests and CI"), so the default is interface "lo", no
+// multicast and unicast discovery to 127.0.0.1. Set interfaces empty to let Cyclone choose.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "smart/dds/entity.hpp"
+#include "smart/dds/qos.hpp"
+
+namespace smart::dds {
+
+// Cyclone DDS transport tuning. Unset values keep Cyclone's defaults.
+struct TransportConfig {
+  std::optional<Millis> heartbeat_interval;
+  std::optional<Millis> nack_delay;
+  std::optional<Millis> auto_resched_nack_delay;
+  // Internal/Test/XmitLossiness: per mille of outgoing packets dropped, 0..1000. Models a lossy
+  // link in this process's sends (architecture.md, "Lossy links").
+  int loss_per_mille = 0;
+  bool operator==(const TransportConfig&) const = default;
+};
+
+struct DomainConfig {
+  std::vector<std::string> interfaces{"lo"};
+  std::vector<std::string> peers{"127.0.0.1"};
+  bool allow_multicast = false;
+  int max_auto_participant_index = 60;
+  TransportConfig transport;
+  std::string tracing_verbosity = "warning";
+
+  // Everything default: loopback only (tests, single-host runs).
+  static DomainConfig loopback() { return DomainConfig{}; }
+  // Cyclone picks the interface and uses multicast discovery (multi-host runs on a LAN).
+  static DomainConfig network() {
+    DomainConfig c;
+    c.interfaces.clear();
+    c.peers.clear();
+    c.allow_multicast = true;
+    return c;
+  }
+};
+
+std::string render_cyclone_config(const DomainConfig& config);
+
+class Domain {
+ public:
+  // Throws Error when the domain cannot be created, e.g. it already exists in this process.
+  Domain(dds_domainid_t id, const DomainConfig& config);
+  dds_domainid_t id() const { return id_; }
+  const DomainConfig& config() const { return config_; }
+
+ private:
+  dds_domainid_t id_;
+  DomainConfig config_;
+  std::shared_ptr<Entity> entity_;
+};
+
+}  // namespace smart::dds

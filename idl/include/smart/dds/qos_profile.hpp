@@ -1,0 +1,47 @@
+// Contract: a QosProfile names the QoS of every SMART-DDS topic plus the Cyclone transport
+// settings of a link type. Profiles are YAML files (config/qos/<name>.yaml; shipped: lan, wifi,
+// lossy-wifi). Parsing is strict: an unknown key, a wrong type or an out-of-range value throws
+// ConfigError naming file:line:column, the key and the accepted values. Topics a file leaves out
+// keep the defaults of default_qos_profile() (the table in architecture.md, "DDS topics").
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "smart/dds/domain.hpp"
+#include "smart/dds/qos.hpp"
+
+namespace smart::dds {
+
+enum class TopicRole { kAction, kProgress, kState, kClock };
+
+struct QosProfile {
+  std::string name;
+  std::string description;
+  TransportConfig transport;
+  TopicQos action;
+  TopicQos progress;
+  TopicQos state;
+  TopicQos clock;
+
+  const TopicQos& topic(TopicRole role) const;
+  // A DomainConfig (loopback by default) carrying this profile's transport settings.
+  DomainConfig domain_config(DomainConfig base = DomainConfig::loopback()) const;
+};
+
+QosProfile default_qos_profile();
+
+// `source` names the text in error messages (usually the file path).
+QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& source);
+QosProfile load_qos_profile(const std::filesystem::path& file);
+
+// Directories searched for config files, in order: $SMART_CONFIG_DIR, then the source tree's
+// config/ (compiled in, so the build tree runs without installation).
+std::vector<std::filesystem::path> config_search_path();
+
+// `name_or_path`: a profile name ("lan") looked up as qos/<name>.yaml in config_search_path(),
+// or a path to a YAML file (anything containing '/' or ending in .yaml/.yml).
+QosProfile find_qos_profile(const std::string& name_or_path);
+
+}  // namespace smart::dds

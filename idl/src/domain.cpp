@@ -1,0 +1,61 @@
+#include "smart/dds/domain.hpp"
+
+#include <sstream>
+
+#include "smart/dds/error.hpp"
+
+namespace smart::dds {
+
+namespace {
+std::string ms(Millis m) { return std::to_string(m.count()) + " ms"; }
+}  // namespace
+
+std::string render_cyclone_config(const DomainConfig& c) {
+  if (c.transport.loss_per_mille < 0 || c.transport.loss_per_mille > 1000) {
+    throw ConfigError("loss_per_mille is " + std::to_string(c.transport.loss_per_mille) +
+                      ": it must be between 0 and 1000 (per mille of packets dropped)");
+  }
+  std::ostringstream x;
+  x << "<CycloneDDS><Domain id=\"any\"><General>";
+  if (!c.interfaces.empty()) {
+    x << "<Interfaces>";
+    for (const auto& name : c.interfaces) x << "<NetworkInterface name=\"" << name << "\"/>";
+    x << "</Interfaces>";
+  }
+  x << "<AllowMulticast>" << (c.allow_multicast ? "default" : "false") << "</AllowMulticast>";
+  x << "</General><Discovery>";
+  x << "<ParticipantIndex>auto</ParticipantIndex>";
+  x << "<MaxAutoParticipantIndex>" << c.max_auto_participant_index
+    << "</MaxAutoParticipantIndex>";
+  if (!c.peers.empty()) {
+    x << "<Peers>";
+    for (const auto& p : c.peers) x << "<Peer address=\"" << p << "\"/>";
+    x << "</Peers>";
+  }
+  x << "</Discovery><Internal>";
+  if (c.transport.heartbeat_interval) {
+    x << "<HeartbeatInterval>" << ms(*c.transport.heartbeat_interval) << "</HeartbeatInterval>";
+  }
+  if (c.transport.nack_delay) x << "<NackDelay>" << ms(*c.transport.nack_delay) << "</NackDelay>";
+  if (c.transport.auto_resched_nack_delay) {
+    x << "<AutoReschedNackDelay>" << ms(*c.transport.auto_resched_nack_delay)
+      << "</AutoReschedNackDelay>";
+  }
+  if (c.transport.loss_per_mille > 0) {
+    x << "<Test><XmitLossiness>" << c.transport.loss_per_mille << "</XmitLossiness></Test>";
+  }
+  x << "</Internal><Tracing><Verbosity>" << c.tracing_verbosity
+    << "</Verbosity><OutputFile>stderr</OutputFile></Tracing>";
+  x << "</Domain></CycloneDDS>";
+  return x.str();
+}
+
+Domain::Domain(dds_domainid_t id, const DomainConfig& config) : id_(id), config_(config) {
+  const std::string xml = render_cyclone_config(config);
+  const dds_entity_t h = dds_create_domain(id, xml.c_str());
+  check(h, "creating DDS domain " + std::to_string(id) +
+               " (a domain can be created once per process; share the Domain object)");
+  entity_ = std::make_shared<Entity>(h);
+}
+
+}  // namespace smart::dds

@@ -1,0 +1,14 @@
+#include "smart/dds/participant.hpp"
+
+#include <string>
+
+#include "smart/dds/error.hpp"
+
+namespace smart::dds {
+
+Participant::Participant(const Domain& domain)
+    : domain_(domain),
+      entity_(check(dds_create_participant(domain.id(), nullptr, nullptr),
+                    "creating a participant in domain " + std::to_string(domain.id()))) {}
+
+}  // namespace smart::dds

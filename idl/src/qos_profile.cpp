@@ -1,0 +1,263 @@
+#include "smart/dds/qos_profile.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "smart/dds/error.hpp"
+
+#ifndef SMART_SOURCE_CONFIG_DIR
+#define SMART_SOURCE_CONFIG_DIR "config"
+#endif
+
+namespace smart::dds {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& source, const YAML::Node& node, const std::string& what) {
+  const auto m = node.Mark();
+  std::ostringstream s;
+  s << source;
+  if (!m.is_null()) s << ":" << m.line + 1 << ":" << m.column + 1;
+  s << ": " << what;
+  throw ConfigError(s.str());
+}
+
+std::string join(const std::vector<std::string>& xs) {
+  std::string out;
+  for (const auto& x : xs) out += (out.empty() ? "" : ", ") + x;
+  return out;
+}
+
+void require_map(const std::string& source, const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) fail(source, node, "'" + path + "' must be a mapping of keys to values");
+}
+
+void reject_unknown(const std::string& source, const YAML::Node& node, const std::string& path,
+                    const std::vector<std::string>& known) {
+  const std::set<std::string> k(known.begin(), known.end());
+  for (const auto& kv : node) {
+    const auto key = kv.first.as<std::string>();
+    if (!k.count(key)) {
+      fail(source, kv.first,
+           "unknown key '" + key + "' in '" + path + "'; known keys: " + join(known));
+    }
+  }
+}
+
+template <class T>
+T scalar(const std::string& source, const YAML::Node& node, const std::string& key,
+         const char* expected) {
+  if (!node.IsScalar()) fail(source, node, "'" + key + "' must be " + expected);
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(source, node, "'" + key + "' is '" + node.Scalar() + "' but must be " + expected);
+  }
+}
+
+Millis millis(const std::string& source, const YAML::Node& node, const std::string& key) {
+  const auto v = scalar<long long>(source, node, key, "a whole number of milliseconds");
+  if (v < 0) fail(source, node, "'" + key + "' is negative; give a duration >= 0 ms");
+  return Millis(v);
+}
+
+template <class E>
+E choice(const std::string& source, const YAML::Node& node, const std::string& key,
+         const std::map<std::string, E>& options) {
+  const auto v = scalar<std::string>(source, node, key, "a word");
+  const auto it = options.find(v);
+  if (it == options.end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, _] : options) names.push_back(n);
+    fail(source, node, "'" + key + "' is '" + v + "'; use one of: " + join(names));
+  }
+  return it->second;
+}
+
+void parse_topic(const std::string& source, const YAML::Node& node, const std::string& path,
+                 TopicQos& q) {
+  require_map(source, node, path);
+  reject_unknown(source, node, path,
+                 {"reliability", "max_blocking_ms", "history", "depth", "durability",
+                  "deadline_ms", "lifespan_ms", "liveliness", "liveliness_lease_ms",
+                  "autodispose"});
+  for (const auto& kv : node) {
+    const auto key = kv.first.as<std::string>();
+    const auto& v = kv.second;
+    const auto full = path + "." + key;
+    if (key == "reliability") {
+      q.reliability = choice<Reliability>(
+          source, v, full,
+          {{"reliable", Reliability::kReliable}, {"best_effort", Reliability::kBestEffort}});
+    } else if (key == "max_blocking_ms") {
+      q.max_blocking = millis(source, v, full);
+    } else if (key == "history") {
+      q.history = choice<HistoryKind>(
+          source, v, full,
+          {{"keep_last", HistoryKind::kKeepLast}, {"keep_all", HistoryKind::kKeepAll}});
+    } else if (key == "depth") {
+      q.depth = scalar<int32_t>(source, v, full, "a whole number >= 1");
+      if (q.depth < 1) fail(source, v, "'" + full + "' must be >= 1 (samples kept per robot)");
+    } else if (key == "durability") {
+      q.durability = choice<Durability>(source, v, full,
+                                        {{"volatile", Durability::kVolatile},
+                                         {"transient_local", Durability::kTransientLocal}});
+    } else if (key == "deadline_ms") {
+      q.deadline = millis(source, v, full);
+    } else if (key == "lifespan_ms") {
+      q.lifespan = millis(source, v, full);
+    } else if (key == "liveliness") {
+      q.liveliness = choice<LivelinessKind>(
+          source, v, full,
+          {{"automatic", LivelinessKind::kAutomatic},
+           {"manual_by_participant", LivelinessKind::kManualByParticipant},
+           {"manual_by_topic", LivelinessKind::kManualByTopic}});
+    } else if (key == "liveliness_lease_ms") {
+      q.liveliness_lease = millis(source, v, full);
+    } else if (key == "autodispose") {
+      q.autodispose = scalar<bool>(source, v, full, "true or false");
+    }
+  }
+}
+
+void parse_transport(const std::string& source, const YAML::Node& node, TransportConfig& t) {
+  require_map(source, node, "transport");
+  reject_unknown(source, node, "transport",
+                 {"heartbeat_interval_ms", "nack_delay_ms", "auto_resched_nack_delay_ms",
+                  "loss_per_mille"});
+  for (const auto& kv : node) {
+    const auto key = kv.first.as<std::string>();
+    const auto full = "transport." + key;
+    if (key == "heartbeat_interval_ms") t.heartbeat_interval = millis(source, kv.second, full);
+    if (key == "nack_delay_ms") t.nack_delay = millis(source, kv.second, full);
+    if (key == "auto_resched_nack_delay_ms") {
+      t.auto_resched_nack_delay = millis(source, kv.second, full);
+    }
+    if (key == "loss_per_mille") {
+      t.loss_per_mille = scalar<int>(source, kv.second, full, "a whole number from 0 to 1000");
+      if (t.loss_per_mille < 0 || t.loss_per_mille > 1000) {
+        fail(source, kv.second,
+             "'" + full + "' must be from 0 to 1000 (per mille of sent packets dropped)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+const TopicQos& QosProfile::topic(TopicRole role) const {
+  switch (role) {
+    case TopicRole::kAction:
+      return action;
+    case TopicRole::kProgress:
+      return progress;
+    case TopicRole::kState:
+      return state;
+    case TopicRole::kClock:
+      return clock;
+  }
+  return action;
+}
+
+DomainConfig QosProfile::domain_config(DomainConfig base) const {
+  base.transport = transport;
+  return base;
+}
+
+QosProfile default_qos_profile() {
+  QosProfile p;
+  p.name = "default";
+  p.description = "architecture.md defaults, Cyclone's transport timers";
+  // Action windows and progress are state: keep-last 1 per robot, late joiners get the latest.
+  p.action.reliability = Reliability::kReliable;
+  p.action.durability = Durability::kTransientLocal;
+  p.action.depth = 1;
+  p.progress = p.action;
+  p.progress.autodispose = false;  // a restarted agent must not erase its finished progress
+  p.state.reliability = Reliability::kBestEffort;
+  p.state.durability = Durability::kVolatile;
+  p.state.depth = 1;
+  p.clock.reliability = Reliability::kReliable;
+  p.clock.durability = Durability::kVolatile;
+  p.clock.depth = 1;
+  return p;
+}
+
+QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ":" +
+                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) {
+    throw ConfigError(source +
+                      ": a QoS profile must be a YAML mapping with keys name, description, "
+                      "transport, topics");
+  }
+  QosProfile p = default_qos_profile();
+  reject_unknown(source, root, "(top level)", {"name", "description", "transport", "topics"});
+  if (!root["name"]) {
+    throw ConfigError(source + ": missing key 'name'; add e.g. 'name: lan' at the top");
+  }
+  p.name = scalar<std::string>(source, root["name"], "name", "a profile name");
+  if (root["description"]) {
+    p.description = scalar<std::string>(source, root["description"], "description", "text");
+  }
+  if (root["transport"]) parse_transport(source, root["transport"], p.transport);
+  if (root["topics"]) {
+    const auto topics = root["topics"];
+    require_map(source, topics, "topics");
+    reject_unknown(source, topics, "topics", {"action", "progress", "state", "clock"});
+    if (topics["action"]) parse_topic(source, topics["action"], "topics.action", p.action);
+    if (topics["progress"]) {
+      parse_topic(source, topics["progress"], "topics.progress", p.progress);
+    }
+    if (topics["state"]) parse_topic(source, topics["state"], "topics.state", p.state);
+    if (topics["clock"]) parse_topic(source, topics["clock"], "topics.clock", p.clock);
+  }
+  return p;
+}
+
+QosProfile load_qos_profile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) {
+    throw ConfigError(file.string() +
+                      ": cannot open QoS profile; check the path or use a shipped profile name "
+                      "(lan, wifi, lossy-wifi)");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_qos_profile(text.str(), file.string());
+}
+
+std::vector<std::filesystem::path> config_search_path() {
+  std::vector<std::filesystem::path> dirs;
+  if (const char* env = std::getenv("SMART_CONFIG_DIR"); env != nullptr && *env != '\0') {
+    dirs.emplace_back(env);
+  }
+  dirs.emplace_back(SMART_SOURCE_CONFIG_DIR);
+  return dirs;
+}
+
+QosProfile find_qos_profile(const std::string& name_or_path) {
+  const bool is_path = name_or_path.find('/') != std::string::npos ||
+                       name_or_path.ends_with(".yaml") || name_or_path.ends_with(".yml");
+  if (is_path) return load_qos_profile(name_or_path);
+  std::string looked;
+  for (const auto& dir : config_search_path()) {
+    const auto file = dir / "qos" / (name_or_path + ".yaml");
+    if (std::filesystem::exists(file)) return load_qos_profile(file);
+    looked += (looked.empty() ? "" : ", ") + file.string();
+  }
+  throw ConfigError("QoS profile '" + name_or_path + "' not found (looked for " + looked +
+                    "); use lan, wifi or lossy-wifi, or pass a path to a YAML file");
+}
+
+}  // namespace smart::dds

@@ -1,0 +1,42 @@
+// Test support: every DDS test runs loopback-only in a domain of its own, listed here so that no
+// two tests share one (ctest runs them in parallel, each TEST in its own process).
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "smart/dds/domain.hpp"
+
+namespace smart::test {
+
+enum DomainId : int {
+  kDomainCreateTwice = 101,
+  kRoundTripAction = 102,
+  kRoundTripProgress = 103,
+  kRoundTripState = 104,
+  kRoundTripClock = 105,
+  kKeyedThousand = 106,
+  kLateJoiner = 107,
+  kDisposeState = 108,
+  kListener = 109,
+  kWaitSet = 110,
+  kMatchedStatus = 111,
+  kCrossProcessEcho = 112,
+  kCrossProcessPing = 113,
+  kLossyReliable = 114,
+  kLossyBestEffort = 115,
+  kDeadlineMissed = 116,
+  kIncompatibleQos = 117,
+};
+
+inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
+
+inline std::filesystem::path smart_exe() { return SMART_EXE; }
+
+inline std::filesystem::path temp_file(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("smart_test_" + std::to_string(::getpid()) + "_" + name);
+}
+
+}  // namespace smart::test

@@ -1,0 +1,32 @@
+// Contract: options and helpers shared by the `smart` subcommands: DDS domain/QoS/network
+// options, stop signals (SIGINT/SIGTERM set a flag; nothing calls exit()), logging set-up.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <atomic>
+#include <string>
+
+#include "smart/dds/domain.hpp"
+#include "smart/dds/qos_profile.hpp"
+
+namespace smart::tools {
+
+struct DdsOptions {
+  int domain = 0;
+  std::string qos = "lan";
+  std::string network = "loopback";  // loopback | network
+};
+
+void add_dds_options(CLI::App* cmd, DdsOptions& options);
+// Loads the QoS profile and renders the domain configuration for `options`.
+dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile& profile);
+
+// Set by SIGINT/SIGTERM once install_stop_handlers() ran.
+extern std::atomic<bool> g_stop_requested;
+void install_stop_handlers();
+
+// level: trace, debug, info, warn, error, critical, off. Logs go to stderr.
+void init_logging(const std::string& level);
+
+}  // namespace smart::tools

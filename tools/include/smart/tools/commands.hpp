@@ -1,0 +1,12 @@
+// Contract: each register_* function adds its subcommands to the `smart` CLI; a subcommand's
+// callback stores its process exit code in `exit_code` (0 = success).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace smart::tools {
+
+void register_dds_commands(CLI::App& app, int& exit_code);
+void register_demo_command(CLI::App& app, int& exit_code);
+
+}  // namespace smart::tools
