@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   smart::tools::register_dds_commands(app, exit_code);
   smart::tools::register_demo_command(app, exit_code);
+  smart::tools::register_check_plan_command(app, exit_code);
   app.parse_complete_callback([&] { smart::tools::init_logging(log_level); });
   try {
     app.parse(argc, argv);

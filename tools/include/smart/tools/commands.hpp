@@ -8,5 +8,6 @@ namespace smart::tools {
 
 void register_dds_commands(CLI::App& app, int& exit_code);
 void register_demo_command(CLI::App& app, int& exit_code);
+void register_check_plan_command(CLI::App& app, int& exit_code);
 
 }  // namespace smart::tools

@@ -1,0 +1,193 @@
+#include "smart/monitor/adg.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+namespace smart::monitor {
+
+namespace {
+
+constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+
+// One robot's stay at one location: entered by `enter` (kNone: its start) and left by `leave`
+// (kNone: it stays for good).
+struct Occupancy {
+  uint32_t location;
+  double arrive;  // plan time; -1 for the start location
+  uint32_t robot;
+  uint32_t enter;
+  uint32_t leave;
+};
+
+std::string fmt_time(double t) {
+  std::ostringstream s;
+  s << "t=" << t;
+  return s.str();
+}
+
+HalfCell location_of(const Grid& grid, uint32_t index) {
+  const auto w = static_cast<uint32_t>(2 * grid.width() - 1);
+  return {static_cast<int32_t>(index % w), static_cast<int32_t>(index / w)};
+}
+
+void build_csr(std::size_t n, const std::vector<std::pair<uint32_t, uint32_t>>& edges, bool by_src,
+               std::vector<uint32_t>& begin, std::vector<uint32_t>& list) {
+  begin.assign(n + 1, 0);
+  for (const auto& [u, v] : edges) ++begin[(by_src ? u : v) + 1];
+  for (std::size_t i = 0; i < n; ++i) begin[i + 1] += begin[i];
+  list.resize(edges.size());
+  std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+  for (const auto& [u, v] : edges) list[fill[by_src ? u : v]++] = by_src ? v : u;
+}
+
+}  // namespace
+
+Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
+              std::vector<Problem>& problems) {
+  Adg adg;
+  const std::size_t n = ap.actions.size();
+  const std::size_t robots = ap.robots();
+
+  // Occupancies, robot by robot.
+  std::vector<Occupancy> occ;
+  occ.reserve(ap.moves + robots);
+  for (uint32_t r = 0; r < robots; ++r) {
+    Occupancy cur{static_cast<uint32_t>(grid.half_index(ap.start[r])), -1.0, r, kNone, kNone};
+    for (uint32_t node = ap.offset[r]; node < ap.offset[r + 1]; ++node) {
+      const Action& a = ap.actions[node];
+      if (a.type != ActionType::kMove) continue;
+      cur.leave = node;
+      occ.push_back(cur);
+      cur = {static_cast<uint32_t>(grid.half_index(a.to)), a.end_time, r, node, kNone};
+    }
+    occ.push_back(cur);
+  }
+
+  // Group by location (counting sort keeps each robot's order), then order by arrival.
+  const std::size_t locations = grid.half_cell_count();
+  std::vector<uint32_t> start(locations + 1, 0);
+  for (const auto& o : occ) ++start[o.location + 1];
+  for (std::size_t i = 0; i < locations; ++i) start[i + 1] += start[i];
+  std::vector<Occupancy> sorted(occ.size());
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (const auto& o : occ) sorted[fill[o.location]++] = o;
+  }
+  occ.clear();
+  occ.shrink_to_fit();
+
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  edges.reserve(ap.moves);
+  std::vector<uint32_t> same_robot_seen(robots, 0), stamp(robots, kNone);
+  for (std::size_t loc = 0; loc < locations; ++loc) {
+    const auto b = sorted.begin() + start[loc], e = sorted.begin() + start[loc + 1];
+    if (b == e) continue;
+    ++adg.stats.locations;
+    std::sort(b, e, [](const Occupancy& x, const Occupancy& y) {
+      return x.arrive != y.arrive ? x.arrive < y.arrive : x.robot < y.robot;
+    });
+    std::size_t index = 0;
+    for (auto it = b; it != e; ++it, ++index) {
+      // All-pairs rule: one edge from every earlier occupancy of another robot.
+      if (stamp[it->robot] != loc) {
+        stamp[it->robot] = static_cast<uint32_t>(loc);
+        same_robot_seen[it->robot] = 0;
+      }
+      adg.stats.type2_all_pairs += index - same_robot_seen[it->robot];
+      ++same_robot_seen[it->robot];
+      if (it == b) continue;
+      const Occupancy& p = *(it - 1);
+      const Occupancy& q = *it;
+      if (p.robot == q.robot) continue;
+      const auto where = to_string(location_of(grid, static_cast<uint32_t>(loc)));
+      if (p.leave == kNone) {
+        problems.push_back({source, 0, static_cast<int>(q.robot),
+                            "enters " + where + " at " + fmt_time(q.arrive) + " after robot " +
+                                std::to_string(p.robot) +
+                                " parked there for good; the plan is invalid"});
+        continue;
+      }
+      if (q.enter == kNone) {
+        problems.push_back({source, 0, static_cast<int>(q.robot),
+                            "starts at " + where + " where robot " + std::to_string(p.robot) +
+                                " also starts; the plan is invalid"});
+        continue;
+      }
+      edges.emplace_back(p.leave, q.enter);
+    }
+  }
+
+  build_csr(n, edges, true, adg.out_begin, adg.out);
+  build_csr(n, edges, false, adg.in_begin, adg.in);
+  adg.stats.nodes = n;
+  adg.stats.type1 = 0;
+  for (uint32_t r = 0; r < robots; ++r) adg.stats.type1 += ap.count(r) > 0 ? ap.count(r) - 1 : 0;
+  adg.stats.type2 = edges.size();
+  adg.stats.moves = ap.moves;
+  adg.stats.rotations = ap.rotations;
+  return adg;
+}
+
+std::vector<Problem> check_acyclic(const Adg& adg, const ActionPlan& ap,
+                                   const std::string& source) {
+  const std::size_t n = adg.nodes();
+  std::vector<uint32_t> indegree(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    indegree[v] = adg.in_begin[v + 1] - adg.in_begin[v] + (ap.actions[v].seq > 0 ? 1 : 0);
+  }
+  std::vector<uint32_t> queue;
+  queue.reserve(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    if (indegree[v] == 0) queue.push_back(v);
+  }
+  std::vector<uint8_t> done(n, 0);
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const uint32_t u = queue[head];
+    done[u] = 1;
+    auto release = [&](uint32_t v) {
+      if (--indegree[v] == 0) queue.push_back(v);
+    };
+    const Action& a = ap.actions[u];
+    if (a.seq + 1 < ap.count(a.robot)) release(u + 1);
+    for (uint32_t i = adg.out_begin[u]; i < adg.out_begin[u + 1]; ++i) release(adg.out[i]);
+  }
+  if (queue.size() == n) return {};
+
+  // Walk backwards through unfinished predecessors until a node repeats: that is a cycle.
+  uint32_t v = 0;
+  while (done[v]) ++v;
+  std::vector<uint32_t> path;
+  std::vector<int64_t> position(n, -1);
+  while (position[v] < 0) {
+    position[v] = static_cast<int64_t>(path.size());
+    path.push_back(v);
+    const Action& a = ap.actions[v];
+    uint32_t next = v;
+    if (a.seq > 0 && !done[v - 1]) {
+      next = v - 1;
+    } else {
+      for (uint32_t i = adg.in_begin[v]; i < adg.in_begin[v + 1]; ++i) {
+        if (!done[adg.in[i]]) {
+          next = adg.in[i];
+          break;
+        }
+      }
+    }
+    v = next;
+  }
+  std::string desc;
+  for (auto i = static_cast<std::size_t>(position[v]); i < path.size(); ++i) {
+    const Action& a = ap.actions[path[i]];
+    if (!desc.empty()) desc += " <- ";
+    desc += "robot " + std::to_string(a.robot) + " action " + std::to_string(a.seq) + " (" +
+            (a.type == ActionType::kMove ? "move " + to_string(a.from) + "->" + to_string(a.to)
+                                         : "rotate at " + to_string(a.from)) +
+            ")";
+  }
+  return {{source, 0, -1,
+           "the action dependency graph has a cycle, so execution would deadlock: " + desc +
+               "; the plan's passing order at these locations is contradictory"}};
+}
+
+}  // namespace smart::monitor

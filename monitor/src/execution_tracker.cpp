@@ -1,0 +1,96 @@
+#include "smart/monitor/execution_tracker.hpp"
+
+#include <algorithm>
+
+namespace smart::monitor {
+
+ExecutionTracker::ExecutionTracker(const ActionPlan& actions, const Adg& adg)
+    : actions_(actions),
+      adg_(adg),
+      pending_(actions.actions.size()),
+      finished_(actions.robots(), 0),
+      enqueued_(actions.robots(), 0) {
+  for (std::size_t v = 0; v < pending_.size(); ++v) {
+    pending_[v] = adg.in_begin[v + 1] - adg.in_begin[v];
+  }
+  for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
+}
+
+bool ExecutionTracker::advance(uint32_t robot) {
+  const uint32_t base = actions_.offset[robot];
+  const uint32_t count = actions_.count(robot);
+  const uint32_t before = enqueued_[robot];
+  while (enqueued_[robot] < count && pending_[base + enqueued_[robot]] == 0) ++enqueued_[robot];
+  return enqueued_[robot] != before;
+}
+
+ExecutionTracker::Update ExecutionTracker::on_progress(uint32_t robot, int64_t finished_seq) {
+  Update u;
+  if (robot >= finished_.size()) {
+    u.result = Result::kRejected;
+    u.reason = "robot " + std::to_string(robot) + " does not exist (the plan has " +
+               std::to_string(finished_.size()) + " robots)";
+    return u;
+  }
+  const int64_t count = actions_.count(robot);
+  if (finished_seq >= count) {
+    u.result = Result::kRejected;
+    u.reason = "robot " + std::to_string(robot) + " reports action " +
+               std::to_string(finished_seq) + " finished but has only " + std::to_string(count) +
+               " actions";
+    return u;
+  }
+  if (finished_seq < static_cast<int64_t>(finished_[robot])) {
+    u.result = Result::kStale;
+    u.reason = "robot " + std::to_string(robot) + " already finished " +
+               std::to_string(finished_[robot]) + " actions";
+    return u;
+  }
+  if (finished_seq >= static_cast<int64_t>(enqueued_[robot])) {
+    u.result = Result::kRejected;
+    u.reason = "robot " + std::to_string(robot) + " reports action " +
+               std::to_string(finished_seq) + " finished but only actions below " +
+               std::to_string(enqueued_[robot]) + " were enqueued";
+    return u;
+  }
+  u.result = Result::kAdvanced;
+  u.robots_changed.push_back(robot);
+  const uint32_t base = actions_.offset[robot];
+  const auto upto = static_cast<uint32_t>(finished_seq + 1);
+  for (uint32_t s = finished_[robot]; s < upto; ++s) {
+    const uint32_t node = base + s;
+    for (uint32_t i = adg_.out_begin[node]; i < adg_.out_begin[node + 1]; ++i) {
+      const uint32_t v = adg_.out[i];
+      if (--pending_[v] == 0) {
+        const uint32_t other = actions_.actions[v].robot;
+        if (advance(other)) u.robots_changed.push_back(other);
+      }
+    }
+  }
+  finished_total_ += upto - finished_[robot];
+  finished_[robot] = upto;
+  std::sort(u.robots_changed.begin(), u.robots_changed.end());
+  u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
+                         u.robots_changed.end());
+  return u;
+}
+
+ExecutionTracker::Window ExecutionTracker::window(uint32_t robot, uint32_t cap) const {
+  return {finished_[robot], std::min(enqueued_[robot], finished_[robot] + cap)};
+}
+
+ActionState ExecutionTracker::state(uint32_t robot, uint32_t seq) const {
+  if (seq < finished_[robot]) return ActionState::kFinished;
+  if (seq < enqueued_[robot]) return ActionState::kEnqueued;
+  return ActionState::kStaged;
+}
+
+bool ExecutionTracker::deadlocked() const {
+  if (complete()) return false;
+  for (std::size_t r = 0; r < finished_.size(); ++r) {
+    if (enqueued_[r] > finished_[r]) return false;
+  }
+  return true;
+}
+
+}  // namespace smart::monitor

@@ -1,0 +1,118 @@
+#include "smart/monitor/adg.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::monitor {
+namespace {
+
+using ::testing::HasSubstr;
+using test::grid_of;
+using test::plan_of;
+using Edge = std::pair<uint32_t, uint32_t>;
+
+std::set<Edge> type2_edges(const Adg& adg) {
+  std::set<Edge> edges;
+  for (uint32_t u = 0; u < adg.nodes(); ++u) {
+    for (uint32_t i = adg.out_begin[u]; i < adg.out_begin[u + 1]; ++i) edges.insert({u, adg.out[i]});
+  }
+  return edges;
+}
+
+struct Built {
+  ActionPlan actions;
+  Adg adg;
+  std::vector<Problem> problems;
+};
+
+Built build(const Grid& grid, const Plan& plan) {
+  Built b;
+  b.actions = build_actions(plan, Heading::kEast);
+  b.adg = build_adg(b.actions, grid, plan.source, b.problems);
+  return b;
+}
+
+const Grid kGrid = grid_of({".....", ".....", "....."});
+
+TEST(Adg, FollowingRobotWaitsForEachLocationToBeLeft) {
+  // Robot 0: (1,0)->(2,0)->(3,0); robot 1 follows one step behind, both heading east.
+  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
+  ASSERT_TRUE(b.problems.empty());
+  ASSERT_EQ(b.actions.count(0), 4u);
+  ASSERT_EQ(b.actions.count(1), 4u);
+  // Node ids: robot 0 = 0..3, robot 1 = 4..7. Leaving (1,0), the midpoint and (2,0) gate robot
+  // 1's entering of each.
+  EXPECT_EQ(type2_edges(b.adg), (std::set<Edge>{{0, 5}, {1, 6}, {2, 7}}));
+  EXPECT_EQ(b.adg.in_begin[5 + 1] - b.adg.in_begin[5], 1u);
+  EXPECT_EQ(b.adg.stats.type1, 6u);
+  EXPECT_EQ(b.adg.stats.type2, 3u);
+  EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
+}
+
+TEST(Adg, CrossingRobotEntersAfterTheFirstHasLeft) {
+  // Robot 0 crosses (1,1) eastwards at t=1..2; robot 1 comes down through it at t=2..3.
+  const auto b =
+      build(kGrid, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}));
+  ASSERT_TRUE(b.problems.empty());
+  ASSERT_EQ(b.actions.count(1), 5u);  // rotate south, then four half-moves
+  EXPECT_EQ(b.actions.at(1, 0).type, ActionType::kRotate);
+  // Robot 0 leaves (1,1) with its action 2; robot 1 enters (1,1) with its action 2 (node 4+2).
+  EXPECT_EQ(type2_edges(b.adg), (std::set<Edge>{{2, 6}}));
+}
+
+TEST(Adg, RotationCycleOfFourRobotsIsAcyclicThanksToMidpoints) {
+  const Cell c[4] = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
+  Plan plan = plan_of({{c[0], c[1]}, {c[1], c[2]}, {c[2], c[3]}, {c[3], c[0]}});
+  const auto b = build(kGrid, plan);
+  ASSERT_TRUE(b.problems.empty());
+  EXPECT_EQ(b.adg.stats.type2, 4u);
+  EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
+  // Every robot's first half-move (out of its cell) has no Type-2 predecessor.
+  for (uint32_t r = 0; r < 4; ++r) {
+    uint32_t first_move = b.actions.offset[r];
+    while (b.actions.actions[first_move].type != ActionType::kMove) ++first_move;
+    EXPECT_EQ(b.adg.in_begin[first_move + 1] - b.adg.in_begin[first_move], 0u) << r;
+  }
+}
+
+TEST(Adg, ReducedEdgesVersusAllPairsOnAThreeRobotTrain) {
+  const auto b = build(kGrid, plan_of({{{2, 0}, {3, 0}, {4, 0}},
+                                       {{1, 0}, {2, 0}, {3, 0}},
+                                       {{0, 0}, {1, 0}, {2, 0}}}));
+  ASSERT_TRUE(b.problems.empty());
+  EXPECT_EQ(b.adg.stats.type2, 6u);
+  EXPECT_EQ(b.adg.stats.type2_all_pairs, 7u);  // (2,0) is visited by all three robots
+  EXPECT_EQ(b.adg.stats.locations, 9u);
+  EXPECT_EQ(b.adg.stats.moves, 12u);
+}
+
+TEST(Adg, SwapPlanGivesACycleNamingBothRobots) {
+  const auto b = build(kGrid, plan_of({{{0, 2}, {1, 2}}, {{1, 2}, {0, 2}}}));
+  const auto cycle = check_acyclic(b.adg, b.actions, "swap.txt");
+  ASSERT_EQ(cycle.size(), 1u);
+  EXPECT_THAT(cycle[0].to_string(), HasSubstr("swap.txt: the action dependency graph has a cycle"));
+  EXPECT_THAT(cycle[0].message, HasSubstr("robot 0"));
+  EXPECT_THAT(cycle[0].message, HasSubstr("robot 1"));
+  EXPECT_THAT(cycle[0].message, HasSubstr("(x=0.5,y=2)"));
+}
+
+TEST(Adg, VisitorAfterARobotParkedForGoodIsReported) {
+  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {3, 0}}}));
+  ASSERT_FALSE(b.problems.empty());
+  EXPECT_THAT(b.problems[0].to_string(),
+              HasSubstr("robot 1: enters (x=2,y=0) at t=3 after robot 0 parked there for good"));
+}
+
+TEST(Adg, RobotsThatNeverMoveAddNoEdges) {
+  const auto b = build(kGrid, plan_of({{{0, 0}}, {{4, 2}, {4, 2}}}));
+  EXPECT_TRUE(b.problems.empty());
+  EXPECT_EQ(b.adg.nodes(), 0u);
+  EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
+}
+
+}  // namespace
+}  // namespace smart::monitor

@@ -1,0 +1,98 @@
+#include "smart/monitor/execution_tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::monitor {
+namespace {
+
+using R = ExecutionTracker::Result;
+
+struct Following {
+  // Robot 0: actions 0..3, no Type-2 predecessors. Robot 1 (nodes 4..7): action 1 waits for
+  // robot 0's action 0, action 2 for 1, action 3 for 2.
+  Grid grid = test::grid_of({".....", "....."});
+  ActionPlan actions =
+      build_actions(test::plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
+  std::vector<Problem> problems;
+  Adg adg = build_adg(actions, grid, "p", problems);
+};
+
+TEST(ExecutionTracker, InitialEnqueueFollowsThePaperRule) {
+  Following f;
+  ExecutionTracker t(f.actions, f.adg);
+  EXPECT_EQ(t.enqueued(0), 4u);
+  EXPECT_EQ(t.enqueued(1), 1u);
+  EXPECT_EQ(t.state(1, 0), ActionState::kEnqueued);
+  EXPECT_EQ(t.state(1, 1), ActionState::kStaged);
+  const auto w = t.window(0, 2);
+  EXPECT_EQ(w.first, 0u);
+  EXPECT_EQ(w.end, 2u);  // look-ahead cap
+}
+
+TEST(ExecutionTracker, FinishingReleasesTheOtherRobot) {
+  Following f;
+  ExecutionTracker t(f.actions, f.adg);
+  auto u = t.on_progress(0, 0);
+  EXPECT_EQ(u.result, R::kAdvanced);
+  EXPECT_EQ(u.robots_changed, (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(t.enqueued(1), 2u);
+  EXPECT_EQ(t.state(0, 0), ActionState::kFinished);
+  EXPECT_EQ(t.window(0, 10).first, 1u);
+}
+
+TEST(ExecutionTracker, ProgressIsCumulative) {
+  Following f;
+  ExecutionTracker t(f.actions, f.adg);
+  EXPECT_EQ(t.on_progress(0, 3).result, R::kAdvanced);
+  EXPECT_EQ(t.finished(0), 4u);
+  EXPECT_TRUE(t.robot_done(0));
+  EXPECT_EQ(t.enqueued(1), 4u);
+  EXPECT_EQ(t.finished_total(), 4u);
+  EXPECT_EQ(t.on_progress(1, 3).result, R::kAdvanced);
+  EXPECT_TRUE(t.complete());
+  EXPECT_FALSE(t.deadlocked());
+}
+
+TEST(ExecutionTracker, StaleOutOfRangeAndNeverEnqueuedChangeNothing) {
+  Following f;
+  ExecutionTracker t(f.actions, f.adg);
+  ASSERT_EQ(t.on_progress(0, 1).result, R::kAdvanced);
+  const auto before_enqueued = t.enqueued(1);
+  auto stale = t.on_progress(0, 0);  // a duplicate or reordered old report
+  EXPECT_EQ(stale.result, R::kStale);
+  EXPECT_TRUE(stale.robots_changed.empty());
+  EXPECT_EQ(t.on_progress(0, -1).result, R::kStale);
+  auto never = t.on_progress(1, 3);
+  EXPECT_EQ(never.result, R::kRejected);
+  EXPECT_NE(never.reason.find("were enqueued"), std::string::npos);
+  EXPECT_EQ(t.on_progress(0, 4).result, R::kRejected);
+  EXPECT_EQ(t.on_progress(2, 0).result, R::kRejected);
+  EXPECT_EQ(t.finished(0), 2u);
+  EXPECT_EQ(t.finished(1), 0u);
+  EXPECT_EQ(t.enqueued(1), before_enqueued);
+  EXPECT_EQ(t.finished_total(), 2u);
+}
+
+TEST(ExecutionTracker, DeadlockWhenNothingIsEnqueuedButWorkRemains) {
+  // A swap plan gives a cyclic ADG: nobody can start.
+  const auto grid = test::grid_of({"..."});
+  const auto actions = build_actions(test::plan_of({{{0, 0}, {1, 0}}, {{1, 0}, {0, 0}}}));
+  std::vector<Problem> problems;
+  const auto adg = build_adg(actions, grid, "p", problems);
+  ExecutionTracker t(actions, adg);
+  // Robot 0 may take its first half-move, robot 1 its rotation (it faces east, moves west);
+  // after that each waits for the other.
+  ASSERT_EQ(t.enqueued(0), 1u);
+  ASSERT_EQ(t.enqueued(1), 1u);
+  ASSERT_EQ(t.on_progress(0, 0).result, R::kAdvanced);
+  ASSERT_EQ(t.on_progress(1, 0).result, R::kAdvanced);
+  EXPECT_EQ(t.enqueued(0), 1u);
+  EXPECT_EQ(t.enqueued(1), 1u);
+  EXPECT_FALSE(t.complete());
+  EXPECT_TRUE(t.deadlocked());
+}
+
+}  // namespace
+}  // namespace smart::monitor
