@@ -1,0 +1,36 @@
+#include "machine.hpp"
+
+#include <sys/resource.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
+#include <thread>
+
+namespace smart::bench {
+
+std::string machine_description() {
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  utsname u{};
+  uname(&u);
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
+         std::to_string(static_cast<long long>(pages) * page / (1024 * 1024 * 1024)) + " GiB, " +
+         u.sysname + " " + u.release;
+}
+
+double peak_rss_mb() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_maxrss) / 1024.0;
+}
+
+}  // namespace smart::bench

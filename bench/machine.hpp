@@ -1,0 +1,12 @@
+// Contract: describes the machine a benchmark ran on (CPU model, cores, memory, kernel) and the
+// process's peak resident memory, for benchmark output and docs/performance.md.
+#pragma once
+
+#include <string>
+
+namespace smart::bench {
+
+std::string machine_description();
+double peak_rss_mb();
+
+}  // namespace smart::bench
