@@ -3,11 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <map>
-#include <set>
-#include <sstream>
 
+#include "smart/config/yaml_checks.hpp"
 #include "smart/dds/error.hpp"
 
 #ifndef SMART_SOURCE_CONFIG_DIR
@@ -18,66 +15,12 @@ namespace smart::dds {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& source, const YAML::Node& node, const std::string& what) {
-  const auto m = node.Mark();
-  std::ostringstream s;
-  s << source;
-  if (!m.is_null()) s << ":" << m.line + 1 << ":" << m.column + 1;
-  s << ": " << what;
-  throw ConfigError(s.str());
-}
-
-std::string join(const std::vector<std::string>& xs) {
-  std::string out;
-  for (const auto& x : xs) out += (out.empty() ? "" : ", ") + x;
-  return out;
-}
-
-void require_map(const std::string& source, const YAML::Node& node, const std::string& path) {
-  if (!node.IsMap()) fail(source, node, "'" + path + "' must be a mapping of keys to values");
-}
-
-void reject_unknown(const std::string& source, const YAML::Node& node, const std::string& path,
-                    const std::vector<std::string>& known) {
-  const std::set<std::string> k(known.begin(), known.end());
-  for (const auto& kv : node) {
-    const auto key = kv.first.as<std::string>();
-    if (!k.count(key)) {
-      fail(source, kv.first,
-           "unknown key '" + key + "' in '" + path + "'; known keys: " + join(known));
-    }
-  }
-}
-
-template <class T>
-T scalar(const std::string& source, const YAML::Node& node, const std::string& key,
-         const char* expected) {
-  if (!node.IsScalar()) fail(source, node, "'" + key + "' must be " + expected);
-  try {
-    return node.as<T>();
-  } catch (const YAML::Exception&) {
-    fail(source, node, "'" + key + "' is '" + node.Scalar() + "' but must be " + expected);
-  }
-}
-
-Millis millis(const std::string& source, const YAML::Node& node, const std::string& key) {
-  const auto v = scalar<long long>(source, node, key, "a whole number of milliseconds");
-  if (v < 0) fail(source, node, "'" + key + "' is negative; give a duration >= 0 ms");
-  return Millis(v);
-}
-
-template <class E>
-E choice(const std::string& source, const YAML::Node& node, const std::string& key,
-         const std::map<std::string, E>& options) {
-  const auto v = scalar<std::string>(source, node, key, "a word");
-  const auto it = options.find(v);
-  if (it == options.end()) {
-    std::vector<std::string> names;
-    for (const auto& [n, _] : options) names.push_back(n);
-    fail(source, node, "'" + key + "' is '" + v + "'; use one of: " + join(names));
-  }
-  return it->second;
-}
+using config::choice;
+using config::fail;
+using config::millis;
+using config::reject_unknown;
+using config::require_map;
+using config::scalar;
 
 void parse_topic(const std::string& source, const YAML::Node& node, const std::string& path,
                  TopicQos& q) {
@@ -189,13 +132,7 @@ QosProfile default_qos_profile() {
 }
 
 QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(source + ":" + std::to_string(e.mark.line + 1) + ":" +
-                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = config::load(yaml_text, source);
   if (!root.IsMap()) {
     throw ConfigError(source +
                       ": a QoS profile must be a YAML mapping with keys name, description, "
@@ -226,15 +163,7 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
 }
 
 QosProfile load_qos_profile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) {
-    throw ConfigError(file.string() +
-                      ": cannot open QoS profile; check the path or use a shipped profile name "
-                      "(lan, wifi, lossy-wifi)");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_qos_profile(text.str(), file.string());
+  return parse_qos_profile(config::read_file(file.string(), "QoS profile"), file.string());
 }
 
 std::vector<std::filesystem::path> config_search_path() {

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "smart/config/yaml_checks.hpp"
+
 namespace smart::dds {
 
 class Error : public std::runtime_error {
@@ -20,10 +22,7 @@ class Error : public std::runtime_error {
 };
 
 // A configuration problem (QoS YAML, domain settings). The message says where and how to fix it.
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using ConfigError = config::ConfigError;
 
 // Throws Error when `ret` is negative (a Cyclone error code); returns it otherwise.
 dds_return_t check(dds_return_t ret, const char* what_failed);
