@@ -1,0 +1,76 @@
+// Contract: one robot's executor, the same class for simulated and physical robots.
+// - Lifecycle (ros2_control style): configure() opens the backend, activate() allows motion,
+//   deactivate() brings the wheels to zero. Only an active agent moves.
+// - on_window() feeds the monitor's action window into the ActionQueue (idempotent).
+// - step(now_s) is the cyclic read/update/write at the control period: read the pose; if it is
+//   invalid or older than pose_timeout_s the wheels are stopped at once (watchdog); otherwise
+//   advance the queue and write wheel speeds. Consecutive moves along one heading are merged
+//   into one run driven without stopping, and each half-move is reported finished as the
+//   robot passes its end (the last one of the run when the robot has stopped on it).
+// - progress: finished_seq() is cumulative (every seq <= it is done); executing_seq() is the
+//   action at the front of the queue, -1 when idle.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "smart/agent/action_queue.hpp"
+#include "smart/agent/controller.hpp"
+#include "smart/agent/interfaces.hpp"
+#include "smart/agent/robot_model.hpp"
+
+namespace smart::agent {
+
+struct AgentConfig {
+  uint32_t robot_id = 0;
+  RobotModel model;
+  double period_s = 0.1;
+  double pose_timeout_s = 0.5;
+};
+
+enum class LifecycleState { kUnconfigured, kInactive, kActive };
+
+class Agent {
+ public:
+  Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose);
+
+  void configure();
+  void activate();
+  void deactivate();
+  LifecycleState state() const { return state_; }
+
+  ActionQueue::Result on_window(uint64_t run_id, const std::vector<AgentAction>& window);
+  void step(double now_s);
+
+  uint32_t robot_id() const { return config_.robot_id; }
+  uint64_t run_id() const { return queue_.run_id(); }
+  int64_t finished_seq() const { return queue_.finished_seq(); }
+  int64_t executing_seq() const {
+    return queue_.empty() ? int64_t{-1} : static_cast<int64_t>(queue_.front().seq);
+  }
+  std::size_t queue_length() const { return queue_.pending().size(); }
+  const PoseSample& last_pose() const { return pose_sample_; }
+  WheelSpeeds last_command() const { return command_; }
+  bool pose_stale() const { return stale_; }
+  uint64_t watchdog_stops() const { return watchdog_stops_; }
+  // True when nothing is queued and the wheels are at rest: the backend may let it sleep.
+  bool idle() const { return queue_.empty() && command_.left_mps == 0 && command_.right_mps == 0; }
+
+ private:
+  void write(Twist t);
+  // Runs the front actions; returns the command for this period.
+  Twist update();
+
+  AgentConfig config_;
+  DriveBackend& drive_;
+  PoseSource& pose_;
+  Controller controller_;
+  ActionQueue queue_;
+  LifecycleState state_ = LifecycleState::kUnconfigured;
+  PoseSample pose_sample_;
+  WheelSpeeds command_;
+  bool stale_ = false;
+  uint64_t watchdog_stops_ = 0;
+};
+
+}  // namespace smart::agent

@@ -1,0 +1,101 @@
+#include "smart/agent/agent.hpp"
+
+#include <cmath>
+
+namespace smart::agent {
+
+Agent::Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose)
+    : config_(std::move(config)),
+      drive_(drive),
+      pose_(pose),
+      controller_(config_.model, config_.period_s) {}
+
+void Agent::configure() {
+  if (state_ != LifecycleState::kUnconfigured) return;
+  drive_.configure();
+  state_ = LifecycleState::kInactive;
+}
+
+void Agent::activate() {
+  if (state_ == LifecycleState::kUnconfigured) configure();
+  drive_.activate();
+  state_ = LifecycleState::kActive;
+}
+
+void Agent::deactivate() {
+  if (state_ == LifecycleState::kUnconfigured) return;
+  drive_.deactivate();
+  controller_.reset();
+  command_ = {};
+  state_ = LifecycleState::kInactive;
+}
+
+ActionQueue::Result Agent::on_window(uint64_t run_id, const std::vector<AgentAction>& window) {
+  return queue_.apply(run_id, window);
+}
+
+void Agent::write(Twist t) {
+  command_ = controller_.wheels(t);
+  drive_.set_wheel_speeds(command_);
+}
+
+void Agent::step(double now_s) {
+  if (state_ != LifecycleState::kActive) return;
+  pose_sample_ = pose_.read();
+  const bool stale = !pose_sample_.valid || now_s - pose_sample_.stamp_s > config_.pose_timeout_s;
+  if (stale) {
+    // Watchdog: without a fresh pose the robot is driving blind; stop now, not gradually.
+    if (!stale_) ++watchdog_stops_;
+    stale_ = true;
+    drive_.stop();
+    controller_.reset();
+    command_ = {};
+    return;
+  }
+  stale_ = false;
+  write(update());
+}
+
+Twist Agent::update() {
+  // A few actions may end within one period (a rotation already aligned, a passed half-move).
+  for (int guard = 0; guard < 64; ++guard) {
+    if (queue_.empty()) {
+      bool stopped = false;
+      return controller_.brake(&stopped);
+    }
+    const AgentAction& a = queue_.front();
+    if (a.kind == ActionKind::kRotate) {
+      bool done = false;
+      const Twist t = controller_.rotate(pose_sample_, a.heading_rad, &done);
+      if (!done) return t;
+      queue_.finish_front();
+      continue;
+    }
+    // Merge the run of consecutive moves along this heading.
+    const auto& q = queue_.pending();
+    std::size_t last = 0;
+    while (last + 1 < q.size() && q[last + 1].kind == ActionKind::kMove &&
+           std::abs(q[last + 1].heading_rad - a.heading_rad) < 1e-9) {
+      ++last;
+    }
+    const Segment seg{a.from_x_m, a.from_y_m, q[last].to_x_m, q[last].to_y_m, a.heading_rad};
+    // Half-moves whose end the robot has passed are finished (all but the run's last).
+    const double along = Controller::progress_m(pose_sample_.pose, seg);
+    while (queue_.pending().size() > 1 && last > 0) {
+      const AgentAction& f = queue_.front();
+      const double end_along = (f.to_x_m - seg.start_x_m) * std::cos(seg.heading_rad) +
+                               (f.to_y_m - seg.start_y_m) * std::sin(seg.heading_rad);
+      if (along < end_along) break;
+      queue_.finish_front();
+      --last;
+    }
+    bool done = false;
+    const Twist t = controller_.drive(pose_sample_, seg, &done);
+    if (!done || last > 0) return t;
+    queue_.finish_front();
+  }
+  bool stopped = false;
+  return controller_.brake(&stopped);
+}
+
+}  // namespace smart::agent

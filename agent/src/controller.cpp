@@ -1,0 +1,89 @@
+#include "smart/agent/controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "smart/agent/kinematics.hpp"
+
+namespace smart::agent {
+
+namespace {
+double clamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
+double sign(double v) { return v < 0 ? -1.0 : 1.0; }
+// Speed from which `decel` stops within `dist`, discretised so that one period at that speed
+// never overshoots (v·dt <= dist): the trapezoid's braking ramp.
+double braking_speed(double dist, double decel, double dt) {
+  const double a = decel;
+  // Largest v with v·dt + v²/(2a) <= dist.
+  return std::max(0.0, -a * dt + std::sqrt(a * a * dt * dt + 2.0 * a * dist));
+}
+}  // namespace
+
+Controller::Controller(const RobotModel& model, double period_s) : m_(model), dt_(period_s) {}
+
+Twist Controller::limit(double v_target, double w_target) {
+  v_target = clamp(v_target, -m_.max_speed_mps, m_.max_speed_mps);
+  w_target = clamp(w_target, -m_.max_turn_rate_radps, m_.max_turn_rate_radps);
+  // Speeding up (away from zero) uses max_accel, slowing down max_decel.
+  const bool speeding_up = std::abs(v_target) > std::abs(v_) && v_target * v_ >= 0;
+  const double dv = (speeding_up ? m_.max_accel_mps2 : m_.max_decel_mps2) * dt_;
+  v_ = clamp(v_target, v_ - dv, v_ + dv);
+  const double dw = m_.max_angular_accel_radps2 * dt_;
+  w_ = clamp(w_target, w_ - dw, w_ + dw);
+  // Both wheels within the speed limit too (a turning robot's outer wheel is faster).
+  const auto wheels = saturate(to_wheels({v_, w_}, m_.wheel_base_m), m_.max_speed_mps);
+  const auto t = to_twist(wheels, m_.wheel_base_m);
+  v_ = t.linear_mps;
+  w_ = t.angular_radps;
+  return {v_, w_};
+}
+
+Twist Controller::rotate(const PoseSample& p, double target, bool* done) {
+  const double err = wrap_angle(target - p.pose.yaw_rad);
+  const double speed = std::min(braking_speed(std::abs(err), m_.max_angular_accel_radps2, dt_),
+                                m_.gains.heading_kp * std::abs(err));
+  const Twist t = limit(0.0, sign(err) * speed - m_.gains.heading_kd * p.angular_radps);
+  *done = std::abs(err) <= m_.gains.heading_tolerance_rad &&
+          std::abs(w_) <= m_.max_angular_accel_radps2 * dt_;
+  return t;
+}
+
+double Controller::remaining_m(const Pose2D& pose, const Segment& s) {
+  return (s.end_x_m - pose.x_m) * std::cos(s.heading_rad) +
+         (s.end_y_m - pose.y_m) * std::sin(s.heading_rad);
+}
+
+double Controller::progress_m(const Pose2D& pose, const Segment& s) {
+  return (pose.x_m - s.start_x_m) * std::cos(s.heading_rad) +
+         (pose.y_m - s.start_y_m) * std::sin(s.heading_rad);
+}
+
+Twist Controller::drive(const PoseSample& p, const Segment& s, bool* done) {
+  const double d = remaining_m(p.pose, s);
+  // Lateral offset, positive when the robot is left of the line.
+  const double lateral = -(p.pose.x_m - s.start_x_m) * std::sin(s.heading_rad) +
+                         (p.pose.y_m - s.start_y_m) * std::cos(s.heading_rad);
+  const double yaw_target = s.heading_rad - std::atan(m_.gains.cross_track_kp * lateral);
+  const double yaw_err = wrap_angle(yaw_target - p.pose.yaw_rad);
+  double speed = std::min({m_.max_speed_mps, braking_speed(std::abs(d), m_.max_decel_mps2, dt_),
+                           m_.gains.distance_kp * std::abs(d)});
+  // Do not drive on while badly misaligned: slow down in proportion.
+  speed *= std::max(0.0, std::cos(std::min(std::abs(yaw_err) * 2.0, M_PI / 2)));
+  const double w = clamp(m_.gains.heading_kp * yaw_err, -m_.max_turn_rate_radps,
+                         m_.max_turn_rate_radps) -
+                   m_.gains.heading_kd * p.angular_radps;
+  const Twist t = limit(sign(d) * speed, w);
+  *done = std::abs(d) <= m_.gains.position_tolerance_m &&
+          std::abs(v_) <= m_.max_decel_mps2 * dt_;
+  return t;
+}
+
+Twist Controller::brake(bool* stopped) {
+  const Twist t = limit(0.0, 0.0);
+  *stopped = v_ == 0.0 && w_ == 0.0;
+  return t;
+}
+
+WheelSpeeds Controller::wheels(Twist t) const { return to_wheels(t, m_.wheel_base_m); }
+
+}  // namespace smart::agent

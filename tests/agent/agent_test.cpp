@@ -1,0 +1,148 @@
+#include "smart/agent/agent.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/fake_robot.hpp"
+
+namespace smart::agent {
+namespace {
+
+constexpr double kDt = 0.1;
+
+RobotModel footbot() {
+  return load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
+}
+
+// Half-moves along +x from x=0: seq k goes from k/2 to (k+1)/2 metres.
+std::vector<AgentAction> east_half_moves(uint32_t first, uint32_t last) {
+  std::vector<AgentAction> w;
+  for (uint32_t s = first; s <= last; ++s) {
+    w.push_back({s, ActionKind::kMove, 0.5 * s, 0, 0.5 * (s + 1), 0, 0});
+  }
+  return w;
+}
+
+struct Drive {
+  test::FakeRobot robot;
+  Agent agent;
+  std::vector<int64_t> finished;  // after each step
+  std::vector<double> speed;      // commanded forward speed after each step
+  explicit Drive(const RobotModel& m)
+      : robot(m.wheel_base_m), agent({7, m, kDt, 0.5}, robot, robot) {}
+  void steps(int n) {
+    for (int i = 0; i < n; ++i) {
+      agent.step(robot.time());
+      robot.advance(kDt);
+      finished.push_back(agent.finished_seq());
+      speed.push_back(to_twist(agent.last_command(), wheel_base_m).linear_mps);
+    }
+  }
+  double wheel_base_m = 0.14;
+};
+
+TEST(Agent, MergedRunReportsEveryHalfMoveInOrderWithoutStopping) {
+  Drive r(footbot());
+  r.agent.activate();
+  ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 5)), ActionQueue::Result::kAccepted);
+  r.steps(300);
+  ASSERT_EQ(r.agent.finished_seq(), 5);
+  EXPECT_NEAR(r.robot.pose().x_m, 3.0, 0.02);
+  // Progress only grows, one action at a time or more, and covers every seq.
+  for (std::size_t i = 1; i < r.finished.size(); ++i) EXPECT_GE(r.finished[i], r.finished[i - 1]);
+  // Between the first and last half-move the robot never stops (one merged run).
+  std::size_t first = 0, last = 0;
+  for (std::size_t i = 0; i < r.finished.size(); ++i) {
+    if (r.finished[i] >= 0 && first == 0) first = i;
+    if (r.finished[i] >= 4 && last == 0) last = i;
+  }
+  ASSERT_GT(last, first);
+  for (std::size_t i = first; i <= last; ++i) EXPECT_GT(r.speed[i], 0.05) << "step " << i;
+  EXPECT_EQ(r.agent.queue_length(), 0u);
+  EXPECT_EQ(r.agent.executing_seq(), -1);
+}
+
+TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
+  Drive r(footbot());
+  r.agent.activate();
+  r.agent.on_window(1, east_half_moves(0, 3));
+  for (int i = 0; i < 300; ++i) {
+    r.agent.step(r.robot.time());
+    const double x = r.robot.pose().x_m;
+    const int64_t f = r.agent.finished_seq();
+    // Finished seq k means the robot got past (k+1)/2 m, less the final tolerance.
+    if (f >= 0) {
+      EXPECT_GE(x, 0.5 * (f + 1) - 0.011) << "finished " << f << " at x=" << x;
+    }
+    r.robot.advance(kDt);
+  }
+  EXPECT_EQ(r.agent.finished_seq(), 3);
+}
+
+TEST(Agent, DuplicatedAndOutOfOrderWindowsCauseNoDuplicateExecution) {
+  Drive r(footbot());
+  r.agent.activate();
+  r.agent.on_window(3, east_half_moves(0, 3));
+  r.steps(10);
+  r.agent.on_window(3, east_half_moves(0, 3));  // duplicate
+  r.agent.on_window(3, east_half_moves(0, 1));  // older, out of order
+  r.agent.on_window(3, east_half_moves(2, 5));  // overlapping extension
+  r.steps(300);
+  EXPECT_EQ(r.agent.finished_seq(), 5);
+  EXPECT_NEAR(r.robot.pose().x_m, 3.0, 0.02) << "executing a half-move twice would overshoot";
+}
+
+TEST(Agent, RotationThenMove) {
+  Drive r(footbot());
+  r.agent.activate();
+  std::vector<AgentAction> w{{0, ActionKind::kRotate, 0, 0, 0, 0, M_PI / 2},
+                             {1, ActionKind::kMove, 0, 0, 0, 0.5, M_PI / 2},
+                             {2, ActionKind::kMove, 0, 0.5, 0, 1.0, M_PI / 2}};
+  r.agent.on_window(1, w);
+  r.steps(300);
+  EXPECT_EQ(r.agent.finished_seq(), 2);
+  EXPECT_NEAR(r.robot.pose().y_m, 1.0, 0.02);
+  EXPECT_NEAR(r.robot.pose().x_m, 0.0, 0.02);
+}
+
+TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
+  Drive r(footbot());
+  r.agent.activate();
+  r.agent.on_window(1, east_half_moves(0, 9));
+  r.steps(30);
+  ASSERT_GT(std::abs(r.agent.last_command().left_mps), 0.1);
+  const int stops_before = r.robot.stops;
+  r.robot.freeze_stamp_at(r.robot.time() - 1.0);  // pose a second old
+  r.agent.step(r.robot.time() + 1.0);
+  EXPECT_TRUE(r.agent.pose_stale());
+  EXPECT_EQ(r.agent.watchdog_stops(), 1u);
+  EXPECT_EQ(r.robot.stops, stops_before + 1);
+  EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
+  EXPECT_EQ(r.robot.commands.back().right_mps, 0.0);
+  r.robot.valid = false;  // no pose at all: still stopped
+  r.agent.step(r.robot.time());
+  EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
+}
+
+TEST(Agent, LifecycleOnlyActiveAgentsMoveAndDeactivateStops) {
+  Drive r(footbot());
+  r.agent.on_window(1, east_half_moves(0, 1));
+  r.agent.step(0.0);
+  EXPECT_TRUE(r.robot.commands.empty());
+  r.agent.configure();
+  EXPECT_EQ(r.robot.configured, 1);
+  EXPECT_EQ(r.agent.state(), LifecycleState::kInactive);
+  r.agent.step(0.0);
+  EXPECT_TRUE(r.robot.commands.empty());
+  r.agent.activate();
+  r.steps(5);
+  EXPECT_FALSE(r.robot.commands.empty());
+  r.agent.deactivate();
+  EXPECT_EQ(r.robot.deactivated, 1);
+  EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
+  EXPECT_EQ(r.agent.state(), LifecycleState::kInactive);
+}
+
+}  // namespace
+}  // namespace smart::agent
