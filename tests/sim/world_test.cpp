@@ -1,0 +1,155 @@
+#include "smart/sim/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "smart/monitor/random_plan.hpp"
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::sim {
+namespace {
+
+agent::RobotModel model(double max_speed = 1.0) {
+  agent::RobotModel m;
+  m.name = "test";
+  m.radius_m = 0.2;
+  m.mass_kg = 10;
+  m.wheel_base_m = 0.3;
+  m.max_speed_mps = max_speed;
+  m.max_accel_mps2 = 0.4;
+  m.max_decel_mps2 = 0.4;
+  return m;
+}
+
+monitor::Grid open_map(int w, int h) {
+  return monitor::Grid(w, h, std::vector<uint8_t>(static_cast<std::size_t>(w) * h, 0), "open");
+}
+
+TEST(World, FullSpeedFromRestFollowsVEqualsATUntilTheLimit) {
+  const auto grid = open_map(20, 5);
+  World world(grid, model(1.0), {}, {{1.0, 2.0, 0.0}});
+  world.set_wheel_targets(0, {1.0, 1.0});
+  double max_err = 0;
+  for (int k = 1; k <= 50; ++k) {
+    world.step();
+    const double t = world.time_s();
+    const double expected = std::min(0.4 * t, 1.0);
+    max_err = std::max(max_err, std::abs(world.pose(0).linear_mps - expected));
+    EXPECT_NEAR(world.pose(0).linear_mps, expected, 0.02) << "t = " << t;
+    EXPECT_LE(world.pose(0).linear_mps, 1.0 + 1e-6);
+  }
+  EXPECT_NEAR(world.pose(0).pose.y_m, 2.0, 1e-6);
+  EXPECT_NEAR(world.pose(0).pose.yaw_rad, 0.0, 1e-6);
+  // x(t) = 1 + 0.5·0.4·2.5² + 1·(5 − 2.5) = 4.75 at t = 5 s, less the slip lag.
+  EXPECT_NEAR(world.pose(0).pose.x_m, 4.75, 0.05);
+  EXPECT_EQ(world.contacts().robot_wall_events, 0u);
+}
+
+TEST(World, RotationInPlace) {
+  const auto grid = open_map(5, 5);
+  World world(grid, model(), {}, {{2.0, 2.0, 0.0}});
+  world.set_wheel_targets(0, {-0.1, 0.1});  // ω = 0.2 / 0.3 rad/s once ramped
+  for (int k = 0; k < 30; ++k) world.step();
+  const auto p = world.pose(0);
+  EXPECT_GT(p.pose.yaw_rad, 0.5);
+  EXPECT_NEAR(p.angular_radps, 0.2 / 0.3, 0.01);
+  EXPECT_NEAR(p.pose.x_m, 2.0, 1e-3);
+  EXPECT_NEAR(p.pose.y_m, 2.0, 1e-3);
+}
+
+TEST(World, RobotDrivenIntoAWallStopsAtItAndTheContactIsCounted) {
+  // Wall column at x = 4 (its west face at x = 3.5).
+  const auto grid = test::grid_of({"....@...", "....@...", "....@..."});
+  World world(grid, model(), {}, {{1.0, 1.0, 0.0}});
+  world.set_wheel_targets(0, {0.5, 0.5});
+  for (int k = 0; k < 150; ++k) world.step();
+  const auto p = world.pose(0);
+  EXPECT_NEAR(p.pose.x_m, 3.5 - 0.2, 0.02);  // against the face, barely penetrating
+  EXPECT_LT(std::abs(p.linear_mps), 0.01);
+  EXPECT_EQ(world.contacts().robot_wall_events, 1u);
+  EXPECT_EQ(world.contacts().robot_wall_now, 1u);
+}
+
+TEST(World, TwoRobotsDrivenHeadOnCollideAndAreReported) {
+  const auto grid = open_map(10, 3);
+  World world(grid, model(), {}, {{2.0, 1.0, 0.0}, {7.0, 1.0, std::numbers::pi}});
+  world.set_wheel_targets(0, {0.8, 0.8});
+  world.set_wheel_targets(1, {0.8, 0.8});
+  for (int k = 0; k < 100; ++k) world.step();
+  EXPECT_GE(world.contacts().robot_robot_events, 1u);
+  EXPECT_LT(world.contacts().min_gap_m, 0.0);
+  // Pushing against each other they stay apart by about two radii, not through each other.
+  const double d = world.pose(1).pose.x_m - world.pose(0).pose.x_m;
+  EXPECT_GT(d, 0.3);
+  EXPECT_LT(d, 0.4 + 1e-9);
+}
+
+// Random drive commands for many robots, changed every period.
+uint64_t run_hash(int threads, int shards) {
+  const auto grid = monitor::generate_random_grid(30, 30, 0.1, 5);
+  std::vector<agent::Pose2D> starts;
+  const auto inst = monitor::generate_random_plan(grid, {120, 1, 9});
+  for (const auto& p : inst.plan.paths) {
+    const auto c = p.steps.front().cell;
+    starts.push_back({double(c.x), double(grid.height() - 1 - c.y), 0.3 * c.x});
+  }
+  SimConfig cfg;
+  cfg.threads = threads;
+  cfg.shards = shards;
+  World world(grid, model(), cfg, starts);
+  uint64_t seed = 12345;
+  for (int k = 0; k < 40; ++k) {
+    for (uint32_t i = 0; i < starts.size(); ++i) {
+      seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+      const double a = double(seed >> 40) / double(1ull << 24) - 0.5;
+      world.set_wheel_targets(i, {0.8 * a + 0.3, 0.3 - 0.8 * a});
+    }
+    world.step();
+  }
+  EXPECT_GT(world.contacts().robot_robot_events + world.contacts().robot_wall_events, 0u);
+  return world.state_hash();
+}
+
+TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndShards) {
+  const auto a = run_hash(2, 8);
+  EXPECT_EQ(a, run_hash(2, 8));
+  EXPECT_EQ(a, run_hash(1, 8));
+  EXPECT_EQ(a, run_hash(2, 3));
+  EXPECT_EQ(a, run_hash(1, 1));
+}
+
+TEST(World, RestingRobotsSleepAndACommandWakesThem) {
+  const auto grid = open_map(10, 10);
+  SimConfig cfg;
+  cfg.shards = 2;
+  World world(grid, model(), cfg, {{1, 1, 0}, {5, 5, 0}, {8, 8, 0}});
+  world.step();
+  EXPECT_EQ(world.awake_shards(), 0u);
+  const auto before = world.pose(1).pose;
+  world.set_wheel_targets(1, {0.3, 0.3});
+  world.step();
+  EXPECT_EQ(world.awake_shards(), 1u);  // robot 1 is alone in shard 1
+  for (int k = 0; k < 9; ++k) world.step();
+  world.set_wheel_targets(1, {0, 0});
+  for (int k = 0; k < 40; ++k) world.step();
+  EXPECT_EQ(world.awake_shards(), 0u);
+  EXPECT_GT(world.pose(1).pose.x_m, before.x_m + 0.05);
+  EXPECT_EQ(world.pose(1).linear_mps, 0.0);
+  EXPECT_DOUBLE_EQ(world.time_s(), 5.1);
+}
+
+TEST(World, RejectsBadConfigurations) {
+  const auto grid = test::grid_of({"..", ".@"});
+  EXPECT_THROW(World(grid, model(), {}, {{1.0, 0.0, 0.0}}), std::invalid_argument);  // on '@'
+  auto big = model();
+  big.radius_m = 0.6;
+  EXPECT_THROW(World(grid, big, {}, {{0.0, 1.0, 0.0}}), std::invalid_argument);
+  SimConfig odd;
+  odd.physics_step_s = 0.03;
+  EXPECT_THROW(World(grid, model(), odd, {{0.0, 1.0, 0.0}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace smart::sim
