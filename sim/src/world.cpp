@@ -232,12 +232,11 @@ void World::Impl::find_neighbours_and_count_contacts() {
         for (uint32_t j = head[grid.index(cc)]; j != kNoRobot; j = next[j]) {
           if (j == i) continue;
           const double d = std::hypot(x[i] - x[j], y[i] - y[j]);
+          // Closest approach over every pair in neighbouring cells, in range or not.
+          if (i < j) stats.min_gap_m = std::min(stats.min_gap_m, d - 2 * r);
           if (d >= range) continue;
           nb.push_back(j);
-          if (i < j) {
-            stats.min_gap_m = std::min(stats.min_gap_m, d - 2 * r);
-            if (d < 2 * r) pairs_now.push_back((uint64_t{i} << 32) | j);
-          }
+          if (i < j && d < 2 * r) pairs_now.push_back((uint64_t{i} << 32) | j);
           if (d < 2 * r) in_contact[i] = 1;
         }
       }

@@ -62,7 +62,7 @@ TEST(CrossProcess, EchoAnswersEveryTopicType) {
     }
     actions.write(w.view());
   }
-  clock_out.write(smart_msg_Clock{0, 5, 17, 1.7});
+  clock_out.write(smart_msg_Clock{0, 5, 17, 1.7, 0, false});
 
   std::set<uint32_t> progressed, stated;
   bool clock_answered = false;

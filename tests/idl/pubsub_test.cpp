@@ -146,13 +146,15 @@ TEST(RoundTrip, Clock) {
   Writer<smart_msg_Clock> w(f.pub, tp, f.profile.clock.to_dds());
   Reader<smart_msg_Clock> r(f.sub, ts, f.profile.clock.to_dds());
   ASSERT_TRUE(w.wait_for_readers(1, 5s));
-  w.write(smart_msg_Clock{0, 8, 1234, 123.4});
+  w.write(smart_msg_Clock{0, 8, 1234, 123.4, 99, true});
   smart_msg_Clock got{};
   bool have = false;
   ASSERT_TRUE(take_until(
       f.sub, r, [&](const smart_msg_Clock& m) { got = m, have = true; }, [&] { return have; }));
   EXPECT_EQ(got.tick, 1234u);
   EXPECT_DOUBLE_EQ(got.sim_time_s, 123.4);
+  EXPECT_EQ(got.sync_total, 99u);
+  EXPECT_TRUE(got.stop);
 }
 
 TEST(KeyedInstances, AThousandRobotsAreAllDelivered) {

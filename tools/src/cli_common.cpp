@@ -4,7 +4,10 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
 #include <stdexcept>
+
+#include "smart/config/yaml_checks.hpp"
 
 namespace smart::tools {
 
@@ -32,6 +35,18 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
 dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile) {
   return profile.domain_config(o.network == "network" ? dds::DomainConfig::network()
                                                       : dds::DomainConfig::loopback());
+}
+
+std::string find_config_file(const std::string& kind, const std::string& name) {
+  if (name.find('/') != std::string::npos || name.ends_with(".yaml")) return name;
+  std::string looked;
+  for (const auto& dir : dds::config_search_path()) {
+    const auto file = dir / kind / (name + ".yaml");
+    if (std::filesystem::exists(file)) return file.string();
+    looked += (looked.empty() ? "" : ", ") + file.string();
+  }
+  throw config::ConfigError(kind + " '" + name + "' not found (looked for " + looked +
+                            "); pass a path to a YAML file");
 }
 
 void install_stop_handlers() {

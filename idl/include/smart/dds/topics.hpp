@@ -12,6 +12,7 @@ SMART_DDS_TOPIC_TYPE(smart_msg_ActionWindow)
 SMART_DDS_TOPIC_TYPE(smart_msg_Progress)
 SMART_DDS_TOPIC_TYPE(smart_msg_RobotState)
 SMART_DDS_TOPIC_TYPE(smart_msg_Clock)
+SMART_DDS_TOPIC_TYPE(smart_msg_SimStatus)
 
 namespace smart::dds {
 
@@ -19,6 +20,7 @@ inline constexpr std::string_view kActionTopic = "smart/action";
 inline constexpr std::string_view kProgressTopic = "smart/progress";
 inline constexpr std::string_view kStateTopic = "smart/state";
 inline constexpr std::string_view kClockTopic = "smart/clock";
+inline constexpr std::string_view kSimStatusTopic = "smart/sim_status";
 
 // Progress.finished_seq / executing_seq value meaning "none yet".
 inline constexpr int32_t kNoSeq = -1;

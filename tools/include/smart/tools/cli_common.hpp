@@ -22,6 +22,10 @@ void add_dds_options(CLI::App* cmd, DdsOptions& options);
 // Loads the QoS profile and renders the domain configuration for `options`.
 dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile& profile);
 
+// A config file given by name ("footbot" -> <config dir>/<kind>/footbot.yaml) or by path
+// (anything with '/' or ending in .yaml). Throws config::ConfigError listing where it looked.
+std::string find_config_file(const std::string& kind, const std::string& name_or_path);
+
 // Set by SIGINT/SIGTERM once install_stop_handlers() ran.
 extern std::atomic<bool> g_stop_requested;
 void install_stop_handlers();

@@ -1,0 +1,85 @@
+// Contract: the monitor process's DDS edge. Given a loaded Instance (validated plan, actions,
+// ADG) it publishes each robot's action window on the keyed action topic (push: a robot gets
+// new actions as soon as they are enqueued), consumes cumulative progress, advances the
+// ExecutionTracker, and detects completion, ADG deadlock, stalls (no action finished for
+// stall_timeout_s of sim time) and a lost sim host (its writers unmatched, or silent for
+// timeout_s of wall time). Lock-step mode answers each sim tick only after applying exactly the
+// progress the tick announces (idl/smart.idl, Clock). Metrics are on the sim clock (wall
+// time separately). The run ends with a stop on the clock topic so hosts shut down.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "smart/dds/participant.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/monitor/instance.hpp"
+
+namespace smart::monitor {
+
+struct MonitorOptions {
+  bool lockstep = true;
+  uint32_t window_cap = 32;      // look-ahead: most actions in one window
+  double cell_m = 1.0;
+  double timeout_s = 30.0;        // wall time without any sign of the sim host
+  double stall_timeout_s = 300.0; // sim time without any finished action
+  double max_sim_time_s = 0;      // 0: no limit
+  uint64_t run_id = 0;            // 0: derived from the wall clock (increasing run to run)
+  bool record_states = true;
+};
+
+struct RobotMetrics {
+  double finish_time_s = 0;   // sim time its last action finished (0: no actions)
+  double waiting_time_s = 0;  // not done, nothing enqueued to execute (waiting for others)
+  uint32_t stops = 0;         // times it became blocked that way
+  uint32_t actions = 0;
+};
+
+struct StateRow {
+  double t_s;
+  uint32_t robot;
+  double x_m, y_m, yaw_rad, v_mps, w_radps, left_mps, right_mps;
+  uint32_t queue;
+};
+
+struct MonitorResult {
+  bool success = false;
+  bool deadlock = false;
+  bool sim_lost = false;
+  bool stalled = false;
+  std::string error;
+  uint64_t run_id = 0;
+  double sim_time_s = 0;
+  double wall_time_s = 0;
+  double first_progress_wall_s = 0;  // wall time from start until the sim first reported
+  std::size_t finished_actions = 0;
+  std::size_t total_actions = 0;
+  std::vector<RobotMetrics> robots;
+  uint64_t robot_contacts = 0;
+  uint64_t wall_contacts = 0;
+  std::optional<double> min_gap_m;
+  bool have_sim_status = false;
+  uint64_t rejected_progress = 0;
+  std::vector<StateRow> states;
+};
+
+// Called about every 100 ms of wall time with the running state (progress display).
+using ProgressCallback = std::function<void(const MonitorResult&, std::size_t robots_done)>;
+
+class MonitorNode {
+ public:
+  MonitorNode(const dds::Participant& participant, const dds::QosProfile& qos,
+              const Instance& instance, const MonitorOptions& options);
+  ~MonitorNode();
+  MonitorResult run(const std::atomic<bool>& stop_requested, const ProgressCallback& progress = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace smart::monitor

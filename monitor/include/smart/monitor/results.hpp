@@ -1,0 +1,35 @@
+// Contract: turns a finished run into its result files (file edge):
+// - summary.json: success, robots, aet_s, makespan_s, sim_time_s, wall_time_s, sim_speed,
+//   collisions (robot-robot), wall_contacts, min_separation_m (closest approach between robot
+//   surfaces; negative = overlap), adg, plan, per-run flags and versions;
+// - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats), times
+//   on the sim clock;
+// - states.csv: t, robot, x, y, yaw, v, ω, left/right wheel speed, queue length;
+// - robots.csv: per robot finish time, waiting time, stops, actions.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "smart/monitor/instance.hpp"
+#include "smart/monitor/node.hpp"
+
+namespace smart::monitor {
+
+struct RunInfo {
+  std::string map, scen, plan, robot, qos, clock;
+  double cell_m = 1.0;
+  double control_period_s = 0.1;
+  uint64_t seed = 0;
+};
+
+nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
+                            const RunInfo& info);
+// Writes the four files into `dir` (created if missing). Throws std::runtime_error naming the
+// file when it cannot be written.
+void write_results(const std::filesystem::path& dir, const Instance& instance,
+                   const MonitorResult& result, const RunInfo& info);
+
+}  // namespace smart::monitor

@@ -1,0 +1,176 @@
+#include "smart/monitor/results.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+
+#include <dds/version.h>
+
+#ifndef SMART_VERSION
+#define SMART_VERSION "0.1.0"
+#endif
+
+namespace smart::monitor {
+
+namespace {
+
+// Maximal runs of consecutive moves along one heading: what an agent drives without stopping.
+std::size_t straight_runs(const ActionPlan& ap) {
+  std::size_t runs = 0;
+  for (uint32_t r = 0; r < ap.robots(); ++r) {
+    bool in_run = false;
+    Heading h = Heading::kEast;
+    for (uint32_t s = 0; s < ap.count(r); ++s) {
+      const Action& a = ap.at(r, s);
+      if (a.type != ActionType::kMove) {
+        in_run = false;
+        continue;
+      }
+      if (!in_run || a.heading != h) ++runs;
+      in_run = true;
+      h = a.heading;
+    }
+  }
+  return runs;
+}
+
+std::size_t robot_pairs(const ActionPlan& ap, const Adg& adg) {
+  std::set<std::pair<uint32_t, uint32_t>> pairs;
+  for (uint32_t u = 0; u < adg.nodes(); ++u) {
+    for (uint32_t i = adg.out_begin[u]; i < adg.out_begin[u + 1]; ++i) {
+      const uint32_t a = ap.actions[u].robot, b = ap.actions[adg.out[i]].robot;
+      pairs.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return pairs.size();
+}
+
+std::ofstream open_out(const std::filesystem::path& p) {
+  std::ofstream out(p);
+  if (!out) {
+    throw std::runtime_error("cannot write " + p.string() +
+                             "; check that the --out folder is writable");
+  }
+  out.precision(10);
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
+  double sum = 0, makespan = 0;
+  for (const auto& m : r.robots) {
+    sum += m.finish_time_s;
+    makespan = std::max(makespan, m.finish_time_s);
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(r.robots.size()));
+  const auto& a = in.adg.stats;
+  nlohmann::json j = {
+      {"success", r.success},
+      {"robots", r.robots.size()},
+      {"aet_s", r.success ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
+      {"makespan_s", r.success ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
+      {"sim_time_s", r.sim_time_s},
+      {"wall_time_s", r.wall_time_s},
+      {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
+      {"collisions", r.robot_contacts},
+      {"wall_contacts", r.wall_contacts},
+      {"min_separation_m", r.min_gap_m ? nlohmann::json(*r.min_gap_m) : nlohmann::json(nullptr)},
+      {"sim_status_received", r.have_sim_status},
+      {"deadlock", r.deadlock},
+      {"stalled", r.stalled},
+      {"sim_lost", r.sim_lost},
+      {"error", r.error},
+      {"finished_actions", r.finished_actions},
+      {"total_actions", r.total_actions},
+      {"rejected_progress", r.rejected_progress},
+      {"run_id", r.run_id},
+      {"seed", info.seed},
+      {"clock", info.clock},
+      {"qos", info.qos},
+      {"cell_m", info.cell_m},
+      {"files", {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
+      {"plan",
+       {{"soc", in.stats.soc},
+        {"makespan", in.stats.makespan},
+        {"moves", in.stats.moves},
+        {"waits", in.stats.waits},
+        {"format", to_string(in.plan.format)},
+        {"axis", to_string(in.plan.axis)}}},
+      {"adg",
+       {{"nodes", a.nodes},
+        {"type1", a.type1},
+        {"type2", a.type2},
+        {"type2_all_pairs", a.type2_all_pairs},
+        {"moves", a.moves},
+        {"rotations", a.rotations}}},
+      {"versions",
+       {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
+  };
+  double waiting = 0;
+  uint64_t stops = 0;
+  for (const auto& m : r.robots) {
+    waiting += m.waiting_time_s;
+    stops += m.stops;
+  }
+  j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
+  j["stops"] = stops;
+  return j;
+}
+
+void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
+                   const RunInfo& info) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw std::runtime_error("cannot create the output folder " + dir.string() + ": " +
+                             ec.message());
+  }
+  {
+    auto out = open_out(dir / "summary.json");
+    out << summary_json(in, r, info).dump(2) << "\n";
+  }
+  {
+    auto out = open_out(dir / "stats.csv");
+    out << "steps finish sim,sum of steps finish sim,time finish sim,sum finish time,"
+           "original plan cost,#type-2 edges,#type-1 edges,#Nodes,#Move,#Rotate,"
+           "#Consecutive Move,#Agent pair,instance name,number of agent\n";
+    double max_t = 0, sum_t = 0;
+    long long max_steps = 0, sum_steps = 0;
+    for (const auto& m : r.robots) {
+      const auto steps = std::llround(m.finish_time_s / info.control_period_s);
+      max_t = std::max(max_t, m.finish_time_s);
+      sum_t += m.finish_time_s;
+      max_steps = std::max(max_steps, steps);
+      sum_steps += steps;
+    }
+    const auto& a = in.adg.stats;
+    out << max_steps << "," << sum_steps << "," << max_t << "," << sum_t << "," << in.stats.soc
+        << "," << a.type2 << "," << a.type1 << "," << a.nodes << "," << a.moves << ","
+        << a.rotations << "," << straight_runs(in.actions) << ","
+        << robot_pairs(in.actions, in.adg) << "," << info.plan << "," << r.robots.size()
+        << "\n";
+  }
+  {
+    auto out = open_out(dir / "states.csv");
+    out << "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n";
+    for (const auto& s : r.states) {
+      out << s.t_s << "," << s.robot << "," << s.x_m << "," << s.y_m << "," << s.yaw_rad << ","
+          << s.v_mps << "," << s.w_radps << "," << s.left_mps << "," << s.right_mps << ","
+          << s.queue << "\n";
+    }
+  }
+  {
+    auto out = open_out(dir / "robots.csv");
+    out << "robot,finish_time_s,waiting_time_s,stops,actions\n";
+    for (std::size_t i = 0; i < r.robots.size(); ++i) {
+      const auto& m = r.robots[i];
+      out << i << "," << m.finish_time_s << "," << m.waiting_time_s << "," << m.stops << ","
+          << m.actions << "\n";
+    }
+  }
+}
+
+}  // namespace smart::monitor

@@ -1,0 +1,64 @@
+// Contract: the sim host — one process, one DDS participant, one Simbody World and one Agent
+// per robot (the same Agent class as on hardware), demultiplexing the keyed topics by robot id.
+// Each control period: apply received action windows, step every agent (read pose, update,
+// write wheels), step the world, publish changed progress, robot states at state_rate_hz and
+// the clock. Clock modes:
+// - lockstep: before each period the host waits for the monitor's answer to its last tick and
+//   for windows adding up to the answer's sync_total (see idl/smart.idl, Clock). Runs are
+//   bit-identical. A silent monitor for timeout_s ends the run with an error.
+// - realtime: periods paced to the wall clock (hardware-in-the-loop, mixed runs).
+// The host stops when the monitor's clock says stop, on `stop_requested`, or on error.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "smart/agent/robot_model.hpp"
+#include "smart/agent/types.hpp"
+#include "smart/dds/participant.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/monitor/grid.hpp"
+#include "smart/sim/world.hpp"
+
+namespace smart::sim {
+
+enum class ClockMode { kLockstep, kRealtime };
+
+struct SimHostOptions {
+  ClockMode clock = ClockMode::kLockstep;
+  double state_rate_hz = 2.0;
+  double timeout_s = 30.0;  // lockstep: longest wait for the monitor
+  double pose_timeout_s = 0.5;
+  SimConfig sim;
+};
+
+struct SimHostResult {
+  bool ok = false;
+  std::string error;  // why it stopped, when not ok
+  bool stopped_by_monitor = false;
+  uint64_t ticks = 0;
+  double sim_time_s = 0;
+  double wall_time_s = 0;
+  ContactStats contacts;
+};
+
+// Robot i's start pose: the centre of cell starts[i] facing `yaw_rad`.
+std::vector<agent::Pose2D> start_poses(const monitor::Grid& grid, double cell_m,
+                                       const std::vector<monitor::Cell>& starts, double yaw_rad);
+
+class SimHost {
+ public:
+  SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
+          const monitor::Grid& grid, const agent::RobotModel& model,
+          const std::vector<agent::Pose2D>& starts, const SimHostOptions& options);
+  ~SimHost();
+  SimHostResult run(const std::atomic<bool>& stop_requested);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace smart::sim

@@ -1,0 +1,235 @@
+#include "smart/sim/host.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "smart/agent/agent.hpp"
+#include "smart/agent/fleet_link.hpp"
+#include "smart/dds/waitset.hpp"
+#include "smart/sim/sim_robot.hpp"
+
+namespace smart::sim {
+
+std::vector<agent::Pose2D> start_poses(const monitor::Grid& grid, double cell_m,
+                                       const std::vector<monitor::Cell>& starts, double yaw) {
+  std::vector<agent::Pose2D> out;
+  for (const auto& c : starts) {
+    const auto p = grid.to_world(monitor::HalfCell::of(c), cell_m);
+    out.push_back({p.x_m, p.y_m, yaw});
+  }
+  return out;
+}
+
+struct SimHost::Impl {
+  const dds::Participant& participant;
+  SimHostOptions opt;
+  World world;
+  agent::FleetLink link;
+  std::vector<std::unique_ptr<SimRobot>> backends;
+  std::vector<std::unique_ptr<agent::Agent>> agents;
+  std::vector<int64_t> reported_finished, reported_executing;
+  std::vector<uint32_t> window_end;  // per robot, end of the latest window received
+  uint64_t window_end_total = 0;
+  uint64_t run_id = 0;
+  uint64_t finished_total = 0;  // sum over robots of finished_seq + 1, as reported
+  uint64_t rejected_windows = 0;
+
+  Impl(const dds::Participant& p, const dds::QosProfile& qos, const monitor::Grid& grid,
+       const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
+       const SimHostOptions& o)
+      : participant(p), opt(o), world(grid, model, o.sim, starts), link(p, qos) {
+    const std::size_t n = starts.size();
+    for (uint32_t i = 0; i < n; ++i) {
+      backends.push_back(std::make_unique<SimRobot>(world, i));
+      agents.push_back(std::make_unique<agent::Agent>(
+          agent::AgentConfig{i, model, o.sim.control_period_s, o.pose_timeout_s}, *backends[i],
+          *backends[i]));
+      agents.back()->activate();
+    }
+    reported_finished.assign(n, -1);
+    reported_executing.assign(n, -1);
+    window_end.assign(n, 0);
+  }
+
+  void apply_windows() {
+    link.take_windows([&](const agent::ReceivedWindow& w) {
+      if (w.robot_id >= agents.size()) {
+        if (rejected_windows++ == 0) {
+          spdlog::error("sim host: window for robot {} but this host has {} robots; check "
+                        "--agents on both sides",
+                        w.robot_id, agents.size());
+        }
+        return;
+      }
+      if (w.run_id < run_id) return;  // history of an earlier run
+      if (w.run_id > run_id) {
+        run_id = w.run_id;
+        std::fill(window_end.begin(), window_end.end(), 0);
+        window_end_total = 0;
+      }
+      agents[w.robot_id]->on_window(w.run_id, w.actions);
+      const uint32_t end = w.actions.empty() ? window_end[w.robot_id] : w.end_seq;
+      if (end > window_end[w.robot_id]) {
+        window_end_total += end - window_end[w.robot_id];
+        window_end[w.robot_id] = end;
+      }
+    });
+  }
+
+  void publish_progress() {
+    for (uint32_t i = 0; i < agents.size(); ++i) {
+      const auto& a = *agents[i];
+      if (a.run_id() == 0) continue;
+      if (a.finished_seq() != reported_finished[i] || a.executing_seq() != reported_executing[i]) {
+        if (a.finished_seq() > reported_finished[i]) {
+          finished_total += static_cast<uint64_t>(a.finished_seq() - reported_finished[i]);
+        }
+        link.publish_progress(i, a.run_id(), a.finished_seq(), a.executing_seq());
+        reported_finished[i] = a.finished_seq();
+        reported_executing[i] = a.executing_seq();
+      }
+    }
+  }
+
+  void publish_states() {
+    for (uint32_t i = 0; i < agents.size(); ++i) {
+      const auto p = world.pose(i);
+      const auto w = world.wheel_speeds(i);
+      smart_msg_RobotState s{};
+      s.robot_id = i;
+      s.run_id = run_id;
+      s.sim_time_s = world.time_s();
+      s.pose = {p.pose.x_m, p.pose.y_m, p.pose.yaw_rad};
+      s.linear_mps = p.linear_mps;
+      s.angular_radps = p.angular_radps;
+      s.wheel_left_mps = w.left_mps;
+      s.wheel_right_mps = w.right_mps;
+      s.queue_length = static_cast<uint32_t>(agents[i]->queue_length());
+      link.publish_state(s);
+    }
+  }
+
+  void publish_clock(uint64_t tick) {
+    link.publish_clock(smart_msg_Clock{agent::kSimClockSource, run_id, tick, world.time_s(),
+                                       finished_total, false});
+  }
+
+  ContactStats last_status{};
+  double wall_start_s = 0;
+  void publish_status(bool force, double wall_s) {
+    const auto& c = world.contacts();
+    if (!force && c.robot_robot_events == last_status.robot_robot_events &&
+        c.robot_wall_events == last_status.robot_wall_events &&
+        c.min_gap_m == last_status.min_gap_m) {
+      return;
+    }
+    last_status = c;
+    link.publish_sim_status(smart_msg_SimStatus{
+        agent::kSimClockSource, run_id, world.time_s(), static_cast<uint32_t>(agents.size()),
+        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s});
+  }
+
+  void step_all() {
+    for (auto& a : agents) a->step(world.time_s());
+    world.step();
+  }
+};
+
+SimHost::SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
+                 const monitor::Grid& grid, const agent::RobotModel& model,
+                 const std::vector<agent::Pose2D>& starts, const SimHostOptions& options)
+    : impl_(std::make_unique<Impl>(participant, qos, grid, model, starts, options)) {}
+
+SimHost::~SimHost() = default;
+
+SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
+  auto& I = *impl_;
+  using Clock = std::chrono::steady_clock;
+  const auto wall0 = Clock::now();
+  SimHostResult r;
+  dds::WaitSet waitset(I.participant);
+  waitset.attach_status(I.link.action_reader(), DDS_DATA_AVAILABLE_STATUS, 1);
+  waitset.attach_status(I.link.clock_reader(), DDS_DATA_AVAILABLE_STATUS, 2);
+  const auto period = std::chrono::duration<double>(I.opt.sim.control_period_s);
+  const auto state_every = std::max<uint64_t>(
+      1, static_cast<uint64_t>(1.0 / (I.opt.state_rate_hz * I.opt.sim.control_period_s) + 0.5));
+  uint64_t tick = 0;
+  auto wall_s = [&] { return std::chrono::duration<double>(Clock::now() - wall0).count(); };
+  auto finish = [&](bool ok, std::string error) {
+    I.publish_status(true, wall_s());
+    r.ok = ok;
+    r.error = std::move(error);
+    r.ticks = tick;
+    r.sim_time_s = I.world.time_s();
+    r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();
+    r.contacts = I.world.contacts();
+    for (auto& a : I.agents) a->deactivate();
+    return r;
+  };
+
+  if (I.opt.clock == ClockMode::kLockstep) {
+    I.publish_clock(0);
+    for (;;) {
+      // Wait for the monitor's answer to `tick` and the windows it announces.
+      const auto deadline = Clock::now() + std::chrono::duration<double>(I.opt.timeout_s);
+      std::optional<smart_msg_Clock> answer;
+      auto last_publish = Clock::now();
+      for (;;) {
+        if (stop_requested.load()) return finish(false, "stopped by signal");
+        if (Clock::now() > deadline) {
+          return finish(false, "no answer from the monitor for " +
+                                   std::to_string(I.opt.timeout_s) + " s at tick " +
+                                   std::to_string(tick) + "; is `smart monitor` running on "
+                                   "domain " + std::to_string(I.participant.domain_id()) +
+                                   " with the same --qos and --network?");
+        }
+        waitset.wait(std::chrono::milliseconds(20));
+        if (auto c = I.link.take_monitor_clock()) {
+          if (c->stop) {
+            r.stopped_by_monitor = true;
+            return finish(true, "");
+          }
+          if (c->tick == tick) answer = c;
+        }
+        I.apply_windows();
+        if (answer && I.window_end_total == answer->sync_total && I.run_id == answer->run_id) {
+          break;
+        }
+        // Until the monitor has matched, re-announce the tick (a late joiner missed it).
+        if (!answer && Clock::now() - last_publish > std::chrono::milliseconds(500)) {
+          I.publish_clock(tick);
+          last_publish = Clock::now();
+        }
+      }
+      I.step_all();
+      ++tick;
+      I.publish_progress();
+      if (tick % state_every == 0) I.publish_states();
+      I.publish_status(false, wall_s());
+      I.publish_clock(tick);
+    }
+  }
+
+  auto next = Clock::now();
+  for (;;) {
+    if (stop_requested.load()) return finish(false, "stopped by signal");
+    I.apply_windows();
+    if (auto c = I.link.take_monitor_clock(); c && c->stop) {
+      r.stopped_by_monitor = true;
+      return finish(true, "");
+    }
+    I.step_all();
+    ++tick;
+    I.publish_progress();
+    if (tick % state_every == 0) I.publish_states();
+    I.publish_status(false, wall_s());
+    I.publish_clock(tick);
+    next += std::chrono::duration_cast<Clock::duration>(period);
+    std::this_thread::sleep_until(next);
+  }
+}
+
+}  // namespace smart::sim
