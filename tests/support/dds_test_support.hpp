@@ -28,6 +28,14 @@ enum DomainId : int {
   kLossyBestEffort = 115,
   kDeadlineMissed = 116,
   kIncompatibleQos = 117,
+  kRunExample = 120,
+  kRunLockstep = 121,
+  kRunKillSim = 122,
+  kRunBadPlan = 123,
+  kRunSeparate = 124,
+  kRunGenerated = 125,
+  kRunWarehouse500 = 126,
+  kSimHostProtocol = 127,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

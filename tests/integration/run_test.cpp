@@ -1,0 +1,118 @@
+// `smart run`, `smart monitor` and `smart sim` as users run them: real processes, real DDS
+// traffic on loopback, each test in its own domain.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <thread>
+
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+class Run : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    b_ = benchmarks_dir();
+    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+  }
+  std::vector<std::string> example_args(int domain, const std::string& agents = "50") {
+    return {"--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+            (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+            (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents",
+            agents, "--domain", std::to_string(domain), "--no-progress"};
+  }
+  std::filesystem::path b_;
+};
+
+TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
+  const auto out = temp_file("run_example");
+  auto args = example_args(kRunExample);
+  args.insert(args.begin(), "run");
+  args.insert(args.end(), {"--out", out.string()});
+  const auto r = run_smart(args, 120s, "run_example");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = r.last_json();
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["robots"], 50);
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_EQ(j["finished_actions"], j["total_actions"]);
+  EXPECT_GT(j["aet_s"].get<double>(), 0);
+  EXPECT_GE(j["makespan_s"].get<double>(), j["aet_s"].get<double>());
+  EXPECT_GT(j["min_separation_m"].get<double>(), 0.0);
+  EXPECT_EQ(j["plan"]["soc"], 1241.0);
+  for (const char* key : {"sim_time_s", "wall_time_s", "sim_speed", "adg"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  // Files: the summary on disk equals the one printed; a SMART stats row; robot states.
+  const auto disk = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(disk["aet_s"], j["aet_s"]);
+  const auto stats = slurp(out / "stats.csv");
+  EXPECT_THAT(stats, HasSubstr("steps finish sim,sum of steps finish sim,time finish sim"));
+  EXPECT_THAT(stats, HasSubstr(",50\n"));
+  const auto states = slurp(out / "states.csv");
+  EXPECT_THAT(states, HasSubstr("t_s,robot,x_m,y_m,yaw_rad"));
+  EXPECT_GT(std::count(states.begin(), states.end(), '\n'), 50 * 10);
+  const auto robots = slurp(out / "robots.csv");
+  EXPECT_EQ(std::count(robots.begin(), robots.end(), '\n'), 51);  // header + 50 robots
+  std::filesystem::remove_all(out);
+}
+
+TEST_F(Run, LockStepRunsOfTheSamePlanGiveIdenticalNumbers) {
+  std::vector<nlohmann::json> results;
+  for (int i = 0; i < 2; ++i) {
+    auto args = example_args(kRunLockstep, "20");
+    args.insert(args.begin(), "run");
+    const auto r = run_smart(args, 120s, "run_lockstep");
+    ASSERT_EQ(r.code, 0) << r.out;
+    results.push_back(r.last_json());
+  }
+  for (const char* key : {"aet_s", "makespan_s", "sim_time_s", "collisions", "wall_contacts",
+                          "min_separation_m", "stops", "waiting_time_s", "finished_actions"}) {
+    EXPECT_EQ(results[0][key], results[1][key]) << key;
+  }
+}
+
+TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
+  auto margs = example_args(kRunKillSim);
+  margs.insert(margs.begin(), "monitor");
+  margs.insert(margs.end(), {"--timeout-s", "3"});
+  const auto mout = temp_file("kill_monitor.out");
+  std::vector<std::string> mv{smart_exe().string()};
+  mv.insert(mv.end(), margs.begin(), margs.end());
+  tools::ChildProcess monitor(mv, mout);
+  tools::ChildProcess sim({smart_exe().string(), "sim", "--map",
+                           (b_ / "maps/random-32-32-20.map").string(), "--scen",
+                           (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents",
+                           "50", "--domain", std::to_string(kRunKillSim)},
+                          "/dev/null");
+  std::this_thread::sleep_for(2500ms);  // the run is under way
+  ASSERT_TRUE(monitor.running());
+  sim.signal(SIGKILL);
+  const auto rc = monitor.wait(30s);
+  ASSERT_TRUE(rc.has_value()) << "the monitor hung after the sim host died";
+  EXPECT_EQ(*rc, 1);
+  const std::string out = slurp(mout);
+  const auto j = nlohmann::json::parse(out.substr(out.find('{')));
+  EXPECT_FALSE(j["success"].get<bool>());
+  EXPECT_TRUE(j["sim_lost"].get<bool>());
+  EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("sim host"));
+  std::filesystem::remove(mout);
+}
+
+TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {
+  const auto r = run_smart({"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+                            (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+                            (b_ / "smart-examples/example_paths_yx.txt").string(), "--axis", "xy",
+                            "--domain", std::to_string(kRunBadPlan)},
+                           30s, "run_bad");
+  EXPECT_EQ(r.code, 2);
+}
+
+}  // namespace
+}  // namespace smart::test
