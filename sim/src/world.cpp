@@ -290,7 +290,10 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   I.in_contact.assign(n, 0);
   I.shard_of.assign(n, 0);
 
-  const int S = std::max(1, std::min(config.shards, static_cast<int>(std::max<std::size_t>(n, 1))));
+  const int wanted = config.shards > 0
+                         ? config.shards
+                         : std::clamp(static_cast<int>((n + 62) / 125), 2, 8);
+  const int S = std::max(1, std::min(wanted, static_cast<int>(std::max<std::size_t>(n, 1))));
   std::vector<std::vector<uint32_t>> members(static_cast<std::size_t>(S));
   std::vector<std::vector<std::array<double, 3>>> start_q(static_cast<std::size_t>(S));
   for (uint32_t i = 0; i < n; ++i) {

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   smart::tools::register_demo_command(app, exit_code);
   smart::tools::register_check_plan_command(app, exit_code);
   smart::tools::register_run_commands(app, exit_code);
+  smart::tools::register_bench_command(app, exit_code);
   app.parse_complete_callback([&] { smart::tools::init_logging(log_level); });
   try {
     app.parse(argc, argv);

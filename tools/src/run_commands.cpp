@@ -29,7 +29,7 @@ struct SimOptions {
   double cell_m = 1.0;
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
-  int shards = 8, threads = 2;
+  int shards = 0, threads = 2;
 };
 
 struct MonitorCliOptions {
@@ -42,7 +42,7 @@ struct MonitorCliOptions {
   uint32_t window_cap = 32;
   double timeout_s = 30.0, stall_timeout_s = 300.0, max_sim_time_s = 0;
   double state_rate_hz = 2.0;
-  int shards = 8, threads = 2;
+  int shards = 0, threads = 2;
   bool progress = true;
 };
 
@@ -224,7 +224,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--state-rate-hz", so->state_rate_hz)->capture_default_str();
   sim->add_option("--timeout-s", so->timeout_s, "lockstep: wall seconds to wait for the monitor")
       ->capture_default_str();
-  sim->add_option("--shards", so->shards, "Simbody systems")->check(CLI::Range(1, 1024))
+  sim->add_option("--shards", so->shards, "Simbody systems (0: automatic)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
   sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->callback([&exit_code, so] {
@@ -245,7 +245,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   auto* run = app.add_subcommand("run", "Execute a plan on a simulated fleet: `smart monitor` "
                                         "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
-  run->add_option("--shards", ro->shards, "Simbody systems")->capture_default_str();
+  run->add_option("--shards", ro->shards, "Simbody systems (0: automatic)")->capture_default_str();
   run->add_option("--threads", ro->threads, "sim threads")->capture_default_str();
   run->callback([&exit_code, ro] {
     install_stop_handlers();

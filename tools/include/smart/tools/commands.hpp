@@ -15,5 +15,6 @@ void throw_if_any_scen(const monitor::Scenario& scen, const monitor::Grid& grid)
 void register_demo_command(CLI::App& app, int& exit_code);
 void register_check_plan_command(CLI::App& app, int& exit_code);
 void register_run_commands(CLI::App& app, int& exit_code);
+void register_bench_command(CLI::App& app, int& exit_code);
 
 }  // namespace smart::tools

@@ -1,0 +1,154 @@
+// `smart bench sim`: sim speed of World + agents with every robot driving a random walk of grid
+// moves (collisions allowed and counted). Prints one JSON line. No DDS: this measures the
+// simulator and the agents, the part that scales with the fleet.
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <thread>
+
+#include "smart/agent/agent.hpp"
+#include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/map_reader.hpp"
+#include "smart/monitor/text_file.hpp"
+#include "smart/sim/sim_robot.hpp"
+#include "smart/sim/world.hpp"
+#include "smart/tools/cli_common.hpp"
+#include "smart/tools/commands.hpp"
+
+namespace smart::tools {
+
+namespace {
+
+struct BenchSimOptions {
+  std::string map, robot = "footbot";
+  std::size_t robots = 100;
+  double sim_seconds = 30;
+  double cell_m = 1.0;
+  uint64_t seed = 1;
+  int shards = 0, threads = 2;
+};
+
+std::string cpu_model() {
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
+}
+
+int run_bench_sim(const BenchSimOptions& o) {
+  const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
+  const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
+  std::mt19937_64 rng(o.seed);
+  std::vector<monitor::Cell> free;
+  for (int32_t y = 0; y < grid.height(); ++y) {
+    for (int32_t x = 0; x < grid.width(); ++x) {
+      if (!grid.blocked({x, y})) free.push_back({x, y});
+    }
+  }
+  if (free.size() < o.robots) {
+    std::cerr << "bench sim: " << o.robots << " robots do not fit on " << free.size()
+              << " free cells of " << o.map << "\n";
+    return 2;
+  }
+  std::shuffle(free.begin(), free.end(), rng);
+  // Independent random walks, long enough to keep every robot busy for the whole run.
+  const auto steps = static_cast<std::size_t>(o.sim_seconds) + 10;
+  monitor::Plan plan;
+  for (std::size_t r = 0; r < o.robots; ++r) {
+    monitor::RobotPath p{static_cast<int>(r), 0, {}};
+    monitor::Cell c = free[r];
+    p.steps.push_back({c, 0, 0});
+    for (std::size_t k = 1; k < steps; ++k) {
+      const monitor::Cell n[4] = {{c.x + 1, c.y}, {c.x - 1, c.y}, {c.x, c.y + 1}, {c.x, c.y - 1}};
+      for (int tries = 0; tries < 8; ++tries) {
+        const auto cand = n[rng() % 4];
+        if (grid.free(cand)) {
+          c = cand;
+          break;
+        }
+      }
+      p.steps.push_back({c, double(k), 0});
+    }
+    plan.paths.push_back(std::move(p));
+  }
+  const auto actions = monitor::build_actions(plan, monitor::Heading::kEast);
+  sim::SimConfig cfg;
+  cfg.cell_m = o.cell_m;
+  cfg.shards = o.shards;
+  cfg.threads = o.threads;
+  std::vector<agent::Pose2D> starts;
+  for (std::size_t r = 0; r < o.robots; ++r) {
+    const auto w = grid.to_world(monitor::HalfCell::of(free[r]), o.cell_m);
+    starts.push_back({w.x_m, w.y_m, 0.0});
+  }
+  sim::World world(grid, model, cfg, starts);
+  std::vector<std::unique_ptr<sim::SimRobot>> backends;
+  std::vector<std::unique_ptr<agent::Agent>> agents;
+  for (uint32_t r = 0; r < o.robots; ++r) {
+    backends.push_back(std::make_unique<sim::SimRobot>(world, r));
+    agents.push_back(std::make_unique<agent::Agent>(
+        agent::AgentConfig{r, model, cfg.control_period_s, 0.5}, *backends[r], *backends[r]));
+    std::vector<agent::AgentAction> w;
+    for (uint32_t s = 0; s < actions.count(r); ++s) {
+      const auto& a = actions.at(r, s);
+      const auto f = grid.to_world(a.from, o.cell_m), t = grid.to_world(a.to, o.cell_m);
+      w.push_back({s, a.type == monitor::ActionType::kMove ? agent::ActionKind::kMove
+                                                           : agent::ActionKind::kRotate,
+                   f.x_m, f.y_m, t.x_m, t.y_m, monitor::yaw_rad(a.heading)});
+    }
+    agents.back()->activate();
+    agents.back()->on_window(1, w);
+  }
+  const auto ticks = static_cast<uint64_t>(o.sim_seconds / cfg.control_period_s + 0.5);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t finished = 0;
+  for (uint64_t k = 0; k < ticks; ++k) {
+    for (auto& a : agents) a->step(world.time_s());
+    world.step();
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (auto& a : agents) finished += static_cast<std::size_t>(a->finished_seq() + 1);
+  std::cout << nlohmann::json{{"map", o.map},
+                              {"robots", o.robots},
+                              {"sim_seconds", world.time_s()},
+                              {"wall_seconds", wall},
+                              {"sim_speed", world.time_s() / wall},
+                              {"finished_actions", finished},
+                              {"collisions", world.contacts().robot_robot_events},
+                              {"wall_contacts", world.contacts().robot_wall_events},
+                              {"shards", o.shards},
+                              {"threads", o.threads},
+                              {"machine",
+                               cpu_model() + ", " +
+                                   std::to_string(std::thread::hardware_concurrency()) +
+                                   " cores"}}
+                   .dump()
+            << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void register_bench_command(CLI::App& app, int& exit_code) {
+  auto* bench = app.add_subcommand("bench", "Benchmarks (results belong in docs/performance.md)");
+  bench->require_subcommand(1);
+  auto o = std::make_shared<BenchSimOptions>();
+  auto* sim = bench->add_subcommand(
+      "sim", "Sim speed of the Simbody world + agents, every robot on a random walk");
+  sim->add_option("--map", o->map, "MovingAI .map file")->required();
+  sim->add_option("--robots", o->robots)->check(CLI::Range(1ul, 100000ul))->capture_default_str();
+  sim->add_option("--sim-seconds", o->sim_seconds)->check(CLI::Range(0.1, 1e6))
+      ->capture_default_str();
+  sim->add_option("--robot", o->robot, "robot model name or YAML file")->capture_default_str();
+  sim->add_option("--cell-m", o->cell_m)->capture_default_str();
+  sim->add_option("--seed", o->seed)->capture_default_str();
+  sim->add_option("--shards", o->shards, "Simbody systems (0: automatic)")->check(CLI::Range(0, 1024))->capture_default_str();
+  sim->add_option("--threads", o->threads)->check(CLI::Range(1, 64))->capture_default_str();
+  sim->callback([&exit_code, o] { exit_code = run_bench_sim(*o); });
+}
+
+}  // namespace smart::tools
