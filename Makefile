@@ -22,7 +22,7 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 demo: build
-	$(BUILD)/bin/smart demo
+	$(BUILD)/bin/smart demo --out $(BUILD)/demo
 
 bench: build
 	$(BUILD)/bin/smart_bench

@@ -4,6 +4,7 @@
 #include <exception>
 #include <iostream>
 
+#include "smart/monitor/problem.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 
@@ -20,11 +21,15 @@ int main(int argc, char** argv) {
   smart::tools::register_check_plan_command(app, exit_code);
   smart::tools::register_run_commands(app, exit_code);
   smart::tools::register_bench_command(app, exit_code);
+  smart::tools::register_generate_commands(app, exit_code);
   app.parse_complete_callback([&] { smart::tools::init_logging(log_level); });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const smart::monitor::InputError& e) {
+    std::cerr << "smart: " << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "smart: error: " << e.what() << "\n";
     return 2;

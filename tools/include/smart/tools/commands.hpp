@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "smart/monitor/generators.hpp"
 #include "smart/monitor/grid.hpp"
 #include "smart/monitor/scen_reader.hpp"
 
@@ -16,5 +17,21 @@ void register_demo_command(CLI::App& app, int& exit_code);
 void register_check_plan_command(CLI::App& app, int& exit_code);
 void register_run_commands(CLI::App& app, int& exit_code);
 void register_bench_command(CLI::App& app, int& exit_code);
+void register_generate_commands(CLI::App& app, int& exit_code);
+
+// The generation pipeline, also used by `smart demo`. Each prints one JSON line and returns an
+// exit code; bad input throws monitor::InputError.
+struct GenMapOptionsPublic {
+  int32_t width = 32, height = 32;
+  double obstacles = 0.2;
+  int corridor = 2;
+  uint64_t seed = 1;
+  monitor::WarehouseOptions warehouse;
+};
+int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o);
+int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
+                  const std::string& out);
+int plan_instance(const std::string& map, const std::string& scen, std::size_t agents,
+                  uint64_t seed, double time_limit_s, const std::string& out);
 
 }  // namespace smart::tools

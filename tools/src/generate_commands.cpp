@@ -1,0 +1,146 @@
+// `smart gen-map`, `smart gen-scen`, `smart plan`: a self-contained pipeline from nothing to an
+// executable plan (no outside data needed).
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iostream>
+
+#include "smart/monitor/generators.hpp"
+#include "smart/monitor/map_reader.hpp"
+#include "smart/monitor/plan_validator.hpp"
+#include "smart/monitor/planner.hpp"
+#include "smart/monitor/scen_reader.hpp"
+#include "smart/monitor/text_file.hpp"
+#include "smart/tools/commands.hpp"
+
+namespace smart::tools {
+
+namespace {
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out || !(out << text)) {
+    throw std::runtime_error("cannot write " + path + "; check the folder exists and is writable");
+  }
+}
+
+struct PlanOptions {
+  std::string map, scen, out;
+  std::size_t agents = 0;
+  uint64_t seed = 1;
+  double time_limit_s = 120;
+};
+
+}  // namespace
+
+int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o) {
+  monitor::Grid g;
+  char blocked = '@';
+  if (kind == "warehouse") {
+    g = monitor::generate_warehouse(o.warehouse);
+    blocked = 'T';
+  } else if (kind == "random") {
+    g = monitor::generate_random_map(o.width, o.height, o.obstacles, o.seed);
+  } else if (kind == "empty") {
+    g = monitor::generate_empty_map(o.width, o.height);
+  } else {
+    g = monitor::generate_maze(o.width, o.height, o.corridor, o.seed);
+  }
+  write_file(out, monitor::to_movingai_map(g, blocked));
+  std::cout << nlohmann::json{{"map", out}, {"kind", kind}, {"width", g.width()},
+                              {"height", g.height()}, {"free_cells", g.free_cells()}}
+                   .dump()
+            << std::endl;
+  return 0;
+}
+
+int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
+                  const std::string& out) {
+  const auto g = monitor::parse_map(monitor::read_text_file(map, "map"), map);
+  const auto name = std::filesystem::path(map).filename().string();
+  const auto s = monitor::generate_scenario(g, agents, seed, name);
+  write_file(out, monitor::to_movingai_scen(s, g));
+  std::cout << nlohmann::json{{"scen", out}, {"agents", agents}, {"seed", seed}}.dump()
+            << std::endl;
+  return 0;
+}
+
+int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
+                  uint64_t seed, double time_limit_s, const std::string& out) {
+  const auto g = monitor::parse_map(monitor::read_text_file(map, "map"), map);
+  const auto scen =
+      monitor::parse_scen(monitor::read_text_file(scen_file, "scenario"), scen_file, agents);
+  monitor::throw_if_any(monitor::check_scen_against_map(scen, g));
+  monitor::PlannerOptions po;
+  po.seed = seed;
+  po.time_limit_s = time_limit_s;
+  const auto r = monitor::plan_prioritized(g, scen, po);
+  if (!r.solved) {
+    std::cerr << "plan: no plan found: " << r.error
+              << "; try another --seed, fewer --agents or a larger map\n";
+    return 1;
+  }
+  // The planner's output is checked like any other plan before it is written.
+  monitor::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
+  write_file(out, monitor::to_smart_plan_text(r.plan));
+  const auto st = monitor::plan_stats(r.plan);
+  std::cout << nlohmann::json{{"plan", out},     {"axis", "xy"},         {"robots", st.robots},
+                              {"soc", st.soc},   {"makespan", st.makespan},
+                              {"runtime_s", r.runtime_s}, {"restarts", r.restarts_used}}
+                   .dump()
+            << std::endl;
+  return 0;
+}
+
+void register_generate_commands(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<GenMapOptionsPublic>();
+  auto kind = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto* gm = app.add_subcommand("gen-map", "Generate a MovingAI map (seeded)");
+  gm->add_option("kind", *kind, "warehouse, random, empty or maze")
+      ->required()
+      ->check(CLI::IsMember({"warehouse", "random", "empty", "maze"}));
+  gm->add_option("--out", *out, "the .map file to write")->required();
+  gm->add_option("--width", o->width)->check(CLI::Range(1, 4096))->capture_default_str();
+  gm->add_option("--height", o->height)->check(CLI::Range(1, 4096))->capture_default_str();
+  gm->add_option("--obstacles", o->obstacles, "random: obstacle probability")
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
+  gm->add_option("--corridor", o->corridor, "maze: corridor width")->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  gm->add_option("--seed", o->seed)->capture_default_str();
+  gm->add_option("--shelf-rows", o->warehouse.shelf_rows)->capture_default_str();
+  gm->add_option("--shelf-cols", o->warehouse.shelf_cols)->capture_default_str();
+  gm->add_option("--shelf-length", o->warehouse.shelf_length)->capture_default_str();
+  gm->add_option("--shelf-height", o->warehouse.shelf_height)->capture_default_str();
+  gm->add_option("--aisle", o->warehouse.aisle)->capture_default_str();
+  gm->add_option("--margin", o->warehouse.margin)->capture_default_str();
+  gm->callback([&exit_code, o, kind, out] { exit_code = generate_map(*kind, *out, *o); });
+
+  auto so = std::make_shared<PlanOptions>();
+  auto* gs = app.add_subcommand("gen-scen", "Generate a MovingAI scenario for a map (seeded)");
+  gs->add_option("--map", so->map)->required();
+  gs->add_option("--agents", so->agents)->required()->check(CLI::Range(1ul, 1000000ul));
+  gs->add_option("--seed", so->seed)->capture_default_str();
+  gs->add_option("--out", so->out, "the .scen file to write")->required();
+  gs->callback([&exit_code, so] {
+    exit_code = generate_scen(so->map, so->agents, so->seed, so->out);
+  });
+
+  auto po = std::make_shared<PlanOptions>();
+  auto* pl = app.add_subcommand(
+      "plan", "Plan conflict-free paths (prioritized planning, space-time A*); writes a SMART "
+              "timed plan (axis xy) that passes `smart check-plan`");
+  pl->add_option("--map", po->map)->required();
+  pl->add_option("--scen", po->scen)->required();
+  pl->add_option("--agents", po->agents, "first N agents (default: all)");
+  pl->add_option("--seed", po->seed, "seed for priority orders after a failure")
+      ->capture_default_str();
+  pl->add_option("--time-limit-s", po->time_limit_s)->capture_default_str();
+  pl->add_option("--out", po->out, "the plan file to write")->required();
+  pl->callback([&exit_code, po] {
+    exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out);
+  });
+}
+
+}  // namespace smart::tools
