@@ -52,15 +52,22 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
     int32_t f, t;
     uint32_t cell;
     int64_t parent;
+    int32_t d;  // distance to goal
   };
   std::vector<Node> nodes;
+  // Lowest f; among equals the one nearest its goal, then the deepest.
   auto cmp = [&](uint32_t a, uint32_t b) {
     const auto &x = nodes[a], &y = nodes[b];
-    return x.f != y.f ? x.f > y.f : x.t < y.t;  // lowest f, then deepest
+    if (x.f != y.f) return x.f > y.f;
+    if (x.d != y.d) return x.d > y.d;
+    return x.t < y.t;
   };
+  // Admissible: it cannot park before its goal is last used by an earlier robot.
+  const int32_t park_after = res.last_time[goal] + 1;
+  auto f_of = [&](int32_t t, uint32_t cell) { return std::max(t + h[cell], park_after); };
   std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(cmp)> open(cmp);
   std::unordered_set<uint64_t> closed;
-  nodes.push_back({h[start], 0, start, -1});
+  nodes.push_back({f_of(0, start), 0, start, -1, h[start]});
   open.push(0);
   const auto W = static_cast<uint32_t>(g.width());
   std::size_t expansions = 0;
@@ -77,7 +84,7 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
       std::reverse(path.begin(), path.end());
       return path;
     }
-    if (n.t >= max_t || ++expansions > 4'000'000) continue;
+    if (n.t >= max_t || ++expansions > 400'000) continue;
     const Cell c{int32_t(n.cell % W), int32_t(n.cell / W)};
     for (const Cell m : {c, Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1},
                          Cell{c.x, c.y - 1}}) {
@@ -87,7 +94,7 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
       if (h[mc] < 0 || !res.vertex_free(mc, t)) continue;
       if (mc != n.cell && res.edge.count(Reservations::ekey(mc, n.cell, n.t))) continue;  // swap
       if (closed.count(Reservations::vkey(mc, t))) continue;
-      nodes.push_back({t + h[mc], t, mc, id});
+      nodes.push_back({f_of(t, mc), t, mc, id, h[mc]});
       open.push(static_cast<uint32_t>(nodes.size() - 1));
     }
   }
@@ -120,7 +127,6 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
   });
   std::mt19937_64 rng(o.seed);
   for (int attempt = 0; attempt <= o.restarts; ++attempt) {
-    if (attempt > 0) std::shuffle(order.begin(), order.end(), rng);
     out.restarts_used = attempt;
     Reservations res(static_cast<std::size_t>(g.width()) * g.height());
     for (const auto& a : scen.agents) res.vertex.insert(Reservations::vkey(uint32_t(g.index(a.start)), 0));
@@ -130,12 +136,17 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
       const auto start = uint32_t(g.index(scen.agents[i].start));
       const auto goal = uint32_t(g.index(scen.agents[i].goal));
       res.vertex.erase(Reservations::vkey(start, 0));  // its own start
-      const int32_t max_t = res.horizon + dist[i][start] + g.width() + g.height() + 64;
+      const int32_t max_t = res.horizon + dist[i][start] + (g.width() + g.height()) / 2 + 32;
       paths[i] = space_time_astar(g, res, start, goal, dist[i], max_t);
       if (paths[i].empty()) {
         ok = false;
         out.error = "robot " + std::to_string(i) + " found no path in priority order attempt " +
                     std::to_string(attempt);
+        // The robot that failed goes first next time (it was blocked by earlier robots, most
+        // often by one parked in a one-cell aisle); every few attempts also shake the rest.
+        order.erase(std::find(order.begin(), order.end(), i));
+        if (attempt % 5 == 4) std::shuffle(order.begin(), order.end(), rng);
+        order.insert(order.begin(), i);
         break;
       }
       res.reserve_path(paths[i]);

@@ -3,7 +3,8 @@
 // edges (no swaps) and goals (a robot parked at its goal blocks its cell for good, and a robot
 // only parks where nobody passes later). Every robot's start is reserved at t = 0 so earlier
 // robots do not run through later robots' starts. Robots are planned longest-distance first;
-// on failure the order is shuffled (seeded) and planning restarts. Deterministic for a seed
+// a robot that finds no path goes first in the next attempt (every fifth attempt the rest of
+// the order is also shuffled, seeded). Deterministic for a seed
 // unless the time limit cuts it short. Paths are per timestep (waits included), times 0,1,2...
 // The result passes validate_plan() when solved.
 #pragma once
@@ -19,7 +20,7 @@ namespace smart::monitor {
 
 struct PlannerOptions {
   uint64_t seed = 1;
-  int restarts = 20;
+  int restarts = 50;
   double time_limit_s = 120;
 };
 
