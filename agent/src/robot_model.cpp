@@ -43,7 +43,7 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
       {"heading_tolerance_rad", {0.0001, 0.5, [](RobotModel& m) -> double& { return m.gains.heading_tolerance_rad; }, false}},
   };
   // clang-format on
-  std::vector<std::string> known{"name", "description", "controller"};
+  std::vector<std::string> known{"name", "description", "controller", "hardware"};
   for (const auto& [k, _] : fields) known.push_back(k);
   config::reject_unknown(source, root, "(top level)", known);
 

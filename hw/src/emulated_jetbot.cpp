@@ -1,0 +1,146 @@
+#include "smart/hw/emulated_jetbot.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "smart/hw/vicon.hpp"
+
+namespace smart::hw {
+
+EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m,
+                               agent::Pose2D start, std::string object, uint16_t port,
+                               double accel)
+    : cfg_(config),
+      wheel_base_m_(wheel_base_m),
+      accel_(accel),
+      object_(std::move(object)),
+      port_(port),
+      pose_(start) {
+  regs_[pca9685::kMode1] = pca9685::kSleep | pca9685::kAllCall;  // power-on default: asleep
+  if (port_ != 0) fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  thread_ = std::thread([this] {
+    auto next = std::chrono::steady_clock::now();
+    while (!stop_) {
+      next += std::chrono::milliseconds(10);
+      std::this_thread::sleep_until(next);
+      advance(0.01);
+    }
+  });
+}
+
+EmulatedJetbot::~EmulatedJetbot() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void EmulatedJetbot::write(uint8_t address, const std::vector<uint8_t>& bytes) {
+  if (address != cfg_.address || bytes.empty()) {
+    throw I2cError("emulated JetBot: no device at this address (the PCA9685 is at 0x" +
+                   std::to_string(cfg_.address) + ")");
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  uint8_t reg = bytes[0];
+  for (std::size_t i = 1; i < bytes.size(); ++i) {
+    // A write of MODE1 with RESTART set clears the bit again (data sheet 7.3.1.1).
+    regs_[reg] = reg == pca9685::kMode1 ? (bytes[i] & 0x7F) : bytes[i];
+    ++reg;
+  }
+  ++writes_;
+}
+
+uint8_t EmulatedJetbot::read_register(uint8_t address, uint8_t reg) {
+  if (address != cfg_.address) throw I2cError("emulated JetBot: no device at this address");
+  std::lock_guard<std::mutex> lock(mutex_);
+  return regs_[reg];
+}
+
+bool EmulatedJetbot::pin_high(int ch) const {
+  const auto base = pca9685::kLed0OnL + 4 * ch;
+  return (regs_[base + 1] & pca9685::kFullBit) && !(regs_[base + 3] & pca9685::kFullBit);
+}
+
+int EmulatedJetbot::duty(int ch) const {
+  const auto base = pca9685::kLed0OnL + 4 * ch;
+  if (regs_[base + 3] & pca9685::kFullBit) return 0;
+  if (regs_[base + 1] & pca9685::kFullBit) return 4096;
+  return (regs_[base + 2] | ((regs_[base + 3] & 0x0F) << 8)) -
+         (regs_[base] | ((regs_[base + 1] & 0x0F) << 8));
+}
+
+double EmulatedJetbot::wheel_target(bool left) const {
+  if ((regs_[pca9685::kMode1] & pca9685::kSleep) ||
+      (regs_[pca9685::kAllLedOffH] & pca9685::kFullBit)) {
+    return 0.0;
+  }
+  const WheelConfig& w = left ? cfg_.left : cfg_.right;
+  int d = 0, dir = 0;
+  if (cfg_.board == Board::kAdafruit) {
+    const int pwm = left ? 8 : 13, in1 = left ? 10 : 11, in2 = left ? 9 : 12;
+    d = std::max(0, duty(pwm));
+    const bool a = pin_high(in1), b = pin_high(in2);
+    dir = a && !b ? 1 : (b && !a ? -1 : 0);
+  } else {
+    const int ina = left ? 1 : 2, inb = left ? 0 : 3;
+    const int da = std::max(0, duty(ina)), db = std::max(0, duty(inb));
+    d = std::max(da, db);
+    dir = da > 0 && db == 0 ? 1 : (db > 0 && da == 0 ? -1 : 0);
+  }
+  // The wiring's sign undoes the driver's polarity setting: forward means forward.
+  return w.sign * dir * (d / 4080.0) * cfg_.max_wheel_speed_mps;
+}
+
+agent::WheelSpeeds EmulatedJetbot::commanded() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {wheel_target(true), wheel_target(false)};
+}
+
+void EmulatedJetbot::advance(double dt) {
+  std::vector<uint8_t> datagram;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double tl = wheel_target(true), tr = wheel_target(false);
+    const double dv = accel_ * dt;
+    wheels_.left_mps += std::clamp(tl - wheels_.left_mps, -dv, dv);
+    wheels_.right_mps += std::clamp(tr - wheels_.right_mps, -dv, dv);
+    const double v = (wheels_.left_mps + wheels_.right_mps) / 2;
+    const double w = (wheels_.right_mps - wheels_.left_mps) / wheel_base_m_;
+    pose_.x_m += v * std::cos(pose_.yaw_rad) * dt;
+    pose_.y_m += v * std::sin(pose_.yaw_rad) * dt;
+    pose_.yaw_rad = std::remainder(pose_.yaw_rad + w * dt, 2 * M_PI);
+    if (fd_ >= 0) {
+      ViconObject o{object_, {pose_.x_m * 1000, pose_.y_m * 1000, 0}, {0, 0, pose_.yaw_rad}};
+      datagram = make_vicon_datagram(++frame_, {o});
+    }
+  }
+  if (!datagram.empty()) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(port_);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  }
+}
+
+agent::Pose2D EmulatedJetbot::pose() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return pose_;
+}
+
+agent::WheelSpeeds EmulatedJetbot::wheel_speeds() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return wheels_;
+}
+
+uint64_t EmulatedJetbot::writes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return writes_;
+}
+
+}  // namespace smart::hw

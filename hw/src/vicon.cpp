@@ -1,0 +1,203 @@
+#include "smart/hw/vicon.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "smart/agent/kinematics.hpp"
+
+namespace smart::hw {
+
+namespace {
+constexpr std::size_t kItemHeader = 3;   // id + size
+constexpr uint16_t kObjectSize = 72;     // name[24] + 6 doubles
+template <class T>
+T get(const uint8_t* p) {  // little-endian (every parser seen; x86 and ARM hosts alike)
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+}  // namespace
+
+std::optional<ViconFrame> parse_vicon_datagram(const uint8_t* d, std::size_t n,
+                                               std::string* error) {
+  if (n < 5) {
+    *error = "datagram of " + std::to_string(n) + " bytes is shorter than its 5-byte header";
+    return std::nullopt;
+  }
+  ViconFrame f;
+  f.frame = get<uint32_t>(d);
+  const uint8_t items = d[4];
+  std::size_t at = 5;
+  for (uint8_t i = 0; i < items; ++i) {
+    if (at + kItemHeader > n) {
+      *error = "item " + std::to_string(i) + " of " + std::to_string(items) +
+               " starts beyond the end of a " + std::to_string(n) + "-byte datagram";
+      return std::nullopt;
+    }
+    const uint8_t id = d[at];
+    const uint16_t size = get<uint16_t>(d + at + 1);
+    at += kItemHeader;
+    if (at + size > n) {
+      *error = "item " + std::to_string(i) + " claims " + std::to_string(size) +
+               " bytes but the datagram ends first";
+      return std::nullopt;
+    }
+    if (id != 0) {  // not an object item: skip it
+      ++f.skipped_items;
+      at += size;
+      continue;
+    }
+    if (size != kObjectSize) {
+      *error = "object item " + std::to_string(i) + " has size " + std::to_string(size) +
+               ", expected 72 (name[24] + 6 doubles)";
+      return std::nullopt;
+    }
+    ViconObject o;
+    const char* name = reinterpret_cast<const char*>(d + at);
+    o.name.assign(name, strnlen(name, 24));
+    for (int k = 0; k < 3; ++k) o.position_mm[k] = get<double>(d + at + 24 + 8 * k);
+    for (int k = 0; k < 3; ++k) o.rotation_rad[k] = get<double>(d + at + 48 + 8 * k);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(o.position_mm[k]) || !std::isfinite(o.rotation_rad[k])) {
+        *error = "object '" + o.name + "' has a non-finite value (occluded?)";
+        return std::nullopt;
+      }
+    }
+    f.objects.push_back(std::move(o));
+    at += size;
+  }
+  return f;
+}
+
+std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<ViconObject>& objects) {
+  std::vector<uint8_t> d(5);
+  std::memcpy(d.data(), &frame, 4);
+  d[4] = static_cast<uint8_t>(objects.size());
+  for (const auto& o : objects) {
+    d.push_back(0);
+    const uint16_t size = kObjectSize;
+    d.insert(d.end(), reinterpret_cast<const uint8_t*>(&size),
+             reinterpret_cast<const uint8_t*>(&size) + 2);
+    char name[24] = {};
+    std::memcpy(name, o.name.data(), std::min<std::size_t>(o.name.size(), 24));
+    d.insert(d.end(), name, name + 24);
+    for (const double* v : {o.position_mm, o.rotation_rad}) {
+      d.insert(d.end(), reinterpret_cast<const uint8_t*>(v),
+               reinterpret_cast<const uint8_t*>(v) + 24);
+    }
+  }
+  std::size_t padded = 256;
+  while (padded < d.size()) padded *= 2;
+  d.resize(padded, 0);
+  return d;
+}
+
+ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port, ViconTransform t,
+                             std::vector<std::string> objects, std::function<double()> now_s)
+    : transform_(t), now_s_(std::move(now_s)) {
+  for (auto& o : objects) latest_[o] = std::nullopt;
+  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) throw std::runtime_error(std::string("vicon: socket: ") + std::strerror(errno));
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  if (::inet_pton(AF_INET, bind_address.c_str(), &a.sin_addr) != 1) {
+    ::close(fd_);
+    throw std::runtime_error("vicon: '" + bind_address + "' is not an IPv4 address");
+  }
+  if (::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) < 0) {
+    const std::string err = std::strerror(errno);
+    ::close(fd_);
+    throw std::runtime_error("vicon: cannot listen on UDP " + bind_address + ":" +
+                             std::to_string(port) + ": " + err +
+                             "; is another program using the port?");
+  }
+  socklen_t len = sizeof a;
+  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
+  port_ = ntohs(a.sin_port);
+  thread_ = std::thread([this] { loop(); });
+}
+
+ViconReceiver::~ViconReceiver() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void ViconReceiver::loop() {
+  std::vector<uint8_t> buf(65536);
+  while (!stop_) {
+    pollfd p{fd_, POLLIN, 0};
+    if (::poll(&p, 1, 50) <= 0) continue;
+    const auto n = ::recv(fd_, buf.data(), buf.size(), 0);
+    if (n > 0) handle(buf.data(), static_cast<std::size_t>(n));
+  }
+}
+
+void ViconReceiver::handle(const uint8_t* data, std::size_t size) {
+  std::string error;
+  const auto frame = parse_vicon_datagram(data, size, &error);
+  const double now = now_s_();
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++stats_.datagrams;
+  if (!frame) {
+    ++stats_.malformed;
+    return;
+  }
+  for (const auto& o : frame->objects) {
+    auto it = latest_.find(o.name);
+    if (it == latest_.end()) {
+      ++stats_.unknown_names;
+      continue;
+    }
+    const double c = std::cos(transform_.yaw_offset_rad), s = std::sin(transform_.yaw_offset_rad);
+    const double X = o.position_mm[0] * transform_.scale, Y = o.position_mm[1] * transform_.scale;
+    agent::PoseSample p;
+    p.pose = {c * X - s * Y + transform_.x_offset_m, s * X + c * Y + transform_.y_offset_m,
+              agent::wrap_angle(o.rotation_rad[2] + transform_.yaw_offset_rad)};
+    p.stamp_s = now;
+    p.valid = true;
+    if (it->second && now > it->second->stamp_s) {
+      const auto& q = *it->second;
+      const double dt = now - q.stamp_s;
+      const double dx = p.pose.x_m - q.pose.x_m, dy = p.pose.y_m - q.pose.y_m;
+      p.linear_mps = (dx * std::cos(p.pose.yaw_rad) + dy * std::sin(p.pose.yaw_rad)) / dt;
+      p.angular_radps = agent::wrap_angle(p.pose.yaw_rad - q.pose.yaw_rad) / dt;
+    }
+    it->second = p;
+    ++stats_.poses;
+  }
+}
+
+std::optional<agent::PoseSample> ViconReceiver::latest(const std::string& object) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = latest_.find(object);
+  return it == latest_.end() ? std::nullopt : it->second;
+}
+
+ViconStats ViconReceiver::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+ViconPoseSource::ViconPoseSource(const ViconReceiver& r, std::string object, double max_age_s,
+                                 std::function<double()> now_s)
+    : receiver_(r), object_(std::move(object)), max_age_s_(max_age_s), now_s_(std::move(now_s)) {}
+
+agent::PoseSample ViconPoseSource::read() {
+  auto p = receiver_.latest(object_);
+  if (!p) return {};
+  // An old pose is no pose: the agent's watchdog then stops the wheels.
+  if (now_s_() - p->stamp_s > max_age_s_) p->valid = false;
+  return *p;
+}
+
+}  // namespace smart::hw
