@@ -48,8 +48,13 @@ void EmulatedJetbot::write(uint8_t address, const std::vector<uint8_t>& bytes) {
   std::lock_guard<std::mutex> lock(mutex_);
   uint8_t reg = bytes[0];
   for (std::size_t i = 1; i < bytes.size(); ++i) {
-    // A write of MODE1 with RESTART set clears the bit again (data sheet 7.3.1.1).
-    regs_[reg] = reg == pca9685::kMode1 ? (bytes[i] & 0x7F) : bytes[i];
+    if (reg >= pca9685::kAllLedOnL && reg <= pca9685::kAllLedOffH) {
+      // ALL_LED registers load the same register of every channel at once (data sheet 7.3.4).
+      for (int ch = 0; ch < 16; ++ch) regs_[pca9685::kLed0OnL + 4 * ch + (reg - pca9685::kAllLedOnL)] = bytes[i];
+    } else {
+      // A write of MODE1 with RESTART set clears the bit again (data sheet 7.3.1.1).
+      regs_[reg] = reg == pca9685::kMode1 ? (bytes[i] & 0x7F) : bytes[i];
+    }
     ++reg;
   }
   ++writes_;
@@ -75,10 +80,7 @@ int EmulatedJetbot::duty(int ch) const {
 }
 
 double EmulatedJetbot::wheel_target(bool left) const {
-  if ((regs_[pca9685::kMode1] & pca9685::kSleep) ||
-      (regs_[pca9685::kAllLedOffH] & pca9685::kFullBit)) {
-    return 0.0;
-  }
+  if (regs_[pca9685::kMode1] & pca9685::kSleep) return 0.0;  // oscillator off
   const WheelConfig& w = left ? cfg_.left : cfg_.right;
   int d = 0, dir = 0;
   if (cfg_.board == Board::kAdafruit) {

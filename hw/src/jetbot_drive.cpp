@@ -50,10 +50,16 @@ JetbotConfig parse_jetbot_config(const std::string& text, const std::string& sou
                                                "a device path such as /dev/i2c-1");
   }
   if (hw["address"]) {
-    c.address = static_cast<uint8_t>(config::number(source, hw["address"], "hardware.address", 3, 119));
+    const auto a = config::scalar<int>(source, hw["address"], "hardware.address",
+                                       "a 7-bit I2C address such as 0x60");
+    if (a < 0x03 || a > 0x77) {
+      config::fail(source, hw["address"], "'hardware.address' must be a 7-bit address 0x03..0x77");
+    }
+    c.address = static_cast<uint8_t>(a);
   }
   if (hw["pwm_frequency_hz"]) {
-    c.pwm_frequency_hz = config::number(source, hw["pwm_frequency_hz"], "hardware.pwm_frequency_hz", 24, 1526);
+    // Above ~1526 Hz the prescale bottoms out at 3 (Adafruit's default 1600 gives 1526 Hz).
+    c.pwm_frequency_hz = config::number(source, hw["pwm_frequency_hz"], "hardware.pwm_frequency_hz", 24, 1600);
   }
   if (hw["max_wheel_speed_mps"]) {
     c.max_wheel_speed_mps = config::number(source, hw["max_wheel_speed_mps"], "hardware.max_wheel_speed_mps", 0.01, 10);

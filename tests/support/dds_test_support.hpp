@@ -36,6 +36,8 @@ enum DomainId : int {
   kRunGenerated = 125,
   kRunWarehouse500 = 126,
   kSimHostProtocol = 127,
+  kRosPose = 128,
+  kMixedRun = 129,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -2,7 +2,8 @@
 // Adafruit init sequence in ../shared/design/hardware.md §2). init() runs: all outputs off,
 // MODE2 totem pole, MODE1 ALLCALL, wake, set the prescale for the PWM frequency (only while
 // asleep), restart. set_pwm() writes a channel's four ON/OFF registers; full_on/full_off use
-// bit 4 of ON_H / OFF_H. all_off() sets the ALL_LED_OFF_H full-off bit (orderly shutdown).
+// bit 4 of ON_H / OFF_H. all_off() writes the full-off bit to ALL_LED_OFF_H, which loads it into
+// every channel's OFF_H at once (orderly shutdown, one I2C write).
 // Sleeps between steps go through a Sleeper so golden tests run instantly.
 #pragma once
 
