@@ -42,9 +42,14 @@ Twist Controller::rotate(const PoseSample& p, double target, bool* done) {
   const double err = wrap_angle(target - p.pose.yaw_rad);
   const double speed = std::min(braking_speed(std::abs(err), m_.max_angular_accel_radps2, dt_),
                                 m_.gains.heading_kp * std::abs(err));
-  const Twist t = limit(0.0, sign(err) * speed - m_.gains.heading_kd * p.angular_radps);
+  double w = sign(err) * speed - m_.gains.heading_kd * p.angular_radps;
+  const double w_min = 2.0 * m_.gains.min_wheel_speed_mps / m_.wheel_base_m;
+  if (std::abs(err) > m_.gains.heading_tolerance_rad && std::abs(w) < w_min) {
+    w = sign(err) * std::min(w_min, std::abs(err) / dt_);  // never overshoot in one period
+  }
+  const Twist t = limit(0.0, w);
   *done = std::abs(err) <= m_.gains.heading_tolerance_rad &&
-          std::abs(w_) <= m_.max_angular_accel_radps2 * dt_;
+          std::abs(w_) <= std::max(m_.max_angular_accel_radps2 * dt_, w_min);
   return t;
 }
 

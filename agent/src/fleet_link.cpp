@@ -22,6 +22,7 @@ FleetLink::FleetLink(const dds::Participant& p, const dds::QosProfile& qos)
       status_topic_(p, std::string(dds::kSimStatusTopic)),
       actions_(p, action_topic_, qos.action.to_dds()),
       clocks_(p, clock_topic_, qos.clock.to_dds()),
+      states_in_(p, state_topic_, qos.state.to_dds()),
       progress_(p, progress_topic_, qos.progress.to_dds()),
       states_(p, state_topic_, qos.state.to_dds()),
       clock_out_(p, clock_topic_, qos.clock.to_dds()),
@@ -38,6 +39,10 @@ std::size_t FleetLink::take_windows(const std::function<void(const ReceivedWindo
     w.end_seq = w.actions.empty() ? 0 : w.actions.back().seq + 1;
     fn(w);
   });
+}
+
+std::size_t FleetLink::take_states(const std::function<void(const smart_msg_RobotState&)>& fn) {
+  return states_in_.take_each(fn);
 }
 
 std::optional<smart_msg_Clock> FleetLink::take_monitor_clock() {

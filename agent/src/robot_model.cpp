@@ -41,6 +41,7 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
       {"distance_kp", {0.1, 100.0, [](RobotModel& m) -> double& { return m.gains.distance_kp; }, false}},
       {"position_tolerance_m", {0.0001, 0.5, [](RobotModel& m) -> double& { return m.gains.position_tolerance_m; }, false}},
       {"heading_tolerance_rad", {0.0001, 0.5, [](RobotModel& m) -> double& { return m.gains.heading_tolerance_rad; }, false}},
+      {"min_wheel_speed_mps", {0.0, 1.0, [](RobotModel& m) -> double& { return m.gains.min_wheel_speed_mps; }, false}},
   };
   // clang-format on
   std::vector<std::string> known{"name", "description", "controller", "hardware"};

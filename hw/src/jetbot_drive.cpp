@@ -149,7 +149,9 @@ void JetbotDrive::drive_wheel(bool left, double v) {
   if (value != 0.0) {
     // JetBot motor.py: mapped = int(255·(alpha·value + beta)), trim per wheel; beta pushes
     // through the motor's dead band in the direction of motion.
-    mapped = static_cast<int>(255.0 * (w.alpha * value + (value > 0 ? w.beta : -w.beta)));
+    // Rounded, not truncated: a command below half a PWM step would otherwise never move a
+    // wheel, and a heading controller would stall short of its target.
+    mapped = static_cast<int>(std::lround(255.0 * (w.alpha * value + (value > 0 ? w.beta : -w.beta))));
     mapped = static_cast<int>(w.sign) * mapped;
   }
   const int speed = std::clamp(std::abs(mapped), 0, 255);

@@ -204,6 +204,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
                I.res.run_id, I.in.actions.robots(), I.tracker.total(), I.in.adg.stats.type2);
 
   bool sim_seen = false;
+  uint32_t max_matched = 0;
   double last_sim_sign_s = 0;
   // The latest sim tick not yet handled (lock-step: to answer). A plain struct and a flag
   // rather than std::optional: g++ 12 warns falsely about optional<C struct> here.
@@ -229,34 +230,40 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     });
     // Lock-step: progress is only taken against the tick that announced it, so every finish
     // time is that tick's sim time, whatever order the topics arrive in (bit-identical runs).
-    if (!I.opt.lockstep) I.take_progress(I.res.sim_time_s);
     I.take_observations();
 
-    if (have_pending) {
-      if (I.opt.lockstep) {
-        I.take_progress(pending.sim_time_s);
-        if (I.tracker.finished_total() == pending.sync_total) {
-          I.res.sim_time_s = pending.sim_time_s;
-          I.update_waiting(pending.sim_time_s);
-          over = I.check_end();
-          last_tick = pending.tick;
-          I.answer(pending.tick, pending.sim_time_s, over);
-          have_pending = false;
-        }
-      } else {
+    if (I.opt.lockstep && have_pending) {
+      I.take_progress(pending.sim_time_s);
+      if (I.tracker.finished_total() == pending.sync_total) {
         I.res.sim_time_s = pending.sim_time_s;
         I.update_waiting(pending.sim_time_s);
-        last_tick = pending.tick;
-        have_pending = false;
         over = I.check_end();
+        last_tick = pending.tick;
+        I.answer(pending.tick, pending.sim_time_s, over);
+        have_pending = false;
       }
+    } else if (!I.opt.lockstep) {
+      // Real time (hardware, mixed runs): hosts run on their own clocks, so the run is timed
+      // on this process's wall clock from the start.
+      have_pending = false;
+      const double now = wall_s();
+      I.res.sim_time_s = now;
+      I.take_progress(now);
+      I.update_waiting(now);
+      over = I.check_end();
     }
     if (over) break;
-    // A sim host that joined and then left, or went silent, is a failure, not a hang.
-    const bool matched = I.progress.subscription_matched().current_count > 0;
-    if (sim_seen && !matched) {
+    // A host that joined and then left, or went silent, is a failure, not a hang.
+    const uint32_t matched = I.progress.subscription_matched().current_count;
+    if (matched > 0 && !sim_seen && !I.opt.lockstep) {
+      sim_seen = true;
+      I.res.first_progress_wall_s = wall_s();
+    }
+    if (sim_seen) last_sim_sign_s = I.opt.lockstep ? last_sim_sign_s : wall_s();
+    max_matched = std::max(max_matched, matched);
+    if (sim_seen && matched < max_matched) {
       I.res.sim_lost = true;
-      I.res.error = "the sim host left (its DDS writers disappeared) after " +
+      I.res.error = "a sim host or robot agent left (its DDS writers disappeared) after " +
                     std::to_string(I.res.sim_time_s) + " s of sim time";
       break;
     }

@@ -49,6 +49,14 @@ struct SimHost::Impl {
           *backends[i]));
       agents.back()->activate();
     }
+    for (const uint32_t e : o.external_robots) {
+      if (e >= n) {
+        throw std::invalid_argument("external robot " + std::to_string(e) + " but the sim has " +
+                                    std::to_string(n) + " robots");
+      }
+      world.set_external(e, true);
+      agents[e]->deactivate();
+    }
     reported_finished.assign(n, -1);
     reported_executing.assign(n, -1);
     window_end.assign(n, 0);
@@ -70,7 +78,7 @@ struct SimHost::Impl {
         std::fill(window_end.begin(), window_end.end(), 0);
         window_end_total = 0;
       }
-      agents[w.robot_id]->on_window(w.run_id, w.actions);
+      if (!world.external(w.robot_id)) agents[w.robot_id]->on_window(w.run_id, w.actions);
       const uint32_t end = w.actions.empty() ? window_end[w.robot_id] : w.end_seq;
       if (end > window_end[w.robot_id]) {
         window_end_total += end - window_end[w.robot_id];
@@ -79,8 +87,17 @@ struct SimHost::Impl {
     });
   }
 
+  void track_external_robots() {
+    link.take_states([&](const smart_msg_RobotState& s) {
+      if (s.robot_id < agents.size() && world.external(s.robot_id)) {
+        world.set_external_pose(s.robot_id, {s.pose.x_m, s.pose.y_m, s.pose.yaw_rad});
+      }
+    });
+  }
+
   void publish_progress() {
     for (uint32_t i = 0; i < agents.size(); ++i) {
+      if (world.external(i)) continue;
       const auto& a = *agents[i];
       if (a.run_id() == 0) continue;
       if (a.finished_seq() != reported_finished[i] || a.executing_seq() != reported_executing[i]) {
@@ -96,6 +113,7 @@ struct SimHost::Impl {
 
   void publish_states() {
     for (uint32_t i = 0; i < agents.size(); ++i) {
+      if (world.external(i)) continue;
       const auto p = world.pose(i);
       const auto w = world.wheel_speeds(i);
       smart_msg_RobotState s{};
@@ -133,6 +151,7 @@ struct SimHost::Impl {
   }
 
   void step_all() {
+    track_external_robots();
     for (auto& a : agents) a->step(world.time_s());
     world.step();
   }

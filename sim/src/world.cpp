@@ -102,6 +102,8 @@ struct World::Impl : detail::RobotForces {
   std::vector<uint32_t> head, next;
   std::vector<std::size_t> touched;
 
+  std::vector<uint8_t> is_external;
+  std::vector<agent::Pose2D> external_pose;
   ContactStats stats;
   std::vector<uint64_t> pairs_now;
   std::unordered_map<uint64_t, double> pair_last_contact;  // pair -> last time in contact
@@ -142,6 +144,19 @@ void World::Impl::robot_force(uint32_t i, double t, const double* q, const doubl
   const double th = q[0], x = q[1], y = q[2];
   const double om = u[0], vx_i = u[1], vy_i = u[2];
   const double ct = std::cos(th), st = std::sin(th);
+  if (is_external[i]) {
+    // Critically damped spring (2 Hz) towards the reported pose; contacts still apply below.
+    const double wn = 2 * M_PI * 2.0;
+    const auto& p = external_pose[i];
+    double fx = mass * (wn * wn * (p.x_m - x) - 2 * wn * vx_i);
+    double fy = mass * (wn * wn * (p.y_m - y) - 2 * wn * vy_i);
+    const double inertia = mass * model.radius_m * model.radius_m / 2;
+    const double dth = std::remainder(p.yaw_rad - th, 2 * M_PI);
+    out[0] += inertia * (wn * wn * dth - 2 * wn * om);
+    out[1] += fx;
+    out[2] += fy;
+    return;
+  }
   // Traction: each wheel pulls its ground speed towards the motor command (linear slip,
   // Coulomb-limited); lateral slip is resisted the same way.
   const double v_fwd = vx_i * ct + vy_i * st, v_lat = -vx_i * st + vy_i * ct;
@@ -289,6 +304,8 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   I.wall_last_contact.assign(n, -1e300);
   I.in_contact.assign(n, 0);
   I.shard_of.assign(n, 0);
+  I.is_external.assign(n, 0);
+  I.external_pose.assign(starts.begin(), starts.end());
 
   const int wanted = config.shards > 0
                          ? config.shards
@@ -339,6 +356,14 @@ std::size_t World::awake_shards() const {
                                                 [](const auto& s) { return !s->asleep; }));
 }
 
+void World::set_external(uint32_t robot, bool external) {
+  impl_->is_external.at(robot) = external ? 1 : 0;
+}
+void World::set_external_pose(uint32_t robot, const agent::Pose2D& pose) {
+  impl_->external_pose.at(robot) = pose;
+}
+bool World::external(uint32_t robot) const { return impl_->is_external.at(robot) != 0; }
+
 void World::set_wheel_targets(uint32_t robot, agent::WheelSpeeds t) {
   auto& I = *impl_;
   I.target_l.at(robot) = t.left_mps;
@@ -375,7 +400,7 @@ void World::step() {
     sh.asleep = false;
   };
   for (uint32_t i = 0; i < I.n; ++i) {
-    if (I.target_l[i] != 0 || I.target_r[i] != 0 || I.ramp_from_l[i] != 0 ||
+    if (I.is_external[i] || I.target_l[i] != 0 || I.target_r[i] != 0 || I.ramp_from_l[i] != 0 ||
         I.ramp_from_r[i] != 0) {
       wake(*I.shards[I.shard_of[i]]);
     }
@@ -410,7 +435,7 @@ void World::step() {
     bool all_rest = true;
     for (std::size_t k = 0; k < sh->robots().size(); ++k) {
       const uint32_t i = sh->robots()[k];
-      const bool commanded = I.target_l[i] != 0 || I.target_r[i] != 0 ||
+      const bool commanded = I.is_external[i] || I.target_l[i] != 0 || I.target_r[i] != 0 ||
                              I.command(I.ramp_from_l, I.target_l, i, t1) != 0 ||
                              I.command(I.ramp_from_r, I.target_r, i, t1) != 0;
       const bool slow = std::abs(I.vx[i]) < 1e-4 && std::abs(I.vy[i]) < 1e-4 &&

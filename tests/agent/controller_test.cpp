@@ -126,3 +126,30 @@ TEST(Controller, BrakeStopsWithinTheDecelerationLimit) {
 
 }  // namespace
 }  // namespace smart::agent
+
+namespace smart::agent {
+namespace {
+
+TEST(Controller, RegressionRotationWithAMinimumWheelSpeedFinishesInsteadOfStalling) {
+  auto m = load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/jetbot.yaml");
+  ASSERT_GT(m.gains.min_wheel_speed_mps, 0.0);
+  Controller c(m, kDt);
+  test::FakeRobot robot(m.wheel_base_m);
+  bool done = false;
+  int steps = 0;
+  for (; steps < 200 && !done; ++steps) {
+    Twist t = c.rotate(robot.read(), -M_PI / 2, &done);
+    // A motor that does not move below the minimum wheel speed (dead band).
+    auto w = c.wheels(t);
+    for (double* v : {&w.left_mps, &w.right_mps}) {
+      if (std::abs(*v) < m.gains.min_wheel_speed_mps * 0.999) *v = 0;
+    }
+    robot.set_wheel_speeds(w);
+    robot.advance(kDt);
+  }
+  EXPECT_TRUE(done);
+  EXPECT_LT(std::abs(wrap_angle(robot.pose().yaw_rad + M_PI / 2)), m.gains.heading_tolerance_rad + 1e-9);
+}
+
+}  // namespace
+}  // namespace smart::agent

@@ -41,8 +41,9 @@ TEST(JetbotDrive, AdafruitChannelMapForwardAndBackward) {
   EXPECT_EQ(channel(f.bus, 8), (Regs{0x00, 0x00, 0xF0, 0x0F}));
   EXPECT_EQ(channel(f.bus, 10), kPinHigh);
   EXPECT_EQ(channel(f.bus, 9), kPinLow);
-  // Right = M2: PWM 13 at 127·16 = 2032, backward: IN1 (11) low, IN2 (12) high.
-  EXPECT_EQ(channel(f.bus, 13), (Regs{0x00, 0x00, 0xF0, 0x07}));
+  // Right = M2: half speed rounds to 128 (not truncated to 127): PWM 13 at 128·16 = 2048,
+  // backward: IN1 (11) low, IN2 (12) high.
+  EXPECT_EQ(channel(f.bus, 13), (Regs{0x00, 0x00, 0x00, 0x08}));
   EXPECT_EQ(channel(f.bus, 11), kPinLow);
   EXPECT_EQ(channel(f.bus, 12), kPinHigh);
   EXPECT_EQ(f.drive->left_output().speed, 255);
@@ -58,7 +59,7 @@ TEST(JetbotDrive, PolarityAndTrimPerWheel) {
   f.drive->set_wheel_speeds({0.63, 0.63});
   EXPECT_EQ(channel(f.bus, 10), kPinLow);  // left forward now means IN2 high
   EXPECT_EQ(channel(f.bus, 9), kPinHigh);
-  EXPECT_EQ(f.drive->right_output().speed, static_cast<int>(255 * (0.5 + 0.1)));
+  EXPECT_EQ(f.drive->right_output().speed, 153);  // 255·(0.5·1 + 0.1)
   EXPECT_EQ(channel(f.bus, 11), kPinHigh);
 }
 
@@ -72,6 +73,15 @@ TEST(JetbotDrive, WaveshareUsesChannelsZeroToThree) {
   EXPECT_EQ(channel(f.bus, 2), (Regs{0x00, 0x00, 0x00, 0x00}));  // right ina
   EXPECT_EQ(channel(f.bus, 3), (Regs{0x00, 0x00, 0xF0, 0x0F}));  // right inb
   for (int ch : {8, 9, 10, 11, 12, 13}) EXPECT_EQ(channel(f.bus, ch), (Regs{0, 0, 0, 0})) << ch;
+}
+
+TEST(JetbotDrive, RegressionTinyCommandsRoundToAPwmStepInsteadOfStalling) {
+  // 0.002 m/s is 0.8 of a PWM step: truncation gave 0 and a rotation stalled 0.8° short.
+  Fixture f;
+  f.drive->set_wheel_speeds({0.002, -0.002});
+  EXPECT_EQ(f.drive->left_output().speed, 1);
+  EXPECT_EQ(f.drive->right_output().speed, 1);
+  EXPECT_EQ(f.drive->right_output().direction, -1);
 }
 
 TEST(JetbotDrive, ZeroSpeedReleasesEvenWithTrim) {

@@ -30,6 +30,7 @@ struct SimOptions {
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
   int shards = 0, threads = 2;
+  std::vector<uint32_t> external;
 };
 
 struct MonitorCliOptions {
@@ -77,6 +78,7 @@ int run_sim(const SimOptions& o) {
   ho.sim.cell_m = o.cell_m;
   ho.sim.shards = o.shards;
   ho.sim.threads = o.threads;
+  ho.external_robots = o.external;
   sim::SimHost host(participant, profile, grid, model,
                     sim::start_poses(grid, o.cell_m, starts,
                                      monitor::yaw_rad(monitor::parse_heading(o.heading))),
@@ -227,6 +229,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--shards", so->shards, "Simbody systems (0: automatic)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
   sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
+  sim->add_option("--external-robots", so->external,
+                  "robots executed by other hosts (mixed runs), shown at their published poses")
+      ->delimiter(',');
   sim->callback([&exit_code, so] {
     install_stop_handlers();
     exit_code = run_sim(*so);

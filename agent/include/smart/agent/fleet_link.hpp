@@ -37,6 +37,8 @@ class FleetLink {
 
   // Takes every received window; fn is called once per valid sample, in arrival order.
   std::size_t take_windows(const std::function<void(const ReceivedWindow&)>& fn);
+  // Takes robot states published by other hosts (mixed runs: hardware robots' poses).
+  std::size_t take_states(const std::function<void(const smart_msg_RobotState&)>& fn);
   // Takes clock samples of the monitor; returns the one with the highest tick, if any.
   std::optional<smart_msg_Clock> take_monitor_clock();
 
@@ -58,6 +60,7 @@ class FleetLink {
   dds::Topic<smart_msg_SimStatus> status_topic_;
   dds::Reader<smart_msg_ActionWindow> actions_;
   dds::Reader<smart_msg_Clock> clocks_;
+  dds::Reader<smart_msg_RobotState> states_in_;
   dds::Writer<smart_msg_Progress> progress_;
   dds::Writer<smart_msg_RobotState> states_;
   dds::Writer<smart_msg_Clock> clock_out_;

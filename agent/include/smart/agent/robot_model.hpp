@@ -14,6 +14,9 @@ struct ControllerGains {
   double distance_kp = 2.0;          // 1/s: final approach speed per metre left
   double position_tolerance_m = 0.01;
   double heading_tolerance_rad = 0.0087;  // 0.5°
+  // Smallest wheel speed that moves the robot (motor dead band, PWM resolution); a rotation
+  // that is not done turns at least this fast. 0 for ideal motors.
+  double min_wheel_speed_mps = 0.0;
   bool operator==(const ControllerGains&) const = default;
 };
 

@@ -32,6 +32,8 @@ struct SimHostOptions {
   double timeout_s = 30.0;  // lockstep: longest wait for the monitor
   double pose_timeout_s = 0.5;
   SimConfig sim;
+  // Robots executed by other hosts (mixed runs): shown at their published poses, not driven.
+  std::vector<uint32_t> external_robots;
 };
 
 struct SimHostResult {

@@ -65,6 +65,12 @@ class World {
   double time_s() const;
   uint64_t steps() const;  // control periods done
 
+  // A robot executed elsewhere (hardware in a mixed run): no traction; a stiff spring-damper
+  // holds it at its last reported pose, so simulated robots collide with it where it really is.
+  void set_external(uint32_t robot, bool external);
+  void set_external_pose(uint32_t robot, const agent::Pose2D& pose);
+  bool external(uint32_t robot) const;
+
   // Wheel ground-speed targets, reached through the motor ramp.
   void set_wheel_targets(uint32_t robot, agent::WheelSpeeds targets);
   agent::PoseSample pose(uint32_t robot) const;

@@ -1,0 +1,188 @@
+// `smart agent`: one physical robot (JetBot) joining a run over DDS — the same Agent class as in
+// simulation, on the wall clock. With `--i2c emulated` the motor board is the emulated JetBot
+// (hw/emulated_jetbot.hpp), which streams its pose to this process as Vicon UDP datagrams.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "smart/agent/agent.hpp"
+#include "smart/agent/fleet_link.hpp"
+#include "smart/config/yaml_checks.hpp"
+#include "smart/hw/emulated_jetbot.hpp"
+#include "smart/hw/jetbot_drive.hpp"
+#include "smart/hw/ros_pose.hpp"
+#include "smart/hw/vicon.hpp"
+#include "smart/tools/cli_common.hpp"
+#include "smart/tools/commands.hpp"
+
+namespace smart::tools {
+
+namespace {
+
+struct AgentOptions {
+  DdsOptions dds;
+  uint32_t robot_id = 0;
+  std::string backend = "jetbot";
+  std::string config = "jetbot";
+  std::string i2c;  // default: the robot file's hardware.i2c_device
+  std::string pose = "vicon";
+  std::string vicon_bind = "0.0.0.0";
+  uint16_t vicon_port = 51001;
+  std::string vicon_object;  // default: jetbot<id>
+  std::string ros_topic;
+  double pose_max_age_s = 0.1;
+  double period_s = 0.1;
+  std::vector<double> emulate_pose;  // x, y, yaw for --i2c emulated
+};
+
+double steady_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+int run_agent(const AgentOptions& o) {
+  const auto path = find_config_file("robots", o.config);
+  const auto model = agent::load_robot_model(path);
+  auto hwc = hw::parse_jetbot_config(config::read_file(path, "robot"), path);
+  if (!o.i2c.empty()) hwc.i2c_device = o.i2c;
+  const auto profile = dds::find_qos_profile(o.dds.qos);
+  dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
+  dds::Participant participant(domain);
+  const std::string object =
+      o.vicon_object.empty() ? "jetbot" + std::to_string(o.robot_id) : o.vicon_object;
+
+  // Pose source first: an emulated JetBot must know where to stream.
+  std::unique_ptr<hw::ViconReceiver> vicon;
+  std::unique_ptr<agent::PoseSource> pose;
+  if (o.pose == "vicon") {
+    vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, hw::ViconTransform{},
+                                                std::vector<std::string>{object}, steady_s);
+    pose = std::make_unique<hw::ViconPoseSource>(*vicon, object, o.pose_max_age_s, steady_s);
+  } else {
+    if (o.ros_topic.empty()) {
+      throw std::invalid_argument("--pose ros needs --ros-topic, e.g. /vrpn_mocap/jetbot1/pose");
+    }
+    hw::ViconTransform metres;
+    metres.scale = 1.0;
+    pose = std::make_unique<hw::RosPoseSource>(participant, o.ros_topic, metres,
+                                               o.pose_max_age_s, steady_s);
+  }
+  std::unique_ptr<hw::I2cBus> bus;
+  if (hwc.i2c_device == "emulated") {
+    if (o.emulate_pose.size() != 3 || !vicon) {
+      throw std::invalid_argument("--i2c emulated needs --emulate-pose X,Y,YAW and --pose vicon");
+    }
+    bus = std::make_unique<hw::EmulatedJetbot>(
+        hwc, model.wheel_base_m, agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]},
+        object, vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
+  } else {
+    bus = std::make_unique<hw::LinuxI2cBus>(hwc.i2c_device);
+  }
+  hw::JetbotDrive drive(*bus, hwc, [](double s) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(s));
+  });
+  // SIGINT/SIGTERM: outputs off at once from the handler, then a clean shutdown below.
+  hw::SignalStop signal_stop(*bus, hwc.address, &g_stop_requested);
+  agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose);
+  agent::FleetLink link(participant, profile);
+  robot.configure();
+  robot.activate();
+  // A command watchdog beside the control loop: if the loop stalls, the motors stop.
+  std::atomic<bool> done{false};
+  std::thread watchdog([&] {
+    while (!done) {
+      drive.poll_watchdog(steady_s());
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  spdlog::info("agent {}: {} on {}, pose from {}, domain {}", o.robot_id, model.name,
+               hwc.i2c_device, o.pose == "vicon" ? "Vicon UDP " + object : o.ros_topic,
+               o.dds.domain);
+  int64_t reported_finished = -2, reported_executing = -2;
+  auto next = std::chrono::steady_clock::now();
+  bool stopped_by_monitor = false;
+  while (!g_stop_requested.load()) {
+    link.take_windows([&](const agent::ReceivedWindow& w) {
+      if (w.robot_id == o.robot_id) robot.on_window(w.run_id, w.actions);
+    });
+    if (auto c = link.take_monitor_clock(); c && c->stop && c->run_id == robot.run_id()) {
+      stopped_by_monitor = true;
+      break;
+    }
+    const double now = steady_s();
+    robot.step(now);
+    if (robot.run_id() != 0 && (robot.finished_seq() != reported_finished ||
+                                robot.executing_seq() != reported_executing)) {
+      link.publish_progress(o.robot_id, robot.run_id(), robot.finished_seq(),
+                            robot.executing_seq());
+      reported_finished = robot.finished_seq();
+      reported_executing = robot.executing_seq();
+    }
+    const auto& p = robot.last_pose();
+    if (p.valid) {
+      smart_msg_RobotState s{};
+      s.robot_id = o.robot_id;
+      s.run_id = robot.run_id();
+      s.sim_time_s = now;
+      s.pose = {p.pose.x_m, p.pose.y_m, p.pose.yaw_rad};
+      s.linear_mps = p.linear_mps;
+      s.angular_radps = p.angular_radps;
+      s.wheel_left_mps = robot.last_command().left_mps;
+      s.wheel_right_mps = robot.last_command().right_mps;
+      s.queue_length = static_cast<uint32_t>(robot.queue_length());
+      link.publish_state(s);
+    }
+    next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(o.period_s));
+    std::this_thread::sleep_until(next);
+  }
+  robot.deactivate();
+  done = true;
+  watchdog.join();
+  nlohmann::json out = {{"robot_id", o.robot_id},
+                        {"finished_seq", robot.finished_seq()},
+                        {"stopped_by_monitor", stopped_by_monitor},
+                        {"watchdog_stops", robot.watchdog_stops()}};
+  if (vicon) {
+    const auto s = vicon->stats();
+    out["vicon"] = {{"datagrams", s.datagrams}, {"malformed", s.malformed},
+                    {"unknown_names", s.unknown_names}};
+  }
+  std::cout << out.dump() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void register_agent_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<AgentOptions>();
+  auto* cmd = app.add_subcommand("agent", "One physical robot (JetBot) executing its actions "
+                                          "from `smart monitor` over DDS");
+  add_dds_options(cmd, o->dds);
+  cmd->add_option("--robot-id", o->robot_id, "the robot's index in the plan")->required();
+  cmd->add_option("--backend", o->backend)->check(CLI::IsMember({"jetbot"}))
+      ->capture_default_str();
+  cmd->add_option("--config", o->config, "robot model with a hardware: section (name or file)")
+      ->capture_default_str();
+  cmd->add_option("--i2c", o->i2c, "I2C device (default from the robot file) or 'emulated'");
+  cmd->add_option("--pose", o->pose, "vicon (Tracker UDP stream) or ros (PoseStamped topic)")
+      ->check(CLI::IsMember({"vicon", "ros"}))
+      ->capture_default_str();
+  cmd->add_option("--vicon-bind", o->vicon_bind)->capture_default_str();
+  cmd->add_option("--vicon-port", o->vicon_port, "UDP port (0: any free port)")
+      ->capture_default_str();
+  cmd->add_option("--vicon-object", o->vicon_object, "Vicon object name (default jetbot<id>)");
+  cmd->add_option("--ros-topic", o->ros_topic, "ROS 2 PoseStamped topic for --pose ros");
+  cmd->add_option("--pose-max-age-s", o->pose_max_age_s, "older poses stop the robot")
+      ->capture_default_str();
+  cmd->add_option("--period-s", o->period_s, "control period")->capture_default_str();
+  cmd->add_option("--emulate-pose", o->emulate_pose, "start pose X Y YAW of an emulated JetBot")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->callback([&exit_code, o] { exit_code = run_agent(*o); });
+}
+
+}  // namespace smart::tools
