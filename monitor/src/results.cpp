@@ -59,6 +59,23 @@ std::ofstream open_out(const std::filesystem::path& p) {
 
 }  // namespace
 
+nlohmann::json adg_json(const AdgStats& a) {
+  return {{"nodes", a.nodes},
+          {"type1", a.type1},
+          {"type2", a.type2},
+          {"type2_all_pairs", a.type2_all_pairs},
+          {"moves", a.moves},
+          {"rotations", a.rotations},
+          {"locations", a.locations}};
+}
+
+nlohmann::json plan_json(const Plan& plan, const PlanStats& st) {
+  return {{"soc", st.soc},           {"makespan", st.makespan},
+          {"moves", st.moves},       {"waits", st.waits},
+          {"format", to_string(plan.format)}, {"axis", to_string(plan.axis)},
+          {"timed", plan.timed}};
+}
+
 nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
   double sum = 0, makespan = 0;
   for (const auto& m : r.robots) {
@@ -66,7 +83,6 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
     makespan = std::max(makespan, m.finish_time_s);
   }
   const double n = std::max<double>(1.0, static_cast<double>(r.robots.size()));
-  const auto& a = in.adg.stats;
   nlohmann::json j = {
       {"success", r.success},
       {"robots", r.robots.size()},
@@ -92,20 +108,8 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"qos", info.qos},
       {"cell_m", info.cell_m},
       {"files", {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
-      {"plan",
-       {{"soc", in.stats.soc},
-        {"makespan", in.stats.makespan},
-        {"moves", in.stats.moves},
-        {"waits", in.stats.waits},
-        {"format", to_string(in.plan.format)},
-        {"axis", to_string(in.plan.axis)}}},
-      {"adg",
-       {{"nodes", a.nodes},
-        {"type1", a.type1},
-        {"type2", a.type2},
-        {"type2_all_pairs", a.type2_all_pairs},
-        {"moves", a.moves},
-        {"rotations", a.rotations}}},
+      {"plan", plan_json(in.plan, in.stats)},
+      {"adg", adg_json(in.adg.stats)},
       {"versions",
        {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };

@@ -176,6 +176,15 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
   const auto state_every = std::max<uint64_t>(
       1, static_cast<uint64_t>(1.0 / (I.opt.state_rate_hz * I.opt.sim.control_period_s) + 0.5));
   uint64_t tick = 0;
+  // One control period: agents and world step, then everything the period produced goes out.
+  auto advance = [&] {
+    I.step_all();
+    ++tick;
+    I.publish_progress();
+    if (tick % state_every == 0) I.publish_states();
+    I.publish_status(false, std::chrono::duration<double>(Clock::now() - wall0).count());
+    I.publish_clock(tick);
+  };
   auto wall_s = [&] { return std::chrono::duration<double>(Clock::now() - wall0).count(); };
   auto finish = [&](bool ok, std::string error) {
     I.publish_status(true, wall_s());
@@ -223,12 +232,7 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
           last_publish = Clock::now();
         }
       }
-      I.step_all();
-      ++tick;
-      I.publish_progress();
-      if (tick % state_every == 0) I.publish_states();
-      I.publish_status(false, wall_s());
-      I.publish_clock(tick);
+      advance();
     }
   }
 
@@ -240,12 +244,7 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
       r.stopped_by_monitor = true;
       return finish(true, "");
     }
-    I.step_all();
-    ++tick;
-    I.publish_progress();
-    if (tick % state_every == 0) I.publish_states();
-    I.publish_status(false, wall_s());
-    I.publish_clock(tick);
+    advance();
     next += std::chrono::duration_cast<Clock::duration>(period);
     std::this_thread::sleep_until(next);
   }

@@ -6,6 +6,8 @@
 
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/problem.hpp"
+#include "smart/monitor/results.hpp"
+#include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 
 namespace smart::tools {
@@ -32,39 +34,16 @@ nlohmann::json problems_json(const std::vector<monitor::Problem>& problems) {
 }
 
 int run_check_plan(const CheckPlanOptions& o) {
-  monitor::InstanceOptions io;
-  io.map = o.map;
-  io.scen = o.scen;
-  io.plan = o.plan;
-  io.agents = o.agents;
-  io.read.format = monitor::parse_plan_format(o.format);
-  if (!o.axis.empty()) io.read.axis = monitor::parse_axis_order(o.axis);
-  io.initial_heading = monitor::parse_heading(o.heading);
+  const auto io = instance_options(o.map, o.scen, o.plan, o.agents, o.format, o.axis, o.heading);
   try {
     const auto in = monitor::load_instance(io);
     const auto& t = in.timings;
-    const auto& a = in.adg.stats;
     nlohmann::json report = {
         {"valid", true},
         {"robots", in.plan.paths.size()},
         {"map", {{"file", o.map}, {"width", in.grid.width()}, {"height", in.grid.height()}}},
-        {"plan",
-         {{"file", o.plan},
-          {"format", monitor::to_string(in.plan.format)},
-          {"axis", monitor::to_string(in.plan.axis)},
-          {"timed", in.plan.timed},
-          {"soc", in.stats.soc},
-          {"makespan", in.stats.makespan},
-          {"moves", in.stats.moves},
-          {"waits", in.stats.waits}}},
-        {"adg",
-         {{"nodes", a.nodes},
-          {"type1", a.type1},
-          {"type2", a.type2},
-          {"type2_all_pairs", a.type2_all_pairs},
-          {"moves", a.moves},
-          {"rotations", a.rotations},
-          {"locations", a.locations}}},
+        {"plan", monitor::plan_json(in.plan, in.stats)},
+        {"adg", monitor::adg_json(in.adg.stats)},
         {"build_time_ms",
          {{"read", t.read_ms},
           {"validate", t.validate_ms},
@@ -73,6 +52,7 @@ int run_check_plan(const CheckPlanOptions& o) {
           {"acyclic", t.acyclic_ms},
           {"adg_total", t.actions_ms + t.adg_ms + t.acyclic_ms}}},
     };
+    report["plan"]["file"] = o.plan;
     std::cout << report.dump(2) << std::endl;
     return 0;
   } catch (const monitor::InputError& e) {

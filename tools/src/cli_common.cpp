@@ -49,6 +49,21 @@ std::string find_config_file(const std::string& kind, const std::string& name) {
                             "); pass a path to a YAML file");
 }
 
+monitor::InstanceOptions instance_options(const std::string& map, const std::string& scen,
+                                          const std::string& plan, std::size_t agents,
+                                          const std::string& format, const std::string& axis,
+                                          const std::string& heading) {
+  monitor::InstanceOptions io;
+  io.map = map;
+  io.scen = scen;
+  io.plan = plan;
+  io.agents = agents;
+  io.read.format = monitor::parse_plan_format(format);
+  if (!axis.empty()) io.read.axis = monitor::parse_axis_order(axis);
+  io.initial_heading = monitor::parse_heading(heading);
+  return io;
+}
+
 void install_stop_handlers() {
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;

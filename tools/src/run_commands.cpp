@@ -113,15 +113,8 @@ void print_progress(const monitor::MonitorResult& r, std::size_t done, bool fina
 }
 
 monitor::Instance load(const MonitorCliOptions& o) {
-  monitor::InstanceOptions io;
-  io.map = o.map;
-  io.scen = o.scen;
-  io.plan = o.plan;
-  io.agents = o.agents;
-  io.read.format = monitor::parse_plan_format(o.format);
-  if (!o.axis.empty()) io.read.axis = monitor::parse_axis_order(o.axis);
-  io.initial_heading = monitor::parse_heading(o.heading);
-  return monitor::load_instance(io);
+  return monitor::load_instance(
+      instance_options(o.map, o.scen, o.plan, o.agents, o.format, o.axis, o.heading));
 }
 
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.

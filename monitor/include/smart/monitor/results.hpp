@@ -25,6 +25,10 @@ struct RunInfo {
   uint64_t seed = 0;
 };
 
+// The "adg" and "plan" objects shared by summary.json and `smart check-plan`.
+nlohmann::json adg_json(const AdgStats& stats);
+nlohmann::json plan_json(const Plan& plan, const PlanStats& stats);
+
 nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
                             const RunInfo& info);
 // Writes the four files into `dir` (created if missing). Throws std::runtime_error naming the

@@ -9,6 +9,7 @@
 
 #include "smart/dds/domain.hpp"
 #include "smart/dds/qos_profile.hpp"
+#include "smart/monitor/instance.hpp"
 
 namespace smart::tools {
 
@@ -25,6 +26,12 @@ dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile
 // A config file given by name ("footbot" -> <config dir>/<kind>/footbot.yaml) or by path
 // (anything with '/' or ending in .yaml). Throws config::ConfigError listing where it looked.
 std::string find_config_file(const std::string& kind, const std::string& name_or_path);
+
+// Instance options from command-line words (format, axis may be empty, heading).
+monitor::InstanceOptions instance_options(const std::string& map, const std::string& scen,
+                                          const std::string& plan, std::size_t agents,
+                                          const std::string& format, const std::string& axis,
+                                          const std::string& heading);
 
 // Set by SIGINT/SIGTERM once install_stop_handlers() ran.
 extern std::atomic<bool> g_stop_requested;
