@@ -34,7 +34,7 @@ asan: deps
 	@cmake --build --preset asan
 
 asan-test: asan
-	ctest --preset asan
+	ctest --preset asan -LE long
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
