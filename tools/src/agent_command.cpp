@@ -36,6 +36,10 @@ struct AgentOptions {
   double pose_max_age_s = 0.1;
   double period_s = 0.1;
   std::vector<double> emulate_pose;  // x, y, yaw for --i2c emulated
+  // Mocap frame -> grid world frame: scale (Vicon mm -> m: 0.001; ROS m: 1), rotation, offset.
+  double pose_scale = 0;  // 0: the source's default
+  double pose_yaw_offset_rad = 0;
+  std::vector<double> pose_offset_m{0, 0};
 };
 
 double steady_s() {
@@ -57,17 +61,20 @@ int run_agent(const AgentOptions& o) {
   // Pose source first: an emulated JetBot must know where to stream.
   std::unique_ptr<hw::ViconReceiver> vicon;
   std::unique_ptr<agent::PoseSource> pose;
+  hw::ViconTransform transform;
+  transform.scale = o.pose_scale > 0 ? o.pose_scale : (o.pose == "vicon" ? 0.001 : 1.0);
+  transform.yaw_offset_rad = o.pose_yaw_offset_rad;
+  transform.x_offset_m = o.pose_offset_m.at(0);
+  transform.y_offset_m = o.pose_offset_m.at(1);
   if (o.pose == "vicon") {
-    vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, hw::ViconTransform{},
+    vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, transform,
                                                 std::vector<std::string>{object}, steady_s);
     pose = std::make_unique<hw::ViconPoseSource>(*vicon, object, o.pose_max_age_s, steady_s);
   } else {
     if (o.ros_topic.empty()) {
       throw std::invalid_argument("--pose ros needs --ros-topic, e.g. /vrpn_mocap/jetbot1/pose");
     }
-    hw::ViconTransform metres;
-    metres.scale = 1.0;
-    pose = std::make_unique<hw::RosPoseSource>(participant, o.ros_topic, metres,
+    pose = std::make_unique<hw::RosPoseSource>(participant, o.ros_topic, transform,
                                                o.pose_max_age_s, steady_s);
   }
   std::unique_ptr<hw::I2cBus> bus;
@@ -176,6 +183,15 @@ void register_agent_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--vicon-object", o->vicon_object, "Vicon object name (default jetbot<id>)");
   cmd->add_option("--ros-topic", o->ros_topic, "ROS 2 PoseStamped topic for --pose ros");
+  cmd->add_option("--pose-scale", o->pose_scale,
+                  "mocap units to metres (default: 0.001 for Vicon mm, 1 for ROS)");
+  cmd->add_option("--pose-yaw-offset-rad", o->pose_yaw_offset_rad,
+                  "rotation of the mocap frame into the grid frame")
+      ->capture_default_str();
+  cmd->add_option("--pose-offset-m", o->pose_offset_m,
+                  "X,Y of the mocap origin in the grid frame (metres)")
+      ->delimiter(',')
+      ->expected(2);
   cmd->add_option("--pose-max-age-s", o->pose_max_age_s, "older poses stop the robot")
       ->capture_default_str();
   cmd->add_option("--period-s", o->period_s, "control period")->capture_default_str();
