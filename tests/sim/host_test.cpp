@@ -1,0 +1,114 @@
+// The sim host against a scripted monitor in the test process (real DDS on loopback).
+#include "smart/sim/host.hpp"
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "smart/agent/fleet_link.hpp"
+#include "smart/dds/action_window.hpp"
+#include "smart/dds/waitset.hpp"
+#include "smart/dds/writer.hpp"
+#include "support/dds_test_support.hpp"
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::sim {
+namespace {
+
+using namespace std::chrono_literals;
+
+agent::RobotModel fast_model() {
+  agent::RobotModel m;
+  m.name = "fast";
+  m.radius_m = 0.2;
+  m.mass_kg = 5;
+  m.wheel_base_m = 0.3;
+  m.max_speed_mps = 1.0;
+  m.max_accel_mps2 = 2.0;
+  m.max_decel_mps2 = 2.0;
+  m.max_turn_rate_radps = 2.0;
+  m.max_angular_accel_radps2 = 8.0;
+  return m;
+}
+
+TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
+  const auto grid = test::grid_of({"......", "......"});
+  dds::Domain domain(test::kSimHostProtocol, test::loopback());
+  dds::Participant host_p(domain), mon_p(domain);
+  const auto qos = dds::default_qos_profile();
+  SimHostOptions opt;
+  opt.timeout_s = 20;
+  opt.state_rate_hz = 10;
+  const auto starts = start_poses(grid, 1.0, {{0, 0}, {0, 1}}, 0.0);
+  SimHost host(host_p, qos, grid, fast_model(), starts, opt);
+  std::atomic<bool> stop{false};
+  SimHostResult result;
+  std::thread t([&] { result = host.run(stop); });
+
+  // The monitor side: windows out, clock answers, progress and the ROS view in.
+  dds::Topic<smart_msg_ActionWindow> ta(mon_p, std::string(dds::kActionTopic));
+  dds::Topic<smart_msg_Clock> tc(mon_p, std::string(dds::kClockTopic));
+  dds::Topic<smart_msg_Progress> tp(mon_p, std::string(dds::kProgressTopic));
+  dds::Topic<geometry_msgs_msg_dds__PoseArray_> tr(mon_p, "rt/smart/poses");
+  dds::Writer<smart_msg_ActionWindow> windows(mon_p, ta, qos.action.to_dds());
+  dds::Writer<smart_msg_Clock> answers(mon_p, tc, qos.clock.to_dds());
+  dds::Reader<smart_msg_Clock> ticks(mon_p, tc, qos.clock.to_dds());
+  dds::Reader<smart_msg_Progress> progress(mon_p, tp, qos.progress.to_dds());
+  dds::Reader<geometry_msgs_msg_dds__PoseArray_> ros(mon_p, tr, qos.state.to_dds());
+  const uint64_t run = 42;
+  auto latest_tick = [&] {
+    int64_t latest = -1;
+    ticks.take_each([&](const smart_msg_Clock& c) {
+      if (c.source_id == agent::kSimClockSource) latest = std::max<int64_t>(latest, c.tick);
+    });
+    return latest;
+  };
+  // Nothing answered yet: the host must stay at tick 0.
+  std::this_thread::sleep_for(700ms);
+  EXPECT_EQ(latest_tick(), 0) << "the host stepped without the monitor's answer";
+
+  // Robot 0: two half-moves east; robot 1: nothing. Then answer tick 0 with the window total.
+  dds::ActionWindowBuffer w0(0, run, 2), w1(1, run, 0);
+  for (uint32_t s = 0; s < 2; ++s) {
+    smart_msg_ActionStep step{};
+    step.seq = s;
+    step.type = smart_msg_ACTION_MOVE;
+    step.from = {0.5 * s, 1.0, static_cast<int32_t>(s), 0};
+    step.to = {0.5 * (s + 1), 1.0, static_cast<int32_t>(s + 1), 0};
+    w0.steps().push_back(step);
+  }
+  windows.write(w0.view());
+  windows.write(w1.view());
+  int64_t finished = -1;
+  bool saw_ros = false;
+  uint64_t tick = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (finished < 1 && std::chrono::steady_clock::now() < deadline) {
+    answers.write(smart_msg_Clock{agent::kMonitorClockSource, run, tick, 0.0, 2, false});
+    // Wait for the host's next tick, then collect what it reported.
+    for (int i = 0; i < 200; ++i) {
+      if (latest_tick() > static_cast<int64_t>(tick)) break;
+      std::this_thread::sleep_for(2ms);
+    }
+    ++tick;
+    progress.take_each([&](const smart_msg_Progress& p) {
+      EXPECT_EQ(p.run_id, run);
+      if (p.robot_id == 0) finished = p.finished_seq;
+    });
+    ros.take_each([&](const geometry_msgs_msg_dds__PoseArray_& m) {
+      EXPECT_EQ(m.poses._length, 2u);
+      EXPECT_STREQ(m.header.frame_id, "map");
+      saw_ros = true;
+    });
+  }
+  EXPECT_EQ(finished, 1);
+  EXPECT_TRUE(saw_ros) << "no rt/smart/poses PoseArray seen";
+  answers.write(smart_msg_Clock{agent::kMonitorClockSource, run, tick, 0.0, 2, true});
+  t.join();
+  EXPECT_TRUE(result.ok) << result.error;
+  EXPECT_TRUE(result.stopped_by_monitor);
+  EXPECT_GT(result.ticks, 5u);
+}
+
+}  // namespace
+}  // namespace smart::sim
