@@ -111,16 +111,23 @@ void BM_ParsePlan(benchmark::State& state, const std::string& file) {
   const auto path = data_dir() / "smart-examples" / file;
   const auto text = read_text_file(path, "plan");
   for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        parse_plan(text, file, {PlanFormat::kAuto, AxisOrder::kRowCol}));
+    benchmark::DoNotOptimize(parse_plan(text, file, {PlanFormat::kAuto, AxisOrder::kRowCol}));
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * text.size()));
 }
 
 BENCHMARK_CAPTURE(BM_AdgRandomWalk, warehouse, std::string("warehouse-10-20-10-2-1"))
-    ->Arg(100)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+    ->Arg(100)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AdgRandomWalk, sortation, std::string("sortation_large"))
-    ->Arg(100)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
+    ->Arg(100)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AdgSmartPlan, scen_1_500, std::string("scen_1_paths.txt"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_AdgSmartPlan, scen_1_1000, std::string("scen_1_1000_paths.txt"))

@@ -13,8 +13,8 @@ ActionQueue::Result ActionQueue::apply(uint64_t run_id, const std::vector<AgentA
   }
   bool added = false;
   for (const auto& a : window) {
-    const int64_t next = pending_.empty() ? finished_seq_ + 1
-                                          : static_cast<int64_t>(pending_.back().seq) + 1;
+    const int64_t next =
+        pending_.empty() ? finished_seq_ + 1 : static_cast<int64_t>(pending_.back().seq) + 1;
     const auto seq = static_cast<int64_t>(a.seq);
     if (seq < next) {
       ++duplicates_;

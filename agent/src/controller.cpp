@@ -74,12 +74,11 @@ Twist Controller::drive(const PoseSample& p, const Segment& s, bool* done) {
                            m_.gains.distance_kp * std::abs(d)});
   // Do not drive on while badly misaligned: slow down in proportion.
   speed *= std::max(0.0, std::cos(std::min(std::abs(yaw_err) * 2.0, M_PI / 2)));
-  const double w = clamp(m_.gains.heading_kp * yaw_err, -m_.max_turn_rate_radps,
-                         m_.max_turn_rate_radps) -
-                   m_.gains.heading_kd * p.angular_radps;
+  const double w =
+      clamp(m_.gains.heading_kp * yaw_err, -m_.max_turn_rate_radps, m_.max_turn_rate_radps) -
+      m_.gains.heading_kd * p.angular_radps;
   const Twist t = limit(sign(d) * speed, w);
-  *done = std::abs(d) <= m_.gains.position_tolerance_m &&
-          std::abs(v_) <= m_.max_decel_mps2 * dt_;
+  *done = std::abs(d) <= m_.gains.position_tolerance_m && std::abs(v_) <= m_.max_decel_mps2 * dt_;
   return t;
 }
 

@@ -35,7 +35,8 @@ std::size_t FleetLink::take_windows(const std::function<void(const ReceivedWindo
     w.run_id = m.run_id;
     w.total_actions = m.total_actions;
     w.actions.clear();
-    for (uint32_t i = 0; i < m.actions._length; ++i) w.actions.push_back(from_wire(m.actions._buffer[i]));
+    for (uint32_t i = 0; i < m.actions._length; ++i)
+      w.actions.push_back(from_wire(m.actions._buffer[i]));
     w.end_seq = w.actions.empty() ? 0 : w.actions.back().seq + 1;
     fn(w);
   });

@@ -47,13 +47,12 @@ void reject_unknown(const std::string& source, const YAML::Node& node, const std
   }
 }
 
-double number(const std::string& source, const YAML::Node& node, const std::string& key,
-              double min, double max) {
+double number(const std::string& source, const YAML::Node& node, const std::string& key, double min,
+              double max) {
   const auto v = scalar<double>(source, node, key, "a number");
   if (!std::isfinite(v) || v < min || v > max) {
     std::ostringstream range;
-    range << "'" << key << "' is " << node.Scalar() << " but must be from " << min << " to "
-          << max;
+    range << "'" << key << "' is " << node.Scalar() << " but must be from " << min << " to " << max;
     fail(source, node, range.str());
   }
   return v;

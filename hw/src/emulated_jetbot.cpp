@@ -13,9 +13,8 @@
 
 namespace smart::hw {
 
-EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m,
-                               agent::Pose2D start, std::string object, uint16_t port,
-                               double accel)
+EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
+                               std::string object, uint16_t port, double accel)
     : cfg_(config),
       wheel_base_m_(wheel_base_m),
       accel_(accel),
@@ -50,7 +49,8 @@ void EmulatedJetbot::write(uint8_t address, const std::vector<uint8_t>& bytes) {
   for (std::size_t i = 1; i < bytes.size(); ++i) {
     if (reg >= pca9685::kAllLedOnL && reg <= pca9685::kAllLedOffH) {
       // ALL_LED registers load the same register of every channel at once (data sheet 7.3.4).
-      for (int ch = 0; ch < 16; ++ch) regs_[pca9685::kLed0OnL + 4 * ch + (reg - pca9685::kAllLedOnL)] = bytes[i];
+      for (int ch = 0; ch < 16; ++ch)
+        regs_[pca9685::kLed0OnL + 4 * ch + (reg - pca9685::kAllLedOnL)] = bytes[i];
     } else {
       // A write of MODE1 with RESTART set clears the bit again (data sheet 7.3.1.1).
       regs_[reg] = reg == pca9685::kMode1 ? (bytes[i] & 0x7F) : bytes[i];

@@ -57,8 +57,8 @@ uint8_t LinuxI2cBus::read_register(uint8_t address, uint8_t reg) {
   select(address);
   uint8_t value = 0;
   if (::write(fd_, &reg, 1) != 1 || ::read(fd_, &value, 1) != 1) {
-    throw I2cError("I2C read of register " + hex(reg) + " from " + hex(address) + " on " +
-                   device_ + " failed: " + std::strerror(errno));
+    throw I2cError("I2C read of register " + hex(reg) + " from " + hex(address) + " on " + device_ +
+                   " failed: " + std::strerror(errno));
   }
   return value;
 }

@@ -22,8 +22,7 @@ constexpr Channels kAdafruitLeft{8, 10, 9}, kAdafruitRight{13, 11, 12};
 constexpr Channels kWaveshareLeft{-1, 1, 0}, kWaveshareRight{-1, 2, 3};
 
 double steady_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -33,7 +32,8 @@ JetbotConfig parse_jetbot_config(const std::string& text, const std::string& sou
   JetbotConfig c;
   const auto hw = root.IsMap() ? root["hardware"] : YAML::Node();
   if (!hw) {
-    throw config::ConfigError(source + ": no 'hardware:' section; add one with board, i2c_device, "
+    throw config::ConfigError(source +
+                              ": no 'hardware:' section; add one with board, i2c_device, "
                               "address, pwm_frequency_hz, max_wheel_speed_mps, left, right");
   }
   config::require_map(source, hw, "hardware");
@@ -41,9 +41,9 @@ JetbotConfig parse_jetbot_config(const std::string& text, const std::string& sou
                          {"board", "i2c_device", "address", "pwm_frequency_hz",
                           "max_wheel_speed_mps", "command_timeout_s", "left", "right"});
   if (hw["board"]) {
-    c.board = config::choice<Board>(source, hw["board"], "hardware.board",
-                                    {{"adafruit", Board::kAdafruit},
-                                     {"waveshare", Board::kWaveshare}});
+    c.board =
+        config::choice<Board>(source, hw["board"], "hardware.board",
+                              {{"adafruit", Board::kAdafruit}, {"waveshare", Board::kWaveshare}});
   }
   if (hw["i2c_device"]) {
     c.i2c_device = config::scalar<std::string>(source, hw["i2c_device"], "hardware.i2c_device",
@@ -59,13 +59,16 @@ JetbotConfig parse_jetbot_config(const std::string& text, const std::string& sou
   }
   if (hw["pwm_frequency_hz"]) {
     // Above ~1526 Hz the prescale bottoms out at 3 (Adafruit's default 1600 gives 1526 Hz).
-    c.pwm_frequency_hz = config::number(source, hw["pwm_frequency_hz"], "hardware.pwm_frequency_hz", 24, 1600);
+    c.pwm_frequency_hz =
+        config::number(source, hw["pwm_frequency_hz"], "hardware.pwm_frequency_hz", 24, 1600);
   }
   if (hw["max_wheel_speed_mps"]) {
-    c.max_wheel_speed_mps = config::number(source, hw["max_wheel_speed_mps"], "hardware.max_wheel_speed_mps", 0.01, 10);
+    c.max_wheel_speed_mps =
+        config::number(source, hw["max_wheel_speed_mps"], "hardware.max_wheel_speed_mps", 0.01, 10);
   }
   if (hw["command_timeout_s"]) {
-    c.command_timeout_s = config::number(source, hw["command_timeout_s"], "hardware.command_timeout_s", 0.01, 10);
+    c.command_timeout_s =
+        config::number(source, hw["command_timeout_s"], "hardware.command_timeout_s", 0.01, 10);
   }
   for (const auto& [key, wheel] : {std::pair{"left", &c.left}, std::pair{"right", &c.right}}) {
     const auto w = hw[key];
@@ -151,7 +154,8 @@ void JetbotDrive::drive_wheel(bool left, double v) {
     // through the motor's dead band in the direction of motion.
     // Rounded, not truncated: a command below half a PWM step would otherwise never move a
     // wheel, and a heading controller would stall short of its target.
-    mapped = static_cast<int>(std::lround(255.0 * (w.alpha * value + (value > 0 ? w.beta : -w.beta))));
+    mapped =
+        static_cast<int>(std::lround(255.0 * (w.alpha * value + (value > 0 ? w.beta : -w.beta))));
     mapped = static_cast<int>(w.sign) * mapped;
   }
   const int speed = std::clamp(std::abs(mapped), 0, 255);
@@ -210,7 +214,8 @@ void on_signal(int) {
 }  // namespace
 
 struct SignalStop::Saved {
-  struct sigaction old_int {}, old_term {};
+  struct sigaction old_int {
+  }, old_term{};
 };
 
 SignalStop::SignalStop(I2cBus& bus, uint8_t address, std::atomic<bool>* stop_flag)

@@ -24,7 +24,8 @@ RosPoseSource::RosPoseSource(const dds::Participant& p, const std::string& ros_t
 void RosPoseSource::on_data() {
   reader_->take_each([&](const geometry_msgs_msg_dds__PoseStamped_& m) {
     const auto& o = m.pose.orientation;
-    const double yaw = std::atan2(2.0 * (o.w * o.z + o.x * o.y), 1.0 - 2.0 * (o.y * o.y + o.z * o.z));
+    const double yaw =
+        std::atan2(2.0 * (o.w * o.z + o.x * o.y), 1.0 - 2.0 * (o.y * o.y + o.z * o.z));
     const double c = std::cos(transform_.yaw_offset_rad), s = std::sin(transform_.yaw_offset_rad);
     const double X = m.pose.position.x * transform_.scale, Y = m.pose.position.y * transform_.scale;
     agent::PoseSample sample;

@@ -16,8 +16,8 @@
 namespace smart::hw {
 
 namespace {
-constexpr std::size_t kItemHeader = 3;   // id + size
-constexpr uint16_t kObjectSize = 72;     // name[24] + 6 doubles
+constexpr std::size_t kItemHeader = 3;  // id + size
+constexpr uint16_t kObjectSize = 72;    // name[24] + 6 doubles
 template <class T>
 T get(const uint8_t* p) {  // little-endian (every parser seen; x86 and ARM hosts alike)
   T v;

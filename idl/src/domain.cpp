@@ -25,8 +25,7 @@ std::string render_cyclone_config(const DomainConfig& c) {
   x << "<AllowMulticast>" << (c.allow_multicast ? "default" : "false") << "</AllowMulticast>";
   x << "</General><Discovery>";
   x << "<ParticipantIndex>auto</ParticipantIndex>";
-  x << "<MaxAutoParticipantIndex>" << c.max_auto_participant_index
-    << "</MaxAutoParticipantIndex>";
+  x << "<MaxAutoParticipantIndex>" << c.max_auto_participant_index << "</MaxAutoParticipantIndex>";
   if (!c.peers.empty()) {
     x << "<Peers>";
     for (const auto& p : c.peers) x << "<Peer address=\"" << p << "\"/>";

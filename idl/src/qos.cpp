@@ -12,7 +12,9 @@ std::string to_string(Reliability r) {
 std::string to_string(Durability d) {
   return d == Durability::kTransientLocal ? "transient_local" : "volatile";
 }
-std::string to_string(HistoryKind h) { return h == HistoryKind::kKeepAll ? "keep_all" : "keep_last"; }
+std::string to_string(HistoryKind h) {
+  return h == HistoryKind::kKeepAll ? "keep_all" : "keep_last";
+}
 std::string to_string(LivelinessKind l) {
   switch (l) {
     case LivelinessKind::kAutomatic:
@@ -45,10 +47,9 @@ Qos::~Qos() {
 }
 
 Qos& Qos::reliability(Reliability r, Millis max_blocking) {
-  dds_qset_reliability(qos_,
-                       r == Reliability::kReliable ? DDS_RELIABILITY_RELIABLE
-                                                   : DDS_RELIABILITY_BEST_EFFORT,
-                       to_dds_duration(max_blocking));
+  dds_qset_reliability(
+      qos_, r == Reliability::kReliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
+      to_dds_duration(max_blocking));
   return *this;
 }
 Qos& Qos::durability(Durability d) {

@@ -26,9 +26,8 @@ void parse_topic(const std::string& source, const YAML::Node& node, const std::s
                  TopicQos& q) {
   require_map(source, node, path);
   reject_unknown(source, node, path,
-                 {"reliability", "max_blocking_ms", "history", "depth", "durability",
-                  "deadline_ms", "lifespan_ms", "liveliness", "liveliness_lease_ms",
-                  "autodispose"});
+                 {"reliability", "max_blocking_ms", "history", "depth", "durability", "deadline_ms",
+                  "lifespan_ms", "liveliness", "liveliness_lease_ms", "autodispose"});
   for (const auto& kv : node) {
     const auto key = kv.first.as<std::string>();
     const auto& v = kv.second;
@@ -47,19 +46,19 @@ void parse_topic(const std::string& source, const YAML::Node& node, const std::s
       q.depth = scalar<int32_t>(source, v, full, "a whole number >= 1");
       if (q.depth < 1) fail(source, v, "'" + full + "' must be >= 1 (samples kept per robot)");
     } else if (key == "durability") {
-      q.durability = choice<Durability>(source, v, full,
-                                        {{"volatile", Durability::kVolatile},
-                                         {"transient_local", Durability::kTransientLocal}});
+      q.durability = choice<Durability>(
+          source, v, full,
+          {{"volatile", Durability::kVolatile}, {"transient_local", Durability::kTransientLocal}});
     } else if (key == "deadline_ms") {
       q.deadline = millis(source, v, full);
     } else if (key == "lifespan_ms") {
       q.lifespan = millis(source, v, full);
     } else if (key == "liveliness") {
-      q.liveliness = choice<LivelinessKind>(
-          source, v, full,
-          {{"automatic", LivelinessKind::kAutomatic},
-           {"manual_by_participant", LivelinessKind::kManualByParticipant},
-           {"manual_by_topic", LivelinessKind::kManualByTopic}});
+      q.liveliness =
+          choice<LivelinessKind>(source, v, full,
+                                 {{"automatic", LivelinessKind::kAutomatic},
+                                  {"manual_by_participant", LivelinessKind::kManualByParticipant},
+                                  {"manual_by_topic", LivelinessKind::kManualByTopic}});
     } else if (key == "liveliness_lease_ms") {
       q.liveliness_lease = millis(source, v, full);
     } else if (key == "autodispose") {
@@ -70,9 +69,9 @@ void parse_topic(const std::string& source, const YAML::Node& node, const std::s
 
 void parse_transport(const std::string& source, const YAML::Node& node, TransportConfig& t) {
   require_map(source, node, "transport");
-  reject_unknown(source, node, "transport",
-                 {"heartbeat_interval_ms", "nack_delay_ms", "auto_resched_nack_delay_ms",
-                  "loss_per_mille"});
+  reject_unknown(
+      source, node, "transport",
+      {"heartbeat_interval_ms", "nack_delay_ms", "auto_resched_nack_delay_ms", "loss_per_mille"});
   for (const auto& kv : node) {
     const auto key = kv.first.as<std::string>();
     const auto full = "transport." + key;

@@ -22,8 +22,7 @@ ActionPlan build_actions(const Plan& plan, Heading initial_heading) {
       const Heading dir = heading_of_step(a.cell, b.cell);
       const HalfCell ha = HalfCell::of(a.cell), hb = HalfCell::of(b.cell);
       if (dir != heading) {
-        out.actions.push_back(
-            {robot, seq++, ActionType::kRotate, dir, ha, ha, a.time, a.time});
+        out.actions.push_back({robot, seq++, ActionType::kRotate, dir, ha, ha, a.time, a.time});
         ++out.rotations;
         heading = dir;
       }

@@ -24,8 +24,8 @@ std::vector<int32_t> component_labels(const Grid& g, int32_t* largest) {
         const Cell c = stack.back();
         stack.pop_back();
         ++sizes.back();
-        for (const Cell n : {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1},
-                             Cell{c.x, c.y - 1}}) {
+        for (const Cell n :
+             {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
           if (g.free(n) && label[g.index(n)] < 0) {
             label[g.index(n)] = id;
             stack.push_back(n);
@@ -34,10 +34,10 @@ std::vector<int32_t> component_labels(const Grid& g, int32_t* largest) {
       }
     }
   }
-  *largest = sizes.empty()
-                 ? -1
-                 : static_cast<int32_t>(std::max_element(sizes.begin(), sizes.end()) -
-                                        sizes.begin());
+  *largest =
+      sizes.empty()
+          ? -1
+          : static_cast<int32_t>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
   return label;
 }
 
@@ -91,7 +91,8 @@ Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed) {
   const int cw = std::max(1, (width + 1) / unit), ch = std::max(1, (height + 1) / unit);
   std::vector<uint8_t> cells(static_cast<std::size_t>(width) * height, 1);
   auto open = [&](int32_t x, int32_t y) {
-    if (x >= 0 && y >= 0 && x < width && y < height) cells[static_cast<std::size_t>(y) * width + x] = 0;
+    if (x >= 0 && y >= 0 && x < width && y < height)
+      cells[static_cast<std::size_t>(y) * width + x] = 0;
   };
   auto carve_room = [&](int cx, int cy) {
     for (int dy = 0; dy < corridor; ++dy)
@@ -105,9 +106,11 @@ Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed) {
   while (!stack.empty()) {
     const auto [cx, cy] = stack.back();
     std::vector<std::pair<int, int>> next;
-    for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+    for (const auto& [dx, dy] :
+         {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
       const int nx = cx + dx, ny = cy + dy;
-      if (nx >= 0 && ny >= 0 && nx < cw && ny < ch && !seen[static_cast<std::size_t>(ny) * cw + nx]) {
+      if (nx >= 0 && ny >= 0 && nx < cw && ny < ch &&
+          !seen[static_cast<std::size_t>(ny) * cw + nx]) {
         next.push_back({nx, ny});
       }
     }
@@ -148,8 +151,8 @@ std::vector<int32_t> bfs_distances(const Grid& g, Cell from) {
   d[g.index(from)] = 0;
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const Cell c = queue[head];
-    for (const Cell n : {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1},
-                         Cell{c.x, c.y - 1}}) {
+    for (const Cell n :
+         {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
       if (g.free(n) && d[g.index(n)] < 0) {
         d[g.index(n)] = d[g.index(c)] + 1;
         queue.push_back(n);
@@ -194,9 +197,8 @@ std::string to_movingai_scen(const Scenario& scen, const Grid& g) {
   s << "version 1\n";
   for (const auto& a : scen.agents) {
     const auto d = bfs_distances(g, a.start)[g.index(a.goal)];
-    s << 0 << "\t" << scen.map_name << "\t" << g.width() << "\t" << g.height() << "\t"
-      << a.start.x << "\t" << a.start.y << "\t" << a.goal.x << "\t" << a.goal.y << "\t" << d
-      << "\n";
+    s << 0 << "\t" << scen.map_name << "\t" << g.width() << "\t" << g.height() << "\t" << a.start.x
+      << "\t" << a.start.y << "\t" << a.goal.x << "\t" << a.goal.y << "\t" << d << "\n";
   }
   return s.str();
 }

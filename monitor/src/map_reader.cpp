@@ -98,9 +98,9 @@ Grid parse_map(std::string_view text, const std::string& source) {
     ++row;
   }
   if (row < h) {
-    problem(static_cast<int>(lines.size()),
-            "the map has " + std::to_string(row) + " rows but 'height' is " + std::to_string(h) +
-                "; the file may be truncated");
+    problem(static_cast<int>(lines.size()), "the map has " + std::to_string(row) +
+                                                " rows but 'height' is " + std::to_string(h) +
+                                                "; the file may be truncated");
   }
   throw_if_any(problems);
   return Grid(w, h, std::move(blocked), source);

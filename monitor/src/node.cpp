@@ -69,11 +69,12 @@ struct MonitorNode::Impl {
     waiting.assign(n, 0);
     res.robots.resize(n);
     for (uint32_t r = 0; r < n; ++r) res.robots[r].actions = instance.actions.count(r);
-    res.run_id = opt.run_id != 0
-                     ? opt.run_id
-                     : static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                                 std::chrono::system_clock::now().time_since_epoch())
-                                                 .count());
+    res.run_id =
+        opt.run_id != 0
+            ? opt.run_id
+            : static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        std::chrono::system_clock::now().time_since_epoch())
+                                        .count());
     res.total_actions = instance.actions.actions.size();
   }
 
@@ -179,8 +180,8 @@ struct MonitorNode::Impl {
   }
 
   void answer(uint64_t tick, double sim_time_s, bool stop) {
-    clock_out.write(smart_msg_Clock{kMonitorSource, res.run_id, tick, sim_time_s, sent_end_total,
-                                    stop});
+    clock_out.write(
+        smart_msg_Clock{kMonitorSource, res.run_id, tick, sim_time_s, sent_end_total, stop});
   }
 };
 
@@ -270,13 +271,12 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     const double silent = wall_s() - (sim_seen ? last_sim_sign_s : 0.0);
     if (silent > I.opt.timeout_s) {
       I.res.sim_lost = true;
-      I.res.error = sim_seen ? "the sim host went silent for " + std::to_string(I.opt.timeout_s) +
-                                   " s"
-                             : "no sim host joined domain " +
-                                   std::to_string(I.participant.domain_id()) + " within " +
-                                   std::to_string(I.opt.timeout_s) +
-                                   " s; start `smart sim` with the same --domain, --qos, "
-                                   "--network";
+      I.res.error = sim_seen
+                        ? "the sim host went silent for " + std::to_string(I.opt.timeout_s) + " s"
+                        : "no sim host joined domain " + std::to_string(I.participant.domain_id()) +
+                              " within " + std::to_string(I.opt.timeout_s) +
+                              " s; start `smart sim` with the same --domain, --qos, "
+                              "--network";
       break;
     }
     if (on_progress && SteadyClock::now() - last_report > std::chrono::milliseconds(100)) {

@@ -2,9 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <algorithm>
 #include <map>
 #include <stdexcept>
 
@@ -112,12 +112,11 @@ class PathCollector {
     int expected = 0;
     for (auto& [robot, path] : paths_) {
       if (robot != expected) {
-        problems_.push_back({source_, path.line, robot,
-                             "robots must be numbered 0..N-1, but robot " +
-                                 std::to_string(expected) +
-                                 (robot - expected > 1
-                                      ? " to " + std::to_string(robot - 1) + " are missing"
-                                      : " is missing")});
+        problems_.push_back(
+            {source_, path.line, robot,
+             "robots must be numbered 0..N-1, but robot " + std::to_string(expected) +
+                 (robot - expected > 1 ? " to " + std::to_string(robot - 1) + " are missing"
+                                       : " is missing")});
         expected = robot;
       }
       // An empty path is only worth saying when no parse problem explains it already.
@@ -157,9 +156,9 @@ void parse_smart(std::string_view text, Plan& plan, AxisOrder axis,
     }
     const auto id = c.integer();
     if (!id || *id < 0 || *id > 10'000'000 || !c.eat(':')) {
-      problems.push_back({plan.source, ln, -1,
-                          "expected a robot number and ':' after 'Agent', found '" +
-                              excerpt(lines[li]) + "'"});
+      problems.push_back(
+          {plan.source, ln, -1,
+           "expected a robot number and ':' after 'Agent', found '" + excerpt(lines[li]) + "'"});
       continue;
     }
     const int robot = static_cast<int>(*id);
@@ -228,9 +227,9 @@ void parse_lacam(std::string_view text, Plan& plan, AxisOrder axis,
     if (c.at_end()) continue;
     const auto t = c.integer();
     if (!t || !c.eat(':')) {
-      problems.push_back({plan.source, ln, -1,
-                          "expected '<timestep>:(x,y),(x,y),...', found '" + excerpt(lines[li]) +
-                              "'"});
+      problems.push_back(
+          {plan.source, ln, -1,
+           "expected '<timestep>:(x,y),(x,y),...', found '" + excerpt(lines[li]) + "'"});
       continue;
     }
     if (*t != expected_t) {
@@ -258,14 +257,15 @@ void parse_lacam(std::string_view text, Plan& plan, AxisOrder axis,
       if (robot >= paths.size()) {
         if (*t != 0) {
           problems.push_back({plan.source, ln, static_cast<int>(robot),
-                              "timestep " + std::to_string(*t) + " lists more robots than "
-                              "timestep 0 (" + std::to_string(paths.size()) + ")"});
+                              "timestep " + std::to_string(*t) +
+                                  " lists more robots than "
+                                  "timestep 0 (" +
+                                  std::to_string(paths.size()) + ")"});
           break;
         }
         paths.push_back(RobotPath{static_cast<int>(robot), ln, {}});
       }
-      paths[robot].steps.push_back(
-          {make_cell(tup->a, tup->b, axis), static_cast<double>(*t), ln});
+      paths[robot].steps.push_back({make_cell(tup->a, tup->b, axis), static_cast<double>(*t), ln});
       ++robot;
       c.eat(',');
     }
@@ -276,15 +276,14 @@ void parse_lacam(std::string_view text, Plan& plan, AxisOrder axis,
     }
   }
   if (paths.empty() && problems.empty()) {
-    problems.push_back({plan.source, 0, -1,
-                        "no 'solution=' timesteps found; is the plan unsolved (solved=0)?"});
+    problems.push_back(
+        {plan.source, 0, -1, "no 'solution=' timesteps found; is the plan unsolved (solved=0)?"});
   }
   plan.timed = false;
   plan.paths = std::move(paths);
 }
 
-void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis,
-                std::vector<Problem>& problems) {
+void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis, std::vector<Problem>& problems) {
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));

@@ -60,8 +60,8 @@ bool check_path(const Plan& plan, const RobotPath& path, const Grid& grid,
     }
     if (k == 0) {
       if (s.time < 0) {
-        problems.push_back({plan.source, s.line, path.robot,
-                            "first step has negative time " + fmt_time(s.time)});
+        problems.push_back(
+            {plan.source, s.line, path.robot, "first step has negative time " + fmt_time(s.time)});
         usable = false;
       }
       continue;
@@ -111,8 +111,7 @@ void check_scenario(const Plan& plan, const Scenario& scen, std::vector<Problem>
     if (last.cell != a.goal) {
       problems.push_back({plan.source, last.line, path.robot,
                           "ends at " + to_string(last.cell) + " but the scenario (line " +
-                              std::to_string(a.line) + ") has its goal at " +
-                              to_string(a.goal)});
+                              std::to_string(a.line) + ") has its goal at " + to_string(a.goal)});
       bad = true;
     }
     if (bad) {
@@ -124,11 +123,10 @@ void check_scenario(const Plan& plan, const Scenario& scen, std::vector<Problem>
     // First, so that it is not lost below hundreds of follow-up problems.
     problems.insert(problems.begin(),
                     {plan.source, 0, -1,
-                        "every mismatched start and goal matches the scenario with the axes "
-                        "swapped: the plan is probably " +
-                            std::string(plan.axis == AxisOrder::kXY ? "(row,col)" : "(x,y)") +
-                            "; pass --axis " +
-                            (plan.axis == AxisOrder::kXY ? "rowcol" : "xy")});
+                     "every mismatched start and goal matches the scenario with the axes "
+                     "swapped: the plan is probably " +
+                         std::string(plan.axis == AxisOrder::kXY ? "(row,col)" : "(x,y)") +
+                         "; pass --axis " + (plan.axis == AxisOrder::kXY ? "rowcol" : "xy")});
   }
 }
 
@@ -221,9 +219,8 @@ std::vector<Problem> validate_plan(const Plan& plan, const Grid& grid, const Sce
             {grid.index(steps[k].cell), arrive, depart, path.robot, steps[k].line, arrive});
         if (leaves) {
           const auto a = grid.index(steps[k].cell), b = grid.index(steps[k + 1].cell);
-          moves.push_back({std::min(a, b), std::max(a, b), a < b, steps[k].time,
-                           steps[k + 1].time, path.robot, steps[k + 1].line, steps[k].cell,
-                           steps[k + 1].cell});
+          moves.push_back({std::min(a, b), std::max(a, b), a < b, steps[k].time, steps[k + 1].time,
+                           path.robot, steps[k + 1].line, steps[k].cell, steps[k + 1].cell});
           arrive = steps[k + 1].time;
         }
       }

@@ -86,8 +86,8 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
     }
     if (n.t >= max_t || ++expansions > 400'000) continue;
     const Cell c{int32_t(n.cell % W), int32_t(n.cell / W)};
-    for (const Cell m : {c, Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1},
-                         Cell{c.x, c.y - 1}}) {
+    for (const Cell m :
+         {c, Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
       if (!g.free(m)) continue;
       const auto mc = static_cast<uint32_t>(g.index(m));
       const int32_t t = n.t + 1;
@@ -129,7 +129,8 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
   for (int attempt = 0; attempt <= o.restarts; ++attempt) {
     out.restarts_used = attempt;
     Reservations res(static_cast<std::size_t>(g.width()) * g.height());
-    for (const auto& a : scen.agents) res.vertex.insert(Reservations::vkey(uint32_t(g.index(a.start)), 0));
+    for (const auto& a : scen.agents)
+      res.vertex.insert(Reservations::vkey(uint32_t(g.index(a.start)), 0));
     std::vector<std::vector<uint32_t>> paths(n);
     bool ok = true;
     for (const std::size_t i : order) {
@@ -167,7 +168,8 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
     for (std::size_t i = 0; i < n; ++i) {
       RobotPath rp{static_cast<int>(i), static_cast<int>(i) + 1, {}};
       for (std::size_t t = 0; t < paths[i].size(); ++t) {
-        rp.steps.push_back({{int32_t(paths[i][t] % W), int32_t(paths[i][t] / W)}, double(t),
+        rp.steps.push_back({{int32_t(paths[i][t] % W), int32_t(paths[i][t] / W)},
+                            double(t),
                             static_cast<int>(i) + 1});
       }
       out.plan.paths.push_back(std::move(rp));
@@ -184,7 +186,8 @@ std::string to_smart_plan_text(const Plan& plan) {
   std::ostringstream s;
   for (const auto& p : plan.paths) {
     s << "Agent " << p.robot << ":";
-    for (const auto& st : p.steps) s << "(" << st.cell.x << "," << st.cell.y << "," << st.time << ")->";
+    for (const auto& st : p.steps)
+      s << "(" << st.cell.x << "," << st.cell.y << "," << st.time << ")->";
     s << "\n";
   }
   return s.str();

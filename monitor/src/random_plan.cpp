@@ -17,8 +17,8 @@ Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fractio
   std::bernoulli_distribution blocked(obstacle_fraction);
   std::vector<uint8_t> cells(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (auto& c : cells) c = blocked(rng) ? 1 : 0;
-  return Grid(width, height, std::move(cells), "random-" + std::to_string(width) + "x" +
-                                                   std::to_string(height));
+  return Grid(width, height, std::move(cells),
+              "random-" + std::to_string(width) + "x" + std::to_string(height));
 }
 
 GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions& o) {

@@ -1,12 +1,12 @@
 #include "smart/monitor/results.hpp"
 
+#include <dds/version.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <stdexcept>
-
-#include <dds/version.h>
 
 #ifndef SMART_VERSION
 #define SMART_VERSION "0.1.0"
@@ -60,19 +60,15 @@ std::ofstream open_out(const std::filesystem::path& p) {
 }  // namespace
 
 nlohmann::json adg_json(const AdgStats& a) {
-  return {{"nodes", a.nodes},
-          {"type1", a.type1},
-          {"type2", a.type2},
-          {"type2_all_pairs", a.type2_all_pairs},
-          {"moves", a.moves},
-          {"rotations", a.rotations},
+  return {{"nodes", a.nodes},        {"type1", a.type1},
+          {"type2", a.type2},        {"type2_all_pairs", a.type2_all_pairs},
+          {"moves", a.moves},        {"rotations", a.rotations},
           {"locations", a.locations}};
 }
 
 nlohmann::json plan_json(const Plan& plan, const PlanStats& st) {
-  return {{"soc", st.soc},           {"makespan", st.makespan},
-          {"moves", st.moves},       {"waits", st.waits},
-          {"format", to_string(plan.format)}, {"axis", to_string(plan.axis)},
+  return {{"soc", st.soc},      {"makespan", st.makespan},          {"moves", st.moves},
+          {"waits", st.waits},  {"format", to_string(plan.format)}, {"axis", to_string(plan.axis)},
           {"timed", plan.timed}};
 }
 
@@ -107,11 +103,11 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"clock", info.clock},
       {"qos", info.qos},
       {"cell_m", info.cell_m},
-      {"files", {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
+      {"files",
+       {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
       {"plan", plan_json(in.plan, in.stats)},
       {"adg", adg_json(in.adg.stats)},
-      {"versions",
-       {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
+      {"versions", {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };
   double waiting = 0;
   uint64_t stops = 0;
@@ -153,9 +149,8 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
     const auto& a = in.adg.stats;
     out << max_steps << "," << sum_steps << "," << max_t << "," << sum_t << "," << in.stats.soc
         << "," << a.type2 << "," << a.type1 << "," << a.nodes << "," << a.moves << ","
-        << a.rotations << "," << straight_runs(in.actions) << ","
-        << robot_pairs(in.actions, in.adg) << "," << info.plan << "," << r.robots.size()
-        << "\n";
+        << a.rotations << "," << straight_runs(in.actions) << "," << robot_pairs(in.actions, in.adg)
+        << "," << info.plan << "," << r.robots.size() << "\n";
   }
   {
     auto out = open_out(dir / "states.csv");

@@ -13,8 +13,8 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
   std::vector<Problem> problems;
   std::size_t i = 0;
   if (lines.empty() || !trim(lines[0]).starts_with("version")) {
-    problems.push_back({source, 1, -1,
-                        "missing 'version 1' header; is this a MovingAI .scen file?"});
+    problems.push_back(
+        {source, 1, -1, "missing 'version 1' header; is this a MovingAI .scen file?"});
     throw InputError(problems);
   }
   for (i = 1; i < lines.size(); ++i) {
@@ -47,8 +47,8 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
       }
     }
     if (!parse_double(fields[8])) {
-      problems.push_back({source, ln, -1,
-                          "optimal length is '" + excerpt(fields[8]) + "'; it must be a number"});
+      problems.push_back(
+          {source, ln, -1, "optimal length is '" + excerpt(fields[8]) + "'; it must be a number"});
       ok = false;
     }
     if (!ok) continue;
@@ -90,8 +90,8 @@ std::vector<Problem> check_scen_against_map(const Scenario& scen, const Grid& gr
       if (!grid.inside(cell)) {
         problems.push_back({scen.source, a.line, robot,
                             std::string(what) + " " + to_string(cell) + " is outside the " +
-                                std::to_string(grid.width()) + "x" +
-                                std::to_string(grid.height()) + " map"});
+                                std::to_string(grid.width()) + "x" + std::to_string(grid.height()) +
+                                " map"});
       } else if (grid.blocked(cell)) {
         problems.push_back({scen.source, a.line, robot,
                             std::string(what) + " " + to_string(cell) + " is an obstacle"});

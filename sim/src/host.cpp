@@ -78,9 +78,10 @@ struct SimHost::Impl {
     link.take_windows([&](const agent::ReceivedWindow& w) {
       if (w.robot_id >= agents.size()) {
         if (rejected_windows++ == 0) {
-          spdlog::error("sim host: window for robot {} but this host has {} robots; check "
-                        "--agents on both sides",
-                        w.robot_id, agents.size());
+          spdlog::error(
+              "sim host: window for robot {} but this host has {} robots; check "
+              "--agents on both sides",
+              w.robot_id, agents.size());
         }
         return;
       }
@@ -241,10 +242,11 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
       for (;;) {
         if (stop_requested.load()) return finish(false, "stopped by signal");
         if (Clock::now() > deadline) {
-          return finish(false, "no answer from the monitor for " +
-                                   std::to_string(I.opt.timeout_s) + " s at tick " +
-                                   std::to_string(tick) + "; is `smart monitor` running on "
-                                   "domain " + std::to_string(I.participant.domain_id()) +
+          return finish(false, "no answer from the monitor for " + std::to_string(I.opt.timeout_s) +
+                                   " s at tick " + std::to_string(tick) +
+                                   "; is `smart monitor` running on "
+                                   "domain " +
+                                   std::to_string(I.participant.domain_id()) +
                                    " with the same --qos and --network?");
         }
         waitset.wait(std::chrono::milliseconds(20));

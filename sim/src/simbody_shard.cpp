@@ -46,9 +46,9 @@ struct SimbodyShard::Impl {
   double step_s = 0;
 };
 
-SimbodyShard::SimbodyShard(const RobotForces& forces, std::vector<uint32_t> robots,
-                           double mass_kg, double radius_m,
-                           const std::vector<std::array<double, 3>>& start_q, double step_s)
+SimbodyShard::SimbodyShard(const RobotForces& forces, std::vector<uint32_t> robots, double mass_kg,
+                           double radius_m, const std::vector<std::array<double, 3>>& start_q,
+                           double step_s)
     : impl_(std::make_unique<Impl>()) {
   auto& I = *impl_;
   I.robots = std::move(robots);

@@ -24,8 +24,7 @@ class RobotForces {
 class SimbodyShard {
  public:
   SimbodyShard(const RobotForces& forces, std::vector<uint32_t> robots, double mass_kg,
-               double radius_m, const std::vector<std::array<double, 3>>& start_q,
-               double step_s);
+               double radius_m, const std::vector<std::array<double, 3>>& start_q, double step_s);
   ~SimbodyShard();
   const std::vector<uint32_t>& robots() const;
   double time_s() const;

@@ -123,8 +123,8 @@ struct World::Impl : detail::RobotForces {
   Impl(const monitor::Grid& g, const agent::RobotModel& m, const SimConfig& c, std::size_t robots)
       : grid(g), model(m), cfg(c), n(robots), workers(c.threads) {}
 
-  double command(const std::vector<double>& from, const std::vector<double>& target,
-                 uint32_t i, double t) const {
+  double command(const std::vector<double>& from, const std::vector<double>& target, uint32_t i,
+                 double t) const {
     const double max_change = ramp_rate * std::max(0.0, t - ramp_t0);
     return from[i] + std::clamp(target[i] - from[i], -max_change, max_change);
   }
@@ -307,9 +307,8 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   I.is_external.assign(n, 0);
   I.external_pose.assign(starts.begin(), starts.end());
 
-  const int wanted = config.shards > 0
-                         ? config.shards
-                         : std::clamp(static_cast<int>((n + 62) / 125), 2, 8);
+  const int wanted =
+      config.shards > 0 ? config.shards : std::clamp(static_cast<int>((n + 62) / 125), 2, 8);
   const int S = std::max(1, std::min(wanted, static_cast<int>(std::max<std::size_t>(n, 1))));
   std::vector<std::vector<uint32_t>> members(static_cast<std::size_t>(S));
   std::vector<std::vector<std::array<double, 3>>> start_q(static_cast<std::size_t>(S));
@@ -330,9 +329,8 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   }
   for (std::size_t s = 0; s < members.size(); ++s) {
     auto sh = std::make_unique<Impl::Shard>();
-    sh->body = std::make_unique<detail::SimbodyShard>(I, members[s], model.mass_kg,
-                                                      model.radius_m, start_q[s],
-                                                      config.physics_step_s);
+    sh->body = std::make_unique<detail::SimbodyShard>(I, members[s], model.mass_kg, model.radius_m,
+                                                      start_q[s], config.physics_step_s);
     I.shards.push_back(std::move(sh));
   }
   I.take_snapshot();
@@ -346,7 +344,9 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
 World::~World() = default;
 
 std::size_t World::robots() const { return impl_->n; }
-double World::time_s() const { return static_cast<double>(impl_->substep) * impl_->cfg.physics_step_s; }
+double World::time_s() const {
+  return static_cast<double>(impl_->substep) * impl_->cfg.physics_step_s;
+}
 uint64_t World::steps() const { return impl_->control_steps; }
 const ContactStats& World::contacts() const { return impl_->stats; }
 const SimConfig& World::config() const { return impl_->cfg; }
@@ -425,9 +425,8 @@ void World::step() {
   }
   ++I.control_steps;
   // Forget pairs whose last contact is older than the debounce window.
-  std::erase_if(I.pair_last_contact, [&](const auto& kv) {
-    return time_s() - kv.second > I.cfg.contact_debounce_s;
-  });
+  std::erase_if(I.pair_last_contact,
+                [&](const auto& kv) { return time_s() - kv.second > I.cfg.contact_debounce_s; });
   // Robots at rest are snapped to exactly zero velocity; a shard of resting robots sleeps.
   const double t1 = time_s();
   for (auto& sh : I.shards) {
@@ -438,8 +437,8 @@ void World::step() {
       const bool commanded = I.is_external[i] || I.target_l[i] != 0 || I.target_r[i] != 0 ||
                              I.command(I.ramp_from_l, I.target_l, i, t1) != 0 ||
                              I.command(I.ramp_from_r, I.target_r, i, t1) != 0;
-      const bool slow = std::abs(I.vx[i]) < 1e-4 && std::abs(I.vy[i]) < 1e-4 &&
-                        std::abs(I.w[i]) < 1e-3;
+      const bool slow =
+          std::abs(I.vx[i]) < 1e-4 && std::abs(I.vy[i]) < 1e-4 && std::abs(I.w[i]) < 1e-3;
       if (!commanded && slow && !I.in_contact[i]) {
         if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0) {
           sh->body->zero_velocity(k);

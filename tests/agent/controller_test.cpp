@@ -148,7 +148,8 @@ TEST(Controller, RegressionRotationWithAMinimumWheelSpeedFinishesInsteadOfStalli
     robot.advance(kDt);
   }
   EXPECT_TRUE(done);
-  EXPECT_LT(std::abs(wrap_angle(robot.pose().yaw_rad + M_PI / 2)), m.gains.heading_tolerance_rad + 1e-9);
+  EXPECT_LT(std::abs(wrap_angle(robot.pose().yaw_rad + M_PI / 2)),
+            m.gains.heading_tolerance_rad + 1e-9);
 }
 
 }  // namespace

@@ -28,7 +28,9 @@ TEST(YamlChecks, NumberRangeNamesKeyAndLine) {
 TEST(YamlChecks, SyntaxErrorsAndUnknownKeys) {
   EXPECT_THAT(error_of([] { load("a: [1,\n", "x.yaml"); }), HasSubstr("x.yaml:"));
   const auto root = load("good: 1\nbda: 2\n", "x.yaml");
-  EXPECT_THAT(error_of([&] { reject_unknown("x.yaml", root, "robot", {"good", "bad"}); }),
+  EXPECT_THAT(error_of([&] {
+                reject_unknown("x.yaml", root, "robot", {"good", "bad"});
+              }),
               HasSubstr("x.yaml:2:1: unknown key 'bda' in 'robot'; known keys: good, bad"));
   EXPECT_THAT(error_of([] { read_file("/nonexistent.yaml", "robot"); }),
               HasSubstr("/nonexistent.yaml: cannot open the robot file"));

@@ -39,8 +39,10 @@ TEST(Pca9685, SetPwmWritesFourRegistersAndFullBits) {
   test::RecordingI2cBus bus;
   Pca9685 chip(bus, 0x60, [](double) {});
   chip.set_pwm(8, 0, 4080);
-  EXPECT_EQ(bus.ops, (std::vector<Op>{{'w', 0x60, 0x26, 0x00}, {'w', 0x60, 0x27, 0x00},
-                                      {'w', 0x60, 0x28, 0xF0}, {'w', 0x60, 0x29, 0x0F}}));
+  EXPECT_EQ(bus.ops, (std::vector<Op>{{'w', 0x60, 0x26, 0x00},
+                                      {'w', 0x60, 0x27, 0x00},
+                                      {'w', 0x60, 0x28, 0xF0},
+                                      {'w', 0x60, 0x29, 0x0F}}));
   bus.ops.clear();
   chip.set_pin(10, true);  // ON_H full bit
   EXPECT_EQ(bus.regs[0x06 + 40 + 1], 0x10);

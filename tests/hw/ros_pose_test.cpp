@@ -13,8 +13,7 @@ namespace smart::hw {
 namespace {
 
 double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 TEST(RosPoseSource, ReadsPoseStampedLikeAVrpnMocapPublisher) {

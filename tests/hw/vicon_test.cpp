@@ -66,8 +66,7 @@ TEST(ViconParser, MalformedDatagramsAreErrorsNotCrashes) {
 }
 
 double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 void send_udp(uint16_t port, const std::vector<uint8_t>& d) {
@@ -88,13 +87,14 @@ TEST(ViconReceiver, LoopbackUdpPosesAreTransformedCountedAndGoStale) {
   ASSERT_GT(rx.port(), 0);
   ViconPoseSource src(rx, "jetbot1", 0.2, now_s);
   EXPECT_FALSE(src.read().valid);
-  send_udp(rx.port(), make_vicon_datagram(1, {object("jetbot1", 2000, 0, 0.1),
-                                              object("stranger", 0, 0, 0)}));
+  send_udp(rx.port(),
+           make_vicon_datagram(1, {object("jetbot1", 2000, 0, 0.1), object("stranger", 0, 0, 0)}));
   send_udp(rx.port(), {1, 2, 3});  // short
   auto nan = make_vicon_datagram(2, {object("jetbot1", std::nan(""), 0, 0)});
   send_udp(rx.port(), nan);
   const auto deadline = now_s() + 5;
-  while (rx.stats().datagrams < 3 && now_s() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (rx.stats().datagrams < 3 && now_s() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const auto p = src.read();
   ASSERT_TRUE(p.valid);
   // (2 m, 0) rotated by 90° is (0, 2), plus the x offset.

@@ -32,8 +32,8 @@ std::string slurp(const std::filesystem::path& p) {
 
 TEST(CrossProcess, EchoAnswersEveryTopicType) {
   const int domain_id = test::kCrossProcessEcho;
-  ChildProcess echo({test::smart_exe().string(), "dds-echo", "--domain",
-                     std::to_string(domain_id), "--duration-s", "60"});
+  ChildProcess echo({test::smart_exe().string(), "dds-echo", "--domain", std::to_string(domain_id),
+                     "--duration-s", "60"});
   Domain domain(domain_id, test::loopback());
   Participant p(domain);
   const auto profile = find_qos_profile("lan");
@@ -120,8 +120,7 @@ std::set<uint32_t> receive_lossy_burst(int domain_id, const std::string& reliabi
   Participant p(domain);
   Topic<smart_msg_Progress> t(p, std::string(kProgressTopic));
   TopicQos q = default_qos_profile().progress;
-  q.reliability =
-      reliability == "reliable" ? Reliability::kReliable : Reliability::kBestEffort;
+  q.reliability = reliability == "reliable" ? Reliability::kReliable : Reliability::kBestEffort;
   q.history = HistoryKind::kKeepAll;
   Reader<smart_msg_Progress> r(p, t, q.to_dds());
   ChildProcess sender({test::smart_exe().string(), "dds-send", "--qos", "lossy-wifi", "--domain",

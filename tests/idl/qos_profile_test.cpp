@@ -78,8 +78,7 @@ TEST(QosProfileErrors, BadNumbersAreRejected) {
   EXPECT_THAT(error_of("name: x\ntopics:\n  action:\n    depth: 0\n"), HasSubstr("must be >= 1"));
   EXPECT_THAT(error_of("name: x\ntopics:\n  action:\n    depth: many\n"),
               HasSubstr("'many' but must be a whole number"));
-  EXPECT_THAT(error_of("name: x\ntopics:\n  state:\n    deadline_ms: -5\n"),
-              HasSubstr("negative"));
+  EXPECT_THAT(error_of("name: x\ntopics:\n  state:\n    deadline_ms: -5\n"), HasSubstr("negative"));
   EXPECT_THAT(error_of("name: x\ntransport:\n  loss_per_mille: 1200\n"),
               HasSubstr("bad.yaml:3:19"));
 }

@@ -17,8 +17,10 @@ struct Kind {
 
 TEST(Generated, BuiltInPlannerPlansExecuteToSuccessOnEveryMapKind) {
   const std::vector<Kind> kinds = {
-      {"warehouse", {"warehouse", "--shelf-rows", "4", "--shelf-cols", "3", "--shelf-length", "5",
-                     "--margin", "3"}, 12},
+      {"warehouse",
+       {"warehouse", "--shelf-rows", "4", "--shelf-cols", "3", "--shelf-length", "5", "--margin",
+        "3"},
+       12},
       {"random", {"random", "--width", "20", "--height", "20", "--obstacles", "0.2"}, 12},
       {"empty", {"empty", "--width", "12", "--height", "12"}, 12},
       {"maze", {"maze", "--width", "21", "--height", "21", "--corridor", "2"}, 6},
@@ -40,9 +42,8 @@ TEST(Generated, BuiltInPlannerPlansExecuteToSuccessOnEveryMapKind) {
     const auto p = run_smart({"plan", "--map", map, "--scen", scen, "--out", plan}, 60s, "plan");
     ASSERT_EQ(p.code, 0) << p.out;
     EXPECT_EQ(p.last_json()["robots"], k.robots);
-    const auto check = run_smart({"check-plan", "--map", map, "--scen", scen, "--plan", plan,
-                                  "--axis", "xy"},
-                                 30s, "check");
+    const auto check = run_smart(
+        {"check-plan", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"}, 30s, "check");
     ASSERT_EQ(check.code, 0) << check.out;
     const auto r = run_smart({"run", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy",
                               "--domain", std::to_string(kRunGenerated), "--no-progress"},

@@ -23,9 +23,8 @@ TEST(MixedRun, EmulatedJetbotAgentAndSimulatedRobotsCompleteAPlanTogether) {
                         "......\n......\n......\n";
   std::ofstream(scen) << "version 1\n0\tm.map\t6\t6\t2\t2\t3\t0\t3\n"
                          "0\tm.map\t6\t6\t5\t5\t4\t5\t1\n0\tm.map\t6\t6\t4\t0\t4\t4\t4\n";
-  ASSERT_EQ(run_smart({"plan", "--map", map, "--scen", scen, "--out", plan}, 30s, "mixed_plan")
-                .code,
-            0);
+  ASSERT_EQ(
+      run_smart({"plan", "--map", map, "--scen", scen, "--out", plan}, 30s, "mixed_plan").code, 0);
   const std::string domain = std::to_string(kMixedRun);
   const double cell = 0.4;
   const auto start_x = std::to_string(4 * cell), start_y = std::to_string((6 - 1 - 0) * cell);
@@ -34,15 +33,16 @@ TEST(MixedRun, EmulatedJetbotAgentAndSimulatedRobotsCompleteAPlanTogether) {
                            "3", "--clock", "realtime", "--cell-m", "0.4", "--robot", "jetbot",
                            "--external-robots", "2", "--domain", domain},
                           "/dev/null");
-  tools::ChildProcess agent({smart_exe().string(), "agent", "--robot-id", "2", "--backend",
-                             "jetbot", "--config", "jetbot", "--i2c", "emulated",
-                             "--emulate-pose", start_x + "," + start_y + ",0", "--vicon-port",
-                             "0", "--domain", domain},
-                            agent_out);
-  const auto r = run_smart({"monitor", "--map", map, "--scen", scen, "--plan", plan, "--axis",
-                            "xy", "--clock", "realtime", "--cell-m", "0.4", "--robot", "jetbot",
-                            "--domain", domain, "--no-progress", "--timeout-s", "15"},
-                           90s, "mixed_monitor");
+  tools::ChildProcess agent(
+      {smart_exe().string(), "agent", "--robot-id", "2", "--backend", "jetbot", "--config",
+       "jetbot", "--i2c", "emulated", "--emulate-pose", start_x + "," + start_y + ",0",
+       "--vicon-port", "0", "--domain", domain},
+      agent_out);
+  const auto r = run_smart(
+      {"monitor", "--map",    map,       "--scen",        scen,          "--plan", plan,
+       "--axis",  "xy",       "--clock", "realtime",      "--cell-m",    "0.4",    "--robot",
+       "jetbot",  "--domain", domain,    "--no-progress", "--timeout-s", "15"},
+      90s, "mixed_monitor");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = r.last_json();
   EXPECT_TRUE(j["success"].get<bool>());

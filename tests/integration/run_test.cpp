@@ -22,10 +22,13 @@ class Run : public ::testing::Test {
     if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
   }
   std::vector<std::string> example_args(int domain, const std::string& agents = "50") {
-    return {"--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-            (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
-            (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents",
-            agents, "--domain", std::to_string(domain), "--no-progress"};
+    return {"--map",        (b_ / "maps/random-32-32-20.map").string(),
+            "--scen",       (b_ / "scens/random-32-32-20-random-1.scen").string(),
+            "--plan",       (b_ / "smart-examples/example_paths_xy.txt").string(),
+            "--axis",       "xy",
+            "--agents",     agents,
+            "--domain",     std::to_string(domain),
+            "--no-progress"};
   }
   std::filesystem::path b_;
 };
@@ -86,11 +89,11 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   std::vector<std::string> mv{smart_exe().string()};
   mv.insert(mv.end(), margs.begin(), margs.end());
   tools::ChildProcess monitor(mv, mout);
-  tools::ChildProcess sim({smart_exe().string(), "sim", "--map",
-                           (b_ / "maps/random-32-32-20.map").string(), "--scen",
-                           (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents",
-                           "50", "--domain", std::to_string(kRunKillSim)},
-                          "/dev/null");
+  tools::ChildProcess sim(
+      {smart_exe().string(), "sim", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents", "50", "--domain",
+       std::to_string(kRunKillSim)},
+      "/dev/null");
   std::this_thread::sleep_for(2500ms);  // the run is under way
   ASSERT_TRUE(monitor.running());
   sim.signal(SIGKILL);

@@ -13,12 +13,12 @@ using namespace std::chrono_literals;
 TEST(Warehouse, SmartFiveHundredRobotPlanSucceedsWithoutCollisions) {
   const auto b = benchmarks_dir();
   if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
-  const auto r = run_smart({"run", "--map", (b / "maps/warehouse-10-20-10-2-1.map").string(),
-                            "--scen", (b / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
-                            "--plan", (b / "smart-examples/scen_1_paths.txt").string(), "--axis",
-                            "rowcol", "--domain", std::to_string(kRunWarehouse500),
-                            "--no-progress"},
-                           600s, "run_500");
+  const auto r =
+      run_smart({"run", "--map", (b / "maps/warehouse-10-20-10-2-1.map").string(), "--scen",
+                 (b / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--plan",
+                 (b / "smart-examples/scen_1_paths.txt").string(), "--axis", "rowcol", "--domain",
+                 std::to_string(kRunWarehouse500), "--no-progress"},
+                600s, "run_500");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = r.last_json();
   EXPECT_TRUE(j["success"].get<bool>());

@@ -40,8 +40,8 @@ TEST(ActionBuilder, RotatesBeforeTurningAndWaitsGiveNoAction) {
   }
   using T = ActionType;
   using H = Heading;
-  EXPECT_EQ(types, (std::vector<T>{T::kMove, T::kMove, T::kRotate, T::kMove, T::kMove,
-                                   T::kRotate, T::kMove, T::kMove}));
+  EXPECT_EQ(types, (std::vector<T>{T::kMove, T::kMove, T::kRotate, T::kMove, T::kMove, T::kRotate,
+                                   T::kMove, T::kMove}));
   EXPECT_EQ(headings, (std::vector<H>{H::kEast, H::kEast, H::kNorth, H::kNorth, H::kNorth,
                                       H::kSouth, H::kSouth, H::kSouth}));
   const auto& rot = ap.at(0, 2);

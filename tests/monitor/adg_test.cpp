@@ -10,15 +10,16 @@
 namespace smart::monitor {
 namespace {
 
-using ::testing::HasSubstr;
 using test::grid_of;
 using test::plan_of;
+using ::testing::HasSubstr;
 using Edge = std::pair<uint32_t, uint32_t>;
 
 std::set<Edge> type2_edges(const Adg& adg) {
   std::set<Edge> edges;
   for (uint32_t u = 0; u < adg.nodes(); ++u) {
-    for (uint32_t i = adg.out_begin[u]; i < adg.out_begin[u + 1]; ++i) edges.insert({u, adg.out[i]});
+    for (uint32_t i = adg.out_begin[u]; i < adg.out_begin[u + 1]; ++i)
+      edges.insert({u, adg.out[i]});
   }
   return edges;
 }
@@ -80,9 +81,9 @@ TEST(Adg, RotationCycleOfFourRobotsIsAcyclicThanksToMidpoints) {
 }
 
 TEST(Adg, ReducedEdgesVersusAllPairsOnAThreeRobotTrain) {
-  const auto b = build(kGrid, plan_of({{{2, 0}, {3, 0}, {4, 0}},
-                                       {{1, 0}, {2, 0}, {3, 0}},
-                                       {{0, 0}, {1, 0}, {2, 0}}}));
+  const auto b = build(
+      kGrid,
+      plan_of({{{2, 0}, {3, 0}, {4, 0}}, {{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
   ASSERT_TRUE(b.problems.empty());
   EXPECT_EQ(b.adg.stats.type2, 6u);
   EXPECT_EQ(b.adg.stats.type2_all_pairs, 7u);  // (2,0) is visited by all three robots
@@ -101,7 +102,8 @@ TEST(Adg, SwapPlanGivesACycleNamingBothRobots) {
 }
 
 TEST(Adg, VisitorAfterARobotParkedForGoodIsReported) {
-  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {3, 0}}}));
+  const auto b =
+      build(kGrid, plan_of({{{1, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {3, 0}}}));
   ASSERT_FALSE(b.problems.empty());
   EXPECT_THAT(b.problems[0].to_string(),
               HasSubstr("robot 1: enters (x=2,y=0) at t=3 after robot 0 parked there for good"));

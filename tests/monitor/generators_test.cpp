@@ -12,8 +12,8 @@ namespace {
 TEST(Generators, DefaultWarehouseIsMovingAIsWarehouse10201021CellForCell) {
   const auto dir = test::benchmarks_dir() / "maps";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
-  const auto original = parse_map(
-      read_text_file(dir / "warehouse-10-20-10-2-1.map", "map"), "warehouse-10-20-10-2-1.map");
+  const auto original = parse_map(read_text_file(dir / "warehouse-10-20-10-2-1.map", "map"),
+                                  "warehouse-10-20-10-2-1.map");
   const auto generated = generate_warehouse({});
   ASSERT_EQ(generated.width(), original.width());
   ASSERT_EQ(generated.height(), original.height());

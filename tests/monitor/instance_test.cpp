@@ -46,8 +46,7 @@ TEST_F(SmartExamples, EveryExamplePlanLoadsWithTheDocumentedCosts) {
   for (const auto& e : {Expected{"example_paths_xy.txt", AxisOrder::kXY, 50, 1241, 48},
                         Expected{"example_paths_yx.txt", AxisOrder::kRowCol, 50, 1241, 48},
                         Expected{"scen_1_paths.txt", AxisOrder::kRowCol, 500, 66548, 278},
-                        Expected{"scen_1_1000_paths.txt", AxisOrder::kRowCol, 1000, 133391,
-                                 312}}) {
+                        Expected{"scen_1_1000_paths.txt", AxisOrder::kRowCol, 1000, 133391, 312}}) {
     const auto in = load_instance(smart_example(e.plan, e.axis));
     EXPECT_EQ(in.plan.paths.size(), e.robots) << e.plan;
     EXPECT_DOUBLE_EQ(in.stats.soc, e.soc) << e.plan;

@@ -67,13 +67,15 @@ TEST(MapReader, ReadsEveryBenchmarkMap) {
   const auto dir = test::benchmarks_dir() / "maps";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
   const std::map<std::string, std::pair<int, int>> sizes = {
-      {"den312d.map", {65, 81}},          {"empty-32-32.map", {32, 32}},
-      {"maze-32-32-4.map", {32, 32}},     {"random-32-32-20.map", {32, 32}},
-      {"random-64-64-10.map", {64, 64}},  {"sortation_large.map", {500, 140}},
+      {"den312d.map", {65, 81}},
+      {"empty-32-32.map", {32, 32}},
+      {"maze-32-32-4.map", {32, 32}},
+      {"random-32-32-20.map", {32, 32}},
+      {"random-64-64-10.map", {64, 64}},
+      {"sortation_large.map", {500, 140}},
       {"warehouse-10-20-10-2-1.map", {161, 63}}};
-  const std::map<std::string, std::size_t> free = {{"warehouse-10-20-10-2-1.map", 5699},
-                                                   {"sortation_large.map", 54320},
-                                                   {"den312d.map", 2445}};
+  const std::map<std::string, std::size_t> free = {
+      {"warehouse-10-20-10-2-1.map", 5699}, {"sortation_large.map", 54320}, {"den312d.map", 2445}};
   for (const auto& [name, wh] : sizes) {
     const auto g = parse_map(read_text_file(dir / name, "map"), name);
     EXPECT_EQ(g.width(), wh.first) << name;

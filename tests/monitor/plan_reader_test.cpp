@@ -147,8 +147,8 @@ TEST(PlanReader, ReadsEverySmartExample) {
       {"scen_1_1000_paths.txt", AxisOrder::kRowCol, 1000, false, {143, 57}},
   };
   for (const auto& c : cases) {
-    const auto p = parse_plan(read_text_file(dir / c.file, "plan"), c.file,
-                              {PlanFormat::kAuto, c.axis});
+    const auto p =
+        parse_plan(read_text_file(dir / c.file, "plan"), c.file, {PlanFormat::kAuto, c.axis});
     EXPECT_EQ(p.paths.size(), c.robots) << c.file;
     EXPECT_EQ(p.timed, c.timed) << c.file;
     EXPECT_EQ(p.paths[0].steps[0].cell, c.robot0_start) << c.file;

@@ -11,9 +11,9 @@
 namespace smart::monitor {
 namespace {
 
-using ::testing::HasSubstr;
 using test::grid_of;
 using test::plan_of;
+using ::testing::HasSubstr;
 
 std::string all(const std::vector<Problem>& problems) {
   std::string s;
@@ -35,7 +35,8 @@ TEST(PlanValidator, FollowingAndStandingStillAreValid) {
 }
 
 TEST(PlanValidator, RotationCycleIsValid) {
-  const auto plan = plan_of({{{2, 0}, {3, 0}}, {{3, 0}, {3, 1}}, {{3, 1}, {2, 1}}, {{2, 1}, {2, 0}}});
+  const auto plan =
+      plan_of({{{2, 0}, {3, 0}}, {{3, 0}, {3, 1}}, {{3, 1}, {2, 1}}, {{2, 1}, {2, 0}}});
   EXPECT_EQ(all(validate_plan(plan, kGrid)), "");
 }
 
@@ -56,8 +57,9 @@ TEST(PlanValidator, TimesMustIncrease) {
 
 TEST(PlanValidator, VertexConflictNamesBothRobotsCellAndTime) {
   const auto plan = plan_of({{{0, 0}, {1, 0}, {2, 0}}, {{2, 2}, {2, 1}, {2, 0}}});
-  EXPECT_THAT(all(validate_plan(plan, kGrid)),
-              HasSubstr("fixture.txt:2: robot 1: vertex conflict with robot 0 at (x=2,y=0) at t=2"));
+  EXPECT_THAT(
+      all(validate_plan(plan, kGrid)),
+      HasSubstr("fixture.txt:2: robot 1: vertex conflict with robot 0 at (x=2,y=0) at t=2"));
 }
 
 TEST(PlanValidator, SwapConflict) {
@@ -100,8 +102,8 @@ TEST(PlanValidator, EveryExamplePlanIsValidAndTheWrongAxisIsCaught) {
   const auto dir = test::benchmarks_dir();
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
   const auto grid = parse_map(read_text_file(dir / "maps/random-32-32-20.map", "map"), "map");
-  const auto scen = parse_scen(
-      read_text_file(dir / "scens/random-32-32-20-random-1.scen", "scen"), "scen", 50);
+  const auto scen =
+      parse_scen(read_text_file(dir / "scens/random-32-32-20-random-1.scen", "scen"), "scen", 50);
   const auto text = read_text_file(dir / "smart-examples/example_paths_yx.txt", "plan");
   const auto ok = parse_plan(text, "yx", {PlanFormat::kAuto, AxisOrder::kRowCol});
   EXPECT_EQ(all(validate_plan(ok, grid, &scen)), "");

@@ -122,8 +122,7 @@ TEST(RandomPlanProperty, AnyAllowedExecutionOrderIsCollisionFreeAndFinishes) {
           ASSERT_EQ(tracker.on_progress(r, tracker.finished(r) - 1).result,
                     ExecutionTracker::Result::kStale);
         }
-        ASSERT_EQ(tracker.on_progress(r, done[r] - 1).result,
-                  ExecutionTracker::Result::kAdvanced);
+        ASSERT_EQ(tracker.on_progress(r, done[r] - 1).result, ExecutionTracker::Result::kAdvanced);
       }
       ASSERT_LT(++steps, 1'000'000u);
     }

@@ -48,8 +48,7 @@ TEST(ScenReaderErrors, MalformedLines) {
               HasSubstr("s.scen:2: expected 9 tab-separated fields"));
   EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\tx\t0\t3\t2\t5\n"),
               HasSubstr("s.scen:2: start_x is 'x'"));
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t-2\t5\n"),
-              HasSubstr("goal_y is '-2'"));
+  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t-2\t5\n"), HasSubstr("goal_y is '-2'"));
   EXPECT_THAT(error_of("version 1\n"), HasSubstr("lists no agents"));
 }
 

@@ -12,8 +12,7 @@ namespace {
 // 5x5 map, cell 1 m; world y = 4 - row. The blocked cell (2,2) is centred at (2, 2).
 const auto kGrid = test::grid_of({".....", ".....", "..@..", ".....", "....."});
 
-std::vector<WallContact> at(double x, double y, double r = 0.25,
-                            const monitor::Grid& g = kGrid) {
+std::vector<WallContact> at(double x, double y, double r = 0.25, const monitor::Grid& g = kGrid) {
   std::vector<WallContact> out;
   wall_contacts(g, 1.0, x, y, r, out);
   return out;

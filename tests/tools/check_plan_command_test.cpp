@@ -63,8 +63,9 @@ TEST(CheckPlanCommand, InvalidPlanListsEveryProblemAndExitsOne) {
                                "version 1\n0\tm.map\t3\t2\t0\t0\t2\t0\t2\n"
                                "0\tm.map\t3\t2\t2\t0\t0\t0\t2\n");
   // Robot 0 steps into the obstacle; robots 0 and 1 swap along the top row.
-  const auto plan = write_temp("p.txt", "Agent 0:(0,0)->(1,1)->(2,0)->\n"
-                                        "Agent 1:(2,0)->(1,0)->(0,0)->\n");
+  const auto plan = write_temp("p.txt",
+                               "Agent 0:(0,0)->(1,1)->(2,0)->\n"
+                               "Agent 1:(2,0)->(1,0)->(0,0)->\n");
   const auto r = run({"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"});
   EXPECT_EQ(r.code, 1);
   const auto j = nlohmann::json::parse(r.out);

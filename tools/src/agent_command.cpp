@@ -43,8 +43,7 @@ struct AgentOptions {
 };
 
 double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 int run_agent(const AgentOptions& o) {
@@ -83,14 +82,14 @@ int run_agent(const AgentOptions& o) {
       throw std::invalid_argument("--i2c emulated needs --emulate-pose X,Y,YAW and --pose vicon");
     }
     bus = std::make_unique<hw::EmulatedJetbot>(
-        hwc, model.wheel_base_m, agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]},
-        object, vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
+        hwc, model.wheel_base_m,
+        agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]}, object,
+        vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
   } else {
     bus = std::make_unique<hw::LinuxI2cBus>(hwc.i2c_device);
   }
-  hw::JetbotDrive drive(*bus, hwc, [](double s) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(s));
-  });
+  hw::JetbotDrive drive(
+      *bus, hwc, [](double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); });
   // SIGINT/SIGTERM: outputs off at once from the handler, then a clean shutdown below.
   hw::SignalStop signal_stop(*bus, hwc.address, &g_stop_requested);
   agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose);
@@ -155,8 +154,8 @@ int run_agent(const AgentOptions& o) {
                         {"watchdog_stops", robot.watchdog_stops()}};
   if (vicon) {
     const auto s = vicon->stats();
-    out["vicon"] = {{"datagrams", s.datagrams}, {"malformed", s.malformed},
-                    {"unknown_names", s.unknown_names}};
+    out["vicon"] = {
+        {"datagrams", s.datagrams}, {"malformed", s.malformed}, {"unknown_names", s.unknown_names}};
   }
   std::cout << out.dump() << std::endl;
   return 0;
@@ -166,12 +165,12 @@ int run_agent(const AgentOptions& o) {
 
 void register_agent_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AgentOptions>();
-  auto* cmd = app.add_subcommand("agent", "One physical robot (JetBot) executing its actions "
-                                          "from `smart monitor` over DDS");
+  auto* cmd = app.add_subcommand("agent",
+                                 "One physical robot (JetBot) executing its actions "
+                                 "from `smart monitor` over DDS");
   add_dds_options(cmd, o->dds);
   cmd->add_option("--robot-id", o->robot_id, "the robot's index in the plan")->required();
-  cmd->add_option("--backend", o->backend)->check(CLI::IsMember({"jetbot"}))
-      ->capture_default_str();
+  cmd->add_option("--backend", o->backend)->check(CLI::IsMember({"jetbot"}))->capture_default_str();
   cmd->add_option("--config", o->config, "robot model with a hardware: section (name or file)")
       ->capture_default_str();
   cmd->add_option("--i2c", o->i2c, "I2C device (default from the robot file) or 'emulated'");

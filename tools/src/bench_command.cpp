@@ -1,11 +1,10 @@
 // `smart bench sim`: sim speed of World + agents with every robot driving a random walk of grid
 // moves (collisions allowed and counted). Prints one JSON line. No DDS: this measures the
 // simulator and the agents, the part that scales with the fleet.
-#include <nlohmann/json.hpp>
-
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
 
@@ -96,8 +95,9 @@ int run_bench_sim(const BenchSimOptions& o) {
     for (uint32_t s = 0; s < actions.count(r); ++s) {
       const auto& a = actions.at(r, s);
       const auto f = grid.to_world(a.from, o.cell_m), t = grid.to_world(a.to, o.cell_m);
-      w.push_back({s, a.type == monitor::ActionType::kMove ? agent::ActionKind::kMove
-                                                           : agent::ActionKind::kRotate,
+      w.push_back({s,
+                   a.type == monitor::ActionType::kMove ? agent::ActionKind::kMove
+                                                        : agent::ActionKind::kRotate,
                    f.x_m, f.y_m, t.x_m, t.y_m, monitor::yaw_rad(a.heading)});
     }
     agents.back()->activate();
@@ -122,10 +122,9 @@ int run_bench_sim(const BenchSimOptions& o) {
                               {"wall_contacts", world.contacts().robot_wall_events},
                               {"shards", o.shards},
                               {"threads", o.threads},
-                              {"machine",
-                               cpu_model() + ", " +
-                                   std::to_string(std::thread::hardware_concurrency()) +
-                                   " cores"}}
+                              {"machine", cpu_model() + ", " +
+                                              std::to_string(std::thread::hardware_concurrency()) +
+                                              " cores"}}
                    .dump()
             << std::endl;
   return 0;
@@ -141,12 +140,15 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       "sim", "Sim speed of the Simbody world + agents, every robot on a random walk");
   sim->add_option("--map", o->map, "MovingAI .map file")->required();
   sim->add_option("--robots", o->robots)->check(CLI::Range(1ul, 100000ul))->capture_default_str();
-  sim->add_option("--sim-seconds", o->sim_seconds)->check(CLI::Range(0.1, 1e6))
+  sim->add_option("--sim-seconds", o->sim_seconds)
+      ->check(CLI::Range(0.1, 1e6))
       ->capture_default_str();
   sim->add_option("--robot", o->robot, "robot model name or YAML file")->capture_default_str();
   sim->add_option("--cell-m", o->cell_m)->capture_default_str();
   sim->add_option("--seed", o->seed)->capture_default_str();
-  sim->add_option("--shards", o->shards, "Simbody systems (0: automatic)")->check(CLI::Range(0, 1024))->capture_default_str();
+  sim->add_option("--shards", o->shards, "Simbody systems (0: automatic)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   sim->add_option("--threads", o->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->callback([&exit_code, o] { exit_code = run_bench_sim(*o); });
 }

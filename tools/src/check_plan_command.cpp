@@ -1,8 +1,7 @@
 // `smart check-plan`: validate a plan against its map and scenario and report plan and ADG
 // statistics as JSON (exit 0), or list every problem (exit 1).
-#include <nlohmann/json.hpp>
-
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/problem.hpp"
@@ -71,9 +70,10 @@ int run_check_plan(const CheckPlanOptions& o) {
 
 void register_check_plan_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<CheckPlanOptions>();
-  auto* cmd = app.add_subcommand(
-      "check-plan", "Validate a MAPF plan against its map and scenario; print plan and ADG "
-                    "statistics as JSON (exit 0) or every problem found (exit 1)");
+  auto* cmd =
+      app.add_subcommand("check-plan",
+                         "Validate a MAPF plan against its map and scenario; print plan and ADG "
+                         "statistics as JSON (exit 0) or every problem found (exit 1)");
   cmd->add_option("--map", o->map, "MovingAI .map file")->required();
   cmd->add_option("--scen", o->scen, "MovingAI .scen file")->required();
   cmd->add_option("--plan", o->plan, "plan file (SMART/MAPF-LNS2, LaCAM/PIBT, YAML)")->required();

@@ -3,13 +3,13 @@
 // with the progress (and a robot state) of having finished it, and every clock tick of the sim
 // side with the same tick. dds-ping drives it and measures round trips. dds-send publishes a
 // numbered burst (used to measure delivery under the lossy profile).
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
 #include <thread>
@@ -123,8 +123,8 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
   std::optional<ChildProcess> echo;
   if (po.spawn_echo) {
     echo.emplace(std::vector<std::string>{self_executable().string(), "dds-echo", "--domain",
-                                          std::to_string(o.domain), "--qos", o.qos,
-                                          "--network", o.network});
+                                          std::to_string(o.domain), "--qos", o.qos, "--network",
+                                          o.network});
   }
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
@@ -142,8 +142,8 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
 
   const auto timeout = milliseconds(static_cast<long>(po.timeout_s * 1000));
   if (!actions.wait_for_readers(1, timeout) || !progress.wait_for_writers(1, timeout)) {
-    std::cerr << "dds-ping: no agent matched on domain " << o.domain << " within "
-              << po.timeout_s << " s; start `smart dds-echo --domain " << o.domain
+    std::cerr << "dds-ping: no agent matched on domain " << o.domain << " within " << po.timeout_s
+              << " s; start `smart dds-echo --domain " << o.domain
               << "` (same --qos and --network) or pass --spawn-echo\n";
     return 3;
   }
@@ -238,8 +238,8 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
   dds::Writer<smart_msg_Progress> writer(participant, topic, qos.to_dds());
   const auto timeout = milliseconds(static_cast<long>(so.timeout_s * 1000));
   if (!writer.wait_for_readers(1, timeout)) {
-    std::cerr << "dds-send: no reader matched on domain " << o.domain << " within "
-              << so.timeout_s << " s\n";
+    std::cerr << "dds-send: no reader matched on domain " << o.domain << " within " << so.timeout_s
+              << " s\n";
     return 3;
   }
   // Matching is seen by the writer first; give the reader side time to match as well, or best
@@ -255,9 +255,8 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
     writer.write(p);
     if (so.interval_ms > 0) std::this_thread::sleep_for(milliseconds(so.interval_ms));
   }
-  const bool acked = qos.reliability == dds::Reliability::kReliable
-                         ? writer.wait_for_acks(timeout)
-                         : true;
+  const bool acked =
+      qos.reliability == dds::Reliability::kReliable ? writer.wait_for_acks(timeout) : true;
   std::this_thread::sleep_for(milliseconds(200));
   std::cout << nlohmann::json{{"sent", so.count}, {"acked", acked}}.dump() << std::endl;
   return acked ? 0 : 4;
@@ -269,8 +268,9 @@ void register_dds_commands(CLI::App& app, int& exit_code) {
   auto echo_opts = std::make_shared<DdsOptions>();
   auto echo_duration = std::make_shared<double>(0.0);
   auto* echo = app.add_subcommand(
-      "dds-echo", "Answer action windows with finished progress and clock ticks with the same tick "
-                  "(an agent stand-in for DDS round trips)");
+      "dds-echo",
+      "Answer action windows with finished progress and clock ticks with the same tick "
+      "(an agent stand-in for DDS round trips)");
   add_dds_options(echo, *echo_opts);
   echo->add_option("--duration-s", *echo_duration, "stop after this many seconds (0: on signal)");
   echo->callback([&exit_code, echo_opts, echo_duration] {
@@ -281,8 +281,9 @@ void register_dds_commands(CLI::App& app, int& exit_code) {
   auto ping_dds = std::make_shared<DdsOptions>();
   auto ping_opts = std::make_shared<PingOptions>();
   auto* ping = app.add_subcommand(
-      "dds-ping", "Send action windows to N robots and clock ticks, wait for every answer, and "
-                  "print round-trip times as JSON");
+      "dds-ping",
+      "Send action windows to N robots and clock ticks, wait for every answer, and "
+      "print round-trip times as JSON");
   add_dds_options(ping, *ping_dds);
   ping->add_option("--robots", ping_opts->robots, "robots (keyed instances)")
       ->check(CLI::Range(1u, 100000u))

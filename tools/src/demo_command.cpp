@@ -17,8 +17,9 @@ void register_demo_command(CLI::App& app, int& exit_code) {
     uint64_t seed = 1;
   };
   auto o = std::make_shared<DemoOptions>();
-  auto* demo = app.add_subcommand("demo", "Generate a warehouse, plan ~100 robots, execute the "
-                                          "plan on the simulated fleet, print the summary");
+  auto* demo = app.add_subcommand("demo",
+                                  "Generate a warehouse, plan ~100 robots, execute the "
+                                  "plan on the simulated fleet, print the summary");
   demo->add_option("--domain", o->domain, "DDS domain id")->capture_default_str();
   demo->add_option("--robots", o->robots)->capture_default_str();
   demo->add_option("--out", o->out, "folder for the generated files and results")
@@ -31,7 +32,8 @@ void register_demo_command(CLI::App& app, int& exit_code) {
     const auto map = (dir / "warehouse.map").string();
     const auto scen = (dir / "warehouse.scen").string();
     const auto plan = (dir / "warehouse.plan").string();
-    std::cerr << "demo: 1/4 generating a warehouse map (the MovingAI warehouse-10-20-10-2-1 layout)\n";
+    std::cerr
+        << "demo: 1/4 generating a warehouse map (the MovingAI warehouse-10-20-10-2-1 layout)\n";
     GenMapOptionsPublic gm;
     if ((exit_code = generate_map("warehouse", map, gm)) != 0) return;
     std::cerr << "demo: 2/4 generating a scenario with " << o->robots << " robots\n";

@@ -1,9 +1,8 @@
 // `smart gen-map`, `smart gen-scen`, `smart plan`: a self-contained pipeline from nothing to an
 // executable plan (no outside data needed).
-#include <nlohmann/json.hpp>
-
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "smart/monitor/generators.hpp"
 #include "smart/monitor/map_reader.hpp"
@@ -47,8 +46,11 @@ int generate_map(const std::string& kind, const std::string& out, const GenMapOp
     g = monitor::generate_maze(o.width, o.height, o.corridor, o.seed);
   }
   write_file(out, monitor::to_movingai_map(g, blocked));
-  std::cout << nlohmann::json{{"map", out}, {"kind", kind}, {"width", g.width()},
-                              {"height", g.height()}, {"free_cells", g.free_cells()}}
+  std::cout << nlohmann::json{{"map", out},
+                              {"kind", kind},
+                              {"width", g.width()},
+                              {"height", g.height()},
+                              {"free_cells", g.free_cells()}}
                    .dump()
             << std::endl;
   return 0;
@@ -84,9 +86,13 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
   monitor::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
   write_file(out, monitor::to_smart_plan_text(r.plan));
   const auto st = monitor::plan_stats(r.plan);
-  std::cout << nlohmann::json{{"plan", out},     {"axis", "xy"},         {"robots", st.robots},
-                              {"soc", st.soc},   {"makespan", st.makespan},
-                              {"runtime_s", r.runtime_s}, {"restarts", r.restarts_used}}
+  std::cout << nlohmann::json{{"plan", out},
+                              {"axis", "xy"},
+                              {"robots", st.robots},
+                              {"soc", st.soc},
+                              {"makespan", st.makespan},
+                              {"runtime_s", r.runtime_s},
+                              {"restarts", r.restarts_used}}
                    .dump()
             << std::endl;
   return 0;
@@ -106,7 +112,8 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   gm->add_option("--obstacles", o->obstacles, "random: obstacle probability")
       ->check(CLI::Range(0.0, 0.9))
       ->capture_default_str();
-  gm->add_option("--corridor", o->corridor, "maze: corridor width")->check(CLI::Range(1, 64))
+  gm->add_option("--corridor", o->corridor, "maze: corridor width")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   gm->add_option("--seed", o->seed)->capture_default_str();
   gm->add_option("--shelf-rows", o->warehouse.shelf_rows)->capture_default_str();
@@ -123,14 +130,14 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   gs->add_option("--agents", so->agents)->required()->check(CLI::Range(1ul, 1000000ul));
   gs->add_option("--seed", so->seed)->capture_default_str();
   gs->add_option("--out", so->out, "the .scen file to write")->required();
-  gs->callback([&exit_code, so] {
-    exit_code = generate_scen(so->map, so->agents, so->seed, so->out);
-  });
+  gs->callback(
+      [&exit_code, so] { exit_code = generate_scen(so->map, so->agents, so->seed, so->out); });
 
   auto po = std::make_shared<PlanOptions>();
   auto* pl = app.add_subcommand(
-      "plan", "Plan conflict-free paths (prioritized planning, space-time A*); writes a SMART "
-              "timed plan (axis xy) that passes `smart check-plan`");
+      "plan",
+      "Plan conflict-free paths (prioritized planning, space-time A*); writes a SMART "
+      "timed plan (axis xy) that passes `smart check-plan`");
   pl->add_option("--map", po->map)->required();
   pl->add_option("--scen", po->scen)->required();
   pl->add_option("--agents", po->agents, "first N agents (default: all)");

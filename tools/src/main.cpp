@@ -1,6 +1,5 @@
 // `smart`: the one SMART-DDS executable; every job is a subcommand (`smart --help`).
 #include <CLI/CLI.hpp>
-
 #include <exception>
 #include <iostream>
 

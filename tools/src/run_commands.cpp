@@ -1,10 +1,10 @@
 // `smart sim`, `smart monitor` and `smart run`: executing a plan on a simulated fleet over DDS.
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "smart/agent/robot_model.hpp"
 #include "smart/monitor/instance.hpp"
@@ -62,8 +62,8 @@ void add_world_options(CLI::App* cmd, std::string& map, std::string& scen, std::
 
 int run_sim(const SimOptions& o) {
   const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
-  const auto scen = monitor::parse_scen(monitor::read_text_file(o.scen, "scenario"), o.scen,
-                                        o.agents);
+  const auto scen =
+      monitor::parse_scen(monitor::read_text_file(o.scen, "scenario"), o.scen, o.agents);
   throw_if_any_scen(scen, grid);
   const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
@@ -79,10 +79,10 @@ int run_sim(const SimOptions& o) {
   ho.sim.shards = o.shards;
   ho.sim.threads = o.threads;
   ho.external_robots = o.external;
-  sim::SimHost host(participant, profile, grid, model,
-                    sim::start_poses(grid, o.cell_m, starts,
-                                     monitor::yaw_rad(monitor::parse_heading(o.heading))),
-                    ho);
+  sim::SimHost host(
+      participant, profile, grid, model,
+      sim::start_poses(grid, o.cell_m, starts, monitor::yaw_rad(monitor::parse_heading(o.heading))),
+      ho);
   spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", starts.size(), o.map,
                grid.width(), grid.height(), o.clock, o.dds.domain);
   const auto r = host.run(g_stop_requested);
@@ -131,15 +131,35 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   const auto profile = dds::find_qos_profile(o.dds.qos);
   std::optional<ChildProcess> sim;
   if (spawn_sim) {
-    std::vector<std::string> argv{self_executable().string(), "sim", "--map", o.map, "--scen",
-                                  o.scen, "--agents", std::to_string(in.plan.paths.size()),
-                                  "--initial-heading", o.heading, "--cell-m",
-                                  std::to_string(o.cell_m), "--robot", robot_file, "--clock",
-                                  o.clock, "--domain", std::to_string(o.dds.domain), "--qos",
-                                  o.dds.qos, "--network", o.dds.network, "--state-rate-hz",
-                                  std::to_string(o.state_rate_hz), "--timeout-s",
-                                  std::to_string(o.timeout_s), "--shards",
-                                  std::to_string(o.shards), "--threads",
+    std::vector<std::string> argv{self_executable().string(),
+                                  "sim",
+                                  "--map",
+                                  o.map,
+                                  "--scen",
+                                  o.scen,
+                                  "--agents",
+                                  std::to_string(in.plan.paths.size()),
+                                  "--initial-heading",
+                                  o.heading,
+                                  "--cell-m",
+                                  std::to_string(o.cell_m),
+                                  "--robot",
+                                  robot_file,
+                                  "--clock",
+                                  o.clock,
+                                  "--domain",
+                                  std::to_string(o.dds.domain),
+                                  "--qos",
+                                  o.dds.qos,
+                                  "--network",
+                                  o.dds.network,
+                                  "--state-rate-hz",
+                                  std::to_string(o.state_rate_hz),
+                                  "--timeout-s",
+                                  std::to_string(o.timeout_s),
+                                  "--shards",
+                                  std::to_string(o.shards),
+                                  "--threads",
                                   std::to_string(o.threads)};
     sim.emplace(argv, "/dev/null");
   }
@@ -156,7 +176,8 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   monitor::MonitorNode node(participant, profile, in, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
   monitor::ProgressCallback cb;
-  if (tty) cb = [](const monitor::MonitorResult& r, std::size_t done) { print_progress(r, done, false); };
+  if (tty)
+    cb = [](const monitor::MonitorResult& r, std::size_t done) { print_progress(r, done, false); };
   auto result = node.run(g_stop_requested, cb);
   if (tty) print_progress(result, result.success ? result.robots.size() : 0, true);
   if (sim) {
@@ -207,8 +228,9 @@ void throw_if_any_scen(const monitor::Scenario& scen, const monitor::Grid& grid)
 
 void register_run_commands(CLI::App& app, int& exit_code) {
   auto so = std::make_shared<SimOptions>();
-  auto* sim = app.add_subcommand("sim", "Simulated fleet: Simbody world + one agent per robot, "
-                                        "driven over DDS by `smart monitor`");
+  auto* sim = app.add_subcommand("sim",
+                                 "Simulated fleet: Simbody world + one agent per robot, "
+                                 "driven over DDS by `smart monitor`");
   add_dds_options(sim, so->dds);
   add_world_options(sim, so->map, so->scen, so->agents, so->heading, so->cell_m);
   sim->add_option("--robot", so->robot, "robot model: name in config/robots or a YAML file")
@@ -219,7 +241,8 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--state-rate-hz", so->state_rate_hz)->capture_default_str();
   sim->add_option("--timeout-s", so->timeout_s, "lockstep: wall seconds to wait for the monitor")
       ->capture_default_str();
-  sim->add_option("--shards", so->shards, "Simbody systems (0: automatic)")->check(CLI::Range(0, 1024))
+  sim->add_option("--shards", so->shards, "Simbody systems (0: automatic)")
+      ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->add_option("--external-robots", so->external,
@@ -231,8 +254,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   });
 
   auto mo = std::make_shared<MonitorCliOptions>();
-  auto* mon = app.add_subcommand("monitor", "Execute a plan: publish action windows, track "
-                                            "progress, detect completion/deadlock, write results");
+  auto* mon = app.add_subcommand("monitor",
+                                 "Execute a plan: publish action windows, track "
+                                 "progress, detect completion/deadlock, write results");
   add_monitor_options(mon, *mo);
   mon->callback([&exit_code, mo] {
     install_stop_handlers();
@@ -240,8 +264,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   });
 
   auto ro = std::make_shared<MonitorCliOptions>();
-  auto* run = app.add_subcommand("run", "Execute a plan on a simulated fleet: `smart monitor` "
-                                        "here plus a `smart sim` process, over DDS");
+  auto* run = app.add_subcommand("run",
+                                 "Execute a plan on a simulated fleet: `smart monitor` "
+                                 "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
   run->add_option("--shards", ro->shards, "Simbody systems (0: automatic)")->capture_default_str();
   run->add_option("--threads", ro->threads, "sim threads")->capture_default_str();

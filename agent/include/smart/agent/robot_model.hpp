@@ -8,10 +8,10 @@
 namespace smart::agent {
 
 struct ControllerGains {
-  double heading_kp = 4.0;           // 1/s: yaw error -> turn rate
-  double heading_kd = 0.0;           // s: yaw rate damping
-  double cross_track_kp = 1.5;       // 1/m: lateral error -> heading correction (atan)
-  double distance_kp = 2.0;          // 1/s: final approach speed per metre left
+  double heading_kp = 4.0;      // 1/s: yaw error -> turn rate
+  double heading_kd = 0.0;      // s: yaw rate damping
+  double cross_track_kp = 1.5;  // 1/m: lateral error -> heading correction (atan)
+  double distance_kp = 2.0;     // 1/s: final approach speed per metre left
   double position_tolerance_m = 0.01;
   double heading_tolerance_rad = 0.0087;  // 0.5°
   // Smallest wheel speed that moves the robot (motor dead band, PWM resolution); a rotation
@@ -26,10 +26,10 @@ struct RobotModel {
   double mass_kg = 1.6;
   double wheel_base_m = 0.14;
   double wheel_radius_m = 0.029;
-  double max_speed_mps = 1.0;            // forward speed limit
+  double max_speed_mps = 1.0;  // forward speed limit
   double max_accel_mps2 = 0.4;
   double max_decel_mps2 = 0.4;
-  double max_turn_rate_radps = 0.5236;   // 30°/s
+  double max_turn_rate_radps = 0.5236;  // 30°/s
   double max_angular_accel_radps2 = 2.0;
   ControllerGains gains;
   bool operator==(const RobotModel&) const = default;

@@ -40,8 +40,8 @@ T scalar(const std::string& source, const YAML::Node& node, const std::string& k
 }
 
 // A number >= min (and <= max).
-double number(const std::string& source, const YAML::Node& node, const std::string& key,
-              double min, double max);
+double number(const std::string& source, const YAML::Node& node, const std::string& key, double min,
+              double max);
 std::chrono::milliseconds millis(const std::string& source, const YAML::Node& node,
                                  const std::string& key);
 

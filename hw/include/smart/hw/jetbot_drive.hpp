@@ -47,7 +47,7 @@ class JetbotDrive : public agent::DriveBackend {
   JetbotDrive(I2cBus& bus, JetbotConfig config, Sleeper sleeper);
   ~JetbotDrive() override;
 
-  void configure() override;   // PCA9685 init, outputs off
+  void configure() override;  // PCA9685 init, outputs off
   void activate() override;
   void deactivate() override;  // outputs off
   void set_wheel_speeds(agent::WheelSpeeds speeds) override;

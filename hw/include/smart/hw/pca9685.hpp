@@ -41,7 +41,9 @@ class Pca9685 {
   void init(double pwm_frequency_hz);
   // on/off in 0..4096 (4096 = the full on/off bit).
   void set_pwm(int channel, uint16_t on, uint16_t off);
-  void set_pin(int channel, bool high) { high ? set_pwm(channel, pca9685::kFull, 0) : set_pwm(channel, 0, pca9685::kFull); }
+  void set_pin(int channel, bool high) {
+    high ? set_pwm(channel, pca9685::kFull, 0) : set_pwm(channel, 0, pca9685::kFull);
+  }
   void all_off();
   uint8_t address() const { return address_; }
   I2cBus& bus() { return bus_; }

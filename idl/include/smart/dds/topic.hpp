@@ -37,10 +37,10 @@ class Topic {
 
 // Declares the idlc-generated C type CType usable as Topic<CType> (its descriptor is
 // CType##_desc). Use at global scope.
-#define SMART_DDS_TOPIC_TYPE(CType)                                               \
-  namespace smart::dds {                                                          \
-  template <>                                                                     \
-  struct TopicTraits<CType> {                                                     \
-    static const dds_topic_descriptor_t* descriptor() { return &CType##_desc; }   \
-  };                                                                              \
+#define SMART_DDS_TOPIC_TYPE(CType)                                             \
+  namespace smart::dds {                                                        \
+  template <>                                                                   \
+  struct TopicTraits<CType> {                                                   \
+    static const dds_topic_descriptor_t* descriptor() { return &CType##_desc; } \
+  };                                                                            \
   }

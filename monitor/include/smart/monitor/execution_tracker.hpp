@@ -23,7 +23,7 @@ class ExecutionTracker {
   enum class Result { kAdvanced, kStale, kRejected };
   struct Update {
     Result result = Result::kStale;
-    std::string reason;                   // why it was rejected or stale
+    std::string reason;                    // why it was rejected or stale
     std::vector<uint32_t> robots_changed;  // robots whose window changed (to push to them)
   };
   struct Window {

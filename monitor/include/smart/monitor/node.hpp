@@ -23,12 +23,12 @@ namespace smart::monitor {
 
 struct MonitorOptions {
   bool lockstep = true;
-  uint32_t window_cap = 32;      // look-ahead: most actions in one window
+  uint32_t window_cap = 32;  // look-ahead: most actions in one window
   double cell_m = 1.0;
-  double timeout_s = 30.0;        // wall time without any sign of the sim host
-  double stall_timeout_s = 300.0; // sim time without any finished action
-  double max_sim_time_s = 0;      // 0: no limit
-  uint64_t run_id = 0;            // 0: derived from the wall clock (increasing run to run)
+  double timeout_s = 30.0;         // wall time without any sign of the sim host
+  double stall_timeout_s = 300.0;  // sim time without any finished action
+  double max_sim_time_s = 0;       // 0: no limit
+  uint64_t run_id = 0;             // 0: derived from the wall clock (increasing run to run)
   bool record_states = true;
 };
 

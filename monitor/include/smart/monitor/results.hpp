@@ -8,9 +8,8 @@
 // - robots.csv: per robot finish time, waiting time, stops, actions.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "smart/monitor/instance.hpp"
