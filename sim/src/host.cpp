@@ -39,6 +39,8 @@ struct SimHost::Impl {
   std::vector<std::unique_ptr<agent::Agent>> agents;
   std::vector<int64_t> reported_finished, reported_executing;
   std::vector<uint32_t> window_end;  // per robot, end of the latest window received
+  std::vector<uint32_t> total_actions;  // per robot, from its windows
+  bool grouped = false;
   uint64_t window_end_total = 0;
   uint64_t run_id = 0;
   uint64_t finished_total = 0;  // sum over robots of finished_seq + 1, as reported
@@ -72,6 +74,20 @@ struct SimHost::Impl {
     reported_finished.assign(n, -1);
     reported_executing.assign(n, -1);
     window_end.assign(n, 0);
+    total_actions.assign(n, 0);
+  }
+
+  // Before the first step: robots with plans of similar length share a Simbody system, so
+  // systems whose robots have all finished sleep early (World::repartition; results unchanged).
+  void group_by_plan_length() {
+    if (grouped) return;
+    grouped = true;
+    std::vector<uint32_t> order(agents.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      return total_actions[a] > total_actions[b];
+    });
+    world.repartition(order);
   }
 
   void apply_windows() {
@@ -92,6 +108,7 @@ struct SimHost::Impl {
         window_end_total = 0;
       }
       if (!world.external(w.robot_id)) agents[w.robot_id]->on_window(w.run_id, w.actions);
+      total_actions[w.robot_id] = w.total_actions;
       const uint32_t end = w.actions.empty() ? window_end[w.robot_id] : w.end_seq;
       if (end > window_end[w.robot_id]) {
         window_end_total += end - window_end[w.robot_id];
@@ -184,10 +201,12 @@ struct SimHost::Impl {
         c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s});
   }
 
+  double awake_shard_ticks = 0;
   void step_all() {
     track_external_robots();
     for (auto& a : agents) a->step(world.time_s());
     world.step();
+    awake_shard_ticks += static_cast<double>(world.awake_shards());
   }
 };
 
@@ -228,6 +247,7 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
     r.sim_time_s = I.world.time_s();
     r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();
     r.contacts = I.world.contacts();
+    r.mean_awake_shards = tick > 0 ? I.awake_shard_ticks / static_cast<double>(tick) : 0.0;
     for (auto& a : I.agents) a->deactivate();
     return r;
   };
@@ -262,11 +282,13 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
           break;
         }
         // Until the monitor has matched, re-announce the tick (a late joiner missed it).
+        // (Grouping happens once the first answer's windows are all in; see below.)
         if (!answer && Clock::now() - last_publish > std::chrono::milliseconds(500)) {
           I.publish_clock(tick);
           last_publish = Clock::now();
         }
       }
+      if (tick == 0) I.group_by_plan_length();
       advance();
     }
   }

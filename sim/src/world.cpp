@@ -131,6 +131,19 @@ struct World::Impl : detail::RobotForces {
 
   void take_snapshot();
   void find_neighbours_and_count_contacts();
+  void build_shards(const std::vector<std::vector<uint32_t>>& members,
+                    const std::vector<std::vector<std::array<double, 3>>>& start_q) {
+    shards.clear();
+    for (std::size_t s = 0; s < members.size(); ++s) {
+      auto sh = std::make_unique<Shard>();
+      sh->body = std::make_unique<detail::SimbodyShard>(*this, members[s], model.mass_kg,
+                                                        model.radius_m, start_q[s],
+                                                        cfg.physics_step_s);
+      if (substep > 0) sh->body->restart_at(static_cast<double>(substep) * cfg.physics_step_s);
+      for (const uint32_t i : members[s]) shard_of[i] = static_cast<uint32_t>(s);
+      shards.push_back(std::move(sh));
+    }
+  }
   void robot_force(uint32_t robot, double time_s, const double* q, const double* u,
                    double* f) const override;
 };
@@ -320,19 +333,13 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
                                   monitor::to_string(cell) +
                                   ", which is outside the map or blocked");
     }
-    I.shard_of[i] = i % static_cast<uint32_t>(S);
-    members[I.shard_of[i]].push_back(i);
-    start_q[I.shard_of[i]].push_back({p.yaw_rad, p.x_m, p.y_m});
+    members[i % static_cast<uint32_t>(S)].push_back(i);
+    start_q[i % static_cast<uint32_t>(S)].push_back({p.yaw_rad, p.x_m, p.y_m});
     I.x[i] = p.x_m;
     I.y[i] = p.y_m;
     I.yaw[i] = p.yaw_rad;
   }
-  for (std::size_t s = 0; s < members.size(); ++s) {
-    auto sh = std::make_unique<Impl::Shard>();
-    sh->body = std::make_unique<detail::SimbodyShard>(I, members[s], model.mass_kg, model.radius_m,
-                                                      start_q[s], config.physics_step_s);
-    I.shards.push_back(std::move(sh));
-  }
+  I.build_shards(members, start_q);
   I.take_snapshot();
   I.find_neighbours_and_count_contacts();
   for (auto& sh : I.shards) {
@@ -342,6 +349,28 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
 }
 
 World::~World() = default;
+
+void World::repartition(const std::vector<uint32_t>& order) {
+  auto& I = *impl_;
+  if (order.size() != I.n) throw std::invalid_argument("repartition: order must list every robot");
+  for (uint32_t i = 0; i < I.n; ++i) {
+    if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0 || I.target_l[i] != 0 ||
+        I.target_r[i] != 0 || I.ramp_from_l[i] != 0 || I.ramp_from_r[i] != 0) {
+      throw std::logic_error("repartition: robot " + std::to_string(i) + " is not at rest");
+    }
+  }
+  const std::size_t S = I.shards.size();
+  std::vector<std::vector<uint32_t>> members(S);
+  std::vector<std::vector<std::array<double, 3>>> start_q(S);
+  for (std::size_t k = 0; k < I.n; ++k) {
+    const uint32_t i = order[k];
+    const std::size_t s = k * S / I.n;
+    members[s].push_back(i);
+    start_q[s].push_back({I.yaw[i], I.x[i], I.y[i]});
+  }
+  I.build_shards(members, start_q);
+  for (auto& sh : I.shards) sh->asleep = true;  // all at rest; commands wake them
+}
 
 std::size_t World::robots() const { return impl_->n; }
 double World::time_s() const {

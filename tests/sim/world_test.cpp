@@ -87,7 +87,7 @@ TEST(World, TwoRobotsDrivenHeadOnCollideAndAreReported) {
 }
 
 // Random drive commands for many robots, changed every period.
-uint64_t run_hash(int threads, int shards) {
+uint64_t run_hash(int threads, int shards, bool regroup = false) {
   const auto grid = monitor::generate_random_grid(30, 30, 0.1, 5);
   std::vector<agent::Pose2D> starts;
   const auto inst = monitor::generate_random_plan(grid, {120, 1, 9});
@@ -99,6 +99,11 @@ uint64_t run_hash(int threads, int shards) {
   cfg.threads = threads;
   cfg.shards = shards;
   World world(grid, model(), cfg, starts);
+  if (regroup) {
+    std::vector<uint32_t> order;
+    for (uint32_t i = static_cast<uint32_t>(starts.size()); i-- > 0;) order.push_back(i);
+    world.repartition(order);
+  }
   uint64_t seed = 12345;
   for (int k = 0; k < 40; ++k) {
     for (uint32_t i = 0; i < starts.size(); ++i) {
@@ -118,6 +123,17 @@ TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndShards) {
   EXPECT_EQ(a, run_hash(1, 8));
   EXPECT_EQ(a, run_hash(2, 3));
   EXPECT_EQ(a, run_hash(1, 1));
+  EXPECT_EQ(a, run_hash(2, 8, true)) << "regrouping robots into other shards changed results";
+}
+
+TEST(World, RepartitionOnlyAtRest) {
+  const auto grid = open_map(6, 3);
+  World world(grid, model(), {}, {{1, 1, 0}, {3, 1, 0}});
+  world.set_wheel_targets(0, {0.2, 0.2});
+  EXPECT_THROW(world.repartition({1, 0}), std::logic_error);
+  world.set_wheel_targets(0, {0, 0});
+  EXPECT_NO_THROW(world.repartition({1, 0}));
+  EXPECT_THROW(world.repartition({0}), std::invalid_argument);
 }
 
 TEST(World, RestingRobotsSleepAndACommandWakesThem) {

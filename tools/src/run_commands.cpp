@@ -94,7 +94,8 @@ int run_sim(const SimOptions& o) {
                               {"wall_time_s", r.wall_time_s},
                               {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0},
                               {"robot_contacts", r.contacts.robot_robot_events},
-                              {"wall_contacts", r.contacts.robot_wall_events}}
+                              {"wall_contacts", r.contacts.robot_wall_events},
+                              {"mean_awake_shards", r.mean_awake_shards}}
                    .dump()
             << std::endl;
   if (!r.ok) spdlog::error("sim: {}", r.error);

@@ -44,6 +44,7 @@ struct SimHostResult {
   double sim_time_s = 0;
   double wall_time_s = 0;
   ContactStats contacts;
+  double mean_awake_shards = 0;  // Simbody systems stepped per period, on average
 };
 
 // Robot i's start pose: the centre of cell starts[i] facing `yaw_rad`.

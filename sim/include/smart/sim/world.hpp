@@ -77,6 +77,12 @@ class World {
   agent::WheelSpeeds wheel_speeds(uint32_t robot) const;  // ramped motor command
   void step();
 
+  // Rebuilds the shards with robots grouped in `order` (robot order[k] in shard k·S/n), e.g.
+  // by plan length so that robots finishing together share a shard and it can sleep. Only
+  // while every robot is at rest (throws std::logic_error otherwise). Results are unchanged:
+  // shards see each other only through the snapshot.
+  void repartition(const std::vector<uint32_t>& order);
+
   const ContactStats& contacts() const;
   std::size_t awake_shards() const;
   // FNV-1a over every robot's pose and velocity bits: equal hashes = identical trajectories.
