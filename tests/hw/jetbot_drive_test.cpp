@@ -75,6 +75,20 @@ TEST(JetbotDrive, WaveshareUsesChannelsZeroToThree) {
   for (int ch : {8, 9, 10, 11, 12, 13}) EXPECT_EQ(channel(f.bus, ch), (Regs{0, 0, 0, 0})) << ch;
 }
 
+TEST(JetbotDrive, WaveshareReversedWheelSwapsItsInputs) {
+  JetbotConfig c;
+  c.board = Board::kWaveshare;
+  c.right.sign = -1;
+  Fixture f(c);
+  f.drive->set_wheel_speeds({0.63, 0.63});
+  EXPECT_EQ(channel(f.bus, 1), (Regs{0x00, 0x00, 0xF0, 0x0F}));  // left forward: ina
+  EXPECT_EQ(channel(f.bus, 2), (Regs{0x00, 0x00, 0x00, 0x00}));  // right reversed: not ina...
+  EXPECT_EQ(channel(f.bus, 3), (Regs{0x00, 0x00, 0xF0, 0x0F}));  // ...but inb
+  f.drive->deactivate();
+  for (int ch : {0, 1, 2, 3}) EXPECT_EQ(channel(f.bus, ch)[2], 0x00) << ch;
+  EXPECT_EQ(f.bus.ops.back(), (test::RecordingI2cBus::Op{'w', 0x60, 0xFD, 0x10}));
+}
+
 TEST(JetbotDrive, RegressionTinyCommandsRoundToAPwmStepInsteadOfStalling) {
   // 0.002 m/s is 0.8 of a PWM step: truncation gave 0 and a rotation stalled 0.8° short.
   Fixture f;
