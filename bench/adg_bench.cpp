@@ -8,7 +8,6 @@
 #include <map>
 #include <memory>
 
-#include "machine.hpp"
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/map_reader.hpp"
@@ -16,6 +15,7 @@
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/monitor/random_plan.hpp"
 #include "smart/monitor/text_file.hpp"
+#include "smart/tools/machine.hpp"
 
 namespace {
 
@@ -88,7 +88,7 @@ void build_all(benchmark::State& state, const Plan& plan, const Grid& grid) {
   state.counters["adg_MB"] = static_cast<double>(bytes) / 1e6;
   state.counters["nodes_per_s"] =
       benchmark::Counter(static_cast<double>(nodes), benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["peak_rss_MB"] = smart::bench::peak_rss_mb();
+  state.counters["peak_rss_MB"] = smart::tools::peak_rss_mb();
 }
 
 void BM_AdgRandomWalk(benchmark::State& state, const std::string& map_name) {
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
                  data_dir().c_str());
     return 1;
   }
-  benchmark::AddCustomContext("machine", smart::bench::machine_description());
+  benchmark::AddCustomContext("machine", smart::tools::machine_description());
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -14,6 +14,21 @@ AgentAction from_wire(const smart_msg_ActionStep& s) {
   return a;
 }
 
+smart_msg_RobotState make_robot_state(uint32_t robot, uint64_t run_id, double time_s,
+                                      const PoseSample& p, WheelSpeeds w, std::size_t queue) {
+  smart_msg_RobotState s{};
+  s.robot_id = robot;
+  s.run_id = run_id;
+  s.sim_time_s = time_s;
+  s.pose = {p.pose.x_m, p.pose.y_m, p.pose.yaw_rad};
+  s.linear_mps = p.linear_mps;
+  s.angular_radps = p.angular_radps;
+  s.wheel_left_mps = w.left_mps;
+  s.wheel_right_mps = w.right_mps;
+  s.queue_length = static_cast<uint32_t>(queue);
+  return s;
+}
+
 FleetLink::FleetLink(const dds::Participant& p, const dds::QosProfile& qos)
     : action_topic_(p, std::string(dds::kActionTopic)),
       progress_topic_(p, std::string(dds::kProgressTopic)),

@@ -38,7 +38,7 @@ struct SimHost::Impl {
   std::vector<std::unique_ptr<SimRobot>> backends;
   std::vector<std::unique_ptr<agent::Agent>> agents;
   std::vector<int64_t> reported_finished, reported_executing;
-  std::vector<uint32_t> window_end;  // per robot, end of the latest window received
+  std::vector<uint32_t> window_end;     // per robot, end of the latest window received
   std::vector<uint32_t> total_actions;  // per robot, from its windows
   bool grouped = false;
   uint64_t window_end_total = 0;
@@ -84,9 +84,8 @@ struct SimHost::Impl {
     grouped = true;
     std::vector<uint32_t> order(agents.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      return total_actions[a] > total_actions[b];
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return total_actions[a] > total_actions[b]; });
     world.repartition(order);
   }
 
@@ -165,18 +164,8 @@ struct SimHost::Impl {
     publish_ros_poses();
     for (uint32_t i = 0; i < agents.size(); ++i) {
       if (world.external(i)) continue;
-      const auto p = world.pose(i);
-      const auto w = world.wheel_speeds(i);
-      smart_msg_RobotState s{};
-      s.robot_id = i;
-      s.run_id = run_id;
-      s.sim_time_s = world.time_s();
-      s.pose = {p.pose.x_m, p.pose.y_m, p.pose.yaw_rad};
-      s.linear_mps = p.linear_mps;
-      s.angular_radps = p.angular_radps;
-      s.wheel_left_mps = w.left_mps;
-      s.wheel_right_mps = w.right_mps;
-      s.queue_length = static_cast<uint32_t>(agents[i]->queue_length());
+      const auto s = agent::make_robot_state(i, run_id, world.time_s(), world.pose(i),
+                                             world.wheel_speeds(i), agents[i]->queue_length());
       link.publish_state(s);
     }
   }

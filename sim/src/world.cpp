@@ -136,9 +136,8 @@ struct World::Impl : detail::RobotForces {
     shards.clear();
     for (std::size_t s = 0; s < members.size(); ++s) {
       auto sh = std::make_unique<Shard>();
-      sh->body = std::make_unique<detail::SimbodyShard>(*this, members[s], model.mass_kg,
-                                                        model.radius_m, start_q[s],
-                                                        cfg.physics_step_s);
+      sh->body = std::make_unique<detail::SimbodyShard>(
+          *this, members[s], model.mass_kg, model.radius_m, start_q[s], cfg.physics_step_s);
       if (substep > 0) sh->body->restart_at(static_cast<double>(substep) * cfg.physics_step_s);
       for (const uint32_t i : members[s]) shard_of[i] = static_cast<uint32_t>(s);
       shards.push_back(std::move(sh));
@@ -354,8 +353,8 @@ void World::repartition(const std::vector<uint32_t>& order) {
   auto& I = *impl_;
   if (order.size() != I.n) throw std::invalid_argument("repartition: order must list every robot");
   for (uint32_t i = 0; i < I.n; ++i) {
-    if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0 || I.target_l[i] != 0 ||
-        I.target_r[i] != 0 || I.ramp_from_l[i] != 0 || I.ramp_from_r[i] != 0) {
+    if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0 || I.target_l[i] != 0 || I.target_r[i] != 0 ||
+        I.ramp_from_l[i] != 0 || I.ramp_from_r[i] != 0) {
       throw std::logic_error("repartition: robot " + std::to_string(i) + " is not at rest");
     }
   }

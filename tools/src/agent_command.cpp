@@ -129,17 +129,8 @@ int run_agent(const AgentOptions& o) {
     }
     const auto& p = robot.last_pose();
     if (p.valid) {
-      smart_msg_RobotState s{};
-      s.robot_id = o.robot_id;
-      s.run_id = robot.run_id();
-      s.sim_time_s = now;
-      s.pose = {p.pose.x_m, p.pose.y_m, p.pose.yaw_rad};
-      s.linear_mps = p.linear_mps;
-      s.angular_radps = p.angular_radps;
-      s.wheel_left_mps = robot.last_command().left_mps;
-      s.wheel_right_mps = robot.last_command().right_mps;
-      s.queue_length = static_cast<uint32_t>(robot.queue_length());
-      link.publish_state(s);
+      link.publish_state(agent::make_robot_state(o.robot_id, robot.run_id(), now, p,
+                                                 robot.last_command(), robot.queue_length()));
     }
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(o.period_s));

@@ -16,6 +16,7 @@
 #include "smart/sim/world.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
+#include "smart/tools/machine.hpp"
 
 namespace smart::tools {
 
@@ -29,14 +30,6 @@ struct BenchSimOptions {
   uint64_t seed = 1;
   int shards = 0, threads = 2;
 };
-
-std::string cpu_model() {
-  std::ifstream info("/proc/cpuinfo");
-  for (std::string line; std::getline(info, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
-}
 
 int run_bench_sim(const BenchSimOptions& o) {
   const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
@@ -122,9 +115,7 @@ int run_bench_sim(const BenchSimOptions& o) {
                               {"wall_contacts", world.contacts().robot_wall_events},
                               {"shards", o.shards},
                               {"threads", o.threads},
-                              {"machine", cpu_model() + ", " +
-                                              std::to_string(std::thread::hardware_concurrency()) +
-                                              " cores"}}
+                              {"machine", machine_description()}}
                    .dump()
             << std::endl;
   return 0;

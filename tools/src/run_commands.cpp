@@ -64,7 +64,7 @@ int run_sim(const SimOptions& o) {
   const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
   const auto scen =
       monitor::parse_scen(monitor::read_text_file(o.scen, "scenario"), o.scen, o.agents);
-  throw_if_any_scen(scen, grid);
+  monitor::throw_if_any(monitor::check_scen_against_map(scen, grid));
   const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
@@ -222,10 +222,6 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
 }
 
 }  // namespace
-
-void throw_if_any_scen(const monitor::Scenario& scen, const monitor::Grid& grid) {
-  monitor::throw_if_any(monitor::check_scen_against_map(scen, grid));
-}
 
 void register_run_commands(CLI::App& app, int& exit_code) {
   auto so = std::make_shared<SimOptions>();

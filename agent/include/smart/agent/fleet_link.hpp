@@ -23,6 +23,11 @@ inline constexpr uint32_t kMonitorClockSource = 1;  // Clock.source_id of the mo
 
 AgentAction from_wire(const smart_msg_ActionStep& step);
 
+// The RobotState sample of one robot (wire type) from what its agent knows.
+smart_msg_RobotState make_robot_state(uint32_t robot, uint64_t run_id, double time_s,
+                                      const PoseSample& pose, WheelSpeeds wheels,
+                                      std::size_t queue_length);
+
 struct ReceivedWindow {
   uint32_t robot_id = 0;
   uint64_t run_id = 0;

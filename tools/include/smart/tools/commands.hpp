@@ -11,8 +11,6 @@
 namespace smart::tools {
 
 void register_dds_commands(CLI::App& app, int& exit_code);
-// Throws monitor::InputError when the scenario does not fit the map.
-void throw_if_any_scen(const monitor::Scenario& scen, const monitor::Grid& grid);
 void register_demo_command(CLI::App& app, int& exit_code);
 void register_check_plan_command(CLI::App& app, int& exit_code);
 void register_run_commands(CLI::App& app, int& exit_code);

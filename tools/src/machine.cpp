@@ -1,4 +1,4 @@
-#include "machine.hpp"
+#include "smart/tools/machine.hpp"
 
 #include <sys/resource.h>
 #include <sys/utsname.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-namespace smart::bench {
+namespace smart::tools {
 
 std::string machine_description() {
   std::string cpu = "unknown CPU";
@@ -33,4 +33,4 @@ double peak_rss_mb() {
   return static_cast<double>(r.ru_maxrss) / 1024.0;
 }
 
-}  // namespace smart::bench
+}  // namespace smart::tools

@@ -4,9 +4,9 @@
 
 #include <string>
 
-namespace smart::bench {
+namespace smart::tools {
 
 std::string machine_description();
 double peak_rss_mb();
 
-}  // namespace smart::bench
+}  // namespace smart::tools
