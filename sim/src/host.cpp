@@ -40,7 +40,6 @@ struct SimHost::Impl {
   std::vector<int64_t> reported_finished, reported_executing;
   std::vector<uint32_t> window_end;     // per robot, end of the latest window received
   std::vector<uint32_t> total_actions;  // per robot, from its windows
-  bool grouped = false;
   uint64_t window_end_total = 0;
   uint64_t run_id = 0;
   uint64_t finished_total = 0;  // sum over robots of finished_seq + 1, as reported
@@ -75,18 +74,6 @@ struct SimHost::Impl {
     reported_executing.assign(n, -1);
     window_end.assign(n, 0);
     total_actions.assign(n, 0);
-  }
-
-  // Before the first step: robots with plans of similar length share a Simbody system, so
-  // systems whose robots have all finished sleep early (World::repartition; results unchanged).
-  void group_by_plan_length() {
-    if (grouped) return;
-    grouped = true;
-    std::vector<uint32_t> order(agents.size());
-    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](uint32_t a, uint32_t b) { return total_actions[a] > total_actions[b]; });
-    world.repartition(order);
   }
 
   void apply_windows() {
@@ -190,12 +177,13 @@ struct SimHost::Impl {
         c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s});
   }
 
-  double awake_shard_ticks = 0;
+  double awake_robot_ticks = 0, active_system_ticks = 0;
   void step_all() {
     track_external_robots();
     for (auto& a : agents) a->step(world.time_s());
     world.step();
-    awake_shard_ticks += static_cast<double>(world.awake_shards());
+    awake_robot_ticks += static_cast<double>(world.awake_robots());
+    active_system_ticks += static_cast<double>(world.active_systems());
   }
 };
 
@@ -236,7 +224,9 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
     r.sim_time_s = I.world.time_s();
     r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();
     r.contacts = I.world.contacts();
-    r.mean_awake_shards = tick > 0 ? I.awake_shard_ticks / static_cast<double>(tick) : 0.0;
+    const double ticks = static_cast<double>(std::max<uint64_t>(tick, 1));
+    r.mean_awake_robots = I.awake_robot_ticks / ticks;
+    r.mean_active_systems = I.active_system_ticks / ticks;
     for (auto& a : I.agents) a->deactivate();
     return r;
   };
@@ -277,7 +267,6 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
           last_publish = Clock::now();
         }
       }
-      if (tick == 0) I.group_by_plan_length();
       advance();
     }
   }

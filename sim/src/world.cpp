@@ -1,6 +1,7 @@
 #include "smart/sim/world.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <barrier>
 #include <cmath>
@@ -12,7 +13,7 @@
 #include <thread>
 #include <unordered_map>
 
-#include "simbody_shard.hpp"
+#include "simbody_system.hpp"
 #include "smart/sim/walls.hpp"
 
 namespace smart::sim {
@@ -79,7 +80,8 @@ double contact_force(double depth, double depth_rate, double E, double R, double
 
 }  // namespace
 
-// Everything the force elements read: per-robot commands and the sub-step snapshot.
+// Everything the force elements read: per-robot commands, the sub-step snapshot and the
+// contacts found in it; and the assignment of awake robots to Simbody body slots.
 struct World::Impl : detail::RobotForces {
   const monitor::Grid& grid;
   agent::RobotModel model;
@@ -94,9 +96,17 @@ struct World::Impl : detail::RobotForces {
   double ramp_t0 = 0;
   double ramp_rate = 0;  // m/s² per wheel
 
-  // Snapshot at the start of the current sub-step (world frame).
+  // Snapshot at the start of the current sub-step (world frame). For a sleeping robot this is
+  // its resting state.
   std::vector<double> x, y, yaw, vx, vy, w;
-  std::vector<uint32_t> nb_begin, nb;  // neighbours within contact range (CSR)
+  // Each awake robot's state after the sub-step, written by the threads stepping the systems
+  // while other threads' forces still read the snapshot; copied into it after the barrier.
+  std::vector<std::array<double, 6>> stepped;
+  // Contacts in the snapshot, per robot (CSR): the robots it overlaps and the walls it touches.
+  // A robot's forces for the next sub-step are computed from exactly these.
+  std::vector<uint32_t> touch_begin, touch;
+  std::vector<uint32_t> wall_begin;
+  std::vector<WallContact> wall;
 
   // Spatial hash on map cells.
   std::vector<uint32_t> head, next;
@@ -110,14 +120,15 @@ struct World::Impl : detail::RobotForces {
   std::vector<double> wall_last_contact;
   std::vector<uint8_t> in_contact;  // any contact at the last snapshot
   std::vector<WallContact> scratch;
+  std::vector<uint32_t> fill_at;
 
-  struct Shard {
-    std::unique_ptr<detail::SimbodyShard> body;
-    bool asleep = false;
-    const std::vector<uint32_t>& robots() const { return body->robots(); }
-  };
-  std::vector<std::unique_ptr<Shard>> shards;
-  std::vector<uint32_t> shard_of;
+  // Awake robots and their body slots.
+  std::size_t capacity = 1;
+  std::vector<std::unique_ptr<detail::SimbodySystem>> systems;
+  static constexpr uint32_t kAsleep = 0xffffffffu;
+  std::vector<uint32_t> system_of, slot_of;  // system_of[i] == kAsleep: robot i sleeps
+  std::size_t awake_count = 0;
+  std::vector<detail::SimbodySystem*> active;  // systems stepped in this sub-step
   Workers workers;
 
   Impl(const monitor::Grid& g, const agent::RobotModel& m, const SimConfig& c, std::size_t robots)
@@ -128,24 +139,83 @@ struct World::Impl : detail::RobotForces {
     const double max_change = ramp_rate * std::max(0.0, t - ramp_t0);
     return from[i] + std::clamp(target[i] - from[i], -max_change, max_change);
   }
-
-  void take_snapshot();
-  void find_neighbours_and_count_contacts();
-  void build_shards(const std::vector<std::vector<uint32_t>>& members,
-                    const std::vector<std::vector<std::array<double, 3>>>& start_q) {
-    shards.clear();
-    for (std::size_t s = 0; s < members.size(); ++s) {
-      auto sh = std::make_unique<Shard>();
-      sh->body = std::make_unique<detail::SimbodyShard>(
-          *this, members[s], model.mass_kg, model.radius_m, start_q[s], cfg.physics_step_s);
-      if (substep > 0) sh->body->restart_at(static_cast<double>(substep) * cfg.physics_step_s);
-      for (const uint32_t i : members[s]) shard_of[i] = static_cast<uint32_t>(s);
-      shards.push_back(std::move(sh));
-    }
+  bool commanded(uint32_t i, double t) const {
+    return is_external[i] || target_l[i] != 0 || target_r[i] != 0 ||
+           command(ramp_from_l, target_l, i, t) != 0 || command(ramp_from_r, target_r, i, t) != 0;
   }
+  bool awake(uint32_t i) const { return system_of[i] != kAsleep; }
+
+  void wake(uint32_t i);
+  void sleep(uint32_t i);
+  void move(uint32_t i, std::size_t to);
+  void pack();
+  void find_contacts(bool everyone);
   void robot_force(uint32_t robot, double time_s, const double* q, const double* u,
                    double* f) const override;
 };
+
+// Into the fullest system that has room (fewer systems stepped), else the first empty one.
+void World::Impl::wake(uint32_t i) {
+  if (awake(i)) return;
+  std::size_t best = systems.size();
+  for (std::size_t s = 0; s < systems.size(); ++s) {
+    const auto occ = systems[s]->occupied();
+    if (occ == capacity) continue;
+    if (best == systems.size() || (occ > systems[best]->occupied())) best = s;
+  }
+  auto& sys = *systems.at(best);
+  const std::size_t k = sys.first_vacant();
+  sys.place(k, i, {yaw[i], x[i], y[i]}, {w[i], vx[i], vy[i]});
+  system_of[i] = static_cast<uint32_t>(best);
+  slot_of[i] = static_cast<uint32_t>(k);
+  ++awake_count;
+}
+
+void World::Impl::sleep(uint32_t i) {
+  systems[system_of[i]]->vacate(slot_of[i]);
+  system_of[i] = slot_of[i] = kAsleep;
+  --awake_count;
+}
+
+// Moves an awake robot to a vacant slot of `to`, state copied bit for bit.
+void World::Impl::move(uint32_t i, std::size_t to) {
+  auto& from = *systems[system_of[i]];
+  std::array<double, 3> q{}, u{};
+  from.read(slot_of[i], q.data(), u.data());
+  from.vacate(slot_of[i]);
+  const std::size_t k = systems[to]->first_vacant();
+  systems[to]->place(k, i, q, u);
+  system_of[i] = static_cast<uint32_t>(to);
+  slot_of[i] = static_cast<uint32_t>(k);
+}
+
+// Empties the least occupied systems into the others' free slots while more than one system
+// beyond the minimum is in use (the one spare avoids moving robots back and forth).
+void World::Impl::pack() {
+  const std::size_t needed = (awake_count + capacity - 1) / capacity;
+  for (;;) {
+    std::size_t in_use = 0, donor = systems.size();
+    for (std::size_t s = 0; s < systems.size(); ++s) {
+      const auto occ = systems[s]->occupied();
+      if (occ == 0) continue;
+      ++in_use;
+      if (donor == systems.size() || occ <= systems[donor]->occupied()) donor = s;
+    }
+    if (in_use <= needed + 1) return;
+    auto& from = *systems[donor];
+    for (std::size_t k = 0; k < from.capacity(); ++k) {
+      const uint32_t i = from.robot(k);
+      if (i == detail::kVacant) continue;
+      std::size_t best = systems.size();
+      for (std::size_t s = 0; s < systems.size(); ++s) {
+        const auto occ = systems[s]->occupied();
+        if (s == donor || occ == 0 || occ == capacity) continue;
+        if (best == systems.size() || occ > systems[best]->occupied()) best = s;
+      }
+      move(i, best);
+    }
+  }
+}
 
 void World::Impl::robot_force(uint32_t i, double t, const double* q, const double* u,
                               double* out) const {
@@ -180,21 +250,19 @@ void World::Impl::robot_force(uint32_t i, double t, const double* q, const doubl
   const double flat = std::clamp(-mass * v_lat / tau, -2 * wheel_limit, 2 * wheel_limit);
   double fx = (fl + fr) * ct - flat * st;
   double fy = (fl + fr) * st + flat * ct;
-  // Walls (grid faces and convex corners).
-  thread_local std::vector<WallContact> walls;
-  walls.clear();
-  wall_contacts(grid, cfg.cell_m, x, y, r, walls);
-  for (const auto& wc : walls) {
+  // Walls (grid faces and convex corners) and other robots, as found in the snapshot, which is
+  // this robot's state now (q, u).
+  for (uint32_t a = wall_begin[i]; a < wall_begin[i + 1]; ++a) {
+    const auto& wc = wall[a];
     const double rate = -(vx_i * wc.nx + vy_i * wc.ny);
     const double f = contact_force(wc.depth_m, rate, E, r, c);
     fx += f * wc.nx;
     fy += f * wc.ny;
   }
-  // Other robots, from the snapshot, in a fixed neighbour order.
-  for (uint32_t a = nb_begin[i]; a < nb_begin[i + 1]; ++a) {
-    const uint32_t j = nb[a];
+  for (uint32_t a = touch_begin[i]; a < touch_begin[i + 1]; ++a) {
+    const uint32_t j = touch[a];
     const double dx = x - this->x[j], dy = y - this->y[j];
-    const double d = std::hypot(dx, dy);
+    const double d = std::sqrt(dx * dx + dy * dy);
     const double depth = 2 * r - d;
     if (depth <= 0 || d == 0) continue;
     const double nx = dx / d, ny = dy / d;
@@ -208,76 +276,76 @@ void World::Impl::robot_force(uint32_t i, double t, const double* q, const doubl
   out[2] += fy;
 }
 
-void World::Impl::take_snapshot() {
-  for (auto& sh : shards) {
-    if (sh->asleep) continue;  // unchanged since it fell asleep
-    const auto& ids = sh->robots();
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const uint32_t i = ids[k];
-      double q[3], u[3];
-      sh->body->read(k, q, u);
-      yaw[i] = q[0];
-      x[i] = q[1];
-      y[i] = q[2];
-      w[i] = u[0];
-      vx[i] = u[1];
-      vy[i] = u[2];
-    }
-  }
-}
-
-void World::Impl::find_neighbours_and_count_contacts() {
+// Contacts in the snapshot. Only awake robots are examined (`everyone`: all of them, for the
+// start configuration): a pair of sleeping robots neither moved nor touches, and its gap was
+// seen when the later of the two fell asleep. Sleeping robots touched by an awake one are
+// marked in_contact and wake for the next sub-step.
+void World::Impl::find_contacts(bool everyone) {
   const double r = model.radius_m;
   const double now = static_cast<double>(substep) * cfg.physics_step_s;
-  const double range = 2 * r + 0.05 * cfg.cell_m;
   const auto W = grid.width(), H = grid.height();
-  auto cell_index = [&](uint32_t i) -> std::ptrdiff_t {
-    const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
-    if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) return -1;
-    return static_cast<std::ptrdiff_t>(grid.index(c));
-  };
   for (const auto t : touched) head[t] = kNoRobot;
   touched.clear();
   for (uint32_t i = static_cast<uint32_t>(n); i-- > 0;) {
-    const auto ci = cell_index(i);
-    if (ci < 0) continue;
-    next[i] = head[static_cast<std::size_t>(ci)];
-    head[static_cast<std::size_t>(ci)] = i;
-    touched.push_back(static_cast<std::size_t>(ci));
+    const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
+    if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) continue;
+    const auto ci = static_cast<std::size_t>(grid.index(c));
+    next[i] = head[ci];
+    head[ci] = i;
+    touched.push_back(ci);
   }
-  nb.clear();
   pairs_now.clear();
+  wall.clear();
   std::fill(in_contact.begin(), in_contact.end(), 0);
   uint32_t walls_now = 0;
   for (uint32_t i = 0; i < n; ++i) {
-    nb_begin[i] = static_cast<uint32_t>(nb.size());
+    wall_begin[i] = static_cast<uint32_t>(wall.size());
+    const bool examined = everyone || awake(i);
+    if (!examined) continue;
     const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
     for (int dr = -1; dr <= 1; ++dr) {
       for (int dc = -1; dc <= 1; ++dc) {
         const monitor::Cell cc{c.x + dc, c.y + dr};
         if (!grid.inside(cc)) continue;
         for (uint32_t j = head[grid.index(cc)]; j != kNoRobot; j = next[j]) {
-          if (j == i) continue;
-          const double d = std::hypot(x[i] - x[j], y[i] - y[j]);
-          // Closest approach over every pair in neighbouring cells, in range or not.
-          if (i < j) stats.min_gap_m = std::min(stats.min_gap_m, d - 2 * r);
-          if (d >= range) continue;
-          nb.push_back(j);
-          if (i < j && d < 2 * r) pairs_now.push_back((uint64_t{i} << 32) | j);
-          if (d < 2 * r) in_contact[i] = 1;
+          // Each pair once: from its lower index if both are examined.
+          if (j == i || ((everyone || awake(j)) && j < i)) continue;
+          const double dx = x[i] - x[j], dy = y[i] - y[j];
+          const double d = std::sqrt(dx * dx + dy * dy);
+          // Closest approach over every pair in neighbouring cells.
+          stats.min_gap_m = std::min(stats.min_gap_m, d - 2 * r);
+          if (d < 2 * r) {
+            pairs_now.push_back((uint64_t{std::min(i, j)} << 32) | std::max(i, j));
+            in_contact[i] = in_contact[j] = 1;
+          }
         }
       }
     }
     scratch.clear();
     wall_contacts(grid, cfg.cell_m, x[i], y[i], r, scratch);
     if (!scratch.empty()) {
+      wall.insert(wall.end(), scratch.begin(), scratch.end());
       ++walls_now;
       in_contact[i] = 1;
       if (now - wall_last_contact[i] > cfg.contact_debounce_s) ++stats.robot_wall_events;
       wall_last_contact[i] = now;
     }
   }
-  nb_begin[n] = static_cast<uint32_t>(nb.size());
+  wall_begin[n] = static_cast<uint32_t>(wall.size());
+  // Per-robot overlap lists from the pairs, in the order found (deterministic).
+  std::fill(touch_begin.begin(), touch_begin.end(), 0);
+  for (const auto p : pairs_now) {
+    ++touch_begin[(p >> 32) + 1];
+    ++touch_begin[(p & 0xffffffffu) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) touch_begin[i + 1] += touch_begin[i];
+  touch.resize(touch_begin[n]);
+  fill_at.assign(touch_begin.begin(), touch_begin.end() - 1);
+  for (const auto p : pairs_now) {
+    const auto a = static_cast<uint32_t>(p >> 32), b = static_cast<uint32_t>(p & 0xffffffffu);
+    touch[fill_at[a]++] = b;
+    touch[fill_at[b]++] = a;
+  }
   for (const auto p : pairs_now) {
     auto [it, fresh] = pair_last_contact.emplace(p, now);
     if (fresh || now - it->second > cfg.contact_debounce_s) ++stats.robot_robot_events;
@@ -303,6 +371,9 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   if (I.substeps < 1 || std::abs(ratio - I.substeps) > 1e-9) {
     throw std::invalid_argument("control period must be a whole multiple of the physics step");
   }
+  if (config.system_capacity < 0) {
+    throw std::invalid_argument("system_capacity must be >= 0 (0 = automatic)");
+  }
   const std::size_t n = starts.size();
   I.target_l.assign(n, 0);
   I.target_r.assign(n, 0);
@@ -310,20 +381,17 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
   I.ramp_from_r.assign(n, 0);
   I.ramp_rate = std::max(model.max_accel_mps2, model.max_decel_mps2);
   for (auto* v : {&I.x, &I.y, &I.yaw, &I.vx, &I.vy, &I.w}) v->assign(n, 0);
-  I.nb_begin.assign(n + 1, 0);
+  I.stepped.assign(n, {});
+  I.touch_begin.assign(n + 1, 0);
+  I.wall_begin.assign(n + 1, 0);
   I.head.assign(static_cast<std::size_t>(grid.width()) * grid.height(), kNoRobot);
   I.next.assign(n, kNoRobot);
   I.wall_last_contact.assign(n, -1e300);
   I.in_contact.assign(n, 0);
-  I.shard_of.assign(n, 0);
+  I.system_of.assign(n, Impl::kAsleep);
+  I.slot_of.assign(n, Impl::kAsleep);
   I.is_external.assign(n, 0);
   I.external_pose.assign(starts.begin(), starts.end());
-
-  const int wanted =
-      config.shards > 0 ? config.shards : std::clamp(static_cast<int>((n + 62) / 125), 2, 8);
-  const int S = std::max(1, std::min(wanted, static_cast<int>(std::max<std::size_t>(n, 1))));
-  std::vector<std::vector<uint32_t>> members(static_cast<std::size_t>(S));
-  std::vector<std::vector<std::array<double, 3>>> start_q(static_cast<std::size_t>(S));
   for (uint32_t i = 0; i < n; ++i) {
     const auto& p = starts[i];
     const auto cell = cell_at(grid, config.cell_m, p.x_m, p.y_m);
@@ -332,44 +400,26 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
                                   monitor::to_string(cell) +
                                   ", which is outside the map or blocked");
     }
-    members[i % static_cast<uint32_t>(S)].push_back(i);
-    start_q[i % static_cast<uint32_t>(S)].push_back({p.yaw_rad, p.x_m, p.y_m});
     I.x[i] = p.x_m;
     I.y[i] = p.y_m;
     I.yaw[i] = p.yaw_rad;
   }
-  I.build_shards(members, start_q);
-  I.take_snapshot();
-  I.find_neighbours_and_count_contacts();
-  for (auto& sh : I.shards) {
-    sh->asleep = std::none_of(sh->robots().begin(), sh->robots().end(),
-                              [&](uint32_t i) { return I.in_contact[i] != 0; });
+  // Automatic capacity: 32 bodies (per-body cost within 20 % of a single large system, and
+  // little left empty), fewer for small fleets so that both threads get work when all move.
+  const std::size_t threads = static_cast<std::size_t>(I.workers.size());
+  I.capacity = config.system_capacity > 0
+                   ? static_cast<std::size_t>(config.system_capacity)
+                   : std::clamp<std::size_t>((n + threads - 1) / threads, 1, 32);
+  // Enough systems for every robot awake at once (e.g. all pushed in a pile-up).
+  const std::size_t count = std::max<std::size_t>(1, (n + I.capacity - 1) / I.capacity);
+  for (std::size_t s = 0; s < count; ++s) {
+    I.systems.push_back(
+        std::make_unique<detail::SimbodySystem>(I, I.capacity, model.mass_kg, model.radius_m));
   }
+  I.find_contacts(true);
 }
 
 World::~World() = default;
-
-void World::repartition(const std::vector<uint32_t>& order) {
-  auto& I = *impl_;
-  if (order.size() != I.n) throw std::invalid_argument("repartition: order must list every robot");
-  for (uint32_t i = 0; i < I.n; ++i) {
-    if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0 || I.target_l[i] != 0 || I.target_r[i] != 0 ||
-        I.ramp_from_l[i] != 0 || I.ramp_from_r[i] != 0) {
-      throw std::logic_error("repartition: robot " + std::to_string(i) + " is not at rest");
-    }
-  }
-  const std::size_t S = I.shards.size();
-  std::vector<std::vector<uint32_t>> members(S);
-  std::vector<std::vector<std::array<double, 3>>> start_q(S);
-  for (std::size_t k = 0; k < I.n; ++k) {
-    const uint32_t i = order[k];
-    const std::size_t s = k * S / I.n;
-    members[s].push_back(i);
-    start_q[s].push_back({I.yaw[i], I.x[i], I.y[i]});
-  }
-  I.build_shards(members, start_q);
-  for (auto& sh : I.shards) sh->asleep = true;  // all at rest; commands wake them
-}
 
 std::size_t World::robots() const { return impl_->n; }
 double World::time_s() const {
@@ -378,10 +428,13 @@ double World::time_s() const {
 uint64_t World::steps() const { return impl_->control_steps; }
 const ContactStats& World::contacts() const { return impl_->stats; }
 const SimConfig& World::config() const { return impl_->cfg; }
+bool World::awake(uint32_t robot) const { return impl_->awake(robot); }
+std::size_t World::awake_robots() const { return impl_->awake_count; }
+std::size_t World::system_capacity() const { return impl_->capacity; }
 
-std::size_t World::awake_shards() const {
-  return static_cast<std::size_t>(std::count_if(impl_->shards.begin(), impl_->shards.end(),
-                                                [](const auto& s) { return !s->asleep; }));
+std::size_t World::active_systems() const {
+  return static_cast<std::size_t>(std::count_if(impl_->systems.begin(), impl_->systems.end(),
+                                                [](const auto& s) { return s->occupied() > 0; }));
 }
 
 void World::set_external(uint32_t robot, bool external) {
@@ -421,63 +474,59 @@ void World::step() {
     I.ramp_from_r[i] = I.command(I.ramp_from_r, I.target_r, i, t0);
   }
   I.ramp_t0 = t0;
-  // Shards with a commanded robot wake up.
-  auto wake = [&](Impl::Shard& sh) {
-    if (!sh.asleep) return;
-    sh.body->restart_at(time_s());
-    sh.asleep = false;
-  };
   for (uint32_t i = 0; i < I.n; ++i) {
-    if (I.is_external[i] || I.target_l[i] != 0 || I.target_r[i] != 0 || I.ramp_from_l[i] != 0 ||
-        I.ramp_from_r[i] != 0) {
-      wake(*I.shards[I.shard_of[i]]);
-    }
+    if (I.commanded(i, t0)) I.wake(i);
   }
   for (int j = 0; j < I.substeps; ++j) {
-    // Contacts wake the shards of both robots (a sleeping robot can be pushed).
+    // Contacts wake both robots (a sleeping robot can be pushed).
     for (uint32_t i = 0; i < I.n; ++i) {
-      if (I.in_contact[i]) wake(*I.shards[I.shard_of[i]]);
+      if (I.in_contact[i]) I.wake(i);
     }
-    const double target = static_cast<double>(I.substep + 1) * h;
+    I.active.clear();
+    for (auto& s : I.systems) {
+      if (s->occupied() > 0) I.active.push_back(s.get());
+    }
+    const double t = static_cast<double>(I.substep) * h;
     I.workers.run([&](int k) {
-      for (std::size_t s = static_cast<std::size_t>(k); s < I.shards.size();
-           s += static_cast<std::size_t>(I.workers.size())) {
-        auto& sh = *I.shards[s];
-        if (sh.asleep) continue;
-        sh.body->step_to(target);
+      for (std::size_t a = static_cast<std::size_t>(k); a < I.active.size();
+           a += static_cast<std::size_t>(I.workers.size())) {
+        auto& sys = *I.active[a];
+        sys.step(t, h);
+        for (std::size_t slot = 0; slot < sys.capacity(); ++slot) {
+          const uint32_t i = sys.robot(slot);
+          if (i == detail::kVacant) continue;
+          auto& st = I.stepped[i];
+          sys.read(slot, st.data(), st.data() + 3);
+        }
       }
     });
+    for (uint32_t i = 0; i < I.n; ++i) {
+      if (!I.awake(i)) continue;
+      const auto& st = I.stepped[i];
+      I.yaw[i] = st[0];
+      I.x[i] = st[1];
+      I.y[i] = st[2];
+      I.w[i] = st[3];
+      I.vx[i] = st[4];
+      I.vy[i] = st[5];
+    }
     ++I.substep;
-    I.take_snapshot();
-    I.find_neighbours_and_count_contacts();
+    I.find_contacts(false);
   }
   ++I.control_steps;
   // Forget pairs whose last contact is older than the debounce window.
   std::erase_if(I.pair_last_contact,
                 [&](const auto& kv) { return time_s() - kv.second > I.cfg.contact_debounce_s; });
-  // Robots at rest are snapped to exactly zero velocity; a shard of resting robots sleeps.
+  // Robots at rest are snapped to exactly zero velocity and sleep.
   const double t1 = time_s();
-  for (auto& sh : I.shards) {
-    if (sh->asleep) continue;
-    bool all_rest = true;
-    for (std::size_t k = 0; k < sh->robots().size(); ++k) {
-      const uint32_t i = sh->robots()[k];
-      const bool commanded = I.is_external[i] || I.target_l[i] != 0 || I.target_r[i] != 0 ||
-                             I.command(I.ramp_from_l, I.target_l, i, t1) != 0 ||
-                             I.command(I.ramp_from_r, I.target_r, i, t1) != 0;
-      const bool slow =
-          std::abs(I.vx[i]) < 1e-4 && std::abs(I.vy[i]) < 1e-4 && std::abs(I.w[i]) < 1e-3;
-      if (!commanded && slow && !I.in_contact[i]) {
-        if (I.vx[i] != 0 || I.vy[i] != 0 || I.w[i] != 0) {
-          sh->body->zero_velocity(k);
-          I.vx[i] = I.vy[i] = I.w[i] = 0;
-        }
-      } else {
-        all_rest = false;
-      }
+  for (uint32_t i = 0; i < I.n; ++i) {
+    if (!I.awake(i) || I.commanded(i, t1) || I.in_contact[i]) continue;
+    if (std::abs(I.vx[i]) < 1e-4 && std::abs(I.vy[i]) < 1e-4 && std::abs(I.w[i]) < 1e-3) {
+      I.vx[i] = I.vy[i] = I.w[i] = 0;
+      I.sleep(i);
     }
-    if (all_rest) sh->asleep = true;
   }
+  I.pack();
 }
 
 uint64_t World::state_hash() const {

@@ -86,8 +86,9 @@ TEST(World, TwoRobotsDrivenHeadOnCollideAndAreReported) {
   EXPECT_LT(d, 0.4 + 1e-9);
 }
 
-// Random drive commands for many robots, changed every period.
-uint64_t run_hash(int threads, int shards, bool regroup = false) {
+// Random drive commands for many robots, changed every period; some robots get no command in
+// some periods, so they come to rest, sleep and are woken again (by a command or a push).
+uint64_t run_hash(int threads, int capacity) {
   const auto grid = monitor::generate_random_grid(30, 30, 0.1, 5);
   std::vector<agent::Pose2D> starts;
   const auto inst = monitor::generate_random_plan(grid, {120, 1, 9});
@@ -97,63 +98,97 @@ uint64_t run_hash(int threads, int shards, bool regroup = false) {
   }
   SimConfig cfg;
   cfg.threads = threads;
-  cfg.shards = shards;
+  cfg.system_capacity = capacity;
   World world(grid, model(), cfg, starts);
-  if (regroup) {
-    std::vector<uint32_t> order;
-    for (uint32_t i = static_cast<uint32_t>(starts.size()); i-- > 0;) order.push_back(i);
-    world.repartition(order);
-  }
   uint64_t seed = 12345;
-  for (int k = 0; k < 40; ++k) {
+  std::size_t max_awake = 0, min_awake = starts.size();
+  for (int k = 0; k < 60; ++k) {
     for (uint32_t i = 0; i < starts.size(); ++i) {
       seed = seed * 6364136223846793005ull + 1442695040888963407ull;
       const double a = double(seed >> 40) / double(1ull << 24) - 0.5;
-      world.set_wheel_targets(i, {0.8 * a + 0.3, 0.3 - 0.8 * a});
+      // Every third robot pauses for 2 s out of every 3 s (long enough to come to rest).
+      const bool pause = i % 3 == 0 && (k / 10) % 3 != 0;
+      world.set_wheel_targets(
+          i, pause ? agent::WheelSpeeds{0, 0} : agent::WheelSpeeds{0.8 * a + 0.3, 0.3 - 0.8 * a});
     }
     world.step();
+    max_awake = std::max(max_awake, world.awake_robots());
+    min_awake = std::min(min_awake, world.awake_robots());
   }
   EXPECT_GT(world.contacts().robot_robot_events + world.contacts().robot_wall_events, 0u);
+  EXPECT_EQ(max_awake, starts.size());
+  EXPECT_LT(min_awake, starts.size()) << "no robot ever slept: the test does not cover sleeping";
   return world.state_hash();
 }
 
-TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndShards) {
-  const auto a = run_hash(2, 8);
-  EXPECT_EQ(a, run_hash(2, 8));
-  EXPECT_EQ(a, run_hash(1, 8));
-  EXPECT_EQ(a, run_hash(2, 3));
+TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndSystemCapacity) {
+  const auto a = run_hash(2, 32);
+  EXPECT_EQ(a, run_hash(2, 32));
+  EXPECT_EQ(a, run_hash(1, 32));
+  EXPECT_EQ(a, run_hash(2, 7)) << "packing robots into other slots changed results";
   EXPECT_EQ(a, run_hash(1, 1));
-  EXPECT_EQ(a, run_hash(2, 8, true)) << "regrouping robots into other shards changed results";
-}
-
-TEST(World, RepartitionOnlyAtRest) {
-  const auto grid = open_map(6, 3);
-  World world(grid, model(), {}, {{1, 1, 0}, {3, 1, 0}});
-  world.set_wheel_targets(0, {0.2, 0.2});
-  EXPECT_THROW(world.repartition({1, 0}), std::logic_error);
-  world.set_wheel_targets(0, {0, 0});
-  EXPECT_NO_THROW(world.repartition({1, 0}));
-  EXPECT_THROW(world.repartition({0}), std::invalid_argument);
+  EXPECT_EQ(a, run_hash(2, 200));
+  EXPECT_EQ(a, run_hash(2, 0));
 }
 
 TEST(World, RestingRobotsSleepAndACommandWakesThem) {
   const auto grid = open_map(10, 10);
   SimConfig cfg;
-  cfg.shards = 2;
+  cfg.system_capacity = 2;
   World world(grid, model(), cfg, {{1, 1, 0}, {5, 5, 0}, {8, 8, 0}});
   world.step();
-  EXPECT_EQ(world.awake_shards(), 0u);
+  EXPECT_EQ(world.awake_robots(), 0u);
+  EXPECT_EQ(world.active_systems(), 0u);
   const auto before = world.pose(1).pose;
   world.set_wheel_targets(1, {0.3, 0.3});
   world.step();
-  EXPECT_EQ(world.awake_shards(), 1u);  // robot 1 is alone in shard 1
+  EXPECT_TRUE(world.awake(1));
+  EXPECT_FALSE(world.awake(0));
+  EXPECT_EQ(world.awake_robots(), 1u);
+  EXPECT_EQ(world.active_systems(), 1u);
   for (int k = 0; k < 9; ++k) world.step();
   world.set_wheel_targets(1, {0, 0});
   for (int k = 0; k < 40; ++k) world.step();
-  EXPECT_EQ(world.awake_shards(), 0u);
+  EXPECT_EQ(world.awake_robots(), 0u);
   EXPECT_GT(world.pose(1).pose.x_m, before.x_m + 0.05);
   EXPECT_EQ(world.pose(1).linear_mps, 0.0);
+  EXPECT_EQ(world.pose(0).pose.x_m, 1.0);  // never woken, never moved
   EXPECT_DOUBLE_EQ(world.time_s(), 5.1);
+}
+
+TEST(World, ARobotPushedByAMovingOneWakesAndIsMoved) {
+  const auto grid = open_map(10, 3);
+  World world(grid, model(), {}, {{2.0, 1.0, 0.0}, {5.0, 1.0, 0.0}});
+  world.set_wheel_targets(0, {0.5, 0.5});
+  bool woke = false;
+  for (int k = 0; k < 150; ++k) {
+    world.step();
+    woke = woke || world.awake(1);
+  }
+  EXPECT_TRUE(woke);
+  EXPECT_GT(world.pose(1).pose.x_m, 5.1);  // pushed east
+  EXPECT_GE(world.contacts().robot_robot_events, 1u);
+}
+
+TEST(World, MovingRobotsArePackedIntoFewSystems) {
+  const auto grid = open_map(40, 3);
+  SimConfig cfg;
+  cfg.system_capacity = 4;
+  std::vector<agent::Pose2D> starts;
+  for (int i = 0; i < 16; ++i) starts.push_back({2.0 * i + 1, 1.0, 0.0});
+  World world(grid, model(), cfg, starts);
+  // Wake every other robot one period at a time, then stop all but three.
+  for (uint32_t i = 0; i < 16; i += 2) {
+    world.set_wheel_targets(i, {-0.1, 0.1});
+    world.step();
+  }
+  EXPECT_EQ(world.awake_robots(), 8u);
+  EXPECT_EQ(world.active_systems(), 2u);
+  for (uint32_t i = 6; i < 16; i += 2) world.set_wheel_targets(i, {0, 0});
+  for (int k = 0; k < 30; ++k) world.step();
+  EXPECT_EQ(world.awake_robots(), 3u);
+  EXPECT_EQ(world.active_systems(), 1u);
+  EXPECT_NEAR(world.pose(0).angular_radps, 0.2 / 0.3, 0.01);
 }
 
 TEST(World, RejectsBadConfigurations) {
@@ -165,6 +200,9 @@ TEST(World, RejectsBadConfigurations) {
   SimConfig odd;
   odd.physics_step_s = 0.03;
   EXPECT_THROW(World(grid, model(), odd, {{0.0, 1.0, 0.0}}), std::invalid_argument);
+  SimConfig negative;
+  negative.system_capacity = -1;
+  EXPECT_THROW(World(grid, model(), negative, {{0.0, 1.0, 0.0}}), std::invalid_argument);
 }
 
 }  // namespace

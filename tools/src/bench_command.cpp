@@ -28,7 +28,7 @@ struct BenchSimOptions {
   double sim_seconds = 30;
   double cell_m = 1.0;
   uint64_t seed = 1;
-  int shards = 0, threads = 2;
+  int system_capacity = 0, threads = 2;
 };
 
 int run_bench_sim(const BenchSimOptions& o) {
@@ -70,7 +70,7 @@ int run_bench_sim(const BenchSimOptions& o) {
   const auto actions = monitor::build_actions(plan, monitor::Heading::kEast);
   sim::SimConfig cfg;
   cfg.cell_m = o.cell_m;
-  cfg.shards = o.shards;
+  cfg.system_capacity = o.system_capacity;
   cfg.threads = o.threads;
   std::vector<agent::Pose2D> starts;
   for (std::size_t r = 0; r < o.robots; ++r) {
@@ -99,9 +99,12 @@ int run_bench_sim(const BenchSimOptions& o) {
   const auto ticks = static_cast<uint64_t>(o.sim_seconds / cfg.control_period_s + 0.5);
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t finished = 0;
+  double awake_ticks = 0, system_ticks = 0;
   for (uint64_t k = 0; k < ticks; ++k) {
     for (auto& a : agents) a->step(world.time_s());
     world.step();
+    awake_ticks += static_cast<double>(world.awake_robots());
+    system_ticks += static_cast<double>(world.active_systems());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (auto& a : agents) finished += static_cast<std::size_t>(a->finished_seq() + 1);
@@ -113,7 +116,9 @@ int run_bench_sim(const BenchSimOptions& o) {
                               {"finished_actions", finished},
                               {"collisions", world.contacts().robot_robot_events},
                               {"wall_contacts", world.contacts().robot_wall_events},
-                              {"shards", o.shards},
+                              {"system_capacity", world.system_capacity()},
+                              {"mean_awake_robots", awake_ticks / static_cast<double>(ticks)},
+                              {"mean_active_systems", system_ticks / static_cast<double>(ticks)},
                               {"threads", o.threads},
                               {"machine", machine_description()}}
                    .dump()
@@ -137,8 +142,9 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   sim->add_option("--robot", o->robot, "robot model name or YAML file")->capture_default_str();
   sim->add_option("--cell-m", o->cell_m)->capture_default_str();
   sim->add_option("--seed", o->seed)->capture_default_str();
-  sim->add_option("--shards", o->shards, "Simbody systems (0: automatic)")
-      ->check(CLI::Range(0, 1024))
+  sim->add_option("--system-capacity", o->system_capacity,
+                  "robot bodies per Simbody system (0: automatic)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   sim->add_option("--threads", o->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->callback([&exit_code, o] { exit_code = run_bench_sim(*o); });

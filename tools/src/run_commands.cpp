@@ -29,7 +29,7 @@ struct SimOptions {
   double cell_m = 1.0;
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
-  int shards = 0, threads = 2;
+  int system_capacity = 0, threads = 2;
   std::vector<uint32_t> external;
 };
 
@@ -43,7 +43,7 @@ struct MonitorCliOptions {
   uint32_t window_cap = 32;
   double timeout_s = 30.0, stall_timeout_s = 300.0, max_sim_time_s = 0;
   double state_rate_hz = 2.0;
-  int shards = 0, threads = 2;
+  int system_capacity = 0, threads = 2;
   bool progress = true;
 };
 
@@ -76,7 +76,7 @@ int run_sim(const SimOptions& o) {
   ho.state_rate_hz = o.state_rate_hz;
   ho.timeout_s = o.timeout_s;
   ho.sim.cell_m = o.cell_m;
-  ho.sim.shards = o.shards;
+  ho.sim.system_capacity = o.system_capacity;
   ho.sim.threads = o.threads;
   ho.external_robots = o.external;
   sim::SimHost host(
@@ -95,7 +95,8 @@ int run_sim(const SimOptions& o) {
                               {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0},
                               {"robot_contacts", r.contacts.robot_robot_events},
                               {"wall_contacts", r.contacts.robot_wall_events},
-                              {"mean_awake_shards", r.mean_awake_shards}}
+                              {"mean_awake_robots", r.mean_awake_robots},
+                              {"mean_active_systems", r.mean_active_systems}}
                    .dump()
             << std::endl;
   if (!r.ok) spdlog::error("sim: {}", r.error);
@@ -158,8 +159,8 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
                                   std::to_string(o.state_rate_hz),
                                   "--timeout-s",
                                   std::to_string(o.timeout_s),
-                                  "--shards",
-                                  std::to_string(o.shards),
+                                  "--system-capacity",
+                                  std::to_string(o.system_capacity),
                                   "--threads",
                                   std::to_string(o.threads)};
     sim.emplace(argv, "/dev/null");
@@ -238,8 +239,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--state-rate-hz", so->state_rate_hz)->capture_default_str();
   sim->add_option("--timeout-s", so->timeout_s, "lockstep: wall seconds to wait for the monitor")
       ->capture_default_str();
-  sim->add_option("--shards", so->shards, "Simbody systems (0: automatic)")
-      ->check(CLI::Range(0, 1024))
+  sim->add_option("--system-capacity", so->system_capacity,
+                  "robot bodies per Simbody system (0: automatic)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->add_option("--external-robots", so->external,
@@ -265,7 +267,10 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan on a simulated fleet: `smart monitor` "
                                  "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
-  run->add_option("--shards", ro->shards, "Simbody systems (0: automatic)")->capture_default_str();
+  run->add_option("--system-capacity", ro->system_capacity,
+                  "robot bodies per Simbody system (0: automatic)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   run->add_option("--threads", ro->threads, "sim threads")->capture_default_str();
   run->callback([&exit_code, ro] {
     install_stop_handlers();

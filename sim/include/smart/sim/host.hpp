@@ -44,7 +44,9 @@ struct SimHostResult {
   double sim_time_s = 0;
   double wall_time_s = 0;
   ContactStats contacts;
-  double mean_awake_shards = 0;  // Simbody systems stepped per period, on average
+  // On average per period: robots stepped by Simbody (the rest sleep) and Simbody systems.
+  double mean_awake_robots = 0;
+  double mean_active_systems = 0;
 };
 
 // Robot i's start pose: the centre of cell starts[i] facing `yaw_rad`.

@@ -1,20 +1,24 @@
 // Contract: a headless Simbody world of N differential-drive robots on a MovingAI grid map
 // (design (c') of ../shared/design/simulation.md).
-// - Robots are MobilizedBody::Planar bodies (q = θ, x, y in the world frame of
-//   monitor/grid.hpp) split over a fixed number of Simbody systems ("shards", robot i in shard
-//   i mod S), stepped in parallel with a fixed-step semi-explicit Euler integrator.
-// - One Force::Custom per shard applies, as mobility forces: wheel traction with linear slip and
-//   Coulomb saturation, the wheel-command ramp (motor acceleration limit), wall contact
+// - A robot that moves is a MobilizedBody::Planar body (q = θ, x, y in the world frame of
+//   monitor/grid.hpp) in one of several Simbody systems of `system_capacity` bodies, stepped in
+//   parallel with fixed-step semi-explicit Euler.
+// - A robot at rest (no command, no motion, no contact) sleeps: it leaves its Simbody system and
+//   stays in the snapshot as an obstacle, so robots waiting for their next action or finished
+//   cost only their bookkeeping. A command or a contact wakes it into a free body slot. After
+//   each period, robots are packed into as few systems as possible; empty systems are not
+//   stepped (simbody_system.hpp).
+// - One Force::Custom per system applies, as mobility forces: wheel traction with linear slip
+//   and Coulomb saturation, the wheel-command ramp (motor acceleration limit), wall contact
 //   (walls.hpp) and robot-robot Hertz/Hunt-Crossley contact against a snapshot of all robots
-//   taken at each physics sub-step (neighbours from a spatial hash on map cells).
+//   taken at each physics sub-step (contacts found with a spatial hash on map cells).
 // - step() advances one control period (sub-steps of physics_step_s). Commands set before it
 //   take effect at its start. Results are bit-identical for the same inputs whatever the thread
-//   count, because shards see each other only through the snapshot.
+//   count and system capacity: robots see each other only through the snapshot, and which slot
+//   a robot occupies does not change its arithmetic (tested).
 // - Contacts are counted as events (a robot pair or robot-wall contact that begins, bounces
-//   within contact_debounce_s counting once), and the
-//   smallest surface gap between robots is tracked (negative = overlap).
-// - A shard whose robots are all at rest (no command, no motion, no contact) is not stepped:
-//   robots waiting for their next action or finished cost nothing but their bookkeeping.
+//   within contact_debounce_s counting once), and the smallest surface gap between robots is
+//   tracked (negative = overlap).
 // Sim time only: nothing here reads the wall clock.
 #pragma once
 
@@ -32,9 +36,9 @@ struct SimConfig {
   double cell_m = 1.0;
   double physics_step_s = 0.01;
   double control_period_s = 0.1;
-  // Simbody systems; 0 = automatic: about 125 robots each, 2 to 8 (measured on 2 cores:
-  // per-system overhead dominates small fleets, one big system serialises large ones).
-  int shards = 0;
+  // Bodies per Simbody system; 0 = automatic (see World::World). Each system costs ~10 µs per
+  // step plus ~1.2 µs per body, occupied or not (docs/performance.md).
+  int system_capacity = 0;
   int threads = 2;
   double contact_modulus_pa = 2e5;   // effective Hertz modulus E
   double contact_damping_spm = 0.5;  // Hunt-Crossley c (s/m)
@@ -77,14 +81,11 @@ class World {
   agent::WheelSpeeds wheel_speeds(uint32_t robot) const;  // ramped motor command
   void step();
 
-  // Rebuilds the shards with robots grouped in `order` (robot order[k] in shard k·S/n), e.g.
-  // by plan length so that robots finishing together share a shard and it can sleep. Only
-  // while every robot is at rest (throws std::logic_error otherwise). Results are unchanged:
-  // shards see each other only through the snapshot.
-  void repartition(const std::vector<uint32_t>& order);
-
   const ContactStats& contacts() const;
-  std::size_t awake_shards() const;
+  bool awake(uint32_t robot) const;
+  std::size_t awake_robots() const;
+  std::size_t active_systems() const;  // Simbody systems with a robot in them
+  std::size_t system_capacity() const;
   // FNV-1a over every robot's pose and velocity bits: equal hashes = identical trajectories.
   uint64_t state_hash() const;
   const SimConfig& config() const;
