@@ -117,6 +117,11 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   }
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
   j["stops"] = stops;
+  auto mb = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
+  j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(info.sim_peak_rss_mb)}};
+  if (!info.machine.empty()) j["machine"] = info.machine;
   return j;
 }
 

@@ -49,9 +49,12 @@ TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
   EXPECT_GE(j["makespan_s"].get<double>(), j["aet_s"].get<double>());
   EXPECT_GT(j["min_separation_m"].get<double>(), 0.0);
   EXPECT_EQ(j["plan"]["soc"], 1241.0);
-  for (const char* key : {"sim_time_s", "wall_time_s", "sim_speed", "adg"}) {
+  for (const char* key : {"sim_time_s", "wall_time_s", "sim_speed", "adg", "machine"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
+  // Both processes' peak memory: the monitor's own, the sim child's from wait4.
+  EXPECT_GT(j["peak_rss_mb"]["monitor"].get<double>(), 5.0);
+  EXPECT_GT(j["peak_rss_mb"]["sim"].get<double>(), 5.0);
   // Files: the summary on disk equals the one printed; a SMART stats row; robot states.
   const auto disk = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_EQ(disk["aet_s"], j["aet_s"]);

@@ -17,6 +17,7 @@
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
+#include "smart/tools/machine.hpp"
 
 namespace smart::tools {
 
@@ -96,7 +97,8 @@ int run_sim(const SimOptions& o) {
                               {"robot_contacts", r.contacts.robot_robot_events},
                               {"wall_contacts", r.contacts.robot_wall_events},
                               {"mean_awake_robots", r.mean_awake_robots},
-                              {"mean_active_systems", r.mean_active_systems}}
+                              {"mean_active_systems", r.mean_active_systems},
+                              {"peak_rss_mb", peak_rss_mb()}}
                    .dump()
             << std::endl;
   if (!r.ok) spdlog::error("sim: {}", r.error);
@@ -186,7 +188,17 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
     const auto rc = sim->wait(std::chrono::seconds(5));
     if (!rc) sim->terminate();
   }
-  monitor::RunInfo info{o.map, o.scen, o.plan, robot_file, o.dds.qos, o.clock, o.cell_m, 0.1, 0};
+  monitor::RunInfo info;
+  info.map = o.map;
+  info.scen = o.scen;
+  info.plan = o.plan;
+  info.robot = robot_file;
+  info.qos = o.dds.qos;
+  info.clock = o.clock;
+  info.cell_m = o.cell_m;
+  info.monitor_peak_rss_mb = peak_rss_mb();
+  if (sim) info.sim_peak_rss_mb = sim->peak_rss_mb();
+  info.machine = machine_description();
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!result.success) spdlog::error("run failed: {}", result.error);
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
