@@ -119,10 +119,9 @@ struct MonitorNode::Impl {
 
   void take_observations() {
     states.take_each([&](const smart_msg_RobotState& s) {
-      if (!opt.record_states || s.run_id != res.run_id) return;
-      res.states.push_back({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad,
-                            s.linear_mps, s.angular_radps, s.wheel_left_mps, s.wheel_right_mps,
-                            s.queue_length});
+      if (!opt.on_state || s.run_id != res.run_id) return;
+      opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
+                    s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
     status.take_each([&](const smart_msg_SimStatus& s) {
       if (s.run_id != res.run_id && s.run_id != 0) return;
@@ -213,6 +212,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   bool have_pending = false;
   uint64_t last_tick = 0;
   auto last_report = SteadyClock::now();
+  auto last_host_check = SteadyClock::now();
   bool over = false;
   while (!over) {
     if (stop_requested.load()) {
@@ -267,6 +267,14 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
       I.res.error = "a sim host or robot agent left (its DDS writers disappeared) after " +
                     std::to_string(I.res.sim_time_s) + " s of sim time";
       break;
+    }
+    if (I.opt.host_check && SteadyClock::now() - last_host_check > std::chrono::milliseconds(100)) {
+      last_host_check = SteadyClock::now();
+      if (auto problem = I.opt.host_check(); !problem.empty()) {
+        I.res.sim_lost = true;
+        I.res.error = std::move(problem);
+        break;
+      }
     }
     const double silent = wall_s() - (sim_seen ? last_sim_sign_s : 0.0);
     if (silent > I.opt.timeout_s) {

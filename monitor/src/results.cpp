@@ -57,6 +57,15 @@ std::ofstream open_out(const std::filesystem::path& p) {
   return out;
 }
 
+void create_out_dir(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw std::runtime_error("cannot create the output folder " + dir.string() + ": " +
+                             ec.message());
+  }
+}
+
 }  // namespace
 
 nlohmann::json adg_json(const AdgStats& a) {
@@ -125,14 +134,22 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   return j;
 }
 
+StatesCsvWriter::StatesCsvWriter(const std::filesystem::path& dir) {
+  create_out_dir(dir);
+  out_ = open_out(dir / "states.csv");
+  out_ << "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n";
+}
+
+void StatesCsvWriter::add(const StateRow& s) {
+  out_ << s.t_s << "," << s.robot << "," << s.x_m << "," << s.y_m << "," << s.yaw_rad << ","
+       << s.v_mps << "," << s.w_radps << "," << s.left_mps << "," << s.right_mps << "," << s.queue
+       << "\n";
+  ++rows_;
+}
+
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
                    const RunInfo& info) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) {
-    throw std::runtime_error("cannot create the output folder " + dir.string() + ": " +
-                             ec.message());
-  }
+  create_out_dir(dir);
   {
     auto out = open_out(dir / "summary.json");
     out << summary_json(in, r, info).dump(2) << "\n";
@@ -156,15 +173,6 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
         << "," << a.type2 << "," << a.type1 << "," << a.nodes << "," << a.moves << ","
         << a.rotations << "," << straight_runs(in.actions) << "," << robot_pairs(in.actions, in.adg)
         << "," << info.plan << "," << r.robots.size() << "\n";
-  }
-  {
-    auto out = open_out(dir / "states.csv");
-    out << "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n";
-    for (const auto& s : r.states) {
-      out << s.t_s << "," << s.robot << "," << s.x_m << "," << s.y_m << "," << s.yaw_rad << ","
-          << s.v_mps << "," << s.w_radps << "," << s.left_mps << "," << s.right_mps << ","
-          << s.queue << "\n";
-    }
   }
   {
     auto out = open_out(dir / "robots.csv");

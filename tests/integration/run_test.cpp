@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <fstream>
 #include <thread>
 
 #include "support/monitor_fixtures.hpp"
@@ -109,6 +110,35 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   EXPECT_TRUE(j["sim_lost"].get<bool>());
   EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("sim host"));
   std::filesystem::remove(mout);
+}
+
+// Regression: `smart run` noticed its own sim child had died only after --timeout-s of silence.
+TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
+  auto args = example_args(kRunKillChild);
+  args.insert(args.begin(), "run");
+  args.insert(args.end(), {"--timeout-s", "60"});
+  const auto out = temp_file("kill_child.out");
+  std::vector<std::string> argv{smart_exe().string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  tools::ChildProcess run(argv, out);
+  std::this_thread::sleep_for(2500ms);  // the run is under way
+  ASSERT_TRUE(run.running());
+  // The sim is `smart run`'s only child.
+  std::ifstream children("/proc/" + std::to_string(run.pid()) + "/task/" +
+                         std::to_string(run.pid()) + "/children");
+  pid_t sim = 0;
+  ASSERT_TRUE(children >> sim) << "smart run has no child process";
+  ASSERT_EQ(::kill(sim, SIGKILL), 0);
+  const auto killed = std::chrono::steady_clock::now();
+  const auto rc = run.wait(30s);
+  ASSERT_TRUE(rc.has_value()) << "smart run hung after its sim child died";
+  EXPECT_LT(std::chrono::steady_clock::now() - killed, 10s) << "not reported at once";
+  EXPECT_EQ(*rc, 1);
+  const std::string text = slurp(out);
+  const auto j = nlohmann::json::parse(text.substr(text.find('{')));
+  EXPECT_TRUE(j["sim_lost"].get<bool>());
+  EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("killed by signal 9"));
+  std::filesystem::remove(out);
 }
 
 TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {

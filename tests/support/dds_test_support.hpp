@@ -38,6 +38,7 @@ enum DomainId : int {
   kSimHostProtocol = 127,
   kRosPose = 128,
   kMixedRun = 129,
+  kRunKillChild = 130,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -1,6 +1,8 @@
 // `smart bench sim`: sim speed of World + agents with every robot driving a random walk of grid
 // moves (collisions allowed and counted). Prints one JSON line. No DDS: this measures the
 // simulator and the agents, the part that scales with the fleet.
+// `smart bench run`: end to end, `smart run` (monitor + sim processes over loopback DDS) on the
+// first N robots of a plan for each N given; one JSON line per run, then a Markdown table.
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -14,6 +16,7 @@
 #include "smart/monitor/text_file.hpp"
 #include "smart/sim/sim_robot.hpp"
 #include "smart/sim/world.hpp"
+#include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
@@ -126,6 +129,81 @@ int run_bench_sim(const BenchSimOptions& o) {
   return 0;
 }
 
+struct BenchRunOptions {
+  std::string map, scen, plan, axis, robot = "footbot", clock = "lockstep", out = "build/bench-run";
+  std::vector<std::size_t> agents{10, 100, 500, 1000};
+  int domain = 90;
+};
+
+int run_bench_run(const BenchRunOptions& o) {
+  std::vector<nlohmann::json> rows;
+  for (const auto n : o.agents) {
+    const auto dir = std::filesystem::path(o.out) / std::to_string(n);
+    std::vector<std::string> argv{self_executable().string(),
+                                  "run",
+                                  "--map",
+                                  o.map,
+                                  "--scen",
+                                  o.scen,
+                                  "--plan",
+                                  o.plan,
+                                  "--agents",
+                                  std::to_string(n),
+                                  "--robot",
+                                  o.robot,
+                                  "--clock",
+                                  o.clock,
+                                  "--domain",
+                                  std::to_string(o.domain),
+                                  "--out",
+                                  dir.string(),
+                                  "--no-progress"};
+    if (!o.axis.empty()) argv.insert(argv.end(), {"--axis", o.axis});
+    ChildProcess run(argv, "/dev/null");
+    const int rc = run.wait(std::chrono::hours(4)).value_or(124);
+    std::ifstream in(dir / "summary.json");
+    if (rc != 0 || !in) {
+      std::cerr << "bench run: `smart run` with " << n << " robots failed (exit code " << rc
+                << "); see " << (dir / "summary.json").string()
+                << " or rerun that command by hand\n";
+      return 1;
+    }
+    const auto s = nlohmann::json::parse(in);
+    nlohmann::json row = {{"robots", n},
+                          {"success", s["success"]},
+                          {"sim_time_s", s["sim_time_s"]},
+                          {"wall_time_s", s["wall_time_s"]},
+                          {"sim_speed", s["sim_speed"]},
+                          {"aet_s", s["aet_s"]},
+                          {"collisions", s["collisions"]},
+                          {"wall_contacts", s["wall_contacts"]},
+                          {"min_separation_m", s["min_separation_m"]},
+                          {"monitor_peak_rss_mb", s["peak_rss_mb"]["monitor"]},
+                          {"sim_peak_rss_mb", s["peak_rss_mb"]["sim"]},
+                          {"machine", machine_description()}};
+    std::cout << row.dump() << std::endl;
+    rows.push_back(row);
+  }
+  std::cout
+      << "\n| robots | success | sim time | wall time | sim speed | AET | collisions | closest "
+         "approach | monitor RSS | sim RSS |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+         "\n";
+  for (const auto& r : rows) {
+    char line[256];
+    std::snprintf(
+        line, sizeof line,
+        "| %zu | %s | %.0f s | %.1f s | %.1fx | %.0f s | %d | %.2f m | %.0f MB | %.0f MB |",
+        r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
+        r["sim_time_s"].get<double>(), r["wall_time_s"].get<double>(), r["sim_speed"].get<double>(),
+        r["aet_s"].is_number() ? r["aet_s"].get<double>() : 0, r["collisions"].get<int>(),
+        r["min_separation_m"].is_number() ? r["min_separation_m"].get<double>() : 0,
+        r["monitor_peak_rss_mb"].get<double>(), r["sim_peak_rss_mb"].get<double>());
+    std::cout << line << "\n";
+  }
+  std::cout << "\nmachine: " << machine_description() << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 void register_bench_command(CLI::App& app, int& exit_code) {
@@ -148,6 +226,28 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sim->add_option("--threads", o->threads)->check(CLI::Range(1, 64))->capture_default_str();
   sim->callback([&exit_code, o] { exit_code = run_bench_sim(*o); });
+
+  auto r = std::make_shared<BenchRunOptions>();
+  auto* run = bench->add_subcommand(
+      "run", "End-to-end speed and memory of `smart run` for several fleet sizes");
+  run->add_option("--map", r->map, "MovingAI .map file")->required();
+  run->add_option("--scen", r->scen, "MovingAI .scen file")->required();
+  run->add_option("--plan", r->plan, "plan file")->required();
+  run->add_option("--axis", r->axis, "xy or rowcol (SMART path files)")
+      ->check(CLI::IsMember({"xy", "rowcol"}));
+  run->add_option("--agents", r->agents, "fleet sizes: first N robots of the plan")
+      ->delimiter(',')
+      ->capture_default_str();
+  run->add_option("--robot", r->robot)->capture_default_str();
+  run->add_option("--clock", r->clock)
+      ->check(CLI::IsMember({"lockstep", "realtime"}))
+      ->capture_default_str();
+  run->add_option("--domain", r->domain, "DDS domain id")
+      ->check(CLI::Range(0, 230))
+      ->capture_default_str();
+  run->add_option("--out", r->out, "folder for each run's results (one subfolder per size)")
+      ->capture_default_str();
+  run->callback([&exit_code, r] { exit_code = run_bench_run(*r); });
 }
 
 }  // namespace smart::tools

@@ -176,7 +176,21 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   mo.timeout_s = o.timeout_s;
   mo.stall_timeout_s = o.stall_timeout_s;
   mo.max_sim_time_s = o.max_sim_time_s;
-  mo.record_states = !o.out.empty();
+  std::optional<monitor::StatesCsvWriter> states;
+  if (!o.out.empty()) {
+    states.emplace(o.out);
+    mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
+  }
+  if (sim) {
+    mo.host_check = [&sim]() -> std::string {
+      if (sim->running()) return {};
+      const int code = sim->wait(std::chrono::milliseconds(0)).value_or(-1);
+      return "the `smart sim` process this run started " +
+             (code > 128 ? "was killed by signal " + std::to_string(code - 128)
+                         : "exited with code " + std::to_string(code)) +
+             " before the run ended; its messages are above";
+    };
+  }
   monitor::MonitorNode node(participant, profile, in, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
   monitor::ProgressCallback cb;

@@ -21,6 +21,13 @@
 
 namespace smart::monitor {
 
+struct StateRow {
+  double t_s;
+  uint32_t robot;
+  double x_m, y_m, yaw_rad, v_mps, w_radps, left_mps, right_mps;
+  uint32_t queue;
+};
+
 struct MonitorOptions {
   bool lockstep = true;
   uint32_t window_cap = 32;  // look-ahead: most actions in one window
@@ -29,7 +36,13 @@ struct MonitorOptions {
   double stall_timeout_s = 300.0;  // sim time without any finished action
   double max_sim_time_s = 0;       // 0: no limit
   uint64_t run_id = 0;             // 0: derived from the wall clock (increasing run to run)
-  bool record_states = true;
+  // Optional watchdog for hosts this process started (`smart run`'s sim child), polled about
+  // every 100 ms: a non-empty message ends the run at once as sim_lost with that error, instead
+  // of after timeout_s of silence.
+  std::function<std::string()> host_check;
+  // Robot states as they arrive (e.g. streamed to states.csv by StatesCsvWriter, results.hpp).
+  // Not kept in memory: 1000 robots at 2 Hz for 20 min are 2.4 M rows.
+  std::function<void(const StateRow&)> on_state;
 };
 
 struct RobotMetrics {
@@ -37,13 +50,6 @@ struct RobotMetrics {
   double waiting_time_s = 0;  // not done, nothing enqueued to execute (waiting for others)
   uint32_t stops = 0;         // times it became blocked that way
   uint32_t actions = 0;
-};
-
-struct StateRow {
-  double t_s;
-  uint32_t robot;
-  double x_m, y_m, yaw_rad, v_mps, w_radps, left_mps, right_mps;
-  uint32_t queue;
 };
 
 struct MonitorResult {
@@ -64,7 +70,6 @@ struct MonitorResult {
   std::optional<double> min_gap_m;
   bool have_sim_status = false;
   uint64_t rejected_progress = 0;
-  std::vector<StateRow> states;
 };
 
 // Called about every 100 ms of wall time with the running state (progress display).

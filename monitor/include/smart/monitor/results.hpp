@@ -4,11 +4,13 @@
 //   surfaces; negative = overlap), adg, plan, per-run flags and versions;
 // - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats), times
 //   on the sim clock;
-// - states.csv: t, robot, x, y, yaw, v, ω, left/right wheel speed, queue length;
-// - robots.csv: per robot finish time, waiting time, stops, actions.
+// - robots.csv: per robot finish time, waiting time, stops, actions;
+// - states.csv: t, robot, x, y, yaw, v, ω, left/right wheel speed, queue length, written row by
+//   row while the run goes (StatesCsvWriter), so memory does not grow with the run.
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -35,8 +37,21 @@ nlohmann::json plan_json(const Plan& plan, const PlanStats& stats);
 
 nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
                             const RunInfo& info);
-// Writes the four files into `dir` (created if missing). Throws std::runtime_error naming the
+// Streams states.csv into `dir` (created if missing); throws std::runtime_error naming the
 // file when it cannot be written.
+class StatesCsvWriter {
+ public:
+  explicit StatesCsvWriter(const std::filesystem::path& dir);
+  void add(const StateRow& row);
+  std::size_t rows() const { return rows_; }
+
+ private:
+  std::ofstream out_;
+  std::size_t rows_ = 0;
+};
+
+// Writes summary.json, stats.csv and robots.csv into `dir` (created if missing). Throws
+// std::runtime_error naming the file when it cannot be written.
 void write_results(const std::filesystem::path& dir, const Instance& instance,
                    const MonitorResult& result, const RunInfo& info);
 

@@ -1,0 +1,119 @@
+#include "smart/monitor/results.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "smart/monitor/plan_validator.hpp"
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::monitor {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() /
+           ("smart_results_test_" + std::to_string(::getpid()) + "_" + name);
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+// Two robots crossing a 3x3 open map.
+Instance tiny_instance() {
+  Instance in;
+  in.grid = test::grid_of({"...", "...", "..."});
+  in.plan = test::plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}});
+  in.scen = test::scen_of(in.plan, in.grid);
+  in.stats = plan_stats(in.plan);
+  in.actions = build_actions(in.plan, Heading::kEast);
+  std::vector<Problem> problems;
+  in.adg = build_adg(in.actions, in.grid, in.plan.source, problems);
+  EXPECT_TRUE(problems.empty());
+  return in;
+}
+
+MonitorResult finished_run(const Instance& in) {
+  MonitorResult r;
+  r.success = true;
+  r.sim_time_s = 12.5;
+  r.wall_time_s = 0.5;
+  r.total_actions = r.finished_actions = in.actions.offset.back();
+  r.robots = {{8.0, 0.0, 0, 2}, {12.5, 3.0, 1, 3}};
+  r.min_gap_m = 0.25;
+  return r;
+}
+
+TEST(Results, SummaryHasTheKeysUsersReadAndTheRightAverages) {
+  const auto in = tiny_instance();
+  RunInfo info;
+  info.monitor_peak_rss_mb = 21.5;
+  info.machine = "test machine";
+  const auto j = summary_json(in, finished_run(in), info);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["robots"], 2);
+  EXPECT_DOUBLE_EQ(j["aet_s"].get<double>(), (8.0 + 12.5) / 2);
+  EXPECT_DOUBLE_EQ(j["makespan_s"].get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(j["sim_speed"].get<double>(), 25.0);
+  EXPECT_DOUBLE_EQ(j["waiting_time_s"]["total"].get<double>(), 3.0);
+  EXPECT_EQ(j["stops"], 1);
+  EXPECT_DOUBLE_EQ(j["peak_rss_mb"]["monitor"].get<double>(), 21.5);
+  EXPECT_TRUE(j["peak_rss_mb"]["sim"].is_null());  // not known: null, not 0
+  EXPECT_EQ(j["machine"], "test machine");
+  for (const char* key : {"collisions", "min_separation_m", "adg", "plan", "versions"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+}
+
+TEST(Results, WritesSummaryStatsAndRobotFiles) {
+  const auto in = tiny_instance();
+  const auto dir = temp_dir("files");
+  write_results(dir / "nested", in, finished_run(in), RunInfo{});
+  const auto summary = nlohmann::json::parse(slurp(dir / "nested" / "summary.json"));
+  EXPECT_DOUBLE_EQ(summary["aet_s"].get<double>(), 10.25);
+  const auto stats = slurp(dir / "nested" / "stats.csv");
+  // SMART's columns; steps at the 0.1 s control period: 125 steps max, 205 in all.
+  EXPECT_THAT(stats, HasSubstr("steps finish sim,sum of steps finish sim"));
+  EXPECT_THAT(stats, HasSubstr("\n125,205,12.5,20.5,"));
+  EXPECT_EQ(slurp(dir / "nested" / "robots.csv"),
+            "robot,finish_time_s,waiting_time_s,stops,actions\n0,8,0,0,2\n1,12.5,3,1,3\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Results, StatesAreStreamedRowByRow) {
+  const auto dir = temp_dir("states");
+  {
+    StatesCsvWriter w(dir);
+    w.add({0.5, 3, 1.0, 2.0, 0.25, 0.1, 0.0, 0.1, 0.1, 4});
+    w.add({1.0, 3, 1.05, 2.0, 0.25, 0.0, 0.0, 0.0, 0.0, 3});
+    EXPECT_EQ(w.rows(), 2u);
+  }
+  EXPECT_EQ(slurp(dir / "states.csv"),
+            "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n"
+            "0.5,3,1,2,0.25,0.1,0,0.1,0.1,4\n1,3,1.05,2,0.25,0,0,0,0,3\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Results, AnUnwritableFolderIsAnErrorNamingIt) {
+  const auto file = temp_dir("plainfile");
+  std::ofstream(file) << "x";
+  try {
+    StatesCsvWriter w(file / "out");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(file.string()));
+  }
+  std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace smart::monitor
