@@ -129,6 +129,9 @@ struct MonitorNode::Impl {
       res.robot_contacts = s.robot_contacts;
       res.wall_contacts = s.wall_contacts;
       if (s.min_gap_m < 1e8) res.min_gap_m = s.min_gap_m;
+      if (s.peak_rss_mb > 0) {
+        res.host_peak_rss_mb = std::max(res.host_peak_rss_mb.value_or(0.0), s.peak_rss_mb);
+      }
     });
   }
 

@@ -129,7 +129,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   auto mb = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
-  j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(info.sim_peak_rss_mb)}};
+  j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
   if (!info.machine.empty()) j["machine"] = info.machine;
   return j;
 }

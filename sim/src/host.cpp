@@ -9,6 +9,7 @@
 
 #include "smart/agent/agent.hpp"
 #include "smart/agent/fleet_link.hpp"
+#include "smart/common/memory.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/writer.hpp"
@@ -174,7 +175,7 @@ struct SimHost::Impl {
     last_status = c;
     link.publish_sim_status(smart_msg_SimStatus{
         agent::kSimClockSource, run_id, world.time_s(), static_cast<uint32_t>(agents.size()),
-        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s});
+        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s, common::peak_rss_mb()});
   }
 
   double awake_robot_ticks = 0, active_system_ticks = 0;

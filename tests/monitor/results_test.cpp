@@ -69,6 +69,9 @@ TEST(Results, SummaryHasTheKeysUsersReadAndTheRightAverages) {
   EXPECT_DOUBLE_EQ(j["peak_rss_mb"]["monitor"].get<double>(), 21.5);
   EXPECT_TRUE(j["peak_rss_mb"]["sim"].is_null());  // not known: null, not 0
   EXPECT_EQ(j["machine"], "test machine");
+  auto reported = finished_run(in);
+  reported.host_peak_rss_mb = 42.0;  // from the sim host's status
+  EXPECT_DOUBLE_EQ(summary_json(in, reported, info)["peak_rss_mb"]["sim"].get<double>(), 42.0);
   for (const char* key : {"collisions", "min_separation_m", "adg", "plan", "versions"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }

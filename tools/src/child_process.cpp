@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -39,9 +38,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept
-    : pid_(std::exchange(other.pid_, -1)),
-      status_(other.status_),
-      peak_rss_mb_(other.peak_rss_mb_) {}
+    : pid_(std::exchange(other.pid_, -1)), status_(other.status_) {}
 
 ChildProcess::~ChildProcess() {
   if (pid_ > 0 && !status_) terminate();
@@ -52,11 +49,9 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
     int st = 0;
-    struct rusage usage {};
-    const pid_t r = wait4(pid_, &st, WNOHANG, &usage);
+    const pid_t r = waitpid(pid_, &st, WNOHANG);
     if (r == pid_) {
       status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-      peak_rss_mb_ = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: ru_maxrss in KiB
       return status_;
     }
     if (r < 0 && errno != EINTR) {

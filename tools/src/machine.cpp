@@ -1,6 +1,5 @@
 #include "smart/tools/machine.hpp"
 
-#include <sys/resource.h>
 #include <sys/utsname.h>
 #include <unistd.h>
 
@@ -25,12 +24,6 @@ std::string machine_description() {
   return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
          std::to_string(static_cast<long long>(pages) * page / (1024 * 1024 * 1024)) + " GiB, " +
          u.sysname + " " + u.release;
-}
-
-double peak_rss_mb() {
-  rusage r{};
-  getrusage(RUSAGE_SELF, &r);
-  return static_cast<double>(r.ru_maxrss) / 1024.0;
 }
 
 }  // namespace smart::tools

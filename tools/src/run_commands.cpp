@@ -211,7 +211,6 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   info.clock = o.clock;
   info.cell_m = o.cell_m;
   info.monitor_peak_rss_mb = peak_rss_mb();
-  if (sim) info.sim_peak_rss_mb = sim->peak_rss_mb();
   info.machine = machine_description();
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!result.success) spdlog::error("run failed: {}", result.error);

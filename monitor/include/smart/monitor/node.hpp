@@ -68,6 +68,7 @@ struct MonitorResult {
   uint64_t robot_contacts = 0;
   uint64_t wall_contacts = 0;
   std::optional<double> min_gap_m;
+  std::optional<double> host_peak_rss_mb;  // largest peak memory a sim host reported
   bool have_sim_status = false;
   uint64_t rejected_progress = 0;
 };

@@ -25,9 +25,10 @@ struct RunInfo {
   double cell_m = 1.0;
   double control_period_s = 0.1;
   uint64_t seed = 0;
-  // Filled by the tools when known: peak resident memory of the monitor and sim processes, and
-  // the machine the run was measured on.
-  std::optional<double> monitor_peak_rss_mb, sim_peak_rss_mb;
+  // Filled by the tools when known: peak resident memory of the monitor process (the sim's
+  // comes with its status, MonitorResult::host_peak_rss_mb) and the machine the run was
+  // measured on.
+  std::optional<double> monitor_peak_rss_mb;
   std::string machine;
 };
 

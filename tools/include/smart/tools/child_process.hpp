@@ -28,14 +28,10 @@ class ChildProcess {
   void signal(int sig);
   // SIGTERM, wait `grace`, then SIGKILL; returns the exit code.
   int terminate(std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
-  // Peak resident memory of the ended process (and its own children), from wait4; nullopt
-  // while it runs.
-  std::optional<double> peak_rss_mb() const { return peak_rss_mb_; }
 
  private:
   pid_t pid_ = -1;
   std::optional<int> status_;
-  std::optional<double> peak_rss_mb_;
 };
 
 // Path of the running executable (/proc/self/exe).

@@ -4,9 +4,11 @@
 
 #include <string>
 
+#include "smart/common/memory.hpp"
+
 namespace smart::tools {
 
 std::string machine_description();
-double peak_rss_mb();
+using common::peak_rss_mb;
 
 }  // namespace smart::tools

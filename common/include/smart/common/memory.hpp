@@ -1,0 +1,11 @@
+// Contract: this process's peak resident memory, for benchmarks and run summaries.
+#pragma once
+
+namespace smart::common {
+
+// VmHWM of /proc/self/status in MB (1 MB = 2^20 bytes): the high-water mark of this process's
+// own address space. Not getrusage's ru_maxrss, which after posix_spawn (vfork + exec) also
+// counts the parent's memory at the time of the spawn. 0 where /proc is not available.
+double peak_rss_mb();
+
+}  // namespace smart::common
