@@ -262,7 +262,6 @@ SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
           break;
         }
         // Until the monitor has matched, re-announce the tick (a late joiner missed it).
-        // (Grouping happens once the first answer's windows are all in; see below.)
         if (!answer && Clock::now() - last_publish > std::chrono::milliseconds(500)) {
           I.publish_clock(tick);
           last_publish = Clock::now();
