@@ -29,6 +29,12 @@ void wall_contacts(const monitor::Grid& g, double cell_m, double x, double y, do
                    std::vector<WallContact>& out) {
   const auto c = cell_at(g, cell_m, x, y);
   const double half = cell_m / 2;
+  // Fast path, the common case: a disc inside its own free cell touches nothing, since every
+  // wall face or corner near it lies on that cell's border or beyond.
+  if (!blocked(g, c.x, c.y)) {
+    const double ox = x - c.x * cell_m, oy = y - (g.height() - 1 - c.y) * cell_m;
+    if (std::abs(ox) + r < half && std::abs(oy) + r < half) return;
+  }
   for (int dr = -1; dr <= 1; ++dr) {
     for (int dc = -1; dc <= 1; ++dc) {
       const int32_t col = c.x + dc, row = c.y + dr;

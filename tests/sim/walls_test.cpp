@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
+#include "smart/monitor/random_plan.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::sim {
@@ -64,6 +66,41 @@ TEST(Walls, OutsideTheMapIsBlocked) {
 TEST(Walls, CellAtUsesTheWorldFrame) {
   EXPECT_EQ(cell_at(kGrid, 1.0, 2.2, 3.9), (monitor::Cell{2, 0}));
   EXPECT_EQ(cell_at(kGrid, 0.5, 1.0, 0.0), (monitor::Cell{2, 4}));
+}
+
+// Property: a disc centred in a free cell has a wall contact exactly when it overlaps a blocked
+// cell or leaves the map (checked against a brute-force overlap test on every cell), including
+// the fast path for discs inside their own cell.
+TEST(Walls, ContactIffTheDiscOverlapsABlockedCell) {
+  const auto grid = monitor::generate_random_grid(12, 9, 0.3, 11);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> ux(-0.5, 11.5), uy(-0.5, 8.5);
+  std::vector<WallContact> found;
+  int with_contact = 0, checked = 0;
+  for (const double r : {0.2, 0.45}) {
+    for (int k = 0; k < 20000; ++k) {
+      const double x = ux(rng), y = uy(rng);
+      const auto c = cell_at(grid, 1.0, x, y);
+      if (!grid.free(c)) continue;
+      bool overlaps = false;
+      for (int32_t row = -1; row <= grid.height(); ++row) {
+        for (int32_t col = -1; col <= grid.width(); ++col) {
+          if (grid.free({col, row})) continue;  // outside the map counts as blocked
+          const double cx = col, cy = grid.height() - 1 - row;
+          const double dx = std::max(std::abs(x - cx) - 0.5, 0.0);
+          const double dy = std::max(std::abs(y - cy) - 0.5, 0.0);
+          if (dx * dx + dy * dy < r * r) overlaps = true;
+        }
+      }
+      found.clear();
+      wall_contacts(grid, 1.0, x, y, r, found);
+      ASSERT_EQ(!found.empty(), overlaps) << "disc r=" << r << " at (" << x << ", " << y << ")";
+      with_contact += overlaps ? 1 : 0;
+      ++checked;
+    }
+  }
+  EXPECT_GT(with_contact, checked / 10);  // both cases well covered
+  EXPECT_LT(with_contact, checked * 9 / 10);
 }
 
 }  // namespace
