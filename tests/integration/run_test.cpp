@@ -31,6 +31,18 @@ class Run : public ::testing::Test {
             "--domain",     std::to_string(domain),
             "--no-progress"};
   }
+  // 100 robots of SMART's warehouse plan: ~540 s of sim time, over 10 s of wall time even at the
+  // fastest measured speed, so a process killed 2.5 s in dies mid-run (the 50-robot example
+  // can finish in under 3 s).
+  std::vector<std::string> long_run_args(int domain) {
+    return {"--map",        (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
+            "--scen",       (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
+            "--plan",       (b_ / "smart-examples/scen_1_paths.txt").string(),
+            "--axis",       "rowcol",
+            "--agents",     "100",
+            "--domain",     std::to_string(domain),
+            "--no-progress"};
+  }
   std::filesystem::path b_;
 };
 
@@ -86,7 +98,7 @@ TEST_F(Run, LockStepRunsOfTheSamePlanGiveIdenticalNumbers) {
 }
 
 TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
-  auto margs = example_args(kRunKillSim);
+  auto margs = long_run_args(kRunKillSim);
   margs.insert(margs.begin(), "monitor");
   margs.insert(margs.end(), {"--timeout-s", "3"});
   const auto mout = temp_file("kill_monitor.out");
@@ -94,9 +106,9 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   mv.insert(mv.end(), margs.begin(), margs.end());
   tools::ChildProcess monitor(mv, mout);
   tools::ChildProcess sim(
-      {smart_exe().string(), "sim", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents", "50", "--domain",
-       std::to_string(kRunKillSim)},
+      {smart_exe().string(), "sim", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
+       "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--agents", "100",
+       "--domain", std::to_string(kRunKillSim)},
       "/dev/null");
   std::this_thread::sleep_for(2500ms);  // the run is under way
   ASSERT_TRUE(monitor.running());
@@ -114,7 +126,7 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
 
 // Regression: `smart run` noticed its own sim child had died only after --timeout-s of silence.
 TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
-  auto args = example_args(kRunKillChild);
+  auto args = long_run_args(kRunKillChild);
   args.insert(args.begin(), "run");
   args.insert(args.end(), {"--timeout-s", "60"});
   const auto out = temp_file("kill_child.out");
