@@ -39,6 +39,8 @@ enum DomainId : int {
   kRosPose = 128,
   kMixedRun = 129,
   kRunKillChild = 130,
+  kLossyRunClean = 131,
+  kLossyRun = 132,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
