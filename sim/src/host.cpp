@@ -13,6 +13,7 @@
 #include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/writer.hpp"
+#include "smart/sim/ros_view.hpp"
 #include "smart/sim/sim_robot.hpp"
 
 namespace smart::sim {
@@ -32,10 +33,8 @@ struct SimHost::Impl {
   SimHostOptions opt;
   World world;
   agent::FleetLink link;
-  // ROS 2 view: rt/smart/poses (geometry_msgs/PoseArray), best effort, at the state rate.
-  dds::Topic<geometry_msgs_msg_dds__PoseArray_> ros_poses_topic;
-  dds::Writer<geometry_msgs_msg_dds__PoseArray_> ros_poses;
-  std::vector<geometry_msgs_msg_dds__Pose_> ros_pose_buffer;
+  // ROS 2 view (poses, tf, chosen robots' pose topics), at the state rate.
+  RosView ros_view;
   std::vector<std::unique_ptr<SimRobot>> backends;
   std::vector<std::unique_ptr<agent::Agent>> agents;
   std::vector<int64_t> reported_finished, reported_executing;
@@ -53,8 +52,7 @@ struct SimHost::Impl {
         opt(o),
         world(grid, model, o.sim, starts),
         link(p, qos),
-        ros_poses_topic(p, dds::ros_topic(std::string(dds::kRosPosesTopic))),
-        ros_poses(p, ros_poses_topic, qos.state.to_dds()) {
+        ros_view(p, qos, starts.size(), o.ros_pose_robots) {
     const std::size_t n = starts.size();
     for (uint32_t i = 0; i < n; ++i) {
       backends.push_back(std::make_unique<SimRobot>(world, i));
@@ -128,28 +126,8 @@ struct SimHost::Impl {
     }
   }
 
-  void publish_ros_poses() {
-    ros_pose_buffer.resize(agents.size());
-    for (uint32_t i = 0; i < agents.size(); ++i) {
-      const auto p = world.pose(i);
-      ros_pose_buffer[i].position = {p.pose.x_m, p.pose.y_m, 0.0};
-      ros_pose_buffer[i].orientation = {0.0, 0.0, std::sin(p.pose.yaw_rad / 2),
-                                        std::cos(p.pose.yaw_rad / 2)};
-    }
-    geometry_msgs_msg_dds__PoseArray_ m{};
-    const double t = world.time_s();
-    m.header.stamp.sec = static_cast<int32_t>(t);
-    m.header.stamp.nanosec = static_cast<uint32_t>((t - std::floor(t)) * 1e9);
-    char frame[] = "map";
-    m.header.frame_id = frame;
-    m.poses._buffer = ros_pose_buffer.data();
-    m.poses._length = m.poses._maximum = static_cast<uint32_t>(ros_pose_buffer.size());
-    m.poses._release = false;
-    ros_poses.write(m);
-  }
-
   void publish_states() {
-    publish_ros_poses();
+    ros_view.publish(world);
     for (uint32_t i = 0; i < agents.size(); ++i) {
       if (world.external(i)) continue;
       const auto s = agent::make_robot_state(i, run_id, world.time_s(), world.pose(i),

@@ -41,6 +41,7 @@ enum DomainId : int {
   kRunKillChild = 130,
   kLossyRunClean = 131,
   kLossyRun = 132,
+  kRosView = 133,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

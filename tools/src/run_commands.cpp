@@ -32,6 +32,7 @@ struct SimOptions {
   double timeout_s = 30.0;
   int system_capacity = 0, threads = 2;
   std::vector<uint32_t> external;
+  std::vector<uint32_t> ros_pose_robots;
 };
 
 struct MonitorCliOptions {
@@ -45,6 +46,7 @@ struct MonitorCliOptions {
   double timeout_s = 30.0, stall_timeout_s = 300.0, max_sim_time_s = 0;
   double state_rate_hz = 2.0;
   int system_capacity = 0, threads = 2;
+  std::vector<uint32_t> ros_pose_robots;  // `smart run`: passed to the sim
   bool progress = true;
 };
 
@@ -80,6 +82,7 @@ int run_sim(const SimOptions& o) {
   ho.sim.system_capacity = o.system_capacity;
   ho.sim.threads = o.threads;
   ho.external_robots = o.external;
+  ho.ros_pose_robots = o.ros_pose_robots;
   sim::SimHost host(
       participant, profile, grid, model,
       sim::start_poses(grid, o.cell_m, starts, monitor::yaw_rad(monitor::parse_heading(o.heading))),
@@ -130,6 +133,13 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
     std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
     return 2;
   }
+  for (const auto r : o.ros_pose_robots) {
+    if (r >= in.plan.paths.size()) {
+      std::cerr << "--ros-pose-robots: robot " << r << " but the run has " << in.plan.paths.size()
+                << " robots (ids 0.." << in.plan.paths.size() - 1 << ")\n";
+      return 2;
+    }
+  }
   const auto robot_file = find_config_file("robots", o.robot);
   (void)agent::load_robot_model(robot_file);  // fail early on a bad model
   const auto profile = dds::find_qos_profile(o.dds.qos);
@@ -165,6 +175,11 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
                                   std::to_string(o.system_capacity),
                                   "--threads",
                                   std::to_string(o.threads)};
+    if (!o.ros_pose_robots.empty()) {
+      std::string ids;
+      for (const auto r : o.ros_pose_robots) ids += (ids.empty() ? "" : ",") + std::to_string(r);
+      argv.insert(argv.end(), {"--ros-pose-robots", ids});
+    }
     sim.emplace(argv, "/dev/null");
   }
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
@@ -269,6 +284,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
+  sim->add_option("--ros-pose-robots", so->ros_pose_robots,
+                  "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
+      ->delimiter(',');
   sim->add_option("--external-robots", so->external,
                   "robots executed by other hosts (mixed runs), shown at their published poses")
       ->delimiter(',');
@@ -296,7 +314,12 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                   "robot bodies per Simbody system (0: automatic)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  run->add_option("--threads", ro->threads, "sim threads")->capture_default_str();
+  run->add_option("--threads", ro->threads, "sim threads")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  run->add_option("--ros-pose-robots", ro->ros_pose_robots,
+                  "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
+      ->delimiter(',');
   run->callback([&exit_code, ro] {
     install_stop_handlers();
     exit_code = run_monitor(*ro, true);

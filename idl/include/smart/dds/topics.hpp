@@ -3,6 +3,7 @@
 // (architecture.md, "DDS topics": per-robot topics cost seconds of discovery at 2000 robots).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -32,10 +33,20 @@ inline constexpr int32_t kNoSeq = -1;
 
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseStamped_)
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseArray_)
+SMART_DDS_TOPIC_TYPE(tf2_msgs_msg_dds__TFMessage_)
 
 namespace smart::dds {
-// The fleet as ROS 2 sees it: every robot's pose as geometry_msgs/PoseArray, frame "map".
+// The fleet as ROS 2 sees it (architecture.md, "ROS 2 view"), all in the world frame "map"
+// (x = MovingAI column, y = up the map, metres): every robot's pose as geometry_msgs/PoseArray,
+// every robot as a tf frame "robot_<id>" child of "map" on /tf, and chosen robots' poses as
+// geometry_msgs/PoseStamped on /robot_<id>/pose.
 inline constexpr std::string_view kRosPosesTopic = "/smart/poses";
+inline constexpr std::string_view kRosTfTopic = "/tf";
+inline constexpr std::string_view kRosMapFrame = "map";
+inline std::string ros_robot_frame(uint32_t robot) { return "robot_" + std::to_string(robot); }
+inline std::string ros_robot_pose_topic(uint32_t robot) {
+  return "/" + ros_robot_frame(robot) + "/pose";
+}
 
 // ROS 2 topic "/a/b" is DDS topic "rt/a/b" (rmw convention).
 inline std::string ros_topic(const std::string& ros_name) {

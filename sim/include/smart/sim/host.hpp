@@ -34,6 +34,8 @@ struct SimHostOptions {
   SimConfig sim;
   // Robots executed by other hosts (mixed runs): shown at their published poses, not driven.
   std::vector<uint32_t> external_robots;
+  // Robots that also get their own ROS 2 pose topic rt/robot_<id>/pose (ros_view.hpp).
+  std::vector<uint32_t> ros_pose_robots;
 };
 
 struct SimHostResult {

@@ -1,0 +1,47 @@
+// Contract: the fleet as ROS 2 tools see it (architecture.md, "ROS 2 view"; topic names and
+// frames in smart/dds/topics.hpp). publish() writes, from the World's current poses and sim
+// time: rt/smart/poses (geometry_msgs/PoseArray, robot i at index i), rt/tf
+// (tf2_msgs/TFMessage, "map" -> "robot_<i>" for every robot) and, for the robots chosen at
+// construction, rt/robot_<i>/pose (geometry_msgs/PoseStamped). Stamps are sim time. The writers
+// use the profile's state QoS (best effort, keep last), like rmw's sensor-data profile.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ros2.h"
+#include "smart/dds/participant.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/dds/topics.hpp"
+#include "smart/dds/writer.hpp"
+#include "smart/sim/world.hpp"
+
+namespace smart::sim {
+
+// ROS time from seconds (floor to whole seconds + nanoseconds).
+builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s);
+// Rotation by yaw about +z as a unit quaternion (x, y, z, w).
+geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad);
+
+class RosView {
+ public:
+  // Throws std::invalid_argument for a chosen robot id >= robots.
+  RosView(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots,
+          const std::vector<uint32_t>& pose_robots);
+  void publish(const World& world);
+
+ private:
+  dds::Topic<geometry_msgs_msg_dds__PoseArray_> poses_topic_;
+  dds::Writer<geometry_msgs_msg_dds__PoseArray_> poses_;
+  dds::Topic<tf2_msgs_msg_dds__TFMessage_> tf_topic_;
+  dds::Writer<tf2_msgs_msg_dds__TFMessage_> tf_;
+  std::vector<uint32_t> pose_robots_;
+  std::vector<dds::Topic<geometry_msgs_msg_dds__PoseStamped_>> pose_topics_;
+  std::vector<dds::Writer<geometry_msgs_msg_dds__PoseStamped_>> pose_writers_;
+  std::vector<std::string> frames_;  // "robot_<i>", owned here for the C messages
+  std::vector<geometry_msgs_msg_dds__Pose_> pose_buffer_;
+  std::vector<geometry_msgs_msg_dds__TransformStamped_> tf_buffer_;
+};
+
+}  // namespace smart::sim

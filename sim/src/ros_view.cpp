@@ -1,0 +1,83 @@
+#include "smart/sim/ros_view.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace smart::sim {
+
+builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s) {
+  const double sec = std::floor(t_s);
+  auto nanosec = static_cast<uint32_t>(std::llround((t_s - sec) * 1e9));
+  auto whole = static_cast<int32_t>(sec);
+  if (nanosec >= 1000000000u) {  // rounding up to the next second
+    nanosec -= 1000000000u;
+    ++whole;
+  }
+  return {whole, nanosec};
+}
+
+geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad) {
+  return {0.0, 0.0, std::sin(yaw_rad / 2), std::cos(yaw_rad / 2)};
+}
+
+namespace {
+// Header frame ids point at this (the C message types hold char*, never written through).
+char g_map_frame[] = "map";
+static_assert(sizeof g_map_frame == dds::kRosMapFrame.size() + 1);
+}  // namespace
+
+RosView::RosView(const dds::Participant& participant, const dds::QosProfile& qos,
+                 std::size_t robots, const std::vector<uint32_t>& pose_robots)
+    : poses_topic_(participant, dds::ros_topic(std::string(dds::kRosPosesTopic))),
+      poses_(participant, poses_topic_, qos.state.to_dds()),
+      tf_topic_(participant, dds::ros_topic(std::string(dds::kRosTfTopic))),
+      tf_(participant, tf_topic_, qos.state.to_dds()),
+      pose_robots_(pose_robots) {
+  for (const uint32_t r : pose_robots_) {
+    if (r >= robots) {
+      throw std::invalid_argument("ROS pose topic asked for robot " + std::to_string(r) +
+                                  " but the fleet has " + std::to_string(robots) +
+                                  " robots (ids 0.." + std::to_string(robots - 1) + ")");
+    }
+    pose_topics_.emplace_back(participant, dds::ros_topic(dds::ros_robot_pose_topic(r)));
+    pose_writers_.emplace_back(participant, pose_topics_.back(), qos.state.to_dds());
+  }
+  for (uint32_t i = 0; i < robots; ++i) frames_.push_back(dds::ros_robot_frame(i));
+  pose_buffer_.resize(robots);
+  tf_buffer_.resize(robots);
+}
+
+void RosView::publish(const World& world) {
+  const auto stamp = ros_stamp(world.time_s());
+  for (uint32_t i = 0; i < pose_buffer_.size(); ++i) {
+    const auto p = world.pose(i).pose;
+    const auto q = yaw_quaternion(p.yaw_rad);
+    pose_buffer_[i] = {{p.x_m, p.y_m, 0.0}, q};
+    auto& t = tf_buffer_[i];
+    t.header.stamp = stamp;
+    t.header.frame_id = g_map_frame;
+    t.child_frame_id = frames_[i].data();
+    t.transform = {{p.x_m, p.y_m, 0.0}, q};
+  }
+  geometry_msgs_msg_dds__PoseArray_ poses{};
+  poses.header = {stamp, g_map_frame};
+  poses.poses._buffer = pose_buffer_.data();
+  poses.poses._length = poses.poses._maximum = static_cast<uint32_t>(pose_buffer_.size());
+  poses.poses._release = false;
+  poses_.write(poses);
+
+  tf2_msgs_msg_dds__TFMessage_ tf{};
+  tf.transforms._buffer = tf_buffer_.data();
+  tf.transforms._length = tf.transforms._maximum = static_cast<uint32_t>(tf_buffer_.size());
+  tf.transforms._release = false;
+  tf_.write(tf);
+
+  for (std::size_t k = 0; k < pose_robots_.size(); ++k) {
+    geometry_msgs_msg_dds__PoseStamped_ m{};
+    m.header = {stamp, g_map_frame};
+    m.pose = pose_buffer_[pose_robots_[k]];
+    pose_writers_[k].write(m);
+  }
+}
+
+}  // namespace smart::sim
