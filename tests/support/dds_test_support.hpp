@@ -42,6 +42,7 @@ enum DomainId : int {
   kLossyRunClean = 131,
   kLossyRun = 132,
   kRosView = 133,
+  kFastDdsInterop = 134,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
