@@ -28,6 +28,10 @@ bench: build
 	$(BUILD)/bin/smart_bench
 	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map --robots 1000 --sim-seconds 20
 	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/sortation_large.map --robots 2000 --sim-seconds 20
+	$(BUILD)/bin/smart bench run --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map \
+	  --scen ../shared/benchmarks/scens/warehouse-10-20-10-2-1-random-1.scen \
+	  --plan ../shared/benchmarks/smart-examples/scen_1_1000_paths.txt --axis rowcol \
+	  --agents 10,100,500,1000 --out $(BUILD)/bench-run
 
 asan: deps
 	@cmake --preset asan >/dev/null
