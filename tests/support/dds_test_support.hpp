@@ -43,6 +43,7 @@ enum DomainId : int {
   kLossyRun = 132,
   kRosView = 133,
   kFastDdsInterop = 134,
+  kBenchRun = 135,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -1,0 +1,85 @@
+// `smart bench sim` and `smart bench run` as a user runs them (tiny sizes: this checks what
+// they report, not how fast anything is).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+TEST(BenchCommand, SimReportsSpeedAwakeRobotsAndTheMachine) {
+  const auto b = benchmarks_dir();
+  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  const auto r = run_smart({"bench", "sim", "--map", (b / "maps/random-32-32-20.map").string(),
+                            "--robots", "20", "--sim-seconds", "2", "--system-capacity", "8"},
+                           60s, "bench_sim");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = r.last_json();
+  EXPECT_EQ(j["robots"], 20);
+  EXPECT_DOUBLE_EQ(j["sim_seconds"].get<double>(), 2.0);
+  EXPECT_GT(j["sim_speed"].get<double>(), 0.0);
+  EXPECT_GT(j["finished_actions"].get<int>(), 0);
+  EXPECT_EQ(j["system_capacity"], 8);
+  // Random walks never rest: (nearly) every robot is stepped by Simbody in every period.
+  EXPECT_GT(j["mean_awake_robots"].get<double>(), 18.0);
+  EXPECT_LE(j["mean_active_systems"].get<double>(), 3.0 + 1e-9);
+  EXPECT_THAT(j["machine"].get<std::string>(), HasSubstr("cores"));
+}
+
+TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
+  const auto b = benchmarks_dir();
+  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  const auto out = temp_file("bench_run_results");
+  const auto r =
+      run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
+                 (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+                 (b / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents",
+                 "5,10", "--domain", std::to_string(kBenchRun), "--out", out.string()},
+                120s, "bench_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::istringstream lines(r.out);
+  std::vector<nlohmann::json> rows;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line[0] == '{') rows.push_back(nlohmann::json::parse(line));
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["robots"], 5);
+  EXPECT_EQ(rows[1]["robots"], 10);
+  for (const auto& row : rows) {
+    EXPECT_TRUE(row["success"].get<bool>());
+    EXPECT_EQ(row["collisions"], 0);
+    EXPECT_GT(row["monitor_peak_rss_mb"].get<double>(), 1.0);
+    EXPECT_GT(row["sim_peak_rss_mb"].get<double>(), 1.0);
+  }
+  EXPECT_THAT(r.out, HasSubstr("| robots | success | sim time |"));
+  EXPECT_THAT(r.out, HasSubstr("\n| 5 | yes | "));
+  EXPECT_THAT(r.out, HasSubstr("\n| 10 | yes | "));
+  EXPECT_THAT(r.out, HasSubstr("machine: "));
+  EXPECT_TRUE(std::filesystem::exists(out / "10" / "summary.json"));
+  std::filesystem::remove_all(out);
+}
+
+TEST(BenchCommand, RunNamesTheFailingSize) {
+  const auto b = benchmarks_dir();
+  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  // No --axis for a SMART path file: `smart run` refuses it (exit code 2).
+  const auto r =
+      run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
+                 (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+                 (b / "smart-examples/example_paths_xy.txt").string(), "--agents", "5", "--domain",
+                 std::to_string(kBenchRun), "--out", temp_file("bench_run_bad").string()},
+                60s, "bench_run_bad");
+  EXPECT_EQ(r.code, 1);
+  std::filesystem::remove_all(temp_file("bench_run_bad"));
+}
+
+}  // namespace
+}  // namespace smart::test
