@@ -69,6 +69,7 @@ struct SimHost::Impl {
       world.set_external(e, true);
       agents[e]->deactivate();
     }
+    ros_view.publish_map(grid, o.sim.cell_m);
     reported_finished.assign(n, -1);
     reported_executing.assign(n, -1);
     window_end.assign(n, 0);

@@ -20,6 +20,17 @@ geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad) {
   return {0.0, 0.0, std::sin(yaw_rad / 2), std::cos(yaw_rad / 2)};
 }
 
+std::vector<int8_t> occupancy_cells(const monitor::Grid& grid) {
+  std::vector<int8_t> cells;
+  cells.reserve(static_cast<std::size_t>(grid.width()) * grid.height());
+  for (int32_t row = grid.height() - 1; row >= 0; --row) {
+    for (int32_t col = 0; col < grid.width(); ++col) {
+      cells.push_back(grid.blocked({col, row}) ? int8_t{100} : int8_t{0});
+    }
+  }
+  return cells;
+}
+
 namespace {
 // Header frame ids point at this (the C message types hold char*, never written through).
 char g_map_frame[] = "map";
@@ -32,6 +43,12 @@ RosView::RosView(const dds::Participant& participant, const dds::QosProfile& qos
       poses_(participant, poses_topic_, qos.state.to_dds()),
       tf_topic_(participant, dds::ros_topic(std::string(dds::kRosTfTopic))),
       tf_(participant, tf_topic_, qos.state.to_dds()),
+      map_topic_(participant, dds::ros_topic(std::string(dds::kRosMapTopic))),
+      map_(participant, map_topic_,
+           dds::Qos()
+               .reliability(dds::Reliability::kReliable)
+               .durability(dds::Durability::kTransientLocal)
+               .keep_last(1)),
       pose_robots_(pose_robots) {
   for (const uint32_t r : pose_robots_) {
     if (r >= robots) {
@@ -78,6 +95,22 @@ void RosView::publish(const World& world) {
     m.pose = pose_buffer_[pose_robots_[k]];
     pose_writers_[k].write(m);
   }
+}
+
+void RosView::publish_map(const monitor::Grid& grid, double cell_m) {
+  auto cells = occupancy_cells(grid);
+  nav_msgs_msg_dds__OccupancyGrid_ m{};
+  m.header = {ros_stamp(0.0), g_map_frame};
+  m.info.resolution = static_cast<float>(cell_m);
+  m.info.width = static_cast<uint32_t>(grid.width());
+  m.info.height = static_cast<uint32_t>(grid.height());
+  // Cell centres are at multiples of cell_m (monitor/grid.hpp), so the grid starts half a cell
+  // before the first centre.
+  m.info.origin = {{-cell_m / 2, -cell_m / 2, 0.0}, yaw_quaternion(0.0)};
+  m.data._buffer = cells.data();
+  m.data._length = m.data._maximum = static_cast<uint32_t>(cells.size());
+  m.data._release = false;
+  map_.write(m);
 }
 
 }  // namespace smart::sim

@@ -48,6 +48,46 @@ TEST(YawQuaternion, IsAUnitRotationAboutZ) {
   }
 }
 
+TEST(OccupancyCells, BottomRowFirstBlockedIs100) {
+  // Rows top to bottom; cell (col 2, row 0) is blocked: the top row, so the last OccupancyGrid row.
+  const auto grid = test::grid_of({"..@", "...", "@.."});
+  EXPECT_EQ(occupancy_cells(grid), (std::vector<int8_t>{100, 0, 0, 0, 0, 0, 0, 0, 100}));
+}
+
+TEST(RosView, TheMapReachesAViewerThatJoinsLater) {
+  const auto grid = test::grid_of({"..@", "...", "@.."});
+  dds::Domain domain(test::kRosMap, test::loopback());
+  dds::Participant sim_p(domain), ros_p(domain);
+  RosView view(sim_p, dds::default_qos_profile(), 0, {});
+  view.publish_map(grid, 0.5);
+  // rviz2's Map display subscribes reliable + transient local, after the map was written.
+  dds::Topic<nav_msgs_msg_dds__OccupancyGrid_> tm(ros_p, "rt/map");
+  dds::Reader<nav_msgs_msg_dds__OccupancyGrid_> map(
+      ros_p, tm,
+      dds::Qos()
+          .reliability(dds::Reliability::kReliable)
+          .durability(dds::Durability::kTransientLocal)
+          .keep_last(1));
+  bool got = false;
+  for (int attempt = 0; attempt < 250 && !got; ++attempt) {
+    map.take_each([&](const nav_msgs_msg_dds__OccupancyGrid_& m) {
+      got = true;
+      EXPECT_STREQ(m.header.frame_id, "map");
+      EXPECT_FLOAT_EQ(m.info.resolution, 0.5f);
+      EXPECT_EQ(m.info.width, 3u);
+      EXPECT_EQ(m.info.height, 3u);
+      EXPECT_DOUBLE_EQ(m.info.origin.position.x, -0.25);
+      EXPECT_DOUBLE_EQ(m.info.origin.position.y, -0.25);
+      ASSERT_EQ(m.data._length, 9u);
+      EXPECT_EQ(m.data._buffer[0], 100);
+      EXPECT_EQ(m.data._buffer[4], 0);
+      EXPECT_EQ(m.data._buffer[8], 100);
+    });
+    if (!got) std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_TRUE(got) << "no transient-local map for a late reader";
+}
+
 TEST(RosView, PublishesPosesTfAndChosenRobotsPoseTopics) {
   const auto grid = test::grid_of({".....", ".....", "....."});
   const std::vector<agent::Pose2D> starts = {{1.0, 2.0, 0.0}, {3.0, 1.0, 1.5}, {4.0, 0.0, -3.0}};

@@ -44,6 +44,7 @@ enum DomainId : int {
   kRosView = 133,
   kFastDdsInterop = 134,
   kBenchRun = 135,
+  kRosMap = 136,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -34,13 +34,16 @@ inline constexpr int32_t kNoSeq = -1;
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseStamped_)
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseArray_)
 SMART_DDS_TOPIC_TYPE(tf2_msgs_msg_dds__TFMessage_)
+SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__OccupancyGrid_)
 
 namespace smart::dds {
 // The fleet as ROS 2 sees it (architecture.md, "ROS 2 view"), all in the world frame "map"
 // (x = MovingAI column, y = up the map, metres): every robot's pose as geometry_msgs/PoseArray,
 // every robot as a tf frame "robot_<id>" child of "map" on /tf, and chosen robots' poses as
-// geometry_msgs/PoseStamped on /robot_<id>/pose.
+// geometry_msgs/PoseStamped on /robot_<id>/pose; the grid map itself as nav_msgs/OccupancyGrid
+// on /map (transient local, like map_server).
 inline constexpr std::string_view kRosPosesTopic = "/smart/poses";
+inline constexpr std::string_view kRosMapTopic = "/map";
 inline constexpr std::string_view kRosTfTopic = "/tf";
 inline constexpr std::string_view kRosMapFrame = "map";
 inline std::string ros_robot_frame(uint32_t robot) { return "robot_" + std::to_string(robot); }

@@ -4,6 +4,8 @@
 // (tf2_msgs/TFMessage, "map" -> "robot_<i>" for every robot) and, for the robots chosen at
 // construction, rt/robot_<i>/pose (geometry_msgs/PoseStamped). Stamps are sim time. The writers
 // use the profile's state QoS (best effort, keep last), like rmw's sensor-data profile.
+// publish_map() writes the grid once as rt/map (nav_msgs/OccupancyGrid), reliable and transient
+// local so that a viewer started later still gets it (map_server's QoS).
 #pragma once
 
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/writer.hpp"
+#include "smart/monitor/grid.hpp"
 #include "smart/sim/world.hpp"
 
 namespace smart::sim {
@@ -23,6 +26,9 @@ namespace smart::sim {
 builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s);
 // Rotation by yaw about +z as a unit quaternion (x, y, z, w).
 geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad);
+// OccupancyGrid cells of a MovingAI grid: row-major from the bottom row (world y grows upwards),
+// 100 = blocked, 0 = free. The grid's origin is the outer corner of cell (0, height-1).
+std::vector<int8_t> occupancy_cells(const monitor::Grid& grid);
 
 class RosView {
  public:
@@ -30,12 +36,15 @@ class RosView {
   RosView(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots,
           const std::vector<uint32_t>& pose_robots);
   void publish(const World& world);
+  void publish_map(const monitor::Grid& grid, double cell_m);
 
  private:
   dds::Topic<geometry_msgs_msg_dds__PoseArray_> poses_topic_;
   dds::Writer<geometry_msgs_msg_dds__PoseArray_> poses_;
   dds::Topic<tf2_msgs_msg_dds__TFMessage_> tf_topic_;
   dds::Writer<tf2_msgs_msg_dds__TFMessage_> tf_;
+  dds::Topic<nav_msgs_msg_dds__OccupancyGrid_> map_topic_;
+  dds::Writer<nav_msgs_msg_dds__OccupancyGrid_> map_;
   std::vector<uint32_t> pose_robots_;
   std::vector<dds::Topic<geometry_msgs_msg_dds__PoseStamped_>> pose_topics_;
   std::vector<dds::Writer<geometry_msgs_msg_dds__PoseStamped_>> pose_writers_;
