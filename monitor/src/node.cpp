@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/reader.hpp"
@@ -76,6 +77,89 @@ struct MonitorNode::Impl {
                                         std::chrono::system_clock::now().time_since_epoch())
                                         .count());
     res.total_actions = instance.actions.actions.size();
+  }
+
+  // Rebuilds the tracker from the hosts' last progress (see MonitorOptions::resume); returns an
+  // error message, empty on success.
+  std::string resume_from_progress() {
+    const auto timeout = std::chrono::milliseconds(static_cast<int64_t>(opt.timeout_s * 1000));
+    if (!progress.wait_for_writers(1, timeout)) {
+      return "cannot resume: no sim host or agent joined domain " +
+             std::to_string(participant.domain_id()) + " within " + std::to_string(opt.timeout_s) +
+             " s; resume only a run whose hosts are still up";
+    }
+    std::vector<int64_t> target(tracker.robots(), -1);
+    uint64_t run = 0;
+    std::string error;
+    auto take = [&] {
+      return progress.take_each([&](const smart_msg_Progress& p) {
+        if (!error.empty()) return;
+        if (p.robot_id >= target.size()) {
+          error = "cannot resume: progress for robot " + std::to_string(p.robot_id) +
+                  " but the plan has " + std::to_string(target.size()) +
+                  " robots; use the plan and --agents of the run being resumed";
+          return;
+        }
+        if (run != 0 && p.run_id != run) {
+          error = "cannot resume: the hosts report two runs (" + std::to_string(run) + " and " +
+                  std::to_string(p.run_id) + "); restart the sim hosts and start a new run";
+          return;
+        }
+        run = p.run_id;
+        target[p.robot_id] = std::max<int64_t>(target[p.robot_id], p.finished_seq);
+      });
+    };
+    // The writers' kept samples arrive after the match, over a few round trips: collect until
+    // nothing new came for 0.5 s. (A lock-step sim is paused meanwhile; a real-time one keeps
+    // reporting, and progress is cumulative, so the newest sample per robot wins either way.)
+    dds::WaitSet waitset(participant);
+    waitset.attach_status(progress.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+    const auto deadline = SteadyClock::now() + timeout;
+    auto last_new = SteadyClock::now();
+    bool any = false;
+    while (SteadyClock::now() < deadline && error.empty()) {
+      waitset.wait(std::chrono::milliseconds(50));
+      if (take() > 0) {
+        any = true;
+        last_new = SteadyClock::now();
+      } else if (any && SteadyClock::now() - last_new > std::chrono::milliseconds(500)) {
+        break;
+      }
+    }
+    if (!error.empty()) return error;
+    if (run == 0) return "cannot resume: the hosts report no progress yet; start a new run";
+    res.run_id = run;
+    // Progress is only accepted for enqueued actions, and what robot A finished may have waited
+    // for robot B: feed each robot as far as is enqueued, again and again until nothing more is
+    // accepted (the execution respected the ADG, so everything is).
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (uint32_t r = 0; r < target.size(); ++r) {
+        const int64_t upto = std::min<int64_t>(target[r], int64_t{tracker.enqueued(r)} - 1);
+        if (upto <= int64_t{tracker.finished(r)} - 1) continue;
+        if (tracker.on_progress(r, upto).result == ExecutionTracker::Result::kAdvanced) {
+          changed = true;
+        }
+      }
+    }
+    for (uint32_t r = 0; r < target.size(); ++r) {
+      if (static_cast<int64_t>(tracker.finished(r)) - 1 != target[r]) {
+        return "cannot resume: robot " + std::to_string(r) + " reports action " +
+               std::to_string(target[r]) +
+               " finished, which this plan's dependency graph does not allow; use the plan, "
+               "--agents and --initial-heading of the run being resumed";
+      }
+      // The hosts hold windows up to at least what was finished (sync totals, idl/smart.idl).
+      sent_end[r] = tracker.finished(r);
+      sent_end_total += sent_end[r];
+      if (tracker.robot_done(r)) res.robots[r].finish_time_s = std::nan("");
+    }
+    res.resumed = true;
+    res.finished_before_resume = tracker.finished_total();
+    res.finished_actions = tracker.finished_total();
+    spdlog::info("monitor: resuming run {}: {} of {} actions already finished", run,
+                 tracker.finished_total(), tracker.total());
+    return {};
   }
 
   void publish_window(uint32_t r) {
@@ -207,6 +291,13 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   dds::WaitSet clock_waitset(I.participant);
   clock_waitset.attach_status(I.clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
 
+  if (I.opt.resume) {
+    if (auto error = I.resume_from_progress(); !error.empty()) {
+      I.res.error = std::move(error);
+      I.res.sim_lost = true;
+      return I.res;
+    }
+  }
   for (uint32_t r = 0; r < I.in.actions.robots(); ++r) I.publish_window(r);
   spdlog::info("monitor: run {}: {} robots, {} actions, {} Type-2 edges; waiting for the sim",
                I.res.run_id, I.in.actions.robots(), I.tracker.total(), I.in.adg.stats.type2);
@@ -235,7 +326,13 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     I.clocks.take_each([&](const smart_msg_Clock& c) {
       if (c.source_id != kSimSource) return;
       if (c.run_id != 0 && c.run_id != I.res.run_id) return;
-      if (!sim_seen) I.res.first_progress_wall_s = wall_s();
+      if (!sim_seen) {
+        I.res.first_progress_wall_s = wall_s();
+        if (I.res.resumed && I.opt.lockstep) {
+          // Metrics restart here: what happened before the resume is not known.
+          I.res.resumed_at_s = I.last_finish_sim_s = I.last_metrics_sim_s = c.sim_time_s;
+        }
+      }
       sim_seen = true;
       last_sim_sign_s = wall_s();
       if (!have_pending || c.tick >= pending.tick) pending = c;

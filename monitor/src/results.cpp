@@ -83,7 +83,12 @@ nlohmann::json plan_json(const Plan& plan, const PlanStats& st) {
 
 nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
   double sum = 0, makespan = 0;
+  bool times_known = true;  // not when a resumed run had robots done before the resume
   for (const auto& m : r.robots) {
+    if (std::isnan(m.finish_time_s)) {
+      times_known = false;
+      continue;
+    }
     sum += m.finish_time_s;
     makespan = std::max(makespan, m.finish_time_s);
   }
@@ -91,8 +96,9 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   nlohmann::json j = {
       {"success", r.success},
       {"robots", r.robots.size()},
-      {"aet_s", r.success ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
-      {"makespan_s", r.success ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
+      {"aet_s", r.success && times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
+      {"makespan_s",
+       r.success && times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
       {"sim_time_s", r.sim_time_s},
       {"wall_time_s", r.wall_time_s},
       {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
@@ -131,6 +137,9 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   };
   j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
   if (!info.machine.empty()) j["machine"] = info.machine;
+  if (r.resumed) {
+    j["resumed"] = {{"at_s", r.resumed_at_s}, {"finished_before", r.finished_before_resume}};
+  }
   return j;
 }
 
@@ -162,6 +171,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
     double max_t = 0, sum_t = 0;
     long long max_steps = 0, sum_steps = 0;
     for (const auto& m : r.robots) {
+      if (std::isnan(m.finish_time_s)) continue;  // done before a resume: unknown
       const auto steps = std::llround(m.finish_time_s / info.control_period_s);
       max_t = std::max(max_t, m.finish_time_s);
       sum_t += m.finish_time_s;

@@ -45,6 +45,9 @@ enum DomainId : int {
   kFastDdsInterop = 134,
   kBenchRun = 135,
   kRosMap = 136,
+  kResumeReference = 137,
+  kResume = 138,
+  kResumeNothing = 139,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

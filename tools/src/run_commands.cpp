@@ -47,6 +47,7 @@ struct MonitorCliOptions {
   double state_rate_hz = 2.0;
   int system_capacity = 0, threads = 2;
   std::vector<uint32_t> ros_pose_robots;  // `smart run`: passed to the sim
+  bool resume = false;                    // `smart monitor` only
   bool progress = true;
 };
 
@@ -191,6 +192,7 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   mo.timeout_s = o.timeout_s;
   mo.stall_timeout_s = o.stall_timeout_s;
   mo.max_sim_time_s = o.max_sim_time_s;
+  mo.resume = o.resume;
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);
@@ -300,6 +302,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan: publish action windows, track "
                                  "progress, detect completion/deadlock, write results");
   add_monitor_options(mon, *mo);
+  mon->add_flag("--resume", mo->resume,
+                "take over a run whose monitor died: its run id and finished actions come from "
+                "the sim hosts' progress (same plan, --agents and --initial-heading)");
   mon->callback([&exit_code, mo] {
     install_stop_handlers();
     exit_code = run_monitor(*mo, false);

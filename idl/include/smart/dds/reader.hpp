@@ -158,6 +158,11 @@ class Reader {
     check(dds_get_sample_lost_status(entity_.handle(), &s), "sample lost");
     return s;
   }
+  // Blocks until transient-local data already written by matched writers has arrived.
+  bool wait_for_historical_data(std::chrono::milliseconds timeout) const {
+    return dds_reader_wait_for_historical_data(entity_.handle(), to_dds_duration(timeout)) ==
+           DDS_RETCODE_OK;
+  }
   bool wait_for_writers(uint32_t writers, std::chrono::milliseconds timeout) const {
     return wait_until([&] { return subscription_matched().current_count >= writers; }, timeout);
   }

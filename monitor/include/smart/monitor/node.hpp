@@ -36,6 +36,11 @@ struct MonitorOptions {
   double stall_timeout_s = 300.0;  // sim time without any finished action
   double max_sim_time_s = 0;       // 0: no limit
   uint64_t run_id = 0;             // 0: derived from the wall clock (increasing run to run)
+  // Take over a run whose monitor died: the run id and every robot's finished actions come
+  // from the hosts' progress (transient local, kept by their writers); windows continue from
+  // there. Fails if no host reports progress within timeout_s or the progress does not fit
+  // this plan's ADG.
+  bool resume = false;
   // Optional watchdog for hosts this process started (`smart run`'s sim child), polled about
   // every 100 ms: a non-empty message ends the run at once as sim_lost with that error, instead
   // of after timeout_s of silence.
@@ -69,6 +74,11 @@ struct MonitorResult {
   uint64_t wall_contacts = 0;
   std::optional<double> min_gap_m;
   std::optional<double> host_peak_rss_mb;  // largest peak memory a sim host reported
+  // Resumed runs: finish and waiting times before the resume are unknown (finish_time_s NaN
+  // for robots already done; AET and makespan then unknown).
+  bool resumed = false;
+  double resumed_at_s = 0;                 // sim time of the first tick after the resume
+  std::size_t finished_before_resume = 0;  // actions
   bool have_sim_status = false;
   uint64_t rejected_progress = 0;
 };
