@@ -152,7 +152,10 @@ struct MonitorNode::Impl {
       // The hosts hold windows up to at least what was finished (sync totals, idl/smart.idl).
       sent_end[r] = tracker.finished(r);
       sent_end_total += sent_end[r];
-      if (tracker.robot_done(r)) res.robots[r].finish_time_s = std::nan("");
+      if (tracker.robot_done(r)) {
+        res.robots[r].finish_time_s = std::nan("");
+        ++res.robots_done_before_resume;
+      }
     }
     res.resumed = true;
     res.finished_before_resume = tracker.finished_total();

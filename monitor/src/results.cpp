@@ -138,7 +138,9 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
   if (!info.machine.empty()) j["machine"] = info.machine;
   if (r.resumed) {
-    j["resumed"] = {{"at_s", r.resumed_at_s}, {"finished_before", r.finished_before_resume}};
+    j["resumed"] = {{"at_s", r.resumed_at_s},
+                    {"finished_before", r.finished_before_resume},
+                    {"robots_done_before", r.robots_done_before_resume}};
   }
   return j;
 }

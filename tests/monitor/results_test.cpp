@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -89,6 +90,27 @@ TEST(Results, WritesSummaryStatsAndRobotFiles) {
   EXPECT_THAT(stats, HasSubstr("\n125,205,12.5,20.5,"));
   EXPECT_EQ(slurp(dir / "nested" / "robots.csv"),
             "robot,finish_time_s,waiting_time_s,stops,actions\n0,8,0,0,2\n1,12.5,3,1,3\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Results, AResumedRunWithRobotsDoneBeforeHasNoAetAndSaysSo) {
+  const auto in = tiny_instance();
+  auto r = finished_run(in);
+  r.resumed = true;
+  r.resumed_at_s = 4.0;
+  r.finished_before_resume = 3;
+  r.robots_done_before_resume = 1;
+  r.robots[0].finish_time_s = std::nan("");  // done before the resume: unknown
+  const auto j = summary_json(in, r, RunInfo{});
+  EXPECT_TRUE(j["aet_s"].is_null());
+  EXPECT_TRUE(j["makespan_s"].is_null());
+  EXPECT_DOUBLE_EQ(j["resumed"]["at_s"].get<double>(), 4.0);
+  EXPECT_EQ(j["resumed"]["finished_before"], 3);
+  EXPECT_EQ(j["resumed"]["robots_done_before"], 1);
+  const auto dir = temp_dir("resumed");
+  write_results(dir, in, r, RunInfo{});
+  // SMART's stats row counts the robots whose finish time is known.
+  EXPECT_THAT(slurp(dir / "stats.csv"), HasSubstr("\n125,125,12.5,12.5,"));
   std::filesystem::remove_all(dir);
 }
 

@@ -79,6 +79,7 @@ struct MonitorResult {
   bool resumed = false;
   double resumed_at_s = 0;                 // sim time of the first tick after the resume
   std::size_t finished_before_resume = 0;  // actions
+  std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
   uint64_t rejected_progress = 0;
 };
