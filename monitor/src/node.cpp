@@ -47,6 +47,8 @@ struct MonitorNode::Impl {
   MonitorResult res;
   double last_finish_sim_s = 0;
   double last_metrics_sim_s = 0;
+  // Real time: when each robot's host (sim or agent) was last heard of (its state samples).
+  std::vector<SteadyClock::time_point> robot_seen;
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& instance,
        const MonitorOptions& o)
@@ -68,6 +70,7 @@ struct MonitorNode::Impl {
     const std::size_t n = instance.actions.robots();
     sent_end.assign(n, 0);
     waiting.assign(n, 0);
+    robot_seen.assign(n, SteadyClock::now());
     res.robots.resize(n);
     for (uint32_t r = 0; r < n; ++r) res.robots[r].actions = instance.actions.count(r);
     res.run_id =
@@ -206,6 +209,8 @@ struct MonitorNode::Impl {
 
   void take_observations() {
     states.take_each([&](const smart_msg_RobotState& s) {
+      if (s.run_id != res.run_id && s.run_id != 0) return;
+      if (s.robot_id < robot_seen.size()) robot_seen[s.robot_id] = SteadyClock::now();
       if (!opt.on_state || s.run_id != res.run_id) return;
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
@@ -315,6 +320,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   uint64_t last_tick = 0;
   auto last_report = SteadyClock::now();
   auto last_host_check = SteadyClock::now();
+  auto last_liveness_check = SteadyClock::now();
   bool over = false;
   while (!over) {
     if (stop_requested.load()) {
@@ -371,14 +377,32 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     if (matched > 0 && !sim_seen && !I.opt.lockstep) {
       sim_seen = true;
       I.res.first_progress_wall_s = wall_s();
+      std::fill(I.robot_seen.begin(), I.robot_seen.end(), SteadyClock::now());
     }
     if (sim_seen) last_sim_sign_s = I.opt.lockstep ? last_sim_sign_s : wall_s();
     max_matched = std::max(max_matched, matched);
-    if (sim_seen && matched < max_matched) {
+    // Lock-step: the one sim host holds every robot, so its writers leaving ends the run.
+    if (I.opt.lockstep && sim_seen && matched < max_matched) {
       I.res.sim_lost = true;
-      I.res.error = "a sim host or robot agent left (its DDS writers disappeared) after " +
+      I.res.error = "the sim host left (its DDS writers disappeared) after " +
                     std::to_string(I.res.sim_time_s) + " s of sim time";
       break;
+    }
+    // Real time: hosts may restart (an agent process, a robot rebooting): a robot fails the run
+    // only when nothing was heard of it for timeout_s; a restarted host resumes from its window.
+    if (!I.opt.lockstep && sim_seen &&
+        SteadyClock::now() - last_liveness_check > std::chrono::milliseconds(100)) {
+      last_liveness_check = SteadyClock::now();
+      const auto limit = std::chrono::duration<double>(I.opt.timeout_s);
+      for (uint32_t r = 0; r < I.robot_seen.size(); ++r) {
+        if (I.tracker.robot_done(r) || SteadyClock::now() - I.robot_seen[r] <= limit) continue;
+        I.res.sim_lost = true;
+        I.res.error = "robot " + std::to_string(r) + ": nothing heard from its host (sim or " +
+                      "agent) for " + std::to_string(I.opt.timeout_s) +
+                      " s; the process stopped or lost the network";
+        break;
+      }
+      if (I.res.sim_lost) break;
     }
     if (I.opt.host_check && SteadyClock::now() - last_host_check > std::chrono::milliseconds(100)) {
       last_host_check = SteadyClock::now();

@@ -48,6 +48,7 @@ enum DomainId : int {
   kResumeReference = 137,
   kResume = 138,
   kResumeNothing = 139,
+  kMixedRestart = 140,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -2,10 +2,11 @@
 // ADG) it publishes each robot's action window on the keyed action topic (push: a robot gets
 // new actions as soon as they are enqueued), consumes cumulative progress, advances the
 // ExecutionTracker, and detects completion, ADG deadlock, stalls (no action finished for
-// stall_timeout_s of sim time) and a lost sim host (its writers unmatched, or silent for
-// timeout_s of wall time). Lock-step mode answers each sim tick only after applying exactly the
-// progress the tick announces (idl/smart.idl, Clock). Metrics are on the sim clock (wall
-// time separately). The run ends with a stop on the clock topic so hosts shut down.
+// stall_timeout_s of sim time) and a lost host (lock-step: the sim's writers unmatched, or
+// silent for timeout_s of wall time; real time: no state of a robot for timeout_s, so a host
+// that restarts within it carries on). Lock-step mode answers each sim tick only after applying
+// exactly the progress the tick announces (idl/smart.idl, Clock). Metrics are on the sim clock
+// (wall time separately). The run ends with a stop on the clock topic so hosts shut down.
 #pragma once
 
 #include <atomic>
@@ -32,7 +33,9 @@ struct MonitorOptions {
   bool lockstep = true;
   uint32_t window_cap = 32;  // look-ahead: most actions in one window
   double cell_m = 1.0;
-  double timeout_s = 30.0;         // wall time without any sign of the sim host
+  // Wall time without any sign of the sim host (lock-step), or of a robot's host, sim or agent
+  // (real time: hosts may restart within it).
+  double timeout_s = 30.0;
   double stall_timeout_s = 300.0;  // sim time without any finished action
   double max_sim_time_s = 0;       // 0: no limit
   uint64_t run_id = 0;             // 0: derived from the wall clock (increasing run to run)
