@@ -7,9 +7,7 @@
 
 #include <thread>
 
-#include "smart/dds/qos_profile.hpp"
-#include "smart/dds/reader.hpp"
-#include "smart/dds/topics.hpp"
+#include "support/fleet_watcher.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
@@ -52,24 +50,10 @@ TEST_F(Resume, AResumedMonitorFinishesTheRunExactlyAsAnUninterruptedOne) {
   sim_args.insert(sim_args.begin(), {smart_exe().string(), "sim"});
   sim_args.insert(sim_args.end(), {"--domain", std::to_string(kResume)});
   tools::ChildProcess sim(sim_args, "/dev/null");
-  std::vector<std::string> first_argv{smart_exe().string()};
-  const auto m = monitor_args(kResume);
-  first_argv.insert(first_argv.end(), m.begin(), m.end());
-  tools::ChildProcess first(first_argv, "/dev/null");
-  // Watch the run like any DDS tool would, and kill the monitor once robots have progressed.
-  dds::Domain domain(kResume, loopback());
-  dds::Participant watcher(domain);
-  const auto qos = dds::default_qos_profile();
-  dds::Topic<smart_msg_Progress> topic(watcher, std::string(dds::kProgressTopic));
-  dds::Reader<smart_msg_Progress> progress(watcher, topic, qos.progress.to_dds());
-  int64_t most = -1;
-  const auto give_up = std::chrono::steady_clock::now() + 60s;
-  while (most < 20 && std::chrono::steady_clock::now() < give_up) {
-    progress.take_each(
-        [&](const smart_msg_Progress& p) { most = std::max<int64_t>(most, p.finished_seq); });
-    std::this_thread::sleep_for(20ms);
-  }
-  ASSERT_GE(most, 20) << "the run did not get under way";
+  auto first = start_smart(monitor_args(kResume), "/dev/null");
+  // Kill the monitor once robots have progressed.
+  FleetWatcher watcher(kResume);
+  ASSERT_GE(watcher.wait_for_finished(20, 60s), 20) << "the run did not get under way";
   ASSERT_TRUE(first.running());
   first.signal(SIGKILL);
   ASSERT_TRUE(first.wait(5s).has_value());

@@ -102,9 +102,7 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   margs.insert(margs.begin(), "monitor");
   margs.insert(margs.end(), {"--timeout-s", "3"});
   const auto mout = temp_file("kill_monitor.out");
-  std::vector<std::string> mv{smart_exe().string()};
-  mv.insert(mv.end(), margs.begin(), margs.end());
-  tools::ChildProcess monitor(mv, mout);
+  auto monitor = start_smart(margs, mout);
   tools::ChildProcess sim(
       {smart_exe().string(), "sim", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
        "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--agents", "100",
@@ -116,8 +114,7 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   const auto rc = monitor.wait(30s);
   ASSERT_TRUE(rc.has_value()) << "the monitor hung after the sim host died";
   EXPECT_EQ(*rc, 1);
-  const std::string out = slurp(mout);
-  const auto j = nlohmann::json::parse(out.substr(out.find('{')));
+  const auto j = summary_in(slurp(mout));
   EXPECT_FALSE(j["success"].get<bool>());
   EXPECT_TRUE(j["sim_lost"].get<bool>());
   EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("sim host"));
@@ -130,9 +127,7 @@ TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
   args.insert(args.begin(), "run");
   args.insert(args.end(), {"--timeout-s", "60"});
   const auto out = temp_file("kill_child.out");
-  std::vector<std::string> argv{smart_exe().string()};
-  argv.insert(argv.end(), args.begin(), args.end());
-  tools::ChildProcess run(argv, out);
+  auto run = start_smart(args, out);
   std::this_thread::sleep_for(2500ms);  // the run is under way
   ASSERT_TRUE(run.running());
   // The sim is `smart run`'s only child.
@@ -146,8 +141,7 @@ TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
   ASSERT_TRUE(rc.has_value()) << "smart run hung after its sim child died";
   EXPECT_LT(std::chrono::steady_clock::now() - killed, 10s) << "not reported at once";
   EXPECT_EQ(*rc, 1);
-  const std::string text = slurp(out);
-  const auto j = nlohmann::json::parse(text.substr(text.find('{')));
+  const auto j = summary_in(slurp(out));
   EXPECT_TRUE(j["sim_lost"].get<bool>());
   EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("killed by signal 9"));
   std::filesystem::remove(out);

@@ -13,14 +13,16 @@
 
 namespace smart::test {
 
+// The JSON summary a `smart` command prints last on stdout (null if there is none).
+inline nlohmann::json summary_in(const std::string& out) {
+  const auto start = out.find('{');
+  return start == std::string::npos ? nlohmann::json() : nlohmann::json::parse(out.substr(start));
+}
+
 struct SmartRun {
   int code = -1;  // -1: timed out (the process was killed)
   std::string out;
-  nlohmann::json last_json() const {
-    // The JSON summary is printed last on stdout.
-    const auto start = out.find('{');
-    return start == std::string::npos ? nlohmann::json() : nlohmann::json::parse(out.substr(start));
-  }
+  nlohmann::json last_json() const { return summary_in(out); }
 };
 
 inline std::string slurp(const std::filesystem::path& p) {
@@ -30,12 +32,18 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
+// Starts `smart args...` in the background, stdout to `out`.
+inline tools::ChildProcess start_smart(const std::vector<std::string>& args,
+                                       const std::filesystem::path& out) {
+  std::vector<std::string> argv{smart_exe().string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return tools::ChildProcess(argv, out);
+}
+
 inline SmartRun run_smart(const std::vector<std::string>& args, std::chrono::seconds timeout,
                           const std::string& tag) {
   const auto out = temp_file(tag + ".out");
-  std::vector<std::string> argv{smart_exe().string()};
-  argv.insert(argv.end(), args.begin(), args.end());
-  tools::ChildProcess p(argv, out);
+  auto p = start_smart(args, out);
   SmartRun r;
   if (auto rc = p.wait(timeout)) {
     r.code = *rc;
