@@ -6,6 +6,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
 namespace smart::test {
@@ -14,7 +15,7 @@ namespace {
 using namespace std::chrono_literals;
 
 TEST(RosInterop, FastDdsNodeReadsTheFleetPosesWrittenByCyclone) {
-  const auto b = std::filesystem::path(SMART_BENCHMARKS_DIR);
+  const auto b = benchmarks_dir();
   if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
   const auto out = temp_file("fastdds_listener.out");
   tools::ChildProcess listener({FASTDDS_POSE_LISTENER, std::to_string(kFastDdsInterop), "4", "60"},
