@@ -10,16 +10,17 @@
 
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
-#include "smart/monitor/map_reader.hpp"
+#include "smart/grid/map_reader.hpp"
 #include "smart/monitor/plan_reader.hpp"
 #include "smart/monitor/plan_validator.hpp"
-#include "smart/monitor/random_plan.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/planning/random_plan.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/tools/machine.hpp"
 
 namespace {
 
 using namespace smart::monitor;
+using smart::planning::generate_random_plan;
 
 std::filesystem::path data_dir() {
   if (const char* env = std::getenv("SMART_BENCHMARKS"); env && *env) return env;

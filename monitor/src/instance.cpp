@@ -2,9 +2,8 @@
 
 #include <chrono>
 
-#include "smart/monitor/map_reader.hpp"
+#include "smart/monitor/vocabulary.hpp"
 #include "smart/monitor/plan_validator.hpp"
-#include "smart/monitor/text_file.hpp"
 
 namespace smart::monitor {
 

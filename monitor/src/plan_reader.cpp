@@ -8,8 +8,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "smart/monitor/problem.hpp"
-#include "smart/monitor/text.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

@@ -18,11 +18,11 @@
 
 namespace smart::sim {
 
-std::vector<agent::Pose2D> start_poses(const monitor::Grid& grid, double cell_m,
-                                       const std::vector<monitor::Cell>& starts, double yaw) {
+std::vector<agent::Pose2D> start_poses(const grid::Grid& grid, double cell_m,
+                                       const std::vector<grid::Cell>& starts, double yaw) {
   std::vector<agent::Pose2D> out;
   for (const auto& c : starts) {
-    const auto p = grid.to_world(monitor::HalfCell::of(c), cell_m);
+    const auto p = grid.to_world(grid::HalfCell::of(c), cell_m);
     out.push_back({p.x_m, p.y_m, yaw});
   }
   return out;
@@ -45,7 +45,7 @@ struct SimHost::Impl {
   uint64_t finished_total = 0;  // sum over robots of finished_seq + 1, as reported
   uint64_t rejected_windows = 0;
 
-  Impl(const dds::Participant& p, const dds::QosProfile& qos, const monitor::Grid& grid,
+  Impl(const dds::Participant& p, const dds::QosProfile& qos, const grid::Grid& grid,
        const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
        const SimHostOptions& o)
       : participant(p),
@@ -168,7 +168,7 @@ struct SimHost::Impl {
 };
 
 SimHost::SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
-                 const monitor::Grid& grid, const agent::RobotModel& model,
+                 const grid::Grid& grid, const agent::RobotModel& model,
                  const std::vector<agent::Pose2D>& starts, const SimHostOptions& options)
     : impl_(std::make_unique<Impl>(participant, qos, grid, model, starts, options)) {}
 

@@ -20,7 +20,7 @@ geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad) {
   return {0.0, 0.0, std::sin(yaw_rad / 2), std::cos(yaw_rad / 2)};
 }
 
-std::vector<int8_t> occupancy_cells(const monitor::Grid& grid) {
+std::vector<int8_t> occupancy_cells(const grid::Grid& grid) {
   std::vector<int8_t> cells;
   cells.reserve(static_cast<std::size_t>(grid.width()) * grid.height());
   for (int32_t row = grid.height() - 1; row >= 0; --row) {
@@ -97,7 +97,7 @@ void RosView::publish(const World& world) {
   }
 }
 
-void RosView::publish_map(const monitor::Grid& grid, double cell_m) {
+void RosView::publish_map(const grid::Grid& grid, double cell_m) {
   auto cells = occupancy_cells(grid);
   nav_msgs_msg_dds__OccupancyGrid_ m{};
   m.header = {ros_stamp(0.0), g_map_frame};

@@ -6,13 +6,13 @@ namespace smart::sim {
 
 namespace {
 
-bool blocked(const monitor::Grid& g, int32_t col, int32_t row) {
+bool blocked(const grid::Grid& g, int32_t col, int32_t row) {
   return !g.inside({col, row}) || g.blocked({col, row});
 }
 
 // Number of blocked cells among the four sharing the vertex at the (+sx, +sy) corner of cell
 // (col, row), with sx, sy in {-1, +1} in world directions (+y is row - 1).
-int blocked_around_vertex(const monitor::Grid& g, int32_t col, int32_t row, int sx, int sy) {
+int blocked_around_vertex(const grid::Grid& g, int32_t col, int32_t row, int sx, int sy) {
   const int32_t dc = sx, dr = -sy;
   return blocked(g, col, row) + blocked(g, col + dc, row) + blocked(g, col, row + dr) +
          blocked(g, col + dc, row + dr);
@@ -20,12 +20,12 @@ int blocked_around_vertex(const monitor::Grid& g, int32_t col, int32_t row, int 
 
 }  // namespace
 
-monitor::Cell cell_at(const monitor::Grid& g, double cell_m, double x, double y) {
+grid::Cell cell_at(const grid::Grid& g, double cell_m, double x, double y) {
   return {static_cast<int32_t>(std::lround(x / cell_m)),
           static_cast<int32_t>(g.height() - 1 - std::lround(y / cell_m))};
 }
 
-void wall_contacts(const monitor::Grid& g, double cell_m, double x, double y, double r,
+void wall_contacts(const grid::Grid& g, double cell_m, double x, double y, double r,
                    std::vector<WallContact>& out) {
   const auto c = cell_at(g, cell_m, x, y);
   const double half = cell_m / 2;

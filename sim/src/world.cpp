@@ -83,7 +83,7 @@ double contact_force(double depth, double depth_rate, double E, double R, double
 // Everything the force elements read: per-robot commands, the sub-step snapshot and the
 // contacts found in it; and the assignment of awake robots to Simbody body slots.
 struct World::Impl : detail::RobotForces {
-  const monitor::Grid& grid;
+  const grid::Grid& grid;
   agent::RobotModel model;
   SimConfig cfg;
   std::size_t n;
@@ -131,7 +131,7 @@ struct World::Impl : detail::RobotForces {
   std::vector<detail::SimbodySystem*> active;  // systems stepped in this sub-step
   Workers workers;
 
-  Impl(const monitor::Grid& g, const agent::RobotModel& m, const SimConfig& c, std::size_t robots)
+  Impl(const grid::Grid& g, const agent::RobotModel& m, const SimConfig& c, std::size_t robots)
       : grid(g), model(m), cfg(c), n(robots), workers(c.threads) {}
 
   double command(const std::vector<double>& from, const std::vector<double>& target, uint32_t i,
@@ -305,7 +305,7 @@ void World::Impl::find_contacts(bool everyone) {
     const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
     for (int dr = -1; dr <= 1; ++dr) {
       for (int dc = -1; dc <= 1; ++dc) {
-        const monitor::Cell cc{c.x + dc, c.y + dr};
+        const grid::Cell cc{c.x + dc, c.y + dr};
         if (!grid.inside(cc)) continue;
         for (uint32_t j = head[grid.index(cc)]; j != kNoRobot; j = next[j]) {
           // Each pair once: from its lower index if both are examined.
@@ -355,7 +355,7 @@ void World::Impl::find_contacts(bool everyone) {
   stats.robot_wall_now = walls_now;
 }
 
-World::World(const monitor::Grid& grid, const agent::RobotModel& model, const SimConfig& config,
+World::World(const grid::Grid& grid, const agent::RobotModel& model, const SimConfig& config,
              const std::vector<agent::Pose2D>& starts)
     : impl_(std::make_unique<Impl>(grid, model, config, starts.size())) {
   auto& I = *impl_;
@@ -397,7 +397,7 @@ World::World(const monitor::Grid& grid, const agent::RobotModel& model, const Si
     const auto cell = cell_at(grid, config.cell_m, p.x_m, p.y_m);
     if (!grid.free(cell)) {
       throw std::invalid_argument("robot " + std::to_string(i) + " starts at " +
-                                  monitor::to_string(cell) +
+                                  grid::to_string(cell) +
                                   ", which is outside the map or blocked");
     }
     I.x[i] = p.x_m;

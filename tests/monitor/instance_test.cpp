@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "smart/monitor/problem.hpp"
+#include "smart/grid/problem.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {

@@ -3,8 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "smart/monitor/problem.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/grid/problem.hpp"
+#include "smart/grid/text_file.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {

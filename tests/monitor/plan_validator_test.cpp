@@ -3,9 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "smart/monitor/map_reader.hpp"
+#include "smart/grid/map_reader.hpp"
 #include "smart/monitor/plan_reader.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/grid/text_file.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {

@@ -1,7 +1,7 @@
-// Property tests over many seeded random valid plans (random_plan.hpp): the ADG is acyclic,
+// Property tests over many seeded random valid plans (planning/random_plan.hpp): the ADG is acyclic,
 // any execution order the tracker allows never puts two robots in one location and always
 // finishes, and the reduced Type-2 edge set implies every edge of the all-pairs rule.
-#include "smart/monitor/random_plan.hpp"
+#include "smart/planning/random_plan.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,6 +17,9 @@
 
 namespace smart::monitor {
 namespace {
+using planning::generate_random_grid;
+using planning::generate_random_plan;
+using planning::GeneratedInstance;
 
 struct Case {
   Grid grid;

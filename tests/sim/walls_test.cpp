@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "smart/monitor/random_plan.hpp"
+#include "smart/planning/random_plan.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::sim {
@@ -14,7 +14,7 @@ namespace {
 // 5x5 map, cell 1 m; world y = 4 - row. The blocked cell (2,2) is centred at (2, 2).
 const auto kGrid = test::grid_of({".....", ".....", "..@..", ".....", "....."});
 
-std::vector<WallContact> at(double x, double y, double r = 0.25, const monitor::Grid& g = kGrid) {
+std::vector<WallContact> at(double x, double y, double r = 0.25, const grid::Grid& g = kGrid) {
   std::vector<WallContact> out;
   wall_contacts(g, 1.0, x, y, r, out);
   return out;
@@ -64,15 +64,15 @@ TEST(Walls, OutsideTheMapIsBlocked) {
 }
 
 TEST(Walls, CellAtUsesTheWorldFrame) {
-  EXPECT_EQ(cell_at(kGrid, 1.0, 2.2, 3.9), (monitor::Cell{2, 0}));
-  EXPECT_EQ(cell_at(kGrid, 0.5, 1.0, 0.0), (monitor::Cell{2, 4}));
+  EXPECT_EQ(cell_at(kGrid, 1.0, 2.2, 3.9), (grid::Cell{2, 0}));
+  EXPECT_EQ(cell_at(kGrid, 0.5, 1.0, 0.0), (grid::Cell{2, 4}));
 }
 
 // Property: a disc centred in a free cell has a wall contact exactly when it overlaps a blocked
 // cell or leaves the map (checked against a brute-force overlap test on every cell), including
 // the fast path for discs inside their own cell.
 TEST(Walls, ContactIffTheDiscOverlapsABlockedCell) {
-  const auto grid = monitor::generate_random_grid(12, 9, 0.3, 11);
+  const auto grid = planning::generate_random_grid(12, 9, 0.3, 11);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> ux(-0.5, 11.5), uy(-0.5, 8.5);
   std::vector<WallContact> found;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "smart/monitor/random_plan.hpp"
+#include "smart/planning/random_plan.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::sim {
@@ -23,8 +23,8 @@ agent::RobotModel model(double max_speed = 1.0) {
   return m;
 }
 
-monitor::Grid open_map(int w, int h) {
-  return monitor::Grid(w, h, std::vector<uint8_t>(static_cast<std::size_t>(w) * h, 0), "open");
+grid::Grid open_map(int w, int h) {
+  return grid::Grid(w, h, std::vector<uint8_t>(static_cast<std::size_t>(w) * h, 0), "open");
 }
 
 TEST(World, FullSpeedFromRestFollowsVEqualsATUntilTheLimit) {
@@ -89,9 +89,9 @@ TEST(World, TwoRobotsDrivenHeadOnCollideAndAreReported) {
 // Random drive commands for many robots, changed every period; some robots get no command in
 // some periods, so they come to rest, sleep and are woken again (by a command or a push).
 uint64_t run_hash(int threads, int capacity) {
-  const auto grid = monitor::generate_random_grid(30, 30, 0.1, 5);
+  const auto grid = planning::generate_random_grid(30, 30, 0.1, 5);
   std::vector<agent::Pose2D> starts;
-  const auto inst = monitor::generate_random_plan(grid, {120, 1, 9});
+  const auto inst = planning::generate_random_plan(grid, {120, 1, 9});
   for (const auto& p : inst.plan.paths) {
     const auto c = p.steps.front().cell;
     starts.push_back({double(c.x), double(grid.height() - 1 - c.y), 0.3 * c.x});

@@ -5,30 +5,30 @@
 #include <string>
 #include <vector>
 
-#include "smart/monitor/grid.hpp"
-#include "smart/monitor/plan.hpp"
-#include "smart/monitor/scen_reader.hpp"
+#include "smart/grid/grid.hpp"
+#include "smart/grid/plan.hpp"
+#include "smart/grid/scen_reader.hpp"
 
 namespace smart::test {
 
 // Rows top to bottom, '.' free and '@' blocked.
-inline monitor::Grid grid_of(const std::vector<std::string>& rows) {
+inline grid::Grid grid_of(const std::vector<std::string>& rows) {
   const auto h = static_cast<int32_t>(rows.size());
   const auto w = static_cast<int32_t>(rows.at(0).size());
   std::vector<uint8_t> cells;
   for (const auto& r : rows) {
     for (char c : r) cells.push_back(c == '@' ? 1 : 0);
   }
-  return monitor::Grid(w, h, std::move(cells), "fixture");
+  return grid::Grid(w, h, std::move(cells), "fixture");
 }
 
 // Untimed paths: robot i's cells at times 0, 1, 2, ...
-inline monitor::Plan plan_of(const std::vector<std::vector<monitor::Cell>>& paths) {
-  monitor::Plan p;
+inline grid::Plan plan_of(const std::vector<std::vector<grid::Cell>>& paths) {
+  grid::Plan p;
   p.source = "fixture.txt";
-  p.format = monitor::PlanFormat::kSmart;
+  p.format = grid::PlanFormat::kSmart;
   for (std::size_t r = 0; r < paths.size(); ++r) {
-    monitor::RobotPath rp{static_cast<int>(r), static_cast<int>(r) + 1, {}};
+    grid::RobotPath rp{static_cast<int>(r), static_cast<int>(r) + 1, {}};
     for (std::size_t k = 0; k < paths[r].size(); ++k) {
       rp.steps.push_back({paths[r][k], static_cast<double>(k), static_cast<int>(r) + 1});
     }
@@ -38,8 +38,8 @@ inline monitor::Plan plan_of(const std::vector<std::vector<monitor::Cell>>& path
 }
 
 // A scenario whose starts and goals are the plan's first and last cells.
-inline monitor::Scenario scen_of(const monitor::Plan& plan, const monitor::Grid& grid) {
-  monitor::Scenario s;
+inline grid::Scenario scen_of(const grid::Plan& plan, const grid::Grid& grid) {
+  grid::Scenario s;
   s.source = "fixture.scen";
   s.map_width = grid.width();
   s.map_height = grid.height();

@@ -12,8 +12,8 @@
 
 #include "smart/agent/agent.hpp"
 #include "smart/monitor/action_builder.hpp"
-#include "smart/monitor/map_reader.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/grid/map_reader.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/sim/sim_robot.hpp"
 #include "smart/sim/world.hpp"
 #include "smart/tools/child_process.hpp"
@@ -35,10 +35,10 @@ struct BenchSimOptions {
 };
 
 int run_bench_sim(const BenchSimOptions& o) {
-  const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
+  const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
   const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
   std::mt19937_64 rng(o.seed);
-  std::vector<monitor::Cell> free;
+  std::vector<grid::Cell> free;
   for (int32_t y = 0; y < grid.height(); ++y) {
     for (int32_t x = 0; x < grid.width(); ++x) {
       if (!grid.blocked({x, y})) free.push_back({x, y});
@@ -52,13 +52,13 @@ int run_bench_sim(const BenchSimOptions& o) {
   std::shuffle(free.begin(), free.end(), rng);
   // Independent random walks, long enough to keep every robot busy for the whole run.
   const auto steps = static_cast<std::size_t>(o.sim_seconds) + 10;
-  monitor::Plan plan;
+  grid::Plan plan;
   for (std::size_t r = 0; r < o.robots; ++r) {
-    monitor::RobotPath p{static_cast<int>(r), 0, {}};
-    monitor::Cell c = free[r];
+    grid::RobotPath p{static_cast<int>(r), 0, {}};
+    grid::Cell c = free[r];
     p.steps.push_back({c, 0, 0});
     for (std::size_t k = 1; k < steps; ++k) {
-      const monitor::Cell n[4] = {{c.x + 1, c.y}, {c.x - 1, c.y}, {c.x, c.y + 1}, {c.x, c.y - 1}};
+      const grid::Cell n[4] = {{c.x + 1, c.y}, {c.x - 1, c.y}, {c.x, c.y + 1}, {c.x, c.y - 1}};
       for (int tries = 0; tries < 8; ++tries) {
         const auto cand = n[rng() % 4];
         if (grid.free(cand)) {
@@ -70,14 +70,14 @@ int run_bench_sim(const BenchSimOptions& o) {
     }
     plan.paths.push_back(std::move(p));
   }
-  const auto actions = monitor::build_actions(plan, monitor::Heading::kEast);
+  const auto actions = monitor::build_actions(plan, grid::Heading::kEast);
   sim::SimConfig cfg;
   cfg.cell_m = o.cell_m;
   cfg.system_capacity = o.system_capacity;
   cfg.threads = o.threads;
   std::vector<agent::Pose2D> starts;
   for (std::size_t r = 0; r < o.robots; ++r) {
-    const auto w = grid.to_world(monitor::HalfCell::of(free[r]), o.cell_m);
+    const auto w = grid.to_world(grid::HalfCell::of(free[r]), o.cell_m);
     starts.push_back({w.x_m, w.y_m, 0.0});
   }
   sim::World world(grid, model, cfg, starts);
@@ -94,7 +94,7 @@ int run_bench_sim(const BenchSimOptions& o) {
       w.push_back({s,
                    a.type == monitor::ActionType::kMove ? agent::ActionKind::kMove
                                                         : agent::ActionKind::kRotate,
-                   f.x_m, f.y_m, t.x_m, t.y_m, monitor::yaw_rad(a.heading)});
+                   f.x_m, f.y_m, t.x_m, t.y_m, grid::yaw_rad(a.heading)});
     }
     agents.back()->activate();
     agents.back()->on_window(1, w);

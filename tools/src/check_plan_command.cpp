@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "smart/monitor/instance.hpp"
-#include "smart/monitor/problem.hpp"
+#include "smart/grid/problem.hpp"
 #include "smart/monitor/results.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
@@ -21,7 +21,7 @@ struct CheckPlanOptions {
   std::string heading = "east";
 };
 
-nlohmann::json problems_json(const std::vector<monitor::Problem>& problems) {
+nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
   auto arr = nlohmann::json::array();
   for (const auto& p : problems) {
     nlohmann::json j = {{"file", p.source}, {"message", p.message}};
@@ -54,7 +54,7 @@ int run_check_plan(const CheckPlanOptions& o) {
     report["plan"]["file"] = o.plan;
     std::cout << report.dump(2) << std::endl;
     return 0;
-  } catch (const monitor::InputError& e) {
+  } catch (const grid::InputError& e) {
     for (const auto& p : e.problems()) std::cerr << p.to_string() << "\n";
     std::cerr << e.problems().size() << " problem(s) found\n";
     std::cout << nlohmann::json{{"valid", false},

@@ -60,7 +60,7 @@ monitor::InstanceOptions instance_options(const std::string& map, const std::str
   io.agents = agents;
   io.read.format = monitor::parse_plan_format(format);
   if (!axis.empty()) io.read.axis = monitor::parse_axis_order(axis);
-  io.initial_heading = monitor::parse_heading(heading);
+  io.initial_heading = grid::parse_heading(heading);
   return io;
 }
 

@@ -4,12 +4,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "smart/monitor/generators.hpp"
-#include "smart/monitor/map_reader.hpp"
+#include "smart/planning/generators.hpp"
+#include "smart/grid/map_reader.hpp"
 #include "smart/monitor/plan_validator.hpp"
-#include "smart/monitor/planner.hpp"
-#include "smart/monitor/scen_reader.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/planning/planner.hpp"
+#include "smart/grid/scen_reader.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/tools/commands.hpp"
 
 namespace smart::tools {
@@ -33,19 +33,19 @@ struct PlanOptions {
 }  // namespace
 
 int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o) {
-  monitor::Grid g;
+  grid::Grid g;
   char blocked = '@';
   if (kind == "warehouse") {
-    g = monitor::generate_warehouse(o.warehouse);
+    g = planning::generate_warehouse(o.warehouse);
     blocked = 'T';
   } else if (kind == "random") {
-    g = monitor::generate_random_map(o.width, o.height, o.obstacles, o.seed);
+    g = planning::generate_random_map(o.width, o.height, o.obstacles, o.seed);
   } else if (kind == "empty") {
-    g = monitor::generate_empty_map(o.width, o.height);
+    g = planning::generate_empty_map(o.width, o.height);
   } else {
-    g = monitor::generate_maze(o.width, o.height, o.corridor, o.seed);
+    g = planning::generate_maze(o.width, o.height, o.corridor, o.seed);
   }
-  write_file(out, monitor::to_movingai_map(g, blocked));
+  write_file(out, planning::to_movingai_map(g, blocked));
   std::cout << nlohmann::json{{"map", out},
                               {"kind", kind},
                               {"width", g.width()},
@@ -58,10 +58,10 @@ int generate_map(const std::string& kind, const std::string& out, const GenMapOp
 
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
                   const std::string& out) {
-  const auto g = monitor::parse_map(monitor::read_text_file(map, "map"), map);
+  const auto g = grid::parse_map(grid::read_text_file(map, "map"), map);
   const auto name = std::filesystem::path(map).filename().string();
-  const auto s = monitor::generate_scenario(g, agents, seed, name);
-  write_file(out, monitor::to_movingai_scen(s, g));
+  const auto s = planning::generate_scenario(g, agents, seed, name);
+  write_file(out, planning::to_movingai_scen(s, g));
   std::cout << nlohmann::json{{"scen", out}, {"agents", agents}, {"seed", seed}}.dump()
             << std::endl;
   return 0;
@@ -69,23 +69,23 @@ int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
 
 int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
                   uint64_t seed, double time_limit_s, const std::string& out) {
-  const auto g = monitor::parse_map(monitor::read_text_file(map, "map"), map);
+  const auto g = grid::parse_map(grid::read_text_file(map, "map"), map);
   const auto scen =
-      monitor::parse_scen(monitor::read_text_file(scen_file, "scenario"), scen_file, agents);
-  monitor::throw_if_any(monitor::check_scen_against_map(scen, g));
-  monitor::PlannerOptions po;
+      grid::parse_scen(grid::read_text_file(scen_file, "scenario"), scen_file, agents);
+  grid::throw_if_any(grid::check_scen_against_map(scen, g));
+  planning::PlannerOptions po;
   po.seed = seed;
   po.time_limit_s = time_limit_s;
-  const auto r = monitor::plan_prioritized(g, scen, po);
+  const auto r = planning::plan_prioritized(g, scen, po);
   if (!r.solved) {
     std::cerr << "plan: no plan found: " << r.error
               << "; try another --seed, fewer --agents or a larger map\n";
     return 1;
   }
   // The planner's output is checked like any other plan before it is written.
-  monitor::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
-  write_file(out, monitor::to_smart_plan_text(r.plan));
-  const auto st = monitor::plan_stats(r.plan);
+  grid::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
+  write_file(out, planning::to_smart_plan_text(r.plan));
+  const auto st = grid::plan_stats(r.plan);
   std::cout << nlohmann::json{{"plan", out},
                               {"axis", "xy"},
                               {"robots", st.robots},

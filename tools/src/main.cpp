@@ -3,7 +3,7 @@
 #include <exception>
 #include <iostream>
 
-#include "smart/monitor/problem.hpp"
+#include "smart/grid/problem.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 
@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
-  } catch (const smart::monitor::InputError& e) {
+  } catch (const smart::grid::InputError& e) {
     std::cerr << "smart: " << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
     return 2;
   } catch (const std::exception& e) {

@@ -8,11 +8,11 @@
 
 #include "smart/agent/robot_model.hpp"
 #include "smart/monitor/instance.hpp"
-#include "smart/monitor/map_reader.hpp"
+#include "smart/grid/map_reader.hpp"
 #include "smart/monitor/node.hpp"
 #include "smart/monitor/results.hpp"
-#include "smart/monitor/scen_reader.hpp"
-#include "smart/monitor/text_file.hpp"
+#include "smart/grid/scen_reader.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/sim/host.hpp"
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
@@ -65,15 +65,15 @@ void add_world_options(CLI::App* cmd, std::string& map, std::string& scen, std::
 }
 
 int run_sim(const SimOptions& o) {
-  const auto grid = monitor::parse_map(monitor::read_text_file(o.map, "map"), o.map);
+  const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
   const auto scen =
-      monitor::parse_scen(monitor::read_text_file(o.scen, "scenario"), o.scen, o.agents);
-  monitor::throw_if_any(monitor::check_scen_against_map(scen, grid));
+      grid::parse_scen(grid::read_text_file(o.scen, "scenario"), o.scen, o.agents);
+  grid::throw_if_any(grid::check_scen_against_map(scen, grid));
   const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
   dds::Participant participant(domain);
-  std::vector<monitor::Cell> starts;
+  std::vector<grid::Cell> starts;
   for (const auto& a : scen.agents) starts.push_back(a.start);
   sim::SimHostOptions ho;
   ho.clock = o.clock == "realtime" ? sim::ClockMode::kRealtime : sim::ClockMode::kLockstep;
@@ -86,7 +86,7 @@ int run_sim(const SimOptions& o) {
   ho.ros_pose_robots = o.ros_pose_robots;
   sim::SimHost host(
       participant, profile, grid, model,
-      sim::start_poses(grid, o.cell_m, starts, monitor::yaw_rad(monitor::parse_heading(o.heading))),
+      sim::start_poses(grid, o.cell_m, starts, grid::yaw_rad(grid::parse_heading(o.heading))),
       ho);
   spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", starts.size(), o.map,
                grid.width(), grid.height(), o.clock, o.dds.domain);
@@ -130,7 +130,7 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   monitor::Instance in;
   try {
     in = load(o);
-  } catch (const monitor::InputError& e) {
+  } catch (const grid::InputError& e) {
     std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
     return 2;
   }

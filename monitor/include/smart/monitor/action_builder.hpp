@@ -12,8 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "smart/monitor/grid.hpp"
-#include "smart/monitor/plan.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

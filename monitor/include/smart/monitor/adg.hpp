@@ -15,8 +15,7 @@
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
-#include "smart/monitor/grid.hpp"
-#include "smart/monitor/problem.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

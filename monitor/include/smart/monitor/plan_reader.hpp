@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "smart/monitor/plan.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

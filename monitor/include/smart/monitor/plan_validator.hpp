@@ -13,10 +13,7 @@
 
 #include <vector>
 
-#include "smart/monitor/grid.hpp"
-#include "smart/monitor/plan.hpp"
-#include "smart/monitor/problem.hpp"
-#include "smart/monitor/scen_reader.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

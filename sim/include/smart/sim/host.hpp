@@ -19,7 +19,7 @@
 #include "smart/agent/types.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
-#include "smart/monitor/grid.hpp"
+#include "smart/grid/grid.hpp"
 #include "smart/sim/world.hpp"
 
 namespace smart::sim {
@@ -52,13 +52,13 @@ struct SimHostResult {
 };
 
 // Robot i's start pose: the centre of cell starts[i] facing `yaw_rad`.
-std::vector<agent::Pose2D> start_poses(const monitor::Grid& grid, double cell_m,
-                                       const std::vector<monitor::Cell>& starts, double yaw_rad);
+std::vector<agent::Pose2D> start_poses(const grid::Grid& grid, double cell_m,
+                                       const std::vector<grid::Cell>& starts, double yaw_rad);
 
 class SimHost {
  public:
   SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
-          const monitor::Grid& grid, const agent::RobotModel& model,
+          const grid::Grid& grid, const agent::RobotModel& model,
           const std::vector<agent::Pose2D>& starts, const SimHostOptions& options);
   ~SimHost();
   SimHostResult run(const std::atomic<bool>& stop_requested);

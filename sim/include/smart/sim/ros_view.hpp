@@ -17,7 +17,7 @@
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/writer.hpp"
-#include "smart/monitor/grid.hpp"
+#include "smart/grid/grid.hpp"
 #include "smart/sim/world.hpp"
 
 namespace smart::sim {
@@ -28,7 +28,7 @@ builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s);
 geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad);
 // OccupancyGrid cells of a MovingAI grid: row-major from the bottom row (world y grows upwards),
 // 100 = blocked, 0 = free. The grid's origin is the outer corner of cell (0, height-1).
-std::vector<int8_t> occupancy_cells(const monitor::Grid& grid);
+std::vector<int8_t> occupancy_cells(const grid::Grid& grid);
 
 class RosView {
  public:
@@ -36,7 +36,7 @@ class RosView {
   RosView(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots,
           const std::vector<uint32_t>& pose_robots);
   void publish(const World& world);
-  void publish_map(const monitor::Grid& grid, double cell_m);
+  void publish_map(const grid::Grid& grid, double cell_m);
 
  private:
   dds::Topic<geometry_msgs_msg_dds__PoseArray_> poses_topic_;

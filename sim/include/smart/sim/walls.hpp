@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "smart/monitor/grid.hpp"
+#include "smart/grid/grid.hpp"
 
 namespace smart::sim {
 
@@ -17,10 +17,10 @@ struct WallContact {
 };
 
 // Appends the contacts of a disc of radius r (r <= cell_m / 2) centred at (x, y).
-void wall_contacts(const monitor::Grid& grid, double cell_m, double x_m, double y_m, double r_m,
+void wall_contacts(const grid::Grid& grid, double cell_m, double x_m, double y_m, double r_m,
                    std::vector<WallContact>& out);
 
 // Cell containing a world point (may be outside the map).
-monitor::Cell cell_at(const monitor::Grid& grid, double cell_m, double x_m, double y_m);
+grid::Cell cell_at(const grid::Grid& grid, double cell_m, double x_m, double y_m);
 
 }  // namespace smart::sim

@@ -28,7 +28,7 @@
 
 #include "smart/agent/robot_model.hpp"
 #include "smart/agent/types.hpp"
-#include "smart/monitor/grid.hpp"
+#include "smart/grid/grid.hpp"
 
 namespace smart::sim {
 
@@ -59,7 +59,7 @@ struct ContactStats {
 class World {
  public:
   // Throws std::invalid_argument for a robot wider than half a cell or a start off the map.
-  World(const monitor::Grid& grid, const agent::RobotModel& model, const SimConfig& config,
+  World(const grid::Grid& grid, const agent::RobotModel& model, const SimConfig& config,
         const std::vector<agent::Pose2D>& starts);
   ~World();
   World(const World&) = delete;

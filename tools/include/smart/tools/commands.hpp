@@ -4,9 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "smart/monitor/generators.hpp"
-#include "smart/monitor/grid.hpp"
-#include "smart/monitor/scen_reader.hpp"
+#include "smart/planning/generators.hpp"
+#include "smart/grid/grid.hpp"
+#include "smart/grid/scen_reader.hpp"
 
 namespace smart::tools {
 
@@ -19,13 +19,13 @@ void register_generate_commands(CLI::App& app, int& exit_code);
 void register_agent_command(CLI::App& app, int& exit_code);
 
 // The generation pipeline, also used by `smart demo`. Each prints one JSON line and returns an
-// exit code; bad input throws monitor::InputError.
+// exit code; bad input throws grid::InputError.
 struct GenMapOptionsPublic {
   int32_t width = 32, height = 32;
   double obstacles = 0.2;
   int corridor = 2;
   uint64_t seed = 1;
-  monitor::WarehouseOptions warehouse;
+  planning::WarehouseOptions warehouse;
 };
 int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o);
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,

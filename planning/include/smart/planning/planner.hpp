@@ -1,0 +1,38 @@
+// Contract: a built-in MAPF planner for demos and tests: prioritized planning (Silver 2005;
+// Erdmann & Lozano-Pérez 1987) with space-time A* against a reservation table of vertices,
+// edges (no swaps) and goals (a robot parked at its goal blocks its cell for good, and a robot
+// only parks where nobody passes later). Every robot's start is reserved at t = 0 so earlier
+// robots do not run through later robots' starts. Robots are planned longest-distance first;
+// a robot that finds no path goes first in the next attempt (every fifth attempt the rest of
+// the order is also shuffled, seeded). Deterministic for a seed
+// unless the time limit cuts it short. Paths are per timestep (waits included), times 0,1,2...
+// The result passes validate_plan() when solved.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "smart/planning/vocabulary.hpp"
+
+namespace smart::planning {
+
+struct PlannerOptions {
+  uint64_t seed = 1;
+  int restarts = 50;
+  double time_limit_s = 120;
+};
+
+struct PlannerResult {
+  bool solved = false;
+  Plan plan;
+  int restarts_used = 0;
+  double runtime_s = 0;
+  std::string error;  // why not solved
+};
+
+PlannerResult plan_prioritized(const Grid& grid, const Scenario& scen, const PlannerOptions& o);
+
+// SMART timed plan text: "Agent i:(x,y,t)->...", x = column (read it back with axis xy).
+std::string to_smart_plan_text(const Plan& plan);
+
+}  // namespace smart::planning
