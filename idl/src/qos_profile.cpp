@@ -102,6 +102,8 @@ const TopicQos& QosProfile::topic(TopicRole role) const {
       return state;
     case TopicRole::kClock:
       return clock;
+    case TopicRole::kStatus:
+      return status;
   }
   return action;
 }
@@ -114,7 +116,7 @@ DomainConfig QosProfile::domain_config(DomainConfig base) const {
 QosProfile default_qos_profile() {
   QosProfile p;
   p.name = "default";
-  p.description = "architecture.md defaults, Cyclone's transport timers";
+  p.description = "docs/architecture.md defaults, Cyclone's transport timers";
   // Action windows and progress are state: keep-last 1 per robot, late joiners get the latest.
   p.action.reliability = Reliability::kReliable;
   p.action.durability = Durability::kTransientLocal;
@@ -127,6 +129,11 @@ QosProfile default_qos_profile() {
   p.clock.reliability = Reliability::kReliable;
   p.clock.durability = Durability::kVolatile;
   p.clock.depth = 1;
+  // SimStatus is state too (latest counts), and a monitor that starts late needs it.
+  p.status.reliability = Reliability::kReliable;
+  p.status.durability = Durability::kTransientLocal;
+  p.status.depth = 1;
+  p.status.autodispose = false;
   return p;
 }
 
@@ -150,13 +157,14 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
   if (root["topics"]) {
     const auto topics = root["topics"];
     require_map(source, topics, "topics");
-    reject_unknown(source, topics, "topics", {"action", "progress", "state", "clock"});
+    reject_unknown(source, topics, "topics", {"action", "progress", "state", "clock", "status"});
     if (topics["action"]) parse_topic(source, topics["action"], "topics.action", p.action);
     if (topics["progress"]) {
       parse_topic(source, topics["progress"], "topics.progress", p.progress);
     }
     if (topics["state"]) parse_topic(source, topics["state"], "topics.state", p.state);
     if (topics["clock"]) parse_topic(source, topics["clock"], "topics.clock", p.clock);
+    if (topics["status"]) parse_topic(source, topics["status"], "topics.status", p.status);
   }
   return p;
 }

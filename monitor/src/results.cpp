@@ -94,10 +94,11 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   }
   const double n = std::max<double>(1.0, static_cast<double>(r.robots.size()));
   nlohmann::json j = {
-      {"success", r.success},
+      {"success", r.success()},
+      {"outcome", to_string(r.outcome)},
       {"robots", r.robots.size()},
-      {"aet_s", r.success && times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
-      {"makespan_s", r.success && times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
+      {"aet_s", r.success() && times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
+      {"makespan_s", r.success() && times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
       {"sim_time_s", r.sim_time_s},
       {"wall_time_s", r.wall_time_s},
       {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
@@ -105,9 +106,9 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"wall_contacts", r.wall_contacts},
       {"min_separation_m", r.min_gap_m ? nlohmann::json(*r.min_gap_m) : nlohmann::json(nullptr)},
       {"sim_status_received", r.have_sim_status},
-      {"deadlock", r.deadlock},
-      {"stalled", r.stalled},
-      {"sim_lost", r.sim_lost},
+      {"deadlock", r.outcome == Outcome::kDeadlock},
+      {"stalled", r.outcome == Outcome::kStalled},
+      {"sim_lost", r.outcome == Outcome::kHostLost},
       {"error", r.error},
       {"finished_actions", r.finished_actions},
       {"total_actions", r.total_actions},

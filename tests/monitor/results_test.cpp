@@ -45,7 +45,7 @@ Instance tiny_instance() {
 
 MonitorResult finished_run(const Instance& in) {
   MonitorResult r;
-  r.success = true;
+  r.outcome = Outcome::kSuccess;
   r.sim_time_s = 12.5;
   r.wall_time_s = 0.5;
   r.total_actions = r.finished_actions = in.actions.offset.back();

@@ -186,12 +186,12 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
   dds::Participant participant(domain);
   monitor::MonitorOptions mo;
-  mo.lockstep = o.clock == "lockstep";
-  mo.window_cap = o.window_cap;
+  mo.run.lockstep = o.clock == "lockstep";
+  mo.run.window_cap = o.window_cap;
   mo.cell_m = o.cell_m;
-  mo.timeout_s = o.timeout_s;
-  mo.stall_timeout_s = o.stall_timeout_s;
-  mo.max_sim_time_s = o.max_sim_time_s;
+  mo.run.timeout_s = o.timeout_s;
+  mo.run.stall_timeout_s = o.stall_timeout_s;
+  mo.run.max_sim_time_s = o.max_sim_time_s;
   mo.resume = o.resume;
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
@@ -214,7 +214,7 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   if (tty)
     cb = [](const monitor::MonitorResult& r, std::size_t done) { print_progress(r, done, false); };
   auto result = node.run(g_stop_requested, cb);
-  if (tty) print_progress(result, result.success ? result.robots.size() : 0, true);
+  if (tty) print_progress(result, result.success() ? result.robots.size() : 0, true);
   if (sim) {
     const auto rc = sim->wait(std::chrono::seconds(5));
     if (!rc) sim->terminate();
@@ -230,9 +230,9 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
   info.monitor_peak_rss_mb = peak_rss_mb();
   info.machine = machine_description();
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
-  if (!result.success) spdlog::error("run failed: {}", result.error);
+  if (!result.success()) spdlog::error("run failed: {}", result.error);
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
-  return result.success ? 0 : 1;
+  return result.success() ? 0 : 1;
 }
 
 void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {

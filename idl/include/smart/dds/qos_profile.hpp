@@ -2,7 +2,7 @@
 // settings of a link type. Profiles are YAML files (config/qos/<name>.yaml; shipped: lan, wifi,
 // lossy-wifi). Parsing is strict: an unknown key, a wrong type or an out-of-range value throws
 // ConfigError naming file:line:column, the key and the accepted values. Topics a file leaves out
-// keep the defaults of default_qos_profile() (the table in architecture.md, "DDS topics").
+// keep the defaults of default_qos_profile() (docs/architecture.md, "Topics").
 #pragma once
 
 #include <filesystem>
@@ -14,7 +14,8 @@
 
 namespace smart::dds {
 
-enum class TopicRole { kAction, kProgress, kState, kClock };
+// Which QoS of a profile a topic uses; each topic's role is in the table of topics.hpp.
+enum class TopicRole { kAction, kProgress, kState, kClock, kStatus };
 
 struct QosProfile {
   std::string name;
@@ -24,6 +25,7 @@ struct QosProfile {
   TopicQos progress;
   TopicQos state;
   TopicQos clock;
+  TopicQos status;  // SimStatus: the latest status of the sim host
 
   const TopicQos& topic(TopicRole role) const;
   // A DomainConfig (loopback by default) carrying this profile's transport settings.

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "smart/monitor/instance.hpp"
-#include "smart/monitor/node.hpp"
+#include "smart/monitor/run_supervisor.hpp"
 
 namespace smart::monitor {
 

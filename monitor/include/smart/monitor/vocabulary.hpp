@@ -2,6 +2,7 @@
 // Plan type), named unqualified throughout the monitor core, which is built on it.
 #pragma once
 
+#include "smart/grid/action.hpp"
 #include "smart/grid/grid.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/plan.hpp"
@@ -12,6 +13,9 @@
 
 namespace smart::monitor {
 
+using grid::Action;
+using grid::ActionPlan;
+using grid::ActionType;
 using grid::arrival_time;
 using grid::AxisOrder;
 using grid::Cell;

@@ -1,0 +1,46 @@
+// Contract: endpoints on the SMART topics made from the one table in topics.hpp: a
+// WireWriter<T> / WireReader<T> owns its topic and takes name and QoS (by the topic's role in
+// the QosProfile) from there, so no caller repeats either. They are a Writer<T> / Reader<T> in
+// every other respect.
+#pragma once
+
+#include <string>
+
+#include "smart/dds/qos_profile.hpp"
+#include "smart/dds/reader.hpp"
+#include "smart/dds/topics.hpp"
+#include "smart/dds/writer.hpp"
+
+namespace smart::dds {
+
+namespace detail {
+// Base-from-member: the topic must exist before the Writer/Reader base is built on it.
+template <class T>
+struct WireTopicHolder {
+  explicit WireTopicHolder(const Participant& p) : topic_(p, std::string(WireTopic<T>::name)) {}
+  Topic<T> topic_;
+};
+}  // namespace detail
+
+template <class T>
+Qos wire_qos(const QosProfile& profile) {
+  return profile.topic(WireTopic<T>::role).to_dds();
+}
+
+template <class T>
+class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
+ public:
+  WireWriter(const Participant& p, const QosProfile& profile)
+      : detail::WireTopicHolder<T>(p), Writer<T>(p, this->topic_, wire_qos<T>(profile)) {}
+};
+
+template <class T>
+class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
+ public:
+  WireReader(const Participant& p, const QosProfile& profile,
+             typename Reader<T>::Callback on_data_available = nullptr)
+      : detail::WireTopicHolder<T>(p),
+        Reader<T>(p, this->topic_, wire_qos<T>(profile), std::move(on_data_available)) {}
+};
+
+}  // namespace smart::dds

@@ -1,0 +1,96 @@
+// Contract: the lock-step handshake of idl/smart.idl (Clock), as pure state machines shared by
+// the monitor and the sim host; no DDS, no clocks read, no threads (times are passed in).
+//
+// The sim host announces tick k after stepping, with sync_total = what it has reported (sum
+// over robots of finished actions). The monitor answers tick k once it has taken exactly that
+// much progress, with sync_total = what it has sent (sum over robots of the end of the windows
+// it published). The host steps again only when its received windows add up to that. Counting,
+// rather than trusting any order across topics, makes lock-step runs bit-identical.
+//
+// - SyncCounter: per-robot high-water marks and their sum (both sides count with it).
+// - MonitorHandshake: keeps the newest announced tick; says when it may be answered.
+// - HostHandshake: waits for the answer to the tick it announced and the windows it announces;
+//   says when to step, when to re-announce (a monitor that joined late missed the tick) and
+//   when the monitor has been silent too long.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace smart::wire {
+
+// One Clock sample of the handshake, either side.
+struct Tick {
+  uint64_t run_id = 0;
+  uint64_t tick = 0;
+  double sim_time_s = 0;
+  uint64_t sync_total = 0;
+  bool stop = false;
+};
+
+class SyncCounter {
+ public:
+  explicit SyncCounter(std::size_t robots = 0) : marks_(robots, 0) {}
+  // Raises robot's mark to `mark` (never lowers it); returns by how much the total grew.
+  uint64_t raise(uint32_t robot, uint64_t mark);
+  uint64_t mark(uint32_t robot) const { return marks_[robot]; }
+  uint64_t total() const { return total_; }
+  std::size_t robots() const { return marks_.size(); }
+  void reset();
+
+ private:
+  std::vector<uint64_t> marks_;
+  uint64_t total_ = 0;
+};
+
+class MonitorHandshake {
+ public:
+  // A tick announced by the sim. Older than the last one answered: ignored (late, reordered).
+  void on_tick(const Tick& announced);
+  const std::optional<Tick>& pending() const { return pending_; }
+  // The pending tick may be answered once the progress taken adds up to its sync_total.
+  bool ready(uint64_t progress_taken) const {
+    return pending_ && pending_->sync_total == progress_taken;
+  }
+  // The answer to the pending tick (which must be ready); clears it.
+  Tick answer(uint64_t run_id, uint64_t windows_sent, bool stop);
+  // The last tick answered (0 before any): where the final stop is sent.
+  uint64_t last_answered() const { return last_answered_; }
+
+ private:
+  std::optional<Tick> pending_;
+  uint64_t last_answered_ = 0;
+  bool answered_any_ = false;
+};
+
+class HostHandshake {
+ public:
+  HostHandshake(double timeout_s, double reannounce_s)
+      : timeout_s_(timeout_s), reannounce_s_(reannounce_s) {}
+  // The host published `tick` at wall time now_s and now waits for its answer.
+  void announced(uint64_t tick, double now_s);
+  // The same tick published again (should_reannounce); the timeout still runs from announced().
+  void reannounced(double now_s);
+  // An answer of the monitor (the newest received). A stop is kept whatever its tick.
+  void on_answer(const Tick& answer);
+  bool stop() const { return stop_; }
+  // Step when the answer to our tick is in and the windows received add up to it.
+  bool may_step(uint64_t run_id, uint64_t windows_received) const;
+  // No answer yet and the last announcement is older than reannounce_s: announce again.
+  bool should_reannounce(double now_s) const;
+  // No answer for timeout_s since the tick was announced.
+  bool timed_out(double now_s) const { return now_s - waiting_since_s_ > timeout_s_; }
+  uint64_t tick() const { return tick_; }
+
+ private:
+  double timeout_s_;
+  double reannounce_s_;
+  uint64_t tick_ = 0;
+  std::optional<Tick> answer_;
+  bool stop_ = false;
+  double waiting_since_s_ = 0;
+  double announced_at_s_ = 0;
+};
+
+}  // namespace smart::wire

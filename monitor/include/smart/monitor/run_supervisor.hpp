@@ -1,0 +1,181 @@
+// Contract: how a run goes, decided in one pure state machine (no DDS, no clocks read, no
+// threads, no I/O), in the manner of rmf_traffic's blockade Moderator: the monitor's DDS edge
+// (node.hpp) converts what it receives into events, and the supervisor's decisions go out
+// through a RunWriter (windows to publish, answers to the sim's ticks).
+//
+// Events: on_clock (a sim tick), on_progress, on_state, on_sim_status, on_hosts_matched (how
+// many host writers are matched), on_host_failure (a watchdog of the edge), stop (a signal),
+// poll(now) (timers). Every event carries the wall time now_s (seconds since the run started),
+// the only clock the supervisor knows besides the sim time in ticks.
+//
+// Run policy, in one place:
+// - Lock-step: progress is taken at the sim time of the tick that announced it (buffered until
+//   that tick arrives), and the tick is answered once the progress taken adds up to its
+//   sync_total (wire/lockstep.hpp): runs are bit-identical whatever order samples arrive in.
+//   The sim host's writers leaving, or no tick for timeout_s, loses the run.
+// - Real time: progress is taken on arrival at the wall time; a robot fails the run only when
+//   nothing was heard of it (its states) for timeout_s, so a host may restart within it.
+// - Either: success when every action finished; deadlock when no robot has an enqueued action
+//   left yet some remain; stalled after stall_timeout_s of sim time without a finished action;
+//   time limit past max_sim_time_s; no host at all within timeout_s.
+// - Progress of another run is ignored; progress the tracker rejects (out of range, never
+//   enqueued) is counted and described in notes(); stale (duplicate, older) progress is harmless.
+// - resume(): rebuild the tracker from the hosts' last progress (a fixpoint: what robot A
+//   finished may have waited for robot B, so each robot is fed as far as is enqueued, again
+//   and again, until nothing more is accepted).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "smart/monitor/execution_tracker.hpp"
+#include "smart/monitor/instance.hpp"
+#include "smart/wire/lockstep.hpp"
+
+namespace smart::monitor {
+
+enum class Outcome { kRunning, kSuccess, kDeadlock, kStalled, kTimeLimit, kHostLost, kStopped };
+std::string_view to_string(Outcome outcome);
+
+struct StateRow {
+  double t_s;
+  uint32_t robot;
+  double x_m, y_m, yaw_rad, v_mps, w_radps, left_mps, right_mps;
+  uint32_t queue;
+};
+
+struct RobotMetrics {
+  double finish_time_s = 0;   // sim time its last action finished (0: no actions)
+  double waiting_time_s = 0;  // not done, nothing enqueued to execute (waiting for others)
+  uint32_t stops = 0;         // times it became blocked that way
+  uint32_t actions = 0;
+};
+
+struct MonitorResult {
+  Outcome outcome = Outcome::kRunning;
+  bool success() const { return outcome == Outcome::kSuccess; }
+  std::string error;  // why the run failed (empty on success)
+  uint64_t run_id = 0;
+  double sim_time_s = 0;
+  double wall_time_s = 0;
+  double first_progress_wall_s = 0;  // wall time from start until the sim first reported
+  std::size_t finished_actions = 0;
+  std::size_t total_actions = 0;
+  std::vector<RobotMetrics> robots;
+  uint64_t robot_contacts = 0;
+  uint64_t wall_contacts = 0;
+  std::optional<double> min_gap_m;
+  std::optional<double> host_peak_rss_mb;  // largest peak memory a sim host reported
+  // Resumed runs: finish and waiting times before the resume are unknown (finish_time_s NaN
+  // for robots already done; AET and makespan then unknown).
+  bool resumed = false;
+  double resumed_at_s = 0;                 // sim time of the first tick after the resume
+  std::size_t finished_before_resume = 0;  // actions
+  std::size_t robots_done_before_resume = 0;
+  bool have_sim_status = false;
+  uint64_t rejected_progress = 0;
+};
+
+struct SupervisorConfig {
+  bool lockstep = true;
+  uint32_t window_cap = 32;  // look-ahead: most actions in one window
+  // Wall time without any sign of the sim host (lock-step), or of a robot's host (real time).
+  double timeout_s = 30.0;
+  double stall_timeout_s = 300.0;  // sim time without any finished action
+  double max_sim_time_s = 0;       // 0: no limit
+  uint64_t run_id = 1;
+  int domain_id = 0;  // named in "no host joined" errors
+};
+
+// Samples as the supervisor sees them (the edge converts the wire types).
+struct ProgressEvent {
+  uint32_t robot = 0;
+  uint64_t run_id = 0;
+  int64_t finished_seq = -1;
+};
+struct StateEvent {
+  uint32_t robot = 0;
+  uint64_t run_id = 0;
+};
+struct SimStatusEvent {
+  uint64_t run_id = 0;
+  uint64_t robot_contacts = 0;
+  uint64_t wall_contacts = 0;
+  double min_gap_m = 0;
+  double peak_rss_mb = 0;
+};
+
+// Where the supervisor's decisions go (the DDS edge; a recording fake in tests).
+class RunWriter {
+ public:
+  virtual ~RunWriter() = default;
+  // Publish robot's window: actions [window.first, window.end) of its plan.
+  virtual void publish_window(uint32_t robot, uint64_t run_id, ExecutionTracker::Window w) = 0;
+  virtual void answer_tick(const wire::Tick& answer) = 0;
+};
+
+class RunSupervisor {
+ public:
+  RunSupervisor(const Instance& instance, const SupervisorConfig& config, RunWriter& writer);
+
+  // Before start(): take over a run from the hosts' reported progress (any order, any
+  // duplicates). Returns an error naming what does not fit; the run then is over (host lost).
+  std::string resume(const std::vector<ProgressEvent>& reported);
+  void start(double now_s);  // publishes every robot's window
+
+  void on_clock(const wire::Tick& tick, double now_s);
+  void on_progress(const ProgressEvent& progress, double now_s);
+  // True when the state belongs to this run (then it is worth recording).
+  bool on_state(const StateEvent& state, double now_s);
+  void on_sim_status(const SimStatusEvent& status);
+  void on_hosts_matched(uint32_t count, double now_s);
+  void on_host_failure(const std::string& what);
+  void stop(const std::string& why);
+  void poll(double now_s);
+  // Ends the run (if it is not over yet: stopped) and sends every host the final stop.
+  void finish(double now_s);
+
+  bool over() const { return res_.outcome != Outcome::kRunning; }
+  // Lock-step: nothing to do with progress until a tick is pending (the edge may sleep on ticks).
+  bool wants_progress() const { return !config_.lockstep || handshake_.pending().has_value(); }
+  const MonitorResult& result() const { return res_; }
+  const ExecutionTracker& tracker() const { return tracker_; }
+  std::size_t robots_done() const;
+  // Things worth a log line (rejected progress, the resume), taken by the edge.
+  std::vector<std::string> take_notes();
+
+ private:
+  void end(Outcome outcome, std::string error);
+  void publish_window(uint32_t robot);
+  void apply_progress(const ProgressEvent& p, double sim_time_s);
+  void try_answer();
+  void update_waiting(double sim_time_s);
+  void check_end();
+  void check_liveness(double now_s);
+  std::string resume_check(const std::vector<ProgressEvent>& reported,
+                           std::vector<int64_t>& target, uint64_t& run) const;
+  void resume_fixpoint(const std::vector<int64_t>& target);
+
+  const Instance& in_;
+  SupervisorConfig config_;
+  RunWriter& writer_;
+  ExecutionTracker tracker_;
+  wire::MonitorHandshake handshake_;
+  wire::SyncCounter sent_;  // end of the windows published, per robot
+  std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
+  std::vector<uint8_t> waiting_;
+  std::vector<double> robot_seen_s_;  // real time: when each robot's host was last heard of
+  MonitorResult res_;
+  std::vector<std::string> notes_;
+  double last_finish_sim_s_ = 0;
+  double last_metrics_sim_s_ = 0;
+  double last_sim_sign_s_ = 0;
+  double last_liveness_s_ = 0;
+  uint32_t max_matched_ = 0;
+  bool sim_seen_ = false;
+};
+
+}  // namespace smart::monitor

@@ -1,0 +1,322 @@
+#include "smart/monitor/run_supervisor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace smart::monitor {
+
+std::string_view to_string(Outcome o) {
+  switch (o) {
+    case Outcome::kRunning:
+      return "running";
+    case Outcome::kSuccess:
+      return "success";
+    case Outcome::kDeadlock:
+      return "deadlock";
+    case Outcome::kStalled:
+      return "stalled";
+    case Outcome::kTimeLimit:
+      return "time limit";
+    case Outcome::kHostLost:
+      return "host lost";
+    case Outcome::kStopped:
+      return "stopped";
+  }
+  return "unknown";
+}
+
+RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& config,
+                             RunWriter& writer)
+    : in_(instance),
+      config_(config),
+      writer_(writer),
+      tracker_(instance.actions, instance.adg),
+      sent_(instance.actions.robots()),
+      waiting_(instance.actions.robots(), 0),
+      robot_seen_s_(instance.actions.robots(), 0.0) {
+  const std::size_t n = instance.actions.robots();
+  res_.robots.resize(n);
+  for (uint32_t r = 0; r < n; ++r) res_.robots[r].actions = instance.actions.count(r);
+  res_.run_id = config.run_id;
+  res_.total_actions = instance.actions.actions.size();
+}
+
+void RunSupervisor::end(Outcome outcome, std::string error) {
+  res_.outcome = outcome;
+  res_.error = std::move(error);
+}
+
+void RunSupervisor::start(double now_s) {
+  std::fill(robot_seen_s_.begin(), robot_seen_s_.end(), now_s);
+  for (uint32_t r = 0; r < in_.actions.robots(); ++r) publish_window(r);
+}
+
+void RunSupervisor::publish_window(uint32_t robot) {
+  const auto w = tracker_.window(robot, config_.window_cap);
+  writer_.publish_window(robot, res_.run_id, w);
+  if (!w.empty()) sent_.raise(robot, w.end);
+}
+
+void RunSupervisor::on_clock(const wire::Tick& t, double now_s) {
+  if (t.run_id != 0 && t.run_id != res_.run_id) return;
+  if (!sim_seen_) {
+    res_.first_progress_wall_s = now_s;
+    if (res_.resumed && config_.lockstep) {
+      // Metrics restart here: what happened before the resume is not known.
+      res_.resumed_at_s = last_finish_sim_s_ = last_metrics_sim_s_ = t.sim_time_s;
+    }
+  }
+  sim_seen_ = true;
+  last_sim_sign_s_ = now_s;
+  if (!config_.lockstep || over()) return;
+  handshake_.on_tick(t);
+  if (!handshake_.pending()) return;
+  const double sim_time_s = handshake_.pending()->sim_time_s;
+  for (const auto& p : early_progress_) apply_progress(p, sim_time_s);
+  early_progress_.clear();
+  try_answer();
+}
+
+void RunSupervisor::on_progress(const ProgressEvent& p, double now_s) {
+  if (over() || p.run_id != res_.run_id) return;
+  if (!config_.lockstep) {
+    // Real time (hardware, mixed runs): hosts run on their own clocks, so the run is timed on
+    // the monitor's wall clock.
+    res_.sim_time_s = now_s;
+    apply_progress(p, now_s);
+    return;
+  }
+  // Lock-step: progress belongs to the tick that announces it, whichever arrives first.
+  if (!handshake_.pending()) {
+    early_progress_.push_back(p);
+    return;
+  }
+  apply_progress(p, handshake_.pending()->sim_time_s);
+  try_answer();
+}
+
+void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
+  if (p.run_id != res_.run_id) return;
+  const auto u = tracker_.on_progress(p.robot, p.finished_seq);
+  if (u.result == ExecutionTracker::Result::kRejected) {
+    if (res_.rejected_progress++ < 5) notes_.push_back("progress rejected: " + u.reason);
+    return;
+  }
+  if (u.result != ExecutionTracker::Result::kAdvanced) return;
+  last_finish_sim_s_ = sim_time_s;
+  for (const uint32_t r : u.robots_changed) {
+    publish_window(r);
+    if (tracker_.robot_done(r)) res_.robots[r].finish_time_s = sim_time_s;
+  }
+  res_.finished_actions = tracker_.finished_total();
+}
+
+void RunSupervisor::try_answer() {
+  if (!handshake_.ready(tracker_.finished_total())) return;
+  const double sim_time_s = handshake_.pending()->sim_time_s;
+  res_.sim_time_s = sim_time_s;
+  update_waiting(sim_time_s);
+  check_end();
+  writer_.answer_tick(handshake_.answer(res_.run_id, sent_.total(), over()));
+}
+
+// Waiting = not done and nothing enqueued to execute, over the sim time since the last call.
+void RunSupervisor::update_waiting(double sim_time_s) {
+  const double dt = sim_time_s - last_metrics_sim_s_;
+  last_metrics_sim_s_ = sim_time_s;
+  for (uint32_t r = 0; r < waiting_.size(); ++r) {
+    const bool w = !tracker_.robot_done(r) && tracker_.enqueued(r) == tracker_.finished(r);
+    if (w) {
+      res_.robots[r].waiting_time_s += dt;
+      if (!waiting_[r]) ++res_.robots[r].stops;
+    }
+    waiting_[r] = w;
+  }
+}
+
+void RunSupervisor::check_end() {
+  if (over()) return;
+  if (tracker_.complete()) {
+    end(Outcome::kSuccess, "");
+  } else if (tracker_.deadlocked()) {
+    end(Outcome::kDeadlock, "deadlock: no robot has an action it may execute, yet " +
+                                std::to_string(tracker_.total() - tracker_.finished_total()) +
+                                " actions remain; the action dependency graph cannot progress");
+  } else if (res_.sim_time_s - last_finish_sim_s_ > config_.stall_timeout_s) {
+    end(Outcome::kStalled, "stalled: no action finished for " +
+                               std::to_string(config_.stall_timeout_s) +
+                               " s of sim time; robots may be stuck against each other or a wall");
+  } else if (config_.max_sim_time_s > 0 && res_.sim_time_s > config_.max_sim_time_s) {
+    end(Outcome::kTimeLimit,
+        "time limit: sim time passed " + std::to_string(config_.max_sim_time_s) + " s");
+  }
+}
+
+bool RunSupervisor::on_state(const StateEvent& s, double now_s) {
+  if (s.run_id != res_.run_id && s.run_id != 0) return false;
+  if (s.robot < robot_seen_s_.size()) robot_seen_s_[s.robot] = now_s;
+  return s.run_id == res_.run_id;
+}
+
+void RunSupervisor::on_sim_status(const SimStatusEvent& s) {
+  if (s.run_id != res_.run_id && s.run_id != 0) return;
+  res_.have_sim_status = true;
+  res_.robot_contacts = s.robot_contacts;
+  res_.wall_contacts = s.wall_contacts;
+  if (s.min_gap_m < 1e8) res_.min_gap_m = s.min_gap_m;
+  if (s.peak_rss_mb > 0) {
+    res_.host_peak_rss_mb = std::max(res_.host_peak_rss_mb.value_or(0.0), s.peak_rss_mb);
+  }
+}
+
+void RunSupervisor::on_hosts_matched(uint32_t count, double now_s) {
+  if (over()) return;
+  if (count > 0 && !sim_seen_ && !config_.lockstep) {
+    sim_seen_ = true;
+    res_.first_progress_wall_s = now_s;
+    std::fill(robot_seen_s_.begin(), robot_seen_s_.end(), now_s);
+  }
+  max_matched_ = std::max(max_matched_, count);
+  // Lock-step: the one sim host holds every robot, so its writers leaving ends the run.
+  if (config_.lockstep && sim_seen_ && count < max_matched_) {
+    end(Outcome::kHostLost, "the sim host left (its DDS writers disappeared) after " +
+                                std::to_string(res_.sim_time_s) + " s of sim time");
+  }
+}
+
+void RunSupervisor::on_host_failure(const std::string& what) {
+  if (!over()) end(Outcome::kHostLost, what);
+}
+
+void RunSupervisor::stop(const std::string& why) {
+  if (!over()) end(Outcome::kStopped, why);
+}
+
+void RunSupervisor::poll(double now_s) {
+  if (over()) return;
+  if (!config_.lockstep) {
+    res_.sim_time_s = now_s;
+    update_waiting(now_s);
+    check_end();
+    if (over()) return;
+  }
+  check_liveness(now_s);
+}
+
+// A host that joined and then left, or went silent, is a failure, not a hang.
+void RunSupervisor::check_liveness(double now_s) {
+  if (!config_.lockstep && sim_seen_) {
+    // Real time: hosts may restart (an agent process, a robot rebooting): a robot fails the
+    // run only when nothing was heard of it for timeout_s; a restarted host resumes from its
+    // window.
+    last_sim_sign_s_ = now_s;
+    for (uint32_t r = 0; r < robot_seen_s_.size(); ++r) {
+      if (tracker_.robot_done(r) || now_s - robot_seen_s_[r] <= config_.timeout_s) continue;
+      return end(Outcome::kHostLost, "robot " + std::to_string(r) +
+                                         ": nothing heard from its host (sim or agent) for " +
+                                         std::to_string(config_.timeout_s) +
+                                         " s; the process stopped or lost the network");
+    }
+  }
+  if (now_s - (sim_seen_ ? last_sim_sign_s_ : 0.0) <= config_.timeout_s) return;
+  end(Outcome::kHostLost,
+      sim_seen_ ? "the sim host went silent for " + std::to_string(config_.timeout_s) + " s"
+                : "no sim host joined domain " + std::to_string(config_.domain_id) + " within " +
+                      std::to_string(config_.timeout_s) +
+                      " s; start `smart sim` with the same --domain, --qos, --network");
+}
+
+void RunSupervisor::finish(double now_s) {
+  if (!over()) end(Outcome::kStopped, "stopped before the run ended");
+  // Tell every host the run is over (at the last tick answered, so a waiting sim sees it).
+  writer_.answer_tick({res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(),
+                       true});
+  res_.finished_actions = tracker_.finished_total();
+  res_.wall_time_s = now_s;
+}
+
+std::size_t RunSupervisor::robots_done() const {
+  std::size_t done = 0;
+  for (uint32_t r = 0; r < tracker_.robots(); ++r) done += tracker_.robot_done(r) ? 1 : 0;
+  return done;
+}
+
+std::vector<std::string> RunSupervisor::take_notes() {
+  std::vector<std::string> out;
+  out.swap(notes_);
+  return out;
+}
+
+std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
+  std::vector<int64_t> target(tracker_.robots(), -1);
+  uint64_t run = 0;
+  std::string error = resume_check(reported, target, run);
+  if (error.empty() && run == 0) {
+    error = "cannot resume: the hosts report no progress yet; start a new run";
+  }
+  if (error.empty()) {
+    res_.run_id = run;
+    resume_fixpoint(target);
+    for (uint32_t r = 0; r < target.size() && error.empty(); ++r) {
+      if (static_cast<int64_t>(tracker_.finished(r)) - 1 == target[r]) continue;
+      error = "cannot resume: robot " + std::to_string(r) + " reports action " +
+              std::to_string(target[r]) +
+              " finished, which this plan's dependency graph does not allow; use the plan, "
+              "--agents and --initial-heading of the run being resumed";
+    }
+  }
+  if (!error.empty()) {
+    end(Outcome::kHostLost, error);
+    return error;
+  }
+  for (uint32_t r = 0; r < target.size(); ++r) {
+    // The hosts hold windows up to at least what was finished (sync totals, idl/smart.idl).
+    sent_.raise(r, tracker_.finished(r));
+    if (tracker_.robot_done(r)) {
+      res_.robots[r].finish_time_s = std::nan("");
+      ++res_.robots_done_before_resume;
+    }
+  }
+  res_.resumed = true;
+  res_.finished_before_resume = res_.finished_actions = tracker_.finished_total();
+  notes_.push_back("resuming run " + std::to_string(run) + ": " +
+                   std::to_string(tracker_.finished_total()) + " of " +
+                   std::to_string(tracker_.total()) + " actions already finished");
+  return {};
+}
+
+std::string RunSupervisor::resume_check(const std::vector<ProgressEvent>& reported,
+                                        std::vector<int64_t>& target, uint64_t& run) const {
+  for (const auto& p : reported) {
+    if (p.robot >= target.size()) {
+      return "cannot resume: progress for robot " + std::to_string(p.robot) +
+             " but the plan has " + std::to_string(target.size()) +
+             " robots; use the plan and --agents of the run being resumed";
+    }
+    if (run != 0 && p.run_id != run) {
+      return "cannot resume: the hosts report two runs (" + std::to_string(run) + " and " +
+             std::to_string(p.run_id) + "); restart the sim hosts and start a new run";
+    }
+    run = p.run_id;
+    target[p.robot] = std::max<int64_t>(target[p.robot], p.finished_seq);
+  }
+  return {};
+}
+
+// Progress is only accepted for enqueued actions, and what robot A finished may have waited for
+// robot B: feed each robot as far as is enqueued, again and again until nothing more is
+// accepted (the execution respected the ADG, so everything is).
+void RunSupervisor::resume_fixpoint(const std::vector<int64_t>& target) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (uint32_t r = 0; r < target.size(); ++r) {
+      const int64_t upto = std::min<int64_t>(target[r], int64_t{tracker_.enqueued(r)} - 1);
+      if (upto <= int64_t{tracker_.finished(r)} - 1) continue;
+      if (tracker_.on_progress(r, upto).result == ExecutionTracker::Result::kAdvanced) {
+        changed = true;
+      }
+    }
+  }
+}
+
+}  // namespace smart::monitor

@@ -1,0 +1,322 @@
+// The run supervisor driven by scripted event sequences: no DDS, no threads, no sleeps.
+#include "smart/monitor/run_supervisor.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::monitor {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Robot 0 drives (1,0) -> (2,0); robot 1 follows into (1,0) a step later, so robot 1's second
+// half-move waits for robot 0 to leave (1,0) (a Type-2 edge). Two half-moves each, no rotation.
+Instance corridor() {
+  Instance in;
+  in.grid = test::grid_of({"...."});
+  in.plan = test::plan_of({{{1, 0}, {2, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}}});
+  in.scen = test::scen_of(in.plan, in.grid);
+  in.actions = build_actions(in.plan, Heading::kEast);
+  std::vector<Problem> problems;
+  in.adg = build_adg(in.actions, in.grid, "fixture", problems);
+  return in;
+}
+
+struct FakeWriter : RunWriter {
+  std::map<uint32_t, ExecutionTracker::Window> windows;  // the latest per robot
+  std::vector<wire::Tick> answers;
+  int window_writes = 0;
+  void publish_window(uint32_t robot, uint64_t, ExecutionTracker::Window w) override {
+    windows[robot] = w;
+    ++window_writes;
+  }
+  void answer_tick(const wire::Tick& a) override { answers.push_back(a); }
+};
+
+constexpr uint64_t kRun = 7;
+
+SupervisorConfig lockstep_config() {
+  SupervisorConfig c;
+  c.run_id = kRun;
+  c.domain_id = 42;
+  c.timeout_s = 5;
+  c.stall_timeout_s = 10;
+  return c;
+}
+
+wire::Tick tick(uint64_t k, uint64_t sync_total) { return {kRun, k, 0.1 * double(k), sync_total, false}; }
+
+struct Scripted {
+  Instance in = corridor();
+  FakeWriter out;
+  RunSupervisor sup;
+  explicit Scripted(SupervisorConfig c = lockstep_config()) : sup(in, c, out) {}
+};
+
+TEST(RunSupervisor, StartPublishesEveryWindowAndTheFirstTickIsAnsweredWithTheirSum) {
+  Scripted r;
+  r.sup.start(0);
+  ASSERT_EQ(r.out.windows.size(), 2u);
+  EXPECT_EQ(r.out.windows[0].end, 2u);  // robot 0 may do everything
+  EXPECT_EQ(r.out.windows[1].end, 1u);  // robot 1 waits for robot 0 to leave (1,0)
+  r.sup.on_clock(tick(0, 0), 0.1);
+  ASSERT_EQ(r.out.answers.size(), 1u);
+  EXPECT_EQ(r.out.answers[0].tick, 0u);
+  EXPECT_EQ(r.out.answers[0].sync_total, 3u);
+  EXPECT_FALSE(r.out.answers[0].stop);
+}
+
+// Runs the corridor to success, progress before or after the tick that announces it.
+MonitorResult run_to_success(bool progress_first) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  auto step = [&](uint64_t k, uint64_t total, ProgressEvent p) {
+    if (progress_first) r.sup.on_progress(p, 0);
+    r.sup.on_clock(tick(k, total), 0);
+    if (!progress_first) r.sup.on_progress(p, 0);
+  };
+  step(5, 2, {0, kRun, 1});
+  EXPECT_EQ(r.out.windows[1].end, 2u);  // robot 0 left (1,0): robot 1 may enter
+  step(9, 4, {1, kRun, 1});
+  EXPECT_TRUE(r.out.answers.back().stop);
+  return r.sup.result();
+}
+
+TEST(RunSupervisor, SuccessTimesEveryRobotAtTheTickThatAnnouncedItsProgress) {
+  for (bool progress_first : {true, false}) {
+    const auto res = run_to_success(progress_first);
+    EXPECT_EQ(res.outcome, Outcome::kSuccess);
+    EXPECT_TRUE(res.success());
+    EXPECT_DOUBLE_EQ(res.robots[0].finish_time_s, 0.5);
+    EXPECT_DOUBLE_EQ(res.robots[1].finish_time_s, 0.9);
+    EXPECT_EQ(res.finished_actions, 4u);
+    EXPECT_DOUBLE_EQ(res.sim_time_s, 0.9);
+  }
+}
+
+TEST(RunSupervisor, ATickIsAnsweredOnlyWhenItsProgressAddsUp) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_clock(tick(3, 2), 0);  // announces two finished actions
+  EXPECT_EQ(r.out.answers.size(), 1u);
+  r.sup.on_progress({0, kRun, 0}, 0);
+  EXPECT_EQ(r.out.answers.size(), 1u);
+  r.sup.on_progress({0, kRun, 1}, 0);
+  ASSERT_EQ(r.out.answers.size(), 2u);
+  EXPECT_EQ(r.out.answers[1].tick, 3u);
+}
+
+TEST(RunSupervisor, DuplicateStaleForeignAndOutOfRangeProgressChangeNothing) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_progress({1, kRun, 1}, 0);  // not enqueued yet: robot 0 is still in (1,0)
+  r.sup.on_progress({0, kRun, 0}, 0);
+  EXPECT_EQ(r.sup.result().rejected_progress, 0u);  // lock-step: held until their tick
+  r.sup.on_clock(tick(1, 1), 0);
+  ASSERT_EQ(r.out.answers.size(), 2u);
+  const int writes = r.out.window_writes;
+  r.sup.on_progress({0, kRun, 0}, 0);      // duplicate
+  r.sup.on_progress({0, kRun, -1}, 0);     // older
+  r.sup.on_progress({1, kRun + 1, 0}, 0);  // another run
+  r.sup.on_progress({9, kRun, 0}, 0);      // no such robot
+  r.sup.on_clock(tick(2, 1), 0);
+  EXPECT_EQ(r.out.answers.size(), 3u);
+  EXPECT_EQ(r.out.window_writes, writes);
+  EXPECT_EQ(r.sup.result().finished_actions, 1u);
+  EXPECT_EQ(r.sup.result().rejected_progress, 2u);
+  const auto notes = r.sup.take_notes();
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_THAT(notes[0], HasSubstr("only actions below 1 were enqueued"));
+  EXPECT_THAT(notes[1], HasSubstr("robot 9 does not exist"));
+  EXPECT_TRUE(r.sup.take_notes().empty());
+}
+
+TEST(RunSupervisor, LateTicksAreIgnoredAndARepeatedTickIsAnsweredAgain) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_progress({0, kRun, 0}, 0);
+  r.sup.on_clock(tick(4, 1), 0);
+  ASSERT_EQ(r.out.answers.size(), 2u);
+  r.sup.on_clock(tick(2, 0), 0);  // reordered: older than the last answer
+  EXPECT_EQ(r.out.answers.size(), 2u);
+  r.sup.on_clock(tick(4, 1), 0);  // the sim re-announced: the answer may have been missed
+  EXPECT_EQ(r.out.answers.size(), 3u);
+  EXPECT_EQ(r.out.answers[2].tick, 4u);
+}
+
+TEST(RunSupervisor, ClockOfAnotherRunIsIgnoredAndRunZeroIsTaken) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock({kRun + 1, 0, 0, 0, false}, 0);
+  EXPECT_TRUE(r.out.answers.empty());
+  r.sup.on_clock({0, 0, 0, 0, false}, 0);  // a sim that has no window yet does not know the run
+  EXPECT_EQ(r.out.answers.size(), 1u);
+}
+
+TEST(RunSupervisor, DeadlockWhenNoRobotHasAnActionItMayExecute) {
+  Scripted r;
+  // A dependency cycle between the robots' first actions (nodes 0 and 2).
+  r.in.adg.out_begin = r.in.adg.in_begin = {0, 1, 1, 2, 2};
+  r.in.adg.out = r.in.adg.in = {2, 0};
+  RunSupervisor sup(r.in, lockstep_config(), r.out);
+  sup.start(0);
+  sup.on_clock(tick(0, 0), 0);
+  EXPECT_EQ(sup.result().outcome, Outcome::kDeadlock);
+  EXPECT_THAT(sup.result().error, HasSubstr("4 actions remain"));
+  EXPECT_TRUE(r.out.answers.back().stop);
+}
+
+TEST(RunSupervisor, StalledAfterStallTimeoutOfSimTimeWithoutAFinishedAction) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_clock(tick(100, 0), 1);  // 10.0 s: not yet past
+  EXPECT_FALSE(r.sup.over());
+  r.sup.on_clock(tick(101, 0), 1);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kStalled);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("no action finished for 10"));
+}
+
+TEST(RunSupervisor, TimeLimitPastMaxSimTime) {
+  auto c = lockstep_config();
+  c.max_sim_time_s = 0.25;
+  Scripted r(c);
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_progress({0, kRun, 0}, 0);
+  r.sup.on_clock(tick(3, 1), 0);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kTimeLimit);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("time limit"));
+}
+
+TEST(RunSupervisor, NoSimHostWithinTimeoutNamesTheDomain) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.poll(4.9);
+  EXPECT_FALSE(r.sup.over());
+  r.sup.poll(5.1);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("no sim host joined domain 42"));
+}
+
+TEST(RunSupervisor, LockstepSimThatGoesSilentOrLeavesIsLost) {
+  Scripted silent;
+  silent.sup.start(0);
+  silent.sup.on_clock(tick(0, 0), 1);
+  silent.sup.poll(5.9);
+  EXPECT_FALSE(silent.sup.over());
+  silent.sup.poll(6.1);
+  EXPECT_THAT(silent.sup.result().error, HasSubstr("went silent"));
+
+  Scripted left;
+  left.sup.start(0);
+  left.sup.on_hosts_matched(1, 0.5);
+  left.sup.on_clock(tick(0, 0), 1);
+  left.sup.on_hosts_matched(1, 1.5);
+  EXPECT_FALSE(left.sup.over());
+  left.sup.on_hosts_matched(0, 2);
+  EXPECT_EQ(left.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_THAT(left.sup.result().error, HasSubstr("the sim host left"));
+}
+
+TEST(RunSupervisor, HostFailureAndStopEndTheRunAndFinishSendsTheStop) {
+  Scripted failed;
+  failed.sup.start(0);
+  failed.sup.on_host_failure("the sim process exited with code 3");
+  failed.sup.stop("later reasons do not replace the first");
+  EXPECT_EQ(failed.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_EQ(failed.sup.result().error, "the sim process exited with code 3");
+
+  Scripted stopped;
+  stopped.sup.start(0);
+  stopped.sup.on_clock(tick(0, 0), 0);
+  stopped.sup.stop("stopped by signal");
+  stopped.sup.finish(2.5);
+  EXPECT_EQ(stopped.sup.result().outcome, Outcome::kStopped);
+  ASSERT_FALSE(stopped.out.answers.empty());
+  EXPECT_TRUE(stopped.out.answers.back().stop);
+  EXPECT_EQ(stopped.out.answers.back().tick, 0u);
+  EXPECT_DOUBLE_EQ(stopped.sup.result().wall_time_s, 2.5);
+}
+
+TEST(RunSupervisor, RealTimeTakesProgressAtWallTimeAndTracksEachRobotsHost) {
+  auto c = lockstep_config();
+  c.lockstep = false;
+  Scripted r(c);
+  r.sup.start(0);
+  EXPECT_TRUE(r.sup.wants_progress());
+  r.sup.on_hosts_matched(1, 0.2);
+  r.sup.on_progress({0, kRun, 1}, 1.5);
+  r.sup.poll(1.5);
+  EXPECT_DOUBLE_EQ(r.sup.result().robots[0].finish_time_s, 1.5);
+  EXPECT_TRUE(r.sup.on_state({1, kRun}, 3.0));
+  EXPECT_FALSE(r.sup.on_state({1, kRun + 1}, 3.0));  // another run's robot says nothing
+  r.sup.poll(7.9);
+  EXPECT_FALSE(r.sup.over());  // robot 1 was heard at 3.0; robot 0 is done
+  r.sup.poll(8.1);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("robot 1: nothing heard from its host"));
+}
+
+TEST(RunSupervisor, SimStatusOfThisRunOrRunZeroIsTaken) {
+  Scripted r;
+  r.sup.on_sim_status({kRun + 1, 5, 5, 0.1, 10});
+  EXPECT_FALSE(r.sup.result().have_sim_status);
+  r.sup.on_sim_status({0, 1, 2, 0.3, 20});
+  r.sup.on_sim_status({kRun, 1, 2, 1e9, 15});
+  EXPECT_TRUE(r.sup.result().have_sim_status);
+  EXPECT_EQ(r.sup.result().robot_contacts, 1u);
+  EXPECT_EQ(r.sup.result().wall_contacts, 2u);
+  EXPECT_DOUBLE_EQ(*r.sup.result().min_gap_m, 0.3);  // 1e9: no gap measured
+  EXPECT_DOUBLE_EQ(*r.sup.result().host_peak_rss_mb, 20);
+}
+
+TEST(RunSupervisor, ResumeReachesTheFixpointWhateverOrderProgressCameIn) {
+  Scripted r;
+  // Robot 1's last action waited for robot 0: reported first, it is taken on the second pass.
+  const auto error = r.sup.resume({{1, 99, 1}, {0, 99, 0}, {0, 99, 1}, {0, 99, 0}});
+  ASSERT_EQ(error, "");
+  const auto& res = r.sup.result();
+  EXPECT_TRUE(res.resumed);
+  EXPECT_EQ(res.run_id, 99u);
+  EXPECT_EQ(res.finished_before_resume, 4u);
+  EXPECT_EQ(res.robots_done_before_resume, 2u);
+  EXPECT_TRUE(std::isnan(res.robots[0].finish_time_s));
+  EXPECT_EQ(r.sup.take_notes().size(), 1u);
+  r.sup.start(0);
+  r.sup.on_clock({99, 40, 4.0, 4, false}, 0);
+  EXPECT_EQ(res.outcome, Outcome::kSuccess);
+  EXPECT_DOUBLE_EQ(res.resumed_at_s, 4.0);
+  EXPECT_EQ(r.out.answers.back().sync_total, 4u);  // the hosts hold what was finished
+}
+
+TEST(RunSupervisor, ResumeRefusesProgressThatDoesNotFitThePlan) {
+  Scripted too_many;
+  EXPECT_THAT(too_many.sup.resume({{5, 99, 0}}), HasSubstr("progress for robot 5"));
+  EXPECT_EQ(too_many.sup.result().outcome, Outcome::kHostLost);
+  Scripted two_runs;
+  EXPECT_THAT(two_runs.sup.resume({{0, 99, 0}, {1, 98, 0}}), HasSubstr("two runs (99 and 98)"));
+  Scripted not_allowed;  // robot 1 entered (1,0) while robot 0 was still there
+  EXPECT_THAT(not_allowed.sup.resume({{1, 99, 1}}),
+              HasSubstr("robot 1 reports action 1 finished, which this plan's dependency"));
+  Scripted nothing;
+  EXPECT_THAT(nothing.sup.resume({}), HasSubstr("report no progress yet"));
+}
+
+TEST(RunSupervisor, OutcomeNames) {
+  EXPECT_EQ(to_string(Outcome::kSuccess), "success");
+  EXPECT_EQ(to_string(Outcome::kHostLost), "host lost");
+  EXPECT_EQ(to_string(Outcome::kTimeLimit), "time limit");
+}
+
+}  // namespace
+}  // namespace smart::monitor
