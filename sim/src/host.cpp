@@ -3,169 +3,201 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <cmath>
-#include <memory>
 #include <thread>
 
-#include "smart/agent/agent.hpp"
-#include "smart/agent/fleet_link.hpp"
+#include "smart/agent/agent_node.hpp"
 #include "smart/common/memory.hpp"
-#include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
-#include "smart/dds/writer.hpp"
+#include "smart/dds/wire.hpp"
 #include "smart/sim/ros_view.hpp"
-#include "smart/sim/sim_robot.hpp"
+#include "smart/wire/convert.hpp"
+#include "smart/wire/lockstep.hpp"
 
 namespace smart::sim {
 
-std::vector<agent::Pose2D> start_poses(const grid::Grid& grid, double cell_m,
-                                       const std::vector<grid::Cell>& starts, double yaw) {
-  std::vector<agent::Pose2D> out;
-  for (const auto& c : starts) {
-    const auto p = grid.to_world(grid::HalfCell::of(c), cell_m);
-    out.push_back({p.x_m, p.y_m, yaw});
-  }
-  return out;
-}
+namespace {
+using SteadyClock = std::chrono::steady_clock;
+constexpr double kReannounceS = 0.5;  // a monitor that joins late missed the tick
+}  // namespace
 
 struct SimHost::Impl {
   const dds::Participant& participant;
   SimHostOptions opt;
-  World world;
-  agent::FleetLink link;
-  // ROS 2 view (poses, tf, chosen robots' pose topics), at the state rate.
-  RosView ros_view;
-  std::vector<std::unique_ptr<SimRobot>> backends;
-  std::vector<std::unique_ptr<agent::Agent>> agents;
-  std::vector<int64_t> reported_finished, reported_executing;
-  std::vector<uint32_t> window_end;     // per robot, end of the latest window received
-  std::vector<uint32_t> total_actions;  // per robot, from its windows
-  uint64_t window_end_total = 0;
+  Fleet fleet;
+  agent::AgentNode node;
+  RosView ros_view;  // ROS 2 view (poses, tf, chosen robots' pose topics), at the state rate
+  dds::WireWriter<smart_msg_Clock> clock_out;
+  dds::WireWriter<smart_msg_SimStatus> status_out;
+  dds::WireReader<smart_msg_RobotState> states_in;  // external robots' poses
+  wire::HostHandshake handshake;
+  wire::SyncCounter windows;    // per robot, the end of the latest window received
+  uint64_t finished_total = 0;  // actions reported finished (sum over robots)
   uint64_t run_id = 0;
-  uint64_t finished_total = 0;  // sum over robots of finished_seq + 1, as reported
+  uint64_t tick = 0;
+  uint64_t state_every = 1;
   uint64_t rejected_windows = 0;
+  ContactStats last_status{};
+  const SteadyClock::time_point wall0 = SteadyClock::now();
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const grid::Grid& grid,
        const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
        const SimHostOptions& o)
       : participant(p),
         opt(o),
-        world(grid, model, o.sim, starts),
-        link(p, qos),
-        ros_view(p, qos, starts.size(), o.ros_pose_robots) {
-    const std::size_t n = starts.size();
-    for (uint32_t i = 0; i < n; ++i) {
-      backends.push_back(std::make_unique<SimRobot>(world, i));
-      agents.push_back(std::make_unique<agent::Agent>(
-          agent::AgentConfig{i, model, o.sim.control_period_s, o.pose_timeout_s}, *backends[i],
-          *backends[i]));
-      agents.back()->activate();
-    }
-    for (const uint32_t e : o.external_robots) {
-      if (e >= n) {
-        throw std::invalid_argument("external robot " + std::to_string(e) + " but the sim has " +
-                                    std::to_string(n) + " robots");
-      }
-      world.set_external(e, true);
-      agents[e]->deactivate();
+        fleet(grid, model, o.sim, starts, o.pose_timeout_s),
+        node(p, qos),
+        ros_view(p, qos, starts.size(), o.ros_pose_robots),
+        clock_out(p, qos),
+        status_out(p, qos),
+        states_in(p, qos),
+        handshake(o.timeout_s, kReannounceS),
+        windows(starts.size()) {
+    for (const uint32_t e : o.external_robots) fleet.set_external(e);
+    for (uint32_t i = 0; i < fleet.robots(); ++i) {
+      if (!fleet.external(i)) node.host(fleet.agent(i));
     }
     ros_view.publish_map(grid, o.sim.cell_m);
-    reported_finished.assign(n, -1);
-    reported_executing.assign(n, -1);
-    window_end.assign(n, 0);
-    total_actions.assign(n, 0);
+    state_every = std::max<uint64_t>(
+        1, static_cast<uint64_t>(1.0 / (o.state_rate_hz * o.sim.control_period_s) + 0.5));
   }
 
-  void apply_windows() {
-    link.take_windows([&](const agent::ReceivedWindow& w) {
-      if (w.robot_id >= agents.size()) {
-        if (rejected_windows++ == 0) {
-          spdlog::error(
-              "sim host: window for robot {} but this host has {} robots; check "
-              "--agents on both sides",
-              w.robot_id, agents.size());
-        }
-        return;
+  double wall_s() const {
+    return std::chrono::duration<double>(SteadyClock::now() - wall0).count();
+  }
+
+  // Windows of every robot count for the handshake, driven here or not.
+  bool accept_window(const agent::WindowInfo& w) {
+    if (w.robot_id >= fleet.robots()) {
+      if (rejected_windows++ == 0) {
+        spdlog::error("sim host: window for robot {} but this host has {} robots; check "
+                      "--agents on both sides",
+                      w.robot_id, fleet.robots());
       }
-      if (w.run_id < run_id) return;  // history of an earlier run
-      if (w.run_id > run_id) {
-        run_id = w.run_id;
-        std::fill(window_end.begin(), window_end.end(), 0);
-        window_end_total = 0;
-      }
-      if (!world.external(w.robot_id)) agents[w.robot_id]->on_window(w.run_id, w.actions);
-      total_actions[w.robot_id] = w.total_actions;
-      const uint32_t end = w.actions.empty() ? window_end[w.robot_id] : w.end_seq;
-      if (end > window_end[w.robot_id]) {
-        window_end_total += end - window_end[w.robot_id];
-        window_end[w.robot_id] = end;
-      }
-    });
+      return false;
+    }
+    if (w.run_id < run_id) return false;  // history of an earlier run
+    if (w.run_id > run_id) {
+      run_id = w.run_id;
+      windows.reset();
+    }
+    if (!w.empty) windows.raise(w.robot_id, w.end_seq);
+    return true;
+  }
+
+  void read_windows() {
+    node.take_windows([this](const agent::WindowInfo& w) { return accept_window(w); });
   }
 
   void track_external_robots() {
-    link.take_states([&](const smart_msg_RobotState& s) {
-      if (s.robot_id < agents.size() && world.external(s.robot_id)) {
-        world.set_external_pose(s.robot_id, {s.pose.x_m, s.pose.y_m, s.pose.yaw_rad});
+    states_in.take_each([&](const smart_msg_RobotState& s) {
+      if (s.robot_id < fleet.robots() && fleet.external(s.robot_id)) {
+        fleet.world().set_external_pose(s.robot_id, {s.pose.x_m, s.pose.y_m, s.pose.yaw_rad});
       }
     });
   }
 
-  void publish_progress() {
-    for (uint32_t i = 0; i < agents.size(); ++i) {
-      if (world.external(i)) continue;
-      const auto& a = *agents[i];
-      if (a.run_id() == 0) continue;
-      if (a.finished_seq() != reported_finished[i] || a.executing_seq() != reported_executing[i]) {
-        if (a.finished_seq() > reported_finished[i]) {
-          finished_total += static_cast<uint64_t>(a.finished_seq() - reported_finished[i]);
-        }
-        link.publish_progress(i, a.run_id(), a.finished_seq(), a.executing_seq());
-        reported_finished[i] = a.finished_seq();
-        reported_executing[i] = a.executing_seq();
-      }
-    }
+  // One control period; then everything it produced goes out.
+  void advance() {
+    track_external_robots();
+    fleet.step();
+    ++tick;
+    finished_total += node.publish_progress();
+    if (tick % state_every == 0) publish_states();
+    publish_status(false);
+    publish_clock();
   }
 
   void publish_states() {
+    const World& world = fleet.world();
     ros_view.publish(world);
-    for (uint32_t i = 0; i < agents.size(); ++i) {
-      if (world.external(i)) continue;
-      const auto s = agent::make_robot_state(i, run_id, world.time_s(), world.pose(i),
-                                             world.wheel_speeds(i), agents[i]->queue_length());
-      link.publish_state(s);
+    for (uint32_t i = 0; i < fleet.robots(); ++i) {
+      if (fleet.external(i)) continue;
+      node.publish_state(i, run_id, world.time_s(), world.pose(i), world.wheel_speeds(i));
     }
   }
 
-  void publish_clock(uint64_t tick) {
-    link.publish_clock(smart_msg_Clock{agent::kSimClockSource, run_id, tick, world.time_s(),
-                                       finished_total, false});
+  void publish_clock() {
+    clock_out.write(wire::to_wire(
+        {run_id, tick, fleet.world().time_s(), finished_total, false}, dds::kSimClockSource));
   }
 
-  ContactStats last_status{};
-  double wall_start_s = 0;
-  void publish_status(bool force, double wall_s) {
-    const auto& c = world.contacts();
+  void publish_status(bool force) {
+    const auto& c = fleet.world().contacts();
     if (!force && c.robot_robot_events == last_status.robot_robot_events &&
         c.robot_wall_events == last_status.robot_wall_events &&
         c.min_gap_m == last_status.min_gap_m) {
       return;
     }
     last_status = c;
-    link.publish_sim_status(smart_msg_SimStatus{
-        agent::kSimClockSource, run_id, world.time_s(), static_cast<uint32_t>(agents.size()),
-        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s, common::peak_rss_mb()});
+    status_out.write(smart_msg_SimStatus{dds::kSimClockSource, run_id, fleet.world().time_s(),
+                                         static_cast<uint32_t>(fleet.robots()),
+                                         c.robot_robot_events, c.robot_wall_events, c.min_gap_m,
+                                         wall_s(), common::peak_rss_mb()});
   }
 
-  double awake_robot_ticks = 0, active_system_ticks = 0;
-  void step_all() {
-    track_external_robots();
-    for (auto& a : agents) a->step(world.time_s());
-    world.step();
-    awake_robot_ticks += static_cast<double>(world.awake_robots());
-    active_system_ticks += static_cast<double>(world.active_systems());
+  SimHostResult finish(bool ok, std::string error, bool by_monitor) {
+    publish_status(true);
+    fleet.deactivate();
+    const auto s = fleet.stats();
+    SimHostResult r;
+    r.ok = ok;
+    r.error = std::move(error);
+    r.stopped_by_monitor = by_monitor;
+    r.ticks = tick;
+    r.sim_time_s = fleet.world().time_s();
+    r.wall_time_s = wall_s();
+    r.contacts = fleet.world().contacts();
+    r.mean_awake_robots = s.mean_awake_robots;
+    r.mean_active_systems = s.mean_active_systems;
+    return r;
   }
+
+  std::string silent_monitor() const {
+    return "no answer from the monitor for " + std::to_string(opt.timeout_s) + " s at tick " +
+           std::to_string(tick) + "; is `smart monitor` running on domain " +
+           std::to_string(participant.domain_id()) + " with the same --qos and --network?";
+  }
+
+  SimHostResult run_lockstep(const std::atomic<bool>& stop_requested);
+  SimHostResult run_realtime(const std::atomic<bool>& stop_requested);
 };
+
+SimHostResult SimHost::Impl::run_lockstep(const std::atomic<bool>& stop_requested) {
+  dds::WaitSet waitset(participant);
+  waitset.attach_status(node.action_reader(), DDS_DATA_AVAILABLE_STATUS, 1);
+  waitset.attach_status(node.clock_reader(), DDS_DATA_AVAILABLE_STATUS, 2);
+  publish_clock();
+  handshake.announced(tick, wall_s());
+  for (;;) {
+    if (stop_requested.load()) return finish(false, "stopped by signal", false);
+    if (handshake.timed_out(wall_s())) return finish(false, silent_monitor(), false);
+    waitset.wait(std::chrono::milliseconds(20));
+    if (auto answer = node.take_monitor_clock()) handshake.on_answer(*answer);
+    if (handshake.stop()) return finish(true, "", true);
+    read_windows();
+    if (handshake.may_step(run_id, windows.total())) {
+      advance();
+      handshake.announced(tick, wall_s());
+    } else if (handshake.should_reannounce(wall_s())) {
+      publish_clock();
+      handshake.reannounced(wall_s());
+    }
+  }
+}
+
+SimHostResult SimHost::Impl::run_realtime(const std::atomic<bool>& stop_requested) {
+  const auto period = std::chrono::duration_cast<SteadyClock::duration>(
+      std::chrono::duration<double>(opt.sim.control_period_s));
+  auto next = SteadyClock::now();
+  for (;;) {
+    if (stop_requested.load()) return finish(false, "stopped by signal", false);
+    read_windows();
+    if (auto c = node.take_monitor_clock(); c && c->stop) return finish(true, "", true);
+    advance();
+    next += period;
+    std::this_thread::sleep_until(next);
+  }
+}
 
 SimHost::SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
                  const grid::Grid& grid, const agent::RobotModel& model,
@@ -175,93 +207,8 @@ SimHost::SimHost(const dds::Participant& participant, const dds::QosProfile& qos
 SimHost::~SimHost() = default;
 
 SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
-  auto& I = *impl_;
-  using Clock = std::chrono::steady_clock;
-  const auto wall0 = Clock::now();
-  SimHostResult r;
-  dds::WaitSet waitset(I.participant);
-  waitset.attach_status(I.link.action_reader(), DDS_DATA_AVAILABLE_STATUS, 1);
-  waitset.attach_status(I.link.clock_reader(), DDS_DATA_AVAILABLE_STATUS, 2);
-  const auto period = std::chrono::duration<double>(I.opt.sim.control_period_s);
-  const auto state_every = std::max<uint64_t>(
-      1, static_cast<uint64_t>(1.0 / (I.opt.state_rate_hz * I.opt.sim.control_period_s) + 0.5));
-  uint64_t tick = 0;
-  // One control period: agents and world step, then everything the period produced goes out.
-  auto advance = [&] {
-    I.step_all();
-    ++tick;
-    I.publish_progress();
-    if (tick % state_every == 0) I.publish_states();
-    I.publish_status(false, std::chrono::duration<double>(Clock::now() - wall0).count());
-    I.publish_clock(tick);
-  };
-  auto wall_s = [&] { return std::chrono::duration<double>(Clock::now() - wall0).count(); };
-  auto finish = [&](bool ok, std::string error) {
-    I.publish_status(true, wall_s());
-    r.ok = ok;
-    r.error = std::move(error);
-    r.ticks = tick;
-    r.sim_time_s = I.world.time_s();
-    r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();
-    r.contacts = I.world.contacts();
-    const double ticks = static_cast<double>(std::max<uint64_t>(tick, 1));
-    r.mean_awake_robots = I.awake_robot_ticks / ticks;
-    r.mean_active_systems = I.active_system_ticks / ticks;
-    for (auto& a : I.agents) a->deactivate();
-    return r;
-  };
-
-  if (I.opt.clock == ClockMode::kLockstep) {
-    I.publish_clock(0);
-    for (;;) {
-      // Wait for the monitor's answer to `tick` and the windows it announces.
-      const auto deadline = Clock::now() + std::chrono::duration<double>(I.opt.timeout_s);
-      std::optional<smart_msg_Clock> answer;
-      auto last_publish = Clock::now();
-      for (;;) {
-        if (stop_requested.load()) return finish(false, "stopped by signal");
-        if (Clock::now() > deadline) {
-          return finish(false, "no answer from the monitor for " + std::to_string(I.opt.timeout_s) +
-                                   " s at tick " + std::to_string(tick) +
-                                   "; is `smart monitor` running on "
-                                   "domain " +
-                                   std::to_string(I.participant.domain_id()) +
-                                   " with the same --qos and --network?");
-        }
-        waitset.wait(std::chrono::milliseconds(20));
-        if (auto c = I.link.take_monitor_clock()) {
-          if (c->stop) {
-            r.stopped_by_monitor = true;
-            return finish(true, "");
-          }
-          if (c->tick == tick) answer = c;
-        }
-        I.apply_windows();
-        if (answer && I.window_end_total == answer->sync_total && I.run_id == answer->run_id) {
-          break;
-        }
-        // Until the monitor has matched, re-announce the tick (a late joiner missed it).
-        if (!answer && Clock::now() - last_publish > std::chrono::milliseconds(500)) {
-          I.publish_clock(tick);
-          last_publish = Clock::now();
-        }
-      }
-      advance();
-    }
-  }
-
-  auto next = Clock::now();
-  for (;;) {
-    if (stop_requested.load()) return finish(false, "stopped by signal");
-    I.apply_windows();
-    if (auto c = I.link.take_monitor_clock(); c && c->stop) {
-      r.stopped_by_monitor = true;
-      return finish(true, "");
-    }
-    advance();
-    next += std::chrono::duration_cast<Clock::duration>(period);
-    std::this_thread::sleep_until(next);
-  }
+  return impl_->opt.clock == ClockMode::kLockstep ? impl_->run_lockstep(stop_requested)
+                                                   : impl_->run_realtime(stop_requested);
 }
 
 }  // namespace smart::sim

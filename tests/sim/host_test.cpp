@@ -5,7 +5,7 @@
 
 #include <thread>
 
-#include "smart/agent/fleet_link.hpp"
+#include "smart/dds/wire.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/writer.hpp"
@@ -46,20 +46,17 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
   std::thread t([&] { result = host.run(stop); });
 
   // The monitor side: windows out, clock answers, progress and the ROS view in.
-  dds::Topic<smart_msg_ActionWindow> ta(mon_p, std::string(dds::kActionTopic));
-  dds::Topic<smart_msg_Clock> tc(mon_p, std::string(dds::kClockTopic));
-  dds::Topic<smart_msg_Progress> tp(mon_p, std::string(dds::kProgressTopic));
   dds::Topic<geometry_msgs_msg_dds__PoseArray_> tr(mon_p, "rt/smart/poses");
-  dds::Writer<smart_msg_ActionWindow> windows(mon_p, ta, qos.action.to_dds());
-  dds::Writer<smart_msg_Clock> answers(mon_p, tc, qos.clock.to_dds());
-  dds::Reader<smart_msg_Clock> ticks(mon_p, tc, qos.clock.to_dds());
-  dds::Reader<smart_msg_Progress> progress(mon_p, tp, qos.progress.to_dds());
+  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos);
+  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos);
+  dds::WireReader<smart_msg_Clock> ticks(mon_p, qos);
+  dds::WireReader<smart_msg_Progress> progress(mon_p, qos);
   dds::Reader<geometry_msgs_msg_dds__PoseArray_> ros(mon_p, tr, qos.state.to_dds());
   const uint64_t run = 42;
   auto latest_tick = [&] {
     int64_t latest = -1;
     ticks.take_each([&](const smart_msg_Clock& c) {
-      if (c.source_id == agent::kSimClockSource) latest = std::max<int64_t>(latest, c.tick);
+      if (c.source_id == dds::kSimClockSource) latest = std::max<int64_t>(latest, c.tick);
     });
     return latest;
   };
@@ -84,7 +81,7 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
   uint64_t tick = 0;
   const auto deadline = std::chrono::steady_clock::now() + 20s;
   while (finished < 1 && std::chrono::steady_clock::now() < deadline) {
-    answers.write(smart_msg_Clock{agent::kMonitorClockSource, run, tick, 0.0, 2, false});
+    answers.write(smart_msg_Clock{dds::kMonitorClockSource, run, tick, 0.0, 2, false});
     // Wait for the host's next tick, then collect what it reported.
     for (int i = 0; i < 200; ++i) {
       if (latest_tick() > static_cast<int64_t>(tick)) break;
@@ -103,7 +100,7 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
   }
   EXPECT_EQ(finished, 1);
   EXPECT_TRUE(saw_ros) << "no rt/smart/poses PoseArray seen";
-  answers.write(smart_msg_Clock{agent::kMonitorClockSource, run, tick, 0.0, 2, true});
+  answers.write(smart_msg_Clock{dds::kMonitorClockSource, run, tick, 0.0, 2, true});
   t.join();
   EXPECT_TRUE(result.ok) << result.error;
   EXPECT_TRUE(result.stopped_by_monitor);

@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "smart/agent/agent.hpp"
-#include "smart/agent/fleet_link.hpp"
+#include "smart/agent/agent_node.hpp"
 #include "smart/config/yaml_checks.hpp"
 #include "smart/hw/emulated_jetbot.hpp"
 #include "smart/hw/jetbot_drive.hpp"
@@ -44,6 +44,29 @@ struct AgentOptions {
 
 double steady_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The agent's read/update/write loop on the wall clock until the monitor stops its run (true)
+// or a signal arrives (false).
+bool control_loop(agent::Agent& robot, agent::AgentNode& node, double period_s) {
+  auto next = std::chrono::steady_clock::now();
+  while (!g_stop_requested.load()) {
+    node.take_windows();
+    if (auto c = node.take_monitor_clock(); c && c->stop && c->run_id == robot.run_id()) {
+      return true;
+    }
+    const double now = steady_s();
+    robot.step(now);
+    node.publish_progress();
+    if (robot.last_pose().valid) {
+      node.publish_state(robot.robot_id(), robot.run_id(), now, robot.last_pose(),
+                         robot.last_command());
+    }
+    next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(period_s));
+    std::this_thread::sleep_until(next);
+  }
+  return false;
 }
 
 int run_agent(const AgentOptions& o) {
@@ -93,7 +116,8 @@ int run_agent(const AgentOptions& o) {
   // SIGINT/SIGTERM: outputs off at once from the handler, then a clean shutdown below.
   hw::SignalStop signal_stop(*bus, hwc.address, &g_stop_requested);
   agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose);
-  agent::FleetLink link(participant, profile);
+  agent::AgentNode node(participant, profile);
+  node.host(robot);
   robot.configure();
   robot.activate();
   // A command watchdog beside the control loop: if the loop stalls, the motors stop.
@@ -107,35 +131,7 @@ int run_agent(const AgentOptions& o) {
   spdlog::info("agent {}: {} on {}, pose from {}, domain {}", o.robot_id, model.name,
                hwc.i2c_device, o.pose == "vicon" ? "Vicon UDP " + object : o.ros_topic,
                o.dds.domain);
-  int64_t reported_finished = -2, reported_executing = -2;
-  auto next = std::chrono::steady_clock::now();
-  bool stopped_by_monitor = false;
-  while (!g_stop_requested.load()) {
-    link.take_windows([&](const agent::ReceivedWindow& w) {
-      if (w.robot_id == o.robot_id) robot.on_window(w.run_id, w.actions);
-    });
-    if (auto c = link.take_monitor_clock(); c && c->stop && c->run_id == robot.run_id()) {
-      stopped_by_monitor = true;
-      break;
-    }
-    const double now = steady_s();
-    robot.step(now);
-    if (robot.run_id() != 0 && (robot.finished_seq() != reported_finished ||
-                                robot.executing_seq() != reported_executing)) {
-      link.publish_progress(o.robot_id, robot.run_id(), robot.finished_seq(),
-                            robot.executing_seq());
-      reported_finished = robot.finished_seq();
-      reported_executing = robot.executing_seq();
-    }
-    const auto& p = robot.last_pose();
-    if (p.valid) {
-      link.publish_state(agent::make_robot_state(o.robot_id, robot.run_id(), now, p,
-                                                 robot.last_command(), robot.queue_length()));
-    }
-    next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-        std::chrono::duration<double>(o.period_s));
-    std::this_thread::sleep_until(next);
-  }
+  const bool stopped_by_monitor = control_loop(robot, node, o.period_s);
   robot.deactivate();
   done = true;
   watchdog.join();

@@ -12,10 +12,10 @@
 
 #include "smart/agent/agent.hpp"
 #include "smart/monitor/action_builder.hpp"
+#include "smart/wire/convert.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
-#include "smart/sim/sim_robot.hpp"
-#include "smart/sim/world.hpp"
+#include "smart/sim/fleet.hpp"
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
@@ -75,42 +75,26 @@ int run_bench_sim(const BenchSimOptions& o) {
   cfg.cell_m = o.cell_m;
   cfg.system_capacity = o.system_capacity;
   cfg.threads = o.threads;
-  std::vector<agent::Pose2D> starts;
-  for (std::size_t r = 0; r < o.robots; ++r) {
-    const auto w = grid.to_world(grid::HalfCell::of(free[r]), o.cell_m);
-    starts.push_back({w.x_m, w.y_m, 0.0});
-  }
-  sim::World world(grid, model, cfg, starts);
-  std::vector<std::unique_ptr<sim::SimRobot>> backends;
-  std::vector<std::unique_ptr<agent::Agent>> agents;
+  std::vector<grid::Cell> start_cells(free.begin(), free.begin() + static_cast<long>(o.robots));
+  sim::Fleet fleet(grid, model, cfg, sim::start_poses(grid, o.cell_m, start_cells, 0.0));
   for (uint32_t r = 0; r < o.robots; ++r) {
-    backends.push_back(std::make_unique<sim::SimRobot>(world, r));
-    agents.push_back(std::make_unique<agent::Agent>(
-        agent::AgentConfig{r, model, cfg.control_period_s, 0.5}, *backends[r], *backends[r]));
+    // Through the wire conversion, exactly what a sim host's agents would receive.
     std::vector<agent::AgentAction> w;
     for (uint32_t s = 0; s < actions.count(r); ++s) {
-      const auto& a = actions.at(r, s);
-      const auto f = grid.to_world(a.from, o.cell_m), t = grid.to_world(a.to, o.cell_m);
-      w.push_back({s,
-                   a.type == monitor::ActionType::kMove ? agent::ActionKind::kMove
-                                                        : agent::ActionKind::kRotate,
-                   f.x_m, f.y_m, t.x_m, t.y_m, grid::yaw_rad(a.heading)});
+      w.push_back(wire::from_wire(wire::to_wire(actions.at(r, s), grid, o.cell_m)));
     }
-    agents.back()->activate();
-    agents.back()->on_window(1, w);
+    fleet.agent(r).on_window(1, w);
   }
   const auto ticks = static_cast<uint64_t>(o.sim_seconds / cfg.control_period_s + 0.5);
   const auto t0 = std::chrono::steady_clock::now();
-  std::size_t finished = 0;
-  double awake_ticks = 0, system_ticks = 0;
-  for (uint64_t k = 0; k < ticks; ++k) {
-    for (auto& a : agents) a->step(world.time_s());
-    world.step();
-    awake_ticks += static_cast<double>(world.awake_robots());
-    system_ticks += static_cast<double>(world.active_systems());
-  }
+  for (uint64_t k = 0; k < ticks; ++k) fleet.step();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  for (auto& a : agents) finished += static_cast<std::size_t>(a->finished_seq() + 1);
+  std::size_t finished = 0;
+  for (uint32_t r = 0; r < o.robots; ++r) {
+    finished += static_cast<std::size_t>(fleet.agent(r).finished_seq() + 1);
+  }
+  const auto& world = fleet.world();
+  const auto stats = fleet.stats();
   std::cout << nlohmann::json{{"map", o.map},
                               {"robots", o.robots},
                               {"sim_seconds", world.time_s()},
@@ -120,8 +104,8 @@ int run_bench_sim(const BenchSimOptions& o) {
                               {"collisions", world.contacts().robot_robot_events},
                               {"wall_contacts", world.contacts().robot_wall_events},
                               {"system_capacity", world.system_capacity()},
-                              {"mean_awake_robots", awake_ticks / static_cast<double>(ticks)},
-                              {"mean_active_systems", system_ticks / static_cast<double>(ticks)},
+                              {"mean_awake_robots", stats.mean_awake_robots},
+                              {"mean_active_systems", stats.mean_active_systems},
                               {"threads", o.threads},
                               {"machine", machine_description()}}
                    .dump()

@@ -1,17 +1,18 @@
-// Contract: the sim host — one process, one DDS participant, one Simbody World and one Agent
-// per robot (the same Agent class as on hardware), demultiplexing the keyed topics by robot id.
-// Each control period: apply received action windows, step every agent (read pose, update,
-// write wheels), step the world, publish changed progress, robot states at state_rate_hz and
-// the clock. Clock modes:
+// Contract: the sim host, a thin pump around a Fleet (fleet.hpp): one process, one DDS
+// participant, and the fleet's agents behind one AgentNode (the same DDS loop as `smart agent`).
+// Each control period: apply received action windows, step the fleet, publish changed progress,
+// robot states at state_rate_hz (and the ROS 2 view), the sim status when it changed, and the
+// clock. Clock modes:
 // - lockstep: before each period the host waits for the monitor's answer to its last tick and
-//   for windows adding up to the answer's sync_total (see idl/smart.idl, Clock). Runs are
-//   bit-identical. A silent monitor for timeout_s ends the run with an error.
+//   for windows adding up to the answer's sync_total (wire/lockstep.hpp, HostHandshake). Runs
+//   are bit-identical. A silent monitor for timeout_s ends the run with an error.
 // - realtime: periods paced to the wall clock (hardware-in-the-loop, mixed runs).
 // The host stops when the monitor's clock says stop, on `stop_requested`, or on error.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/grid/grid.hpp"
+#include "smart/sim/fleet.hpp"
 #include "smart/sim/world.hpp"
 
 namespace smart::sim {
@@ -50,10 +52,6 @@ struct SimHostResult {
   double mean_awake_robots = 0;
   double mean_active_systems = 0;
 };
-
-// Robot i's start pose: the centre of cell starts[i] facing `yaw_rad`.
-std::vector<agent::Pose2D> start_poses(const grid::Grid& grid, double cell_m,
-                                       const std::vector<grid::Cell>& starts, double yaw_rad);
 
 class SimHost {
  public:

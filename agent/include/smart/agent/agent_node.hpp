@@ -1,0 +1,66 @@
+// Contract: the DDS loop of the robots one process hosts (the sim host: every robot of the
+// fleet; `smart agent`: one), shared so both speak to the monitor the same way:
+// - take_windows() routes each received action window (keyed topic, demultiplexed by robot id)
+//   to the hosted agent of that robot, when `accept` (if given) agrees; `accept` sees every
+//   window, hosted robot or not (the sim host counts them for the lock-step handshake);
+// - publish_progress() publishes a robot's cumulative progress only when it changed, for
+//   robots that have a run, and returns how many actions were newly reported finished;
+// - publish_state() publishes one robot's state; take_monitor_clock() the monitor's newest
+//   clock sample (its answers and its stop).
+// Edge code: the agent core never sees DDS types (wire/convert.hpp converts).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "smart/agent/agent.hpp"
+#include "smart/dds/participant.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/dds/wire.hpp"
+#include "smart/wire/lockstep.hpp"
+
+namespace smart::agent {
+
+struct WindowInfo {
+  uint32_t robot_id = 0;
+  uint64_t run_id = 0;
+  uint32_t total_actions = 0;
+  uint32_t end_seq = 0;  // one past the last seq in the window
+  bool empty = true;
+};
+
+class AgentNode {
+ public:
+  AgentNode(const dds::Participant& participant, const dds::QosProfile& qos);
+
+  // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node.
+  void host(Agent& agent);
+
+  using Accept = std::function<bool(const WindowInfo&)>;
+  std::size_t take_windows(const Accept& accept = {});
+  uint64_t publish_progress();
+  void publish_state(uint32_t robot, uint64_t run_id, double time_s, const PoseSample& pose,
+                     WheelSpeeds wheels);
+  std::optional<wire::Tick> take_monitor_clock();
+
+  dds_entity_t action_reader() const { return actions_.handle(); }
+  dds_entity_t clock_reader() const { return clocks_.handle(); }
+
+ private:
+  struct Hosted {
+    Agent* agent = nullptr;
+    int64_t reported_finished = -1;
+    int64_t reported_executing = -1;
+  };
+  Hosted* hosted(uint32_t robot);
+
+  std::vector<Hosted> hosted_;  // by robot id; agent == nullptr: not hosted here
+  dds::WireReader<smart_msg_ActionWindow> actions_;
+  dds::WireReader<smart_msg_Clock> clocks_;
+  dds::WireWriter<smart_msg_Progress> progress_;
+  dds::WireWriter<smart_msg_RobotState> states_;
+};
+
+}  // namespace smart::agent
