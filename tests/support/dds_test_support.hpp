@@ -49,6 +49,9 @@ enum DomainId : int {
   kResume = 138,
   kResumeNothing = 139,
   kMixedRestart = 140,
+  kAgentNodeWindows = 141,
+  kAgentNodeProgress = 142,
+  kAgentNodeAccept = 143,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -1,0 +1,122 @@
+// AgentNode over real DDS on loopback: a "monitor" participant writes windows and reads
+// progress; the node routes windows and reports progress only when it changes.
+#include "smart/agent/agent_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "smart/dds/domain.hpp"
+#include "smart/dds/action_window.hpp"
+#include "smart/dds/wire.hpp"
+#include "smart/wire/convert.hpp"
+#include "support/dds_test_support.hpp"
+#include "support/fake_robot.hpp"
+
+namespace smart::agent {
+namespace {
+
+using namespace std::chrono_literals;
+
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds limit = 3000ms) {
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < until) {
+    if (pred()) return true;
+    std::this_thread::sleep_for(10ms);
+  }
+  return pred();
+}
+
+smart_msg_ActionStep rotate_step(uint32_t seq, double heading) {
+  smart_msg_ActionStep s{};
+  s.seq = seq;
+  s.type = smart_msg_ACTION_ROTATE;
+  s.heading_rad = heading;
+  return s;
+}
+
+RobotModel footbot() {
+  return load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
+}
+
+struct Rig {
+  dds::Domain domain;
+  dds::Participant mon, host;
+  dds::QosProfile qos = dds::default_qos_profile();
+  dds::WireWriter<smart_msg_ActionWindow> windows{mon, qos};
+  dds::WireReader<smart_msg_Progress> progress{mon, qos};
+  AgentNode node{host, qos};
+  explicit Rig(int domain_id) : domain(domain_id, test::loopback()), mon(domain), host(domain) {}
+  void send(uint32_t robot, uint64_t run, std::vector<smart_msg_ActionStep> steps) {
+    ASSERT_TRUE(windows.wait_for_readers(1, 3000ms));
+    dds::ActionWindowBuffer buf(robot, run, 4, std::move(steps));
+    windows.write(buf.view());
+  }
+};
+
+TEST(AgentNode, RoutesWindowsToHostedRobotsAndShowsEveryWindowToAccept) {
+  Rig rig(test::kAgentNodeWindows);
+  test::FakeRobot body(0.3);
+  Agent a({3, footbot(), 0.1, 0.5}, body, body);
+  rig.node.host(a);
+  rig.send(3, 9, {rotate_step(0, 1.0), rotate_step(1, 2.0)});
+  rig.send(5, 9, {rotate_step(0, 1.0)});  // not hosted here
+  std::vector<WindowInfo> seen;
+  ASSERT_TRUE(eventually([&] {
+    rig.node.take_windows([&](const WindowInfo& w) {
+      seen.push_back(w);
+      return true;
+    });
+    return seen.size() >= 2;
+  }));
+  EXPECT_EQ(a.run_id(), 9u);
+  EXPECT_EQ(a.queue_length(), 2u);
+  EXPECT_EQ(seen[0].end_seq, 2u);
+  EXPECT_EQ(seen[0].total_actions, 4u);
+  EXPECT_FALSE(seen[0].empty);
+}
+
+TEST(AgentNode, AWindowRefusedByAcceptNeverReachesTheAgent) {
+  Rig rig(test::kAgentNodeAccept);
+  test::FakeRobot body(0.3);
+  Agent a({0, footbot(), 0.1, 0.5}, body, body);
+  rig.node.host(a);
+  rig.send(0, 9, {rotate_step(0, 1.0)});
+  std::size_t taken = 0;
+  ASSERT_TRUE(eventually([&] {
+    taken += rig.node.take_windows([](const WindowInfo&) { return false; });
+    return taken > 0;
+  }));
+  EXPECT_EQ(a.run_id(), 0u);
+}
+
+TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
+  Rig rig(test::kAgentNodeProgress);
+  test::FakeRobot body(0.3);
+  Agent a({2, footbot(), 0.1, 0.5}, body, body);
+  a.activate();
+  rig.node.host(a);
+  EXPECT_EQ(rig.node.publish_progress(), 0u);  // no run yet: nothing to say
+  a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
+  a.step(0.0);  // already facing 0: the rotation finishes at once
+  ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
+  EXPECT_EQ(rig.node.publish_progress(), 1u);
+  EXPECT_EQ(rig.node.publish_progress(), 0u);  // unchanged: not published again
+  std::vector<smart_msg_Progress> got;
+  ASSERT_TRUE(eventually([&] {
+    rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
+    return !got.empty();
+  }));
+  std::this_thread::sleep_for(100ms);
+  rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].robot_id, 2u);
+  EXPECT_EQ(got[0].run_id, 9u);
+  EXPECT_EQ(got[0].finished_seq, 0);
+  EXPECT_EQ(got[0].executing_seq, -1);
+}
+
+}  // namespace
+}  // namespace smart::agent
