@@ -52,6 +52,7 @@ enum DomainId : int {
   kAgentNodeWindows = 141,
   kAgentNodeProgress = 142,
   kAgentNodeAccept = 143,
+  kAgentI2cMissing = 144,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

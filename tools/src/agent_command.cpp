@@ -22,13 +22,18 @@ namespace smart::tools {
 
 namespace {
 
+enum class Backend { kJetbot };
+enum class PoseKind { kVicon, kRos };
+const EnumNames<Backend> kBackendNames{{"jetbot", Backend::kJetbot}};
+const EnumNames<PoseKind> kPoseNames{{"vicon", PoseKind::kVicon}, {"ros", PoseKind::kRos}};
+
 struct AgentOptions {
   DdsOptions dds;
   uint32_t robot_id = 0;
-  std::string backend = "jetbot";
+  Backend backend = Backend::kJetbot;
   std::string config = "jetbot";
   std::string i2c;  // default: the robot file's hardware.i2c_device
-  std::string pose = "vicon";
+  PoseKind pose = PoseKind::kVicon;
   std::string vicon_bind = "0.0.0.0";
   uint16_t vicon_port = 51001;
   std::string vicon_object;  // default: jetbot<id>
@@ -69,6 +74,59 @@ bool control_loop(agent::Agent& robot, agent::AgentNode& node, double period_s) 
   return false;
 }
 
+// The robot's pose source; with Vicon also the receiver (an emulated JetBot streams to it).
+struct Pose {
+  std::unique_ptr<hw::ViconReceiver> vicon;
+  std::unique_ptr<agent::PoseSource> source;
+  std::string object;  // the Vicon object name
+};
+
+Pose open_pose(const AgentOptions& o, const dds::Participant& participant) {
+  Pose p;
+  p.object = o.vicon_object.empty() ? "jetbot" + std::to_string(o.robot_id) : o.vicon_object;
+  hw::ViconTransform transform;
+  transform.scale = o.pose_scale > 0 ? o.pose_scale : (o.pose == PoseKind::kVicon ? 0.001 : 1.0);
+  transform.yaw_offset_rad = o.pose_yaw_offset_rad;
+  transform.x_offset_m = o.pose_offset_m.at(0);
+  transform.y_offset_m = o.pose_offset_m.at(1);
+  if (o.pose == PoseKind::kVicon) {
+    p.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, transform,
+                                                  std::vector<std::string>{p.object}, steady_s);
+    p.source = std::make_unique<hw::ViconPoseSource>(*p.vicon, p.object, o.pose_max_age_s, steady_s);
+    return p;
+  }
+  if (o.ros_topic.empty()) {
+    throw std::invalid_argument("--pose ros needs --ros-topic, e.g. /vrpn_mocap/jetbot1/pose");
+  }
+  p.source = std::make_unique<hw::RosPoseSource>(participant, o.ros_topic, transform,
+                                                 o.pose_max_age_s, steady_s);
+  return p;
+}
+
+std::unique_ptr<hw::I2cBus> open_bus(const AgentOptions& o, const hw::JetbotConfig& hwc,
+                                     const agent::RobotModel& model, const Pose& pose) {
+  if (hwc.i2c_device != "emulated") return std::make_unique<hw::LinuxI2cBus>(hwc.i2c_device);
+  if (o.emulate_pose.size() != 3 || !pose.vicon) {
+    throw std::invalid_argument("--i2c emulated needs --emulate-pose X,Y,YAW and --pose vicon");
+  }
+  return std::make_unique<hw::EmulatedJetbot>(
+      hwc, model.wheel_base_m, agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]},
+      pose.object, pose.vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
+}
+
+nlohmann::json agent_report(const agent::Agent& robot, bool stopped_by_monitor, const Pose& pose) {
+  nlohmann::json out = {{"robot_id", robot.robot_id()},
+                        {"finished_seq", robot.finished_seq()},
+                        {"stopped_by_monitor", stopped_by_monitor},
+                        {"watchdog_stops", robot.watchdog_stops()}};
+  if (pose.vicon) {
+    const auto s = pose.vicon->stats();
+    out["vicon"] = {
+        {"datagrams", s.datagrams}, {"malformed", s.malformed}, {"unknown_names", s.unknown_names}};
+  }
+  return out;
+}
+
 int run_agent(const AgentOptions& o) {
   const auto path = find_config_file("robots", o.config);
   const auto model = agent::load_robot_model(path);
@@ -77,45 +135,13 @@ int run_agent(const AgentOptions& o) {
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
   dds::Participant participant(domain);
-  const std::string object =
-      o.vicon_object.empty() ? "jetbot" + std::to_string(o.robot_id) : o.vicon_object;
-
-  // Pose source first: an emulated JetBot must know where to stream.
-  std::unique_ptr<hw::ViconReceiver> vicon;
-  std::unique_ptr<agent::PoseSource> pose;
-  hw::ViconTransform transform;
-  transform.scale = o.pose_scale > 0 ? o.pose_scale : (o.pose == "vicon" ? 0.001 : 1.0);
-  transform.yaw_offset_rad = o.pose_yaw_offset_rad;
-  transform.x_offset_m = o.pose_offset_m.at(0);
-  transform.y_offset_m = o.pose_offset_m.at(1);
-  if (o.pose == "vicon") {
-    vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, transform,
-                                                std::vector<std::string>{object}, steady_s);
-    pose = std::make_unique<hw::ViconPoseSource>(*vicon, object, o.pose_max_age_s, steady_s);
-  } else {
-    if (o.ros_topic.empty()) {
-      throw std::invalid_argument("--pose ros needs --ros-topic, e.g. /vrpn_mocap/jetbot1/pose");
-    }
-    pose = std::make_unique<hw::RosPoseSource>(participant, o.ros_topic, transform,
-                                               o.pose_max_age_s, steady_s);
-  }
-  std::unique_ptr<hw::I2cBus> bus;
-  if (hwc.i2c_device == "emulated") {
-    if (o.emulate_pose.size() != 3 || !vicon) {
-      throw std::invalid_argument("--i2c emulated needs --emulate-pose X,Y,YAW and --pose vicon");
-    }
-    bus = std::make_unique<hw::EmulatedJetbot>(
-        hwc, model.wheel_base_m,
-        agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]}, object,
-        vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
-  } else {
-    bus = std::make_unique<hw::LinuxI2cBus>(hwc.i2c_device);
-  }
+  const Pose pose = open_pose(o, participant);  // first: an emulated JetBot streams to it
+  const auto bus = open_bus(o, hwc, model, pose);
   hw::JetbotDrive drive(
       *bus, hwc, [](double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); });
   // SIGINT/SIGTERM: outputs off at once from the handler, then a clean shutdown below.
   hw::SignalStop signal_stop(*bus, hwc.address, &g_stop_requested);
-  agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose);
+  agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose.source);
   agent::AgentNode node(participant, profile);
   node.host(robot);
   robot.configure();
@@ -129,23 +155,13 @@ int run_agent(const AgentOptions& o) {
     }
   });
   spdlog::info("agent {}: {} on {}, pose from {}, domain {}", o.robot_id, model.name,
-               hwc.i2c_device, o.pose == "vicon" ? "Vicon UDP " + object : o.ros_topic,
-               o.dds.domain);
+               hwc.i2c_device, pose.vicon ? "Vicon UDP " + pose.object : o.ros_topic, o.dds.domain);
   const bool stopped_by_monitor = control_loop(robot, node, o.period_s);
   robot.deactivate();
   done = true;
   watchdog.join();
-  nlohmann::json out = {{"robot_id", o.robot_id},
-                        {"finished_seq", robot.finished_seq()},
-                        {"stopped_by_monitor", stopped_by_monitor},
-                        {"watchdog_stops", robot.watchdog_stops()}};
-  if (vicon) {
-    const auto s = vicon->stats();
-    out["vicon"] = {
-        {"datagrams", s.datagrams}, {"malformed", s.malformed}, {"unknown_names", s.unknown_names}};
-  }
-  std::cout << out.dump() << std::endl;
-  return 0;
+  std::cout << agent_report(robot, stopped_by_monitor, pose).dump() << std::endl;
+  return kExitSuccess;
 }
 
 }  // namespace
@@ -157,13 +173,12 @@ void register_agent_command(CLI::App& app, int& exit_code) {
                                  "from `smart monitor` over DDS");
   add_dds_options(cmd, o->dds);
   cmd->add_option("--robot-id", o->robot_id, "the robot's index in the plan")->required();
-  cmd->add_option("--backend", o->backend)->check(CLI::IsMember({"jetbot"}))->capture_default_str();
+  add_enum_option(cmd, "--backend", o->backend, kBackendNames, "the robot's drive (default jetbot)");
   cmd->add_option("--config", o->config, "robot model with a hardware: section (name or file)")
       ->capture_default_str();
   cmd->add_option("--i2c", o->i2c, "I2C device (default from the robot file) or 'emulated'");
-  cmd->add_option("--pose", o->pose, "vicon (Tracker UDP stream) or ros (PoseStamped topic)")
-      ->check(CLI::IsMember({"vicon", "ros"}))
-      ->capture_default_str();
+  add_enum_option(cmd, "--pose", o->pose, kPoseNames,
+                  "vicon (Tracker UDP stream; default) or ros (PoseStamped topic)");
   cmd->add_option("--vicon-bind", o->vicon_bind)->capture_default_str();
   cmd->add_option("--vicon-port", o->vicon_port, "UDP port (0: any free port)")
       ->capture_default_str();

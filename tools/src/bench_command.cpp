@@ -34,26 +34,11 @@ struct BenchSimOptions {
   int system_capacity = 0, threads = 2;
 };
 
-int run_bench_sim(const BenchSimOptions& o) {
-  const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
-  const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
-  std::mt19937_64 rng(o.seed);
-  std::vector<grid::Cell> free;
-  for (int32_t y = 0; y < grid.height(); ++y) {
-    for (int32_t x = 0; x < grid.width(); ++x) {
-      if (!grid.blocked({x, y})) free.push_back({x, y});
-    }
-  }
-  if (free.size() < o.robots) {
-    std::cerr << "bench sim: " << o.robots << " robots do not fit on " << free.size()
-              << " free cells of " << o.map << "\n";
-    return 2;
-  }
-  std::shuffle(free.begin(), free.end(), rng);
-  // Independent random walks, long enough to keep every robot busy for the whole run.
-  const auto steps = static_cast<std::size_t>(o.sim_seconds) + 10;
+// Independent random walks from free[r], `steps` timesteps each (collisions allowed).
+grid::Plan random_walks(const grid::Grid& grid, const std::vector<grid::Cell>& free,
+                        std::size_t robots, std::size_t steps, std::mt19937_64& rng) {
   grid::Plan plan;
-  for (std::size_t r = 0; r < o.robots; ++r) {
+  for (std::size_t r = 0; r < robots; ++r) {
     grid::RobotPath p{static_cast<int>(r), 0, {}};
     grid::Cell c = free[r];
     p.steps.push_back({c, 0, 0});
@@ -70,6 +55,26 @@ int run_bench_sim(const BenchSimOptions& o) {
     }
     plan.paths.push_back(std::move(p));
   }
+  return plan;
+}
+
+int run_bench_sim(const BenchSimOptions& o) {
+  const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
+  const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
+  std::mt19937_64 rng(o.seed);
+  std::vector<grid::Cell> free;
+  for (int32_t y = 0; y < grid.height(); ++y) {
+    for (int32_t x = 0; x < grid.width(); ++x) {
+      if (!grid.blocked({x, y})) free.push_back({x, y});
+    }
+  }
+  if (free.size() < o.robots) {
+    std::cerr << "bench sim: " << o.robots << " robots do not fit on " << free.size()
+              << " free cells of " << o.map << "; use fewer --robots or a larger map\n";
+    return kExitBadInput;
+  }
+  std::shuffle(free.begin(), free.end(), rng);
+  const auto plan = random_walks(grid, free, o.robots, static_cast<std::size_t>(o.sim_seconds) + 10, rng);
   const auto actions = monitor::build_actions(plan, grid::Heading::kEast);
   sim::SimConfig cfg;
   cfg.cell_m = o.cell_m;
@@ -119,6 +124,27 @@ struct BenchRunOptions {
   int domain = 90;
 };
 
+// The rows as the Markdown table of docs/performance.md.
+void print_table(const std::vector<nlohmann::json>& rows) {
+  std::cout
+      << "\n| robots | success | sim time | wall time | sim speed | AET | collisions | closest "
+         "approach | monitor RSS | sim RSS |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+         "\n";
+  for (const auto& r : rows) {
+    char line[256];
+    std::snprintf(
+        line, sizeof line,
+        "| %zu | %s | %.0f s | %.1f s | %.1fx | %.0f s | %d | %.2f m | %.0f MB | %.0f MB |",
+        r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
+        r["sim_time_s"].get<double>(), r["wall_time_s"].get<double>(), r["sim_speed"].get<double>(),
+        r["aet_s"].is_number() ? r["aet_s"].get<double>() : 0, r["collisions"].get<int>(),
+        r["min_separation_m"].is_number() ? r["min_separation_m"].get<double>() : 0,
+        r["monitor_peak_rss_mb"].get<double>(), r["sim_peak_rss_mb"].get<double>());
+    std::cout << line << "\n";
+  }
+  std::cout << "\nmachine: " << machine_description() << std::endl;
+}
+
 int run_bench_run(const BenchRunOptions& o) {
   std::vector<nlohmann::json> rows;
   for (const auto n : o.agents) {
@@ -150,7 +176,7 @@ int run_bench_run(const BenchRunOptions& o) {
       std::cerr << "bench run: `smart run` with " << n << " robots failed (exit code " << rc
                 << "); see " << (dir / "summary.json").string()
                 << " or rerun that command by hand\n";
-      return 1;
+      return kExitRunFailed;
     }
     const auto s = nlohmann::json::parse(in);
     nlohmann::json row = {{"robots", n},
@@ -168,24 +194,8 @@ int run_bench_run(const BenchRunOptions& o) {
     std::cout << row.dump() << std::endl;
     rows.push_back(row);
   }
-  std::cout
-      << "\n| robots | success | sim time | wall time | sim speed | AET | collisions | closest "
-         "approach | monitor RSS | sim RSS |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-         "\n";
-  for (const auto& r : rows) {
-    char line[256];
-    std::snprintf(
-        line, sizeof line,
-        "| %zu | %s | %.0f s | %.1f s | %.1fx | %.0f s | %d | %.2f m | %.0f MB | %.0f MB |",
-        r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
-        r["sim_time_s"].get<double>(), r["wall_time_s"].get<double>(), r["sim_speed"].get<double>(),
-        r["aet_s"].is_number() ? r["aet_s"].get<double>() : 0, r["collisions"].get<int>(),
-        r["min_separation_m"].is_number() ? r["min_separation_m"].get<double>() : 0,
-        r["monitor_peak_rss_mb"].get<double>(), r["sim_peak_rss_mb"].get<double>());
-    std::cout << line << "\n";
-  }
-  std::cout << "\nmachine: " << machine_description() << std::endl;
-  return 0;
+  print_table(rows);
+  return kExitSuccess;
 }
 
 }  // namespace

@@ -8,17 +8,17 @@
 #include "smart/monitor/results.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
+#include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
 
 namespace {
 
 struct CheckPlanOptions {
-  std::string map, scen, plan;
-  std::size_t agents = 0;
-  std::string axis;
-  std::string format = "auto";
-  std::string heading = "east";
+  WorldCliOptions world;
+  std::string plan;
+  std::optional<grid::AxisOrder> axis;
+  grid::PlanFormat format = grid::PlanFormat::kAuto;
 };
 
 nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
@@ -33,14 +33,14 @@ nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
 }
 
 int run_check_plan(const CheckPlanOptions& o) {
-  const auto io = instance_options(o.map, o.scen, o.plan, o.agents, o.format, o.axis, o.heading);
+  const auto io = instance_options(o.world, o.plan, o.axis, o.format);
   try {
     const auto in = monitor::load_instance(io);
     const auto& t = in.timings;
     nlohmann::json report = {
         {"valid", true},
         {"robots", in.plan.paths.size()},
-        {"map", {{"file", o.map}, {"width", in.grid.width()}, {"height", in.grid.height()}}},
+        {"map", {{"file", o.world.map}, {"width", in.grid.width()}, {"height", in.grid.height()}}},
         {"plan", monitor::plan_json(in.plan, in.stats)},
         {"adg", monitor::adg_json(in.adg.stats)},
         {"build_time_ms",
@@ -53,7 +53,7 @@ int run_check_plan(const CheckPlanOptions& o) {
     };
     report["plan"]["file"] = o.plan;
     std::cout << report.dump(2) << std::endl;
-    return 0;
+    return kExitSuccess;
   } catch (const grid::InputError& e) {
     for (const auto& p : e.problems()) std::cerr << p.to_string() << "\n";
     std::cerr << e.problems().size() << " problem(s) found\n";
@@ -62,7 +62,7 @@ int run_check_plan(const CheckPlanOptions& o) {
                                 {"problems", problems_json(e.problems())}}
                      .dump(2)
               << std::endl;
-    return 1;
+    return kExitRunFailed;
   }
 }
 
@@ -74,20 +74,8 @@ void register_check_plan_command(CLI::App& app, int& exit_code) {
       app.add_subcommand("check-plan",
                          "Validate a MAPF plan against its map and scenario; print plan and ADG "
                          "statistics as JSON (exit 0) or every problem found (exit 1)");
-  cmd->add_option("--map", o->map, "MovingAI .map file")->required();
-  cmd->add_option("--scen", o->scen, "MovingAI .scen file")->required();
-  cmd->add_option("--plan", o->plan, "plan file (SMART/MAPF-LNS2, LaCAM/PIBT, YAML)")->required();
-  cmd->add_option("--agents", o->agents, "use the first N robots (default: all in the plan)");
-  cmd->add_option("--axis", o->axis,
-                  "order of the two numbers in a step: xy (x = column) or rowcol; required for "
-                  "SMART/MAPF-LNS2 path files")
-      ->check(CLI::IsMember({"xy", "rowcol"}));
-  cmd->add_option("--format", o->format, "plan format")
-      ->check(CLI::IsMember({"auto", "smart", "lacam", "yaml"}))
-      ->capture_default_str();
-  cmd->add_option("--initial-heading", o->heading, "heading every robot starts with")
-      ->check(CLI::IsMember({"east", "north", "west", "south"}))
-      ->capture_default_str();
+  add_world_options(cmd, o->world, false);
+  add_plan_options(cmd, o->plan, o->axis, o->format);
   cmd->callback([&exit_code, o] { exit_code = run_check_plan(*o); });
 }
 

@@ -2,6 +2,7 @@
 
 #include <signal.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
@@ -17,6 +18,9 @@ namespace {
 void on_stop_signal(int) { g_stop_requested.store(true); }
 }  // namespace
 
+const EnumNames<Network> kNetworkNames{{"loopback", Network::kLoopback},
+                                       {"network", Network::kNetwork}};
+
 void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   cmd->add_option("--domain", o.domain, "DDS domain id (0-230)")
       ->envname("SMART_DOMAIN")
@@ -25,17 +29,22 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   cmd->add_option("--qos", o.qos, "QoS profile: lan, wifi, lossy-wifi or a YAML file")
       ->envname("SMART_QOS")
       ->capture_default_str();
-  cmd->add_option("--network", o.network,
-                  "loopback (this host only, no multicast) or network (Cyclone's default "
-                  "interface with multicast discovery, for multi-host runs)")
-      ->check(CLI::IsMember({"loopback", "network"}))
-      ->capture_default_str();
+  add_enum_option(cmd, "--network", o.network, kNetworkNames,
+                  "loopback (this host only, no multicast; default) or network (Cyclone's "
+                  "default interface with multicast discovery, for multi-host runs)");
+}
+
+std::vector<std::string> dds_argv(const DdsOptions& o) {
+  return {"--domain", std::to_string(o.domain), "--qos", o.qos, "--network",
+          enum_name(o.network, kNetworkNames)};
 }
 
 dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile) {
-  return profile.domain_config(o.network == "network" ? dds::DomainConfig::network()
-                                                      : dds::DomainConfig::loopback());
+  return profile.domain_config(o.network == Network::kNetwork ? dds::DomainConfig::network()
+                                                              : dds::DomainConfig::loopback());
 }
+
+std::string exact(double value) { return fmt::format("{}", value); }
 
 std::string find_config_file(const std::string& kind, const std::string& name) {
   if (name.find('/') != std::string::npos || name.ends_with(".yaml")) return name;
@@ -47,21 +56,6 @@ std::string find_config_file(const std::string& kind, const std::string& name) {
   }
   throw config::ConfigError(kind + " '" + name + "' not found (looked for " + looked +
                             "); pass a path to a YAML file");
-}
-
-monitor::InstanceOptions instance_options(const std::string& map, const std::string& scen,
-                                          const std::string& plan, std::size_t agents,
-                                          const std::string& format, const std::string& axis,
-                                          const std::string& heading) {
-  monitor::InstanceOptions io;
-  io.map = map;
-  io.scen = scen;
-  io.plan = plan;
-  io.agents = agents;
-  io.read.format = monitor::parse_plan_format(format);
-  if (!axis.empty()) io.read.axis = monitor::parse_axis_order(axis);
-  io.initial_heading = grid::parse_heading(heading);
-  return io;
 }
 
 void install_stop_handlers() {

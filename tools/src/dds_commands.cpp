@@ -1,8 +1,8 @@
-// `smart dds-echo`, `smart dds-ping`, `smart dds-send`: DDS round trips over the real topics.
-// dds-echo stands in for the agents until the agent issue lands: it answers every action window
-// with the progress (and a robot state) of having finished it, and every clock tick of the sim
-// side with the same tick. dds-ping drives it and measures round trips. dds-send publishes a
-// numbered burst (used to measure delivery under the lossy profile).
+// `smart dds-echo`, `smart dds-ping`, `smart dds-send`: DDS round trips over the real topics,
+// for checking a network and measuring QoS profiles without a fleet. dds-echo is a minimal
+// responder: it answers every action window with the progress (and a robot state) of having
+// finished it, and every sim clock tick with the same tick. dds-ping drives it and measures
+// round trips. dds-send publishes a numbered burst (delivery under the lossy profile).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "smart/dds/reader.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
+#include "smart/dds/wire.hpp"
 #include "smart/dds/writer.hpp"
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
@@ -29,35 +30,21 @@ namespace smart::tools {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using dds::Topic;
 using std::chrono::milliseconds;
 
-constexpr uint32_t kSimSource = 0;   // Clock.source_id of the sim side
-constexpr uint32_t kEchoSource = 1;  // Clock.source_id of the answering side
-
-// All four SMART topics on one participant.
-struct Topics {
-  explicit Topics(const dds::Participant& p)
-      : action(p, std::string(dds::kActionTopic)),
-        progress(p, std::string(dds::kProgressTopic)),
-        state(p, std::string(dds::kStateTopic)),
-        clock(p, std::string(dds::kClockTopic)) {}
-  Topic<smart_msg_ActionWindow> action;
-  Topic<smart_msg_Progress> progress;
-  Topic<smart_msg_RobotState> state;
-  Topic<smart_msg_Clock> clock;
-};
+// dds-echo answers ticks the way a monitor does; dds-ping sends them as a sim host does.
+constexpr uint32_t kSimSource = dds::kSimClockSource;
+constexpr uint32_t kEchoSource = dds::kMonitorClockSource;
 
 int run_echo(const DdsOptions& o, double duration_s) {
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
   dds::Participant participant(domain);
-  Topics t(participant);
-  dds::Reader<smart_msg_ActionWindow> actions(participant, t.action, profile.action.to_dds());
-  dds::Reader<smart_msg_Clock> clocks(participant, t.clock, profile.clock.to_dds());
-  dds::Writer<smart_msg_Progress> progress(participant, t.progress, profile.progress.to_dds());
-  dds::Writer<smart_msg_RobotState> states(participant, t.state, profile.state.to_dds());
-  dds::Writer<smart_msg_Clock> clock_out(participant, t.clock, profile.clock.to_dds());
+  dds::WireReader<smart_msg_ActionWindow> actions(participant, profile);
+  dds::WireReader<smart_msg_Clock> clocks(participant, profile);
+  dds::WireWriter<smart_msg_Progress> progress(participant, profile);
+  dds::WireWriter<smart_msg_RobotState> states(participant, profile);
+  dds::WireWriter<smart_msg_Clock> clock_out(participant, profile);
   dds::WaitSet waitset(participant);
   waitset.attach_status(actions.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
   waitset.attach_status(clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
@@ -119,40 +106,26 @@ struct PingOptions {
   bool spawn_echo = false;
 };
 
-int run_ping(const DdsOptions& o, const PingOptions& po) {
-  std::optional<ChildProcess> echo;
-  if (po.spawn_echo) {
-    echo.emplace(std::vector<std::string>{self_executable().string(), "dds-echo", "--domain",
-                                          std::to_string(o.domain), "--qos", o.qos, "--network",
-                                          o.network});
-  }
-  const auto profile = dds::find_qos_profile(o.qos);
-  dds::Domain domain(o.domain, domain_config(o, profile));
-  dds::Participant participant(domain);
-  Topics t(participant);
-  dds::Writer<smart_msg_ActionWindow> actions(participant, t.action, profile.action.to_dds());
-  dds::Writer<smart_msg_Clock> clock_out(participant, t.clock, profile.clock.to_dds());
-  auto progress_qos = profile.progress.to_dds();
-  dds::Reader<smart_msg_Progress> progress(participant, t.progress, progress_qos);
-  dds::Reader<smart_msg_RobotState> states(participant, t.state, profile.state.to_dds());
-  dds::Reader<smart_msg_Clock> clocks(participant, t.clock, profile.clock.to_dds());
-  dds::WaitSet waitset(participant);
-  waitset.attach_status(progress.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
-  waitset.attach_status(clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
-
-  const auto timeout = milliseconds(static_cast<long>(po.timeout_s * 1000));
-  if (!actions.wait_for_readers(1, timeout) || !progress.wait_for_writers(1, timeout)) {
-    std::cerr << "dds-ping: no agent matched on domain " << o.domain << " within " << po.timeout_s
-              << " s; start `smart dds-echo --domain " << o.domain
-              << "` (same --qos and --network) or pass --spawn-echo\n";
-    return 3;
-  }
+// The monitor-like side of dds-ping: windows and ticks out, progress and answers back.
+struct Pinger {
+  const PingOptions& po;
+  dds::WireWriter<smart_msg_ActionWindow> actions;
+  dds::WireWriter<smart_msg_Clock> clock_out;
+  dds::WireReader<smart_msg_Progress> progress;
+  dds::WireReader<smart_msg_RobotState> states;
+  dds::WireReader<smart_msg_Clock> clocks;
+  dds::WaitSet waitset;
   const uint64_t run_id = std::random_device{}() | (uint64_t{1} << 40);
-  std::vector<double> rtt_ms;
   std::size_t progress_samples = 0, state_samples = 0, clock_replies = 0;
-  for (uint32_t r = 0; r < po.rounds && !g_stop_requested.load(); ++r) {
-    const auto t0 = Clock::now();
-    const int32_t last_seq = static_cast<int32_t>((r + 1) * po.steps - 1);
+
+  Pinger(const dds::Participant& p, const dds::QosProfile& q, const PingOptions& o)
+      : po(o), actions(p, q), clock_out(p, q), progress(p, q), states(p, q), clocks(p, q),
+        waitset(p) {
+    waitset.attach_status(progress.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+    waitset.attach_status(clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
+  }
+
+  void send_round(uint32_t r) {
     for (uint32_t robot = 0; robot < po.robots; ++robot) {
       dds::ActionWindowBuffer w(robot, run_id, po.rounds * po.steps);
       for (uint32_t k = 0; k < po.steps; ++k) {
@@ -165,22 +138,21 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
       }
       actions.write(w.view());
     }
-    smart_msg_Clock tick{};
-    tick.source_id = kSimSource;
-    tick.run_id = run_id;
-    tick.tick = r;
-    tick.sim_time_s = 0.1 * r;
-    clock_out.write(tick);
+    clock_out.write(smart_msg_Clock{kSimSource, run_id, r, 0.1 * r, 0, false});
+  }
 
+  // Waits until every robot finished round r and the tick was answered; false on timeout.
+  bool await_round(uint32_t r, Clock::time_point t0) {
+    const auto last_seq = static_cast<int32_t>((r + 1) * po.steps - 1);
     std::vector<bool> done(po.robots, false);
     uint32_t remaining = po.robots;
-    bool clock_answered = false;
-    while (remaining > 0 || !clock_answered) {
-      if (Clock::now() - t0 > timeout) {
+    bool answered = false;
+    while (remaining > 0 || !answered) {
+      if (Clock::now() - t0 > std::chrono::duration<double>(po.timeout_s)) {
         std::cerr << "dds-ping: round " << r << " timed out after " << po.timeout_s << " s with "
                   << remaining << " of " << po.robots << " robots unanswered"
-                  << (clock_answered ? "" : " and no clock answer") << "\n";
-        return 4;
+                  << (answered ? "" : " and no clock answer") << "\n";
+        return false;
       }
       waitset.wait(milliseconds(50));
       progress.take_each([&](const smart_msg_Progress& p) {
@@ -192,30 +164,56 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
         }
       });
       clocks.take_each([&](const smart_msg_Clock& c) {
-        if (c.source_id == kEchoSource && c.run_id == run_id && c.tick == r) {
-          clock_answered = true;
-          ++clock_replies;
-        }
+        if (c.source_id != kEchoSource || c.run_id != run_id || c.tick != r) return;
+        answered = true;
+        ++clock_replies;
       });
       states.take_each([&](const smart_msg_RobotState&) { ++state_samples; });
     }
+    return true;
+  }
+};
+
+int run_ping(const DdsOptions& o, const PingOptions& po) {
+  std::optional<ChildProcess> echo;
+  if (po.spawn_echo) {
+    std::vector<std::string> argv{self_executable().string(), "dds-echo"};
+    const auto dds = dds_argv(o);
+    argv.insert(argv.end(), dds.begin(), dds.end());
+    echo.emplace(argv);
+  }
+  const auto profile = dds::find_qos_profile(o.qos);
+  dds::Domain domain(o.domain, domain_config(o, profile));
+  dds::Participant participant(domain);
+  Pinger ping(participant, profile, po);
+  const auto timeout = milliseconds(static_cast<long>(po.timeout_s * 1000));
+  if (!ping.actions.wait_for_readers(1, timeout) || !ping.progress.wait_for_writers(1, timeout)) {
+    std::cerr << "dds-ping: no agent matched on domain " << o.domain << " within " << po.timeout_s
+              << " s; start `smart dds-echo --domain " << o.domain
+              << "` (same --qos and --network) or pass --spawn-echo\n";
+    return kExitSystem;
+  }
+  std::vector<double> rtt_ms;
+  for (uint32_t r = 0; r < po.rounds && !g_stop_requested.load(); ++r) {
+    const auto t0 = Clock::now();
+    ping.send_round(r);
+    if (!ping.await_round(r, t0)) return kExitRunFailed;
     rtt_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  states.take_each([&](const smart_msg_RobotState&) { ++state_samples; });
-  nlohmann::json out = {
-      {"robots", po.robots},
-      {"rounds", rtt_ms.size()},
-      {"qos", profile.name},
-      {"round_trip_ms",
-       {{"median", percentile(rtt_ms, 0.5)},
-        {"p99", percentile(rtt_ms, 0.99)},
-        {"max", percentile(rtt_ms, 1.0)}}},
-      {"progress_samples", progress_samples},
-      {"state_samples", state_samples},
-      {"clock_replies", clock_replies},
-  };
-  std::cout << out.dump() << std::endl;
-  return rtt_ms.size() == po.rounds ? 0 : 5;
+  ping.states.take_each([&](const smart_msg_RobotState&) { ++ping.state_samples; });
+  std::cout << nlohmann::json{{"robots", po.robots},
+                              {"rounds", rtt_ms.size()},
+                              {"qos", profile.name},
+                              {"round_trip_ms",
+                               {{"median", percentile(rtt_ms, 0.5)},
+                                {"p99", percentile(rtt_ms, 0.99)},
+                                {"max", percentile(rtt_ms, 1.0)}}},
+                              {"progress_samples", ping.progress_samples},
+                              {"state_samples", ping.state_samples},
+                              {"clock_replies", ping.clock_replies}}
+                   .dump()
+            << std::endl;
+  return rtt_ms.size() == po.rounds ? kExitSuccess : kExitRunFailed;
 }
 
 struct SendOptions {
@@ -229,7 +227,8 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
   dds::Participant participant(domain);
-  Topic<smart_msg_Progress> topic(participant, std::string(dds::kProgressTopic));
+  // Progress QoS made keep-all: every sample counts, so losses show.
+  dds::Topic<smart_msg_Progress> topic(participant, std::string(dds::kProgressTopic));
   auto qos = profile.progress;
   qos.reliability =
       so.reliability == "reliable" ? dds::Reliability::kReliable : dds::Reliability::kBestEffort;
@@ -240,7 +239,7 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
   if (!writer.wait_for_readers(1, timeout)) {
     std::cerr << "dds-send: no reader matched on domain " << o.domain << " within " << so.timeout_s
               << " s\n";
-    return 3;
+    return kExitSystem;
   }
   // Matching is seen by the writer first; give the reader side time to match as well, or best
   // effort samples sent in between would count as losses.
@@ -259,7 +258,7 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
       qos.reliability == dds::Reliability::kReliable ? writer.wait_for_acks(timeout) : true;
   std::this_thread::sleep_for(milliseconds(200));
   std::cout << nlohmann::json{{"sent", so.count}, {"acked", acked}}.dump() << std::endl;
-  return acked ? 0 : 4;
+  return acked ? kExitSuccess : kExitRunFailed;
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ void register_demo_command(CLI::App& app, int& exit_code) {
     std::cerr
         << "demo: 1/4 generating a warehouse map (the MovingAI warehouse-10-20-10-2-1 layout)\n";
     GenMapOptionsPublic gm;
-    if ((exit_code = generate_map("warehouse", map, gm)) != 0) return;
+    if ((exit_code = generate_map(MapKind::kWarehouse, map, gm)) != 0) return;
     std::cerr << "demo: 2/4 generating a scenario with " << o->robots << " robots\n";
     if ((exit_code = generate_scen(map, o->robots, o->seed, scen)) != 0) return;
     std::cerr << "demo: 3/4 planning with the built-in prioritized planner\n";

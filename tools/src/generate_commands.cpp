@@ -32,28 +32,38 @@ struct PlanOptions {
 
 }  // namespace
 
-int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o) {
+const EnumNames<MapKind> kMapKindNames{{"warehouse", MapKind::kWarehouse},
+                                        {"random", MapKind::kRandom},
+                                        {"empty", MapKind::kEmpty},
+                                        {"maze", MapKind::kMaze}};
+
+int generate_map(MapKind kind, const std::string& out, const GenMapOptionsPublic& o) {
   grid::Grid g;
   char blocked = '@';
-  if (kind == "warehouse") {
-    g = planning::generate_warehouse(o.warehouse);
-    blocked = 'T';
-  } else if (kind == "random") {
-    g = planning::generate_random_map(o.width, o.height, o.obstacles, o.seed);
-  } else if (kind == "empty") {
-    g = planning::generate_empty_map(o.width, o.height);
-  } else {
-    g = planning::generate_maze(o.width, o.height, o.corridor, o.seed);
+  switch (kind) {
+    case MapKind::kWarehouse:
+      g = planning::generate_warehouse(o.warehouse);
+      blocked = 'T';
+      break;
+    case MapKind::kRandom:
+      g = planning::generate_random_map(o.width, o.height, o.obstacles, o.seed);
+      break;
+    case MapKind::kEmpty:
+      g = planning::generate_empty_map(o.width, o.height);
+      break;
+    case MapKind::kMaze:
+      g = planning::generate_maze(o.width, o.height, o.corridor, o.seed);
+      break;
   }
   write_file(out, planning::to_movingai_map(g, blocked));
   std::cout << nlohmann::json{{"map", out},
-                              {"kind", kind},
+                              {"kind", enum_name(kind, kMapKindNames)},
                               {"width", g.width()},
                               {"height", g.height()},
                               {"free_cells", g.free_cells()}}
                    .dump()
             << std::endl;
-  return 0;
+  return kExitSuccess;
 }
 
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
@@ -64,7 +74,7 @@ int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
   write_file(out, planning::to_movingai_scen(s, g));
   std::cout << nlohmann::json{{"scen", out}, {"agents", agents}, {"seed", seed}}.dump()
             << std::endl;
-  return 0;
+  return kExitSuccess;
 }
 
 int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
@@ -80,7 +90,7 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
   if (!r.solved) {
     std::cerr << "plan: no plan found: " << r.error
               << "; try another --seed, fewer --agents or a larger map\n";
-    return 1;
+    return kExitRunFailed;
   }
   // The planner's output is checked like any other plan before it is written.
   grid::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
@@ -95,17 +105,15 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
                               {"restarts", r.restarts_used}}
                    .dump()
             << std::endl;
-  return 0;
+  return kExitSuccess;
 }
 
 void register_generate_commands(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GenMapOptionsPublic>();
-  auto kind = std::make_shared<std::string>();
+  auto kind = std::make_shared<MapKind>(MapKind::kWarehouse);
   auto out = std::make_shared<std::string>();
   auto* gm = app.add_subcommand("gen-map", "Generate a MovingAI map (seeded)");
-  gm->add_option("kind", *kind, "warehouse, random, empty or maze")
-      ->required()
-      ->check(CLI::IsMember({"warehouse", "random", "empty", "maze"}));
+  add_enum_option(gm, "kind", *kind, kMapKindNames, "the kind of map")->required();
   gm->add_option("--out", *out, "the .map file to write")->required();
   gm->add_option("--width", o->width)->check(CLI::Range(1, 4096))->capture_default_str();
   gm->add_option("--height", o->height)->check(CLI::Range(1, 4096))->capture_default_str();

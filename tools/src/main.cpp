@@ -1,11 +1,51 @@
-// `smart`: the one SMART-DDS executable; every job is a subcommand (`smart --help`).
+// `smart`: the one SMART-DDS executable; every job is a subcommand (`smart --help`). Errors of
+// every subcommand end here, in one printer that names the problem and how to fix it, and map
+// to the exit codes of the README (cli_common.hpp, ExitCode).
 #include <CLI/CLI.hpp>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 
+#include "smart/config/yaml_checks.hpp"
+#include "smart/dds/error.hpp"
 #include "smart/grid/problem.hpp"
+#include "smart/hw/i2c_bus.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
+
+namespace {
+
+using smart::tools::ExitCode;
+
+// Prints the error in flight and returns its exit code.
+int report(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const smart::grid::InputError& e) {
+    std::cerr << "smart: " << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
+    return ExitCode::kExitBadInput;
+  } catch (const smart::config::ConfigError& e) {
+    std::cerr << "smart: configuration error: " << e.what() << "\n";
+    return ExitCode::kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "smart: " << e.what() << "\n";
+    return ExitCode::kExitBadInput;
+  } catch (const smart::dds::Error& e) {
+    std::cerr << "smart: DDS error: " << e.what()
+              << "\n(check --domain and --network, and that no firewall or sandbox blocks "
+                 "UDP on this host)\n";
+    return ExitCode::kExitSystem;
+  } catch (const smart::hw::I2cError& e) {
+    std::cerr << "smart: I2C error: " << e.what() << "\n";
+    return ExitCode::kExitSystem;
+  } catch (const std::exception& e) {
+    std::cerr << "smart: error: " << e.what() << "\n";
+    return ExitCode::kExitSystem;
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"SMART-DDS: execute MAPF plans on simulated and physical robot fleets over DDS"};
@@ -26,13 +66,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const smart::grid::InputError& e) {
-    std::cerr << "smart: " << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "smart: error: " << e.what() << "\n";
-    return 2;
+    // --help and --version are "errors" with code 0; every other parse error is bad input.
+    return app.exit(e) == 0 ? ExitCode::kExitSuccess : ExitCode::kExitBadInput;
+  } catch (...) {
+    return report(std::current_exception());
   }
   return exit_code;
 }

@@ -1,112 +1,63 @@
 // `smart sim`, `smart monitor` and `smart run`: executing a plan on a simulated fleet over DDS.
+// Options are bound to library structs in run_options.hpp; errors reach the one error printer
+// in main.cpp (exit codes in cli_common.hpp).
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "smart/agent/robot_model.hpp"
-#include "smart/monitor/instance.hpp"
 #include "smart/grid/map_reader.hpp"
-#include "smart/monitor/node.hpp"
-#include "smart/monitor/results.hpp"
 #include "smart/grid/scen_reader.hpp"
 #include "smart/grid/text_file.hpp"
-#include "smart/sim/host.hpp"
+#include "smart/monitor/results.hpp"
 #include "smart/tools/child_process.hpp"
-#include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
+#include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
 
 namespace {
 
-struct SimOptions {
-  DdsOptions dds;
-  std::string map, scen, robot = "footbot", clock = "lockstep", heading = "east";
-  std::size_t agents = 0;
-  double cell_m = 1.0;
-  double state_rate_hz = 2.0;
-  double timeout_s = 30.0;
-  int system_capacity = 0, threads = 2;
-  std::vector<uint32_t> external;
-  std::vector<uint32_t> ros_pose_robots;
-};
-
-struct MonitorCliOptions {
-  DdsOptions dds;
-  std::string map, scen, plan, axis, format = "auto", heading = "east", clock = "lockstep";
-  std::string robot = "footbot";
-  std::string out;
-  std::size_t agents = 0;
-  double cell_m = 1.0;
-  uint32_t window_cap = 32;
-  double timeout_s = 30.0, stall_timeout_s = 300.0, max_sim_time_s = 0;
-  double state_rate_hz = 2.0;
-  int system_capacity = 0, threads = 2;
-  std::vector<uint32_t> ros_pose_robots;  // `smart run`: passed to the sim
-  bool resume = false;                    // `smart monitor` only
-  bool progress = true;
-};
-
-void add_world_options(CLI::App* cmd, std::string& map, std::string& scen, std::size_t& agents,
-                       std::string& heading, double& cell_m) {
-  cmd->add_option("--map", map, "MovingAI .map file")->required();
-  cmd->add_option("--scen", scen, "MovingAI .scen file (robot starts)")->required();
-  cmd->add_option("--agents", agents, "number of robots (first N of the scenario / plan)");
-  cmd->add_option("--initial-heading", heading, "heading every robot starts with")
-      ->check(CLI::IsMember({"east", "north", "west", "south"}))
-      ->capture_default_str();
-  cmd->add_option("--cell-m", cell_m, "grid cell size in metres")
-      ->check(CLI::Range(0.05, 100.0))
-      ->capture_default_str();
+nlohmann::json sim_report(const sim::SimHostResult& r) {
+  return {{"ok", r.ok},
+          {"error", r.error},
+          {"stopped_by_monitor", r.stopped_by_monitor},
+          {"ticks", r.ticks},
+          {"sim_time_s", r.sim_time_s},
+          {"wall_time_s", r.wall_time_s},
+          {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0},
+          {"robot_contacts", r.contacts.robot_robot_events},
+          {"wall_contacts", r.contacts.robot_wall_events},
+          {"mean_awake_robots", r.mean_awake_robots},
+          {"mean_active_systems", r.mean_active_systems},
+          {"peak_rss_mb", peak_rss_mb()}};
 }
 
-int run_sim(const SimOptions& o) {
-  const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
-  const auto scen =
-      grid::parse_scen(grid::read_text_file(o.scen, "scenario"), o.scen, o.agents);
+int run_sim(const SimCliOptions& o) {
+  const auto& w = o.world;
+  const auto grid = grid::parse_map(grid::read_text_file(w.map, "map"), w.map);
+  const auto scen = grid::parse_scen(grid::read_text_file(w.scen, "scenario"), w.scen, w.agents);
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
-  const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
+  const auto model = agent::load_robot_model(find_config_file("robots", w.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
   dds::Participant participant(domain);
   std::vector<grid::Cell> starts;
   for (const auto& a : scen.agents) starts.push_back(a.start);
-  sim::SimHostOptions ho;
-  ho.clock = o.clock == "realtime" ? sim::ClockMode::kRealtime : sim::ClockMode::kLockstep;
-  ho.state_rate_hz = o.state_rate_hz;
-  ho.timeout_s = o.timeout_s;
-  ho.sim.cell_m = o.cell_m;
-  ho.sim.system_capacity = o.system_capacity;
-  ho.sim.threads = o.threads;
-  ho.external_robots = o.external;
-  ho.ros_pose_robots = o.ros_pose_robots;
-  sim::SimHost host(
-      participant, profile, grid, model,
-      sim::start_poses(grid, o.cell_m, starts, grid::yaw_rad(grid::parse_heading(o.heading))),
-      ho);
-  spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", starts.size(), o.map,
-               grid.width(), grid.height(), o.clock, o.dds.domain);
+  sim::SimHost host(participant, profile, grid, model,
+                    sim::start_poses(grid, w.cell_m, starts, grid::yaw_rad(w.heading)),
+                    sim_host_options(o));
+  spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", starts.size(), w.map,
+               grid.width(), grid.height(), enum_name(o.clock, kClockNames), o.dds.domain);
   const auto r = host.run(g_stop_requested);
-  std::cout << nlohmann::json{{"ok", r.ok},
-                              {"error", r.error},
-                              {"stopped_by_monitor", r.stopped_by_monitor},
-                              {"ticks", r.ticks},
-                              {"sim_time_s", r.sim_time_s},
-                              {"wall_time_s", r.wall_time_s},
-                              {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0},
-                              {"robot_contacts", r.contacts.robot_robot_events},
-                              {"wall_contacts", r.contacts.robot_wall_events},
-                              {"mean_awake_robots", r.mean_awake_robots},
-                              {"mean_active_systems", r.mean_active_systems},
-                              {"peak_rss_mb", peak_rss_mb()}}
-                   .dump()
-            << std::endl;
+  std::cout << sim_report(r).dump() << std::endl;
   if (!r.ok) spdlog::error("sim: {}", r.error);
-  return r.ok ? 0 : 1;
+  return r.ok ? kExitSuccess : kExitRunFailed;
 }
 
 void print_progress(const monitor::MonitorResult& r, std::size_t done, bool final) {
@@ -120,175 +71,90 @@ void print_progress(const monitor::MonitorResult& r, std::size_t done, bool fina
   if (final) std::fprintf(stderr, "\n");
 }
 
-monitor::Instance load(const MonitorCliOptions& o) {
-  return monitor::load_instance(
-      instance_options(o.map, o.scen, o.plan, o.agents, o.format, o.axis, o.heading));
+void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots) {
+  for (const auto r : ids) {
+    if (r >= robots) {
+      throw std::invalid_argument("--ros-pose-robots: robot " + std::to_string(r) +
+                                  " but the run has " + std::to_string(robots) + " robots (ids 0.." +
+                                  std::to_string(robots - 1) + ")");
+    }
+  }
+}
+
+// `smart run`'s sim child, with the monitor's own options and the plan's robot count.
+ChildProcess spawn_sim(const MonitorCliOptions& o, std::size_t robots, const std::string& robot) {
+  SimCliOptions child = o.sim;
+  child.world.agents = robots;
+  child.world.robot = robot;
+  return ChildProcess(sim_argv(self_executable().string(), child), "/dev/null");
+}
+
+std::function<std::string()> watch(ChildProcess& sim) {
+  return [&sim]() -> std::string {
+    if (sim.running()) return {};
+    const int code = sim.wait(std::chrono::milliseconds(0)).value_or(-1);
+    return "the `smart sim` process this run started " +
+           (code > 128 ? "was killed by signal " + std::to_string(code - 128)
+                       : "exited with code " + std::to_string(code)) +
+           " before the run ended; its messages are above";
+  };
+}
+
+monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_file) {
+  monitor::RunInfo info;
+  info.map = o.sim.world.map;
+  info.scen = o.sim.world.scen;
+  info.plan = o.plan;
+  info.robot = robot_file;
+  info.qos = o.sim.dds.qos;
+  info.clock = enum_name(o.sim.clock, kClockNames);
+  info.cell_m = o.sim.world.cell_m;
+  info.monitor_peak_rss_mb = peak_rss_mb();
+  info.machine = machine_description();
+  return info;
 }
 
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
-int run_monitor(const MonitorCliOptions& o, bool spawn_sim) {
-  monitor::Instance in;
-  try {
-    in = load(o);
-  } catch (const grid::InputError& e) {
-    std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
-    return 2;
-  }
-  for (const auto r : o.ros_pose_robots) {
-    if (r >= in.plan.paths.size()) {
-      std::cerr << "--ros-pose-robots: robot " << r << " but the run has " << in.plan.paths.size()
-                << " robots (ids 0.." << in.plan.paths.size() - 1 << ")\n";
-      return 2;
-    }
-  }
-  const auto robot_file = find_config_file("robots", o.robot);
+int run_monitor(const MonitorCliOptions& o, bool spawn_sim_child) {
+  const auto in = monitor::load_instance(instance_options(o.sim.world, o.plan, o.axis, o.format));
+  check_ros_pose_robots(o.sim.ros_pose_robots, in.plan.paths.size());
+  const auto robot_file = find_config_file("robots", o.sim.world.robot);
   (void)agent::load_robot_model(robot_file);  // fail early on a bad model
-  const auto profile = dds::find_qos_profile(o.dds.qos);
+  const auto profile = dds::find_qos_profile(o.sim.dds.qos);
   std::optional<ChildProcess> sim;
-  if (spawn_sim) {
-    std::vector<std::string> argv{self_executable().string(),
-                                  "sim",
-                                  "--map",
-                                  o.map,
-                                  "--scen",
-                                  o.scen,
-                                  "--agents",
-                                  std::to_string(in.plan.paths.size()),
-                                  "--initial-heading",
-                                  o.heading,
-                                  "--cell-m",
-                                  std::to_string(o.cell_m),
-                                  "--robot",
-                                  robot_file,
-                                  "--clock",
-                                  o.clock,
-                                  "--domain",
-                                  std::to_string(o.dds.domain),
-                                  "--qos",
-                                  o.dds.qos,
-                                  "--network",
-                                  o.dds.network,
-                                  "--state-rate-hz",
-                                  std::to_string(o.state_rate_hz),
-                                  "--timeout-s",
-                                  std::to_string(o.timeout_s),
-                                  "--system-capacity",
-                                  std::to_string(o.system_capacity),
-                                  "--threads",
-                                  std::to_string(o.threads)};
-    if (!o.ros_pose_robots.empty()) {
-      std::string ids;
-      for (const auto r : o.ros_pose_robots) ids += (ids.empty() ? "" : ",") + std::to_string(r);
-      argv.insert(argv.end(), {"--ros-pose-robots", ids});
-    }
-    sim.emplace(argv, "/dev/null");
-  }
-  dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
+  if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
+  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile));
   dds::Participant participant(domain);
-  monitor::MonitorOptions mo;
-  mo.run.lockstep = o.clock == "lockstep";
-  mo.run.window_cap = o.window_cap;
-  mo.cell_m = o.cell_m;
-  mo.run.timeout_s = o.timeout_s;
-  mo.run.stall_timeout_s = o.stall_timeout_s;
-  mo.run.max_sim_time_s = o.max_sim_time_s;
-  mo.resume = o.resume;
+  auto mo = monitor_options(o);
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);
     mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
   }
-  if (sim) {
-    mo.host_check = [&sim]() -> std::string {
-      if (sim->running()) return {};
-      const int code = sim->wait(std::chrono::milliseconds(0)).value_or(-1);
-      return "the `smart sim` process this run started " +
-             (code > 128 ? "was killed by signal " + std::to_string(code - 128)
-                         : "exited with code " + std::to_string(code)) +
-             " before the run ended; its messages are above";
-    };
-  }
+  if (sim) mo.host_check = watch(*sim);
   monitor::MonitorNode node(participant, profile, in, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
   monitor::ProgressCallback cb;
-  if (tty)
-    cb = [](const monitor::MonitorResult& r, std::size_t done) { print_progress(r, done, false); };
-  auto result = node.run(g_stop_requested, cb);
+  if (tty) cb = [](const monitor::MonitorResult& r, std::size_t d) { print_progress(r, d, false); };
+  const auto result = node.run(g_stop_requested, cb);
   if (tty) print_progress(result, result.success() ? result.robots.size() : 0, true);
-  if (sim) {
-    const auto rc = sim->wait(std::chrono::seconds(5));
-    if (!rc) sim->terminate();
-  }
-  monitor::RunInfo info;
-  info.map = o.map;
-  info.scen = o.scen;
-  info.plan = o.plan;
-  info.robot = robot_file;
-  info.qos = o.dds.qos;
-  info.clock = o.clock;
-  info.cell_m = o.cell_m;
-  info.monitor_peak_rss_mb = peak_rss_mb();
-  info.machine = machine_description();
+  if (sim && !sim->wait(std::chrono::seconds(5))) sim->terminate();
+  const auto info = run_info(o, robot_file);
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
-  return result.success() ? 0 : 1;
-}
-
-void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
-  add_dds_options(cmd, o.dds);
-  add_world_options(cmd, o.map, o.scen, o.agents, o.heading, o.cell_m);
-  cmd->add_option("--plan", o.plan, "plan file (SMART/MAPF-LNS2, LaCAM/PIBT, YAML)")->required();
-  cmd->add_option("--axis", o.axis, "xy (x = column) or rowcol; required for SMART path files")
-      ->check(CLI::IsMember({"xy", "rowcol"}));
-  cmd->add_option("--format", o.format, "plan format")
-      ->check(CLI::IsMember({"auto", "smart", "lacam", "yaml"}))
-      ->capture_default_str();
-  cmd->add_option("--clock", o.clock, "lockstep (bit-identical) or realtime")
-      ->check(CLI::IsMember({"lockstep", "realtime"}))
-      ->capture_default_str();
-  cmd->add_option("--robot", o.robot, "robot model: name in config/robots or a YAML file")
-      ->capture_default_str();
-  cmd->add_option("--out", o.out, "folder for summary.json, stats.csv, states.csv, robots.csv");
-  cmd->add_option("--window-cap", o.window_cap, "most actions sent to a robot at once")
-      ->check(CLI::Range(1u, 100000u))
-      ->capture_default_str();
-  cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the sim before failing")
-      ->capture_default_str();
-  cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
-                  "sim seconds without a finished action before failing")
-      ->capture_default_str();
-  cmd->add_option("--max-sim-time-s", o.max_sim_time_s, "fail past this sim time (0: no limit)");
-  cmd->add_option("--state-rate-hz", o.state_rate_hz, "robot state samples per sim second")
-      ->capture_default_str();
-  cmd->add_flag("!--no-progress", o.progress, "no progress bar");
+  return result.success() ? kExitSuccess : kExitRunFailed;
 }
 
 }  // namespace
 
 void register_run_commands(CLI::App& app, int& exit_code) {
-  auto so = std::make_shared<SimOptions>();
+  auto so = std::make_shared<SimCliOptions>();
   auto* sim = app.add_subcommand("sim",
                                  "Simulated fleet: Simbody world + one agent per robot, "
                                  "driven over DDS by `smart monitor`");
-  add_dds_options(sim, so->dds);
-  add_world_options(sim, so->map, so->scen, so->agents, so->heading, so->cell_m);
-  sim->add_option("--robot", so->robot, "robot model: name in config/robots or a YAML file")
-      ->capture_default_str();
-  sim->add_option("--clock", so->clock, "lockstep or realtime")
-      ->check(CLI::IsMember({"lockstep", "realtime"}))
-      ->capture_default_str();
-  sim->add_option("--state-rate-hz", so->state_rate_hz)->capture_default_str();
-  sim->add_option("--timeout-s", so->timeout_s, "lockstep: wall seconds to wait for the monitor")
-      ->capture_default_str();
-  sim->add_option("--system-capacity", so->system_capacity,
-                  "robot bodies per Simbody system (0: automatic)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
-  sim->add_option("--threads", so->threads)->check(CLI::Range(1, 64))->capture_default_str();
-  sim->add_option("--ros-pose-robots", so->ros_pose_robots,
-                  "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
-      ->delimiter(',');
+  add_common_run_options(sim, *so);
+  add_sim_host_options(sim, *so);
   sim->add_option("--external-robots", so->external,
                   "robots executed by other hosts (mixed runs), shown at their published poses")
       ->delimiter(',');
@@ -315,16 +181,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan on a simulated fleet: `smart monitor` "
                                  "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
-  run->add_option("--system-capacity", ro->system_capacity,
-                  "robot bodies per Simbody system (0: automatic)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
-  run->add_option("--threads", ro->threads, "sim threads")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  run->add_option("--ros-pose-robots", ro->ros_pose_robots,
-                  "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
-      ->delimiter(',');
+  add_sim_host_options(run, ro->sim);
   run->callback([&exit_code, ro] {
     install_stop_handlers();
     exit_code = run_monitor(*ro, true);

@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "smart/tools/cli_common.hpp"
+
 #include "smart/planning/generators.hpp"
 #include "smart/grid/grid.hpp"
 #include "smart/grid/scen_reader.hpp"
@@ -27,7 +29,8 @@ struct GenMapOptionsPublic {
   uint64_t seed = 1;
   planning::WarehouseOptions warehouse;
 };
-int generate_map(const std::string& kind, const std::string& out, const GenMapOptionsPublic& o);
+enum class MapKind { kWarehouse, kRandom, kEmpty, kMaze };
+int generate_map(MapKind kind, const std::string& out, const GenMapOptionsPublic& o);
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
                   const std::string& out);
 int plan_instance(const std::string& map, const std::string& scen, std::size_t agents,

@@ -1,0 +1,61 @@
+// Exit codes of the `smart` executable as the README documents them, and the error printer's
+// messages (a real process; stderr captured through /bin/sh).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "support/smart_process.hpp"
+
+namespace smart::tools {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+test::SmartRun smart_with_stderr(const std::string& args, const std::string& tag) {
+  const auto out = test::temp_file(tag + ".out");
+  ChildProcess p({"/bin/sh", "-c", test::smart_exe().string() + " " + args + " 2>&1"}, out);
+  test::SmartRun r;
+  r.code = p.wait(60s).value_or(-1);
+  r.out = test::slurp(out);
+  std::filesystem::remove(out);
+  return r;
+}
+
+TEST(SmartMain, HelpIsSuccess) {
+  const auto r = smart_with_stderr("run --help", "help");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("--clock"));
+  EXPECT_THAT(r.out, HasSubstr("lockstep|realtime"));
+}
+
+TEST(SmartMain, CommandLineErrorsAreBadInput) {
+  auto r = smart_with_stderr("run --map a.map --scen a.scen --plan p --clock sometimes", "clock");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("'sometimes' is not one of lockstep|realtime"));
+  r = smart_with_stderr("check-plan --map a.map", "missing");
+  EXPECT_EQ(r.code, 2) << r.out;
+  r = smart_with_stderr("no-such-command", "unknown");
+  EXPECT_EQ(r.code, 2) << r.out;
+}
+
+TEST(SmartMain, MissingFilesAndConfigAreBadInput) {
+  auto r = smart_with_stderr("sim --map /nonexistent.map --scen x.scen", "nomap");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("/nonexistent.map"));
+  r = smart_with_stderr("agent --robot-id 0 --config no-such-robot", "norobot");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("no-such-robot"));
+}
+
+TEST(SmartMain, AnI2cBusThatCannotBeOpenedIsASystemFailure) {
+  const auto r = smart_with_stderr(
+      "agent --robot-id 0 --i2c /nonexistent/i2c-9 --vicon-port 0 --domain " +
+          std::to_string(test::kAgentI2cMissing),
+      "i2c");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("I2C error"));
+  EXPECT_THAT(r.out, HasSubstr("/nonexistent/i2c-9"));
+}
+
+}  // namespace
+}  // namespace smart::tools

@@ -1,0 +1,92 @@
+// The run option sets: parsed straight into library types, and `smart run`'s sim child
+// command line generated from the struct reads back as the same options.
+#include "smart/tools/run_options.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace smart::tools {
+namespace {
+
+using ::testing::HasSubstr;
+
+void parse_sim(SimCliOptions& o, std::vector<std::string> args) {
+  CLI::App app;
+  add_common_run_options(&app, o);
+  add_sim_host_options(&app, o);
+  app.add_option("--external-robots", o.external)->delimiter(',');
+  std::reverse(args.begin(), args.end());  // CLI11 takes the words last to first
+  app.parse(args);
+}
+
+TEST(RunOptions, EnumsAreParsedIntoTheirTypes) {
+  SimCliOptions o;
+  parse_sim(o, {"--map", "m.map", "--scen", "s.scen", "--clock", "realtime", "--initial-heading",
+                "south", "--network", "network"});
+  EXPECT_EQ(o.clock, sim::ClockMode::kRealtime);
+  EXPECT_EQ(o.world.heading, grid::Heading::kSouth);
+  EXPECT_EQ(o.dds.network, Network::kNetwork);
+}
+
+TEST(RunOptions, AnUnknownEnumNameIsAParseErrorListingTheNames) {
+  SimCliOptions o;
+  try {
+    parse_sim(o, {"--map", "m", "--scen", "s", "--clock", "sometimes"});
+    FAIL() << "parsed";
+  } catch (const CLI::ParseError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'sometimes' is not one of lockstep|realtime"));
+  }
+}
+
+TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
+  SimCliOptions o;
+  parse_sim(o, {"--map", "maps/a b.map", "--scen", "x.scen", "--agents", "17", "--cell-m", "0.3",
+                "--initial-heading", "west", "--robot", "jetbot", "--clock", "realtime",
+                "--state-rate-hz", "0.7", "--timeout-s", "12.5", "--system-capacity", "8",
+                "--threads", "1", "--ros-pose-robots", "1,4", "--external-robots", "2",
+                "--domain", "33", "--qos", "wifi", "--network", "network"});
+  const auto argv = sim_argv("/bin/smart", o);
+  ASSERT_GE(argv.size(), 2u);
+  EXPECT_EQ(argv[0], "/bin/smart");
+  EXPECT_EQ(argv[1], "sim");
+  SimCliOptions back;
+  parse_sim(back, std::vector<std::string>(argv.begin() + 2, argv.end()));
+  EXPECT_EQ(back.world.map, "maps/a b.map");
+  EXPECT_EQ(back.world.agents, 17u);
+  EXPECT_EQ(back.world.cell_m, 0.3);  // exactly: the text reads back as the same double
+  EXPECT_EQ(back.world.heading, grid::Heading::kWest);
+  EXPECT_EQ(back.world.robot, "jetbot");
+  EXPECT_EQ(back.clock, sim::ClockMode::kRealtime);
+  EXPECT_EQ(back.state_rate_hz, 0.7);
+  EXPECT_EQ(back.timeout_s, 12.5);
+  EXPECT_EQ(back.system_capacity, 8);
+  EXPECT_EQ(back.threads, 1);
+  EXPECT_EQ(back.ros_pose_robots, (std::vector<uint32_t>{1, 4}));
+  EXPECT_EQ(back.external, (std::vector<uint32_t>{2}));
+  EXPECT_EQ(back.dds.domain, 33);
+  EXPECT_EQ(back.dds.qos, "wifi");
+  EXPECT_EQ(back.dds.network, Network::kNetwork);
+}
+
+TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {
+  MonitorCliOptions o;
+  CLI::App app;
+  add_monitor_options(&app, o);
+  std::vector<std::string> args{"--map", "m", "--scen", "s", "--plan", "p", "--axis", "rowcol",
+                                "--window-cap", "5", "--stall-timeout-s", "9", "--clock",
+                                "realtime", "--max-sim-time-s", "100", "--format", "lacam"};
+  std::reverse(args.begin(), args.end());
+  app.parse(args);
+  const auto mo = monitor_options(o);
+  EXPECT_FALSE(mo.run.lockstep);
+  EXPECT_EQ(mo.run.window_cap, 5u);
+  EXPECT_EQ(mo.run.stall_timeout_s, 9.0);
+  EXPECT_EQ(mo.run.max_sim_time_s, 100.0);
+  EXPECT_EQ(mo.run.run_id, 0u);  // derived from the wall clock when the run starts
+  const auto io = instance_options(o.sim.world, o.plan, o.axis, o.format);
+  EXPECT_EQ(io.read.axis, grid::AxisOrder::kRowCol);
+  EXPECT_EQ(io.read.format, grid::PlanFormat::kLacam);
+}
+
+}  // namespace
+}  // namespace smart::tools

@@ -1,0 +1,78 @@
+// Contract: the command-line options of the jobs that read an instance or execute a plan,
+// bound straight to the library structs they configure (enums parsed into their types):
+// - InstanceCliOptions: map + scen + plan as monitor::InstanceOptions (`check-plan`, `monitor`,
+//   `run`);
+// - SimCliOptions: one option set for the sim host (`smart sim`, and what `smart run` passes to
+//   its sim child: sim_argv() generates that command line from the struct, so the two cannot
+//   drift apart);
+// - MonitorCliOptions: the monitor's run policy on top (`monitor`, `run`).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "smart/monitor/instance.hpp"
+#include "smart/monitor/node.hpp"
+#include "smart/sim/host.hpp"
+#include "smart/tools/cli_common.hpp"
+
+namespace smart::tools {
+
+extern const EnumNames<grid::Heading> kHeadingNames;
+extern const EnumNames<sim::ClockMode> kClockNames;
+extern const EnumNames<grid::AxisOrder> kAxisNames;
+extern const EnumNames<grid::PlanFormat> kFormatNames;
+
+// Map, scenario, robot count and start heading: what every job on a fleet shares.
+struct WorldCliOptions {
+  std::string map, scen;
+  std::size_t agents = 0;  // first N robots of the scenario / plan; 0: all
+  grid::Heading heading = grid::Heading::kEast;
+  double cell_m = 1.0;
+  std::string robot = "footbot";  // name in config/robots or a YAML file
+};
+
+struct SimCliOptions {
+  DdsOptions dds;
+  WorldCliOptions world;
+  sim::ClockMode clock = sim::ClockMode::kLockstep;
+  double state_rate_hz = 2.0;
+  double timeout_s = 30.0;
+  int system_capacity = 0;  // robot bodies per Simbody system (0: automatic)
+  int threads = 2;
+  std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
+  std::vector<uint32_t> ros_pose_robots;
+};
+
+struct MonitorCliOptions {
+  SimCliOptions sim;  // `smart run` passes these on to its sim child
+  std::string plan, out;
+  std::optional<grid::AxisOrder> axis;
+  grid::PlanFormat format = grid::PlanFormat::kAuto;
+  uint32_t window_cap = 32;
+  double stall_timeout_s = 300.0, max_sim_time_s = 0;
+  bool resume = false;  // `smart monitor` only
+  bool progress = true;
+};
+
+// --map --scen --agents --initial-heading (--cell-m and --robot with `fleet`).
+void add_world_options(CLI::App* cmd, WorldCliOptions& o, bool fleet = true);
+void add_plan_options(CLI::App* cmd, std::string& plan, std::optional<grid::AxisOrder>& axis,
+                      grid::PlanFormat& format);
+// DDS, world, --clock, --state-rate-hz, --timeout-s: shared by sim, monitor and run.
+void add_common_run_options(CLI::App* cmd, SimCliOptions& o);
+// --system-capacity, --threads, --ros-pose-robots: the sim host's own (sim and run).
+void add_sim_host_options(CLI::App* cmd, SimCliOptions& o);
+// The monitor's options: plan, results, run policy, progress bar.
+void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o);
+
+monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
+                                          std::optional<grid::AxisOrder> axis,
+                                          grid::PlanFormat format);
+sim::SimHostOptions sim_host_options(const SimCliOptions& o);
+monitor::MonitorOptions monitor_options(const MonitorCliOptions& o);
+// `exe sim ...` with every option of `o`, for `smart run`'s child.
+std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o);
+
+}  // namespace smart::tools

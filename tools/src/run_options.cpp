@@ -1,0 +1,144 @@
+#include "smart/tools/run_options.hpp"
+
+#include "smart/dds/topics.hpp"
+
+namespace smart::tools {
+
+const EnumNames<grid::Heading> kHeadingNames{{"east", grid::Heading::kEast},
+                                             {"north", grid::Heading::kNorth},
+                                             {"west", grid::Heading::kWest},
+                                             {"south", grid::Heading::kSouth}};
+const EnumNames<sim::ClockMode> kClockNames{{"lockstep", sim::ClockMode::kLockstep},
+                                            {"realtime", sim::ClockMode::kRealtime}};
+const EnumNames<grid::AxisOrder> kAxisNames{{"xy", grid::AxisOrder::kXY},
+                                            {"rowcol", grid::AxisOrder::kRowCol}};
+const EnumNames<grid::PlanFormat> kFormatNames{{"auto", grid::PlanFormat::kAuto},
+                                               {"smart", grid::PlanFormat::kSmart},
+                                               {"lacam", grid::PlanFormat::kLacam},
+                                               {"yaml", grid::PlanFormat::kYaml}};
+
+void add_world_options(CLI::App* cmd, WorldCliOptions& o, bool fleet) {
+  cmd->add_option("--map", o.map, "MovingAI .map file")->required();
+  cmd->add_option("--scen", o.scen, "MovingAI .scen file (robot starts)")->required();
+  cmd->add_option("--agents", o.agents, "number of robots (first N of the scenario / plan)");
+  add_enum_option(cmd, "--initial-heading", o.heading, kHeadingNames,
+                  "heading every robot starts with (default east)");
+  if (!fleet) return;
+  cmd->add_option("--cell-m", o.cell_m, "grid cell size in metres")
+      ->check(CLI::Range(0.05, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--robot", o.robot, "robot model: name in config/robots or a YAML file")
+      ->capture_default_str();
+}
+
+void add_plan_options(CLI::App* cmd, std::string& plan, std::optional<grid::AxisOrder>& axis,
+                      grid::PlanFormat& format) {
+  cmd->add_option("--plan", plan, "plan file (SMART/MAPF-LNS2, LaCAM/PIBT, YAML)")->required();
+  add_enum_option(cmd, "--axis", axis, kAxisNames,
+                  "xy (x = column) or rowcol; required for SMART path files");
+  add_enum_option(cmd, "--format", format, kFormatNames, "plan format (default auto)");
+}
+
+void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
+  add_dds_options(cmd, o.dds);
+  add_world_options(cmd, o.world);
+  add_enum_option(cmd, "--clock", o.clock, kClockNames,
+                  "lockstep (bit-identical; default) or realtime");
+  cmd->add_option("--state-rate-hz", o.state_rate_hz, "robot state samples per sim second")
+      ->capture_default_str();
+  cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the other side before failing")
+      ->capture_default_str();
+}
+
+void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
+  cmd->add_option("--system-capacity", o.system_capacity,
+                  "robot bodies per Simbody system (0: automatic)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "sim threads")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--ros-pose-robots", o.ros_pose_robots,
+                  "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
+      ->delimiter(',');
+}
+
+void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
+  add_common_run_options(cmd, o.sim);
+  add_plan_options(cmd, o.plan, o.axis, o.format);
+  cmd->add_option("--out", o.out, "folder for summary.json, stats.csv, states.csv, robots.csv");
+  cmd->add_option("--window-cap", o.window_cap, "most actions sent to a robot at once")
+      ->check(CLI::Range(1u, dds::kMaxWindowActions))
+      ->capture_default_str();
+  cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
+                  "sim seconds without a finished action before failing")
+      ->capture_default_str();
+  cmd->add_option("--max-sim-time-s", o.max_sim_time_s, "fail past this sim time (0: no limit)");
+  cmd->add_flag("!--no-progress", o.progress, "no progress bar");
+}
+
+monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
+                                          std::optional<grid::AxisOrder> axis,
+                                          grid::PlanFormat format) {
+  monitor::InstanceOptions io;
+  io.map = world.map;
+  io.scen = world.scen;
+  io.plan = plan;
+  io.agents = world.agents;
+  io.read.format = format;
+  io.read.axis = axis;
+  io.initial_heading = world.heading;
+  return io;
+}
+
+sim::SimHostOptions sim_host_options(const SimCliOptions& o) {
+  sim::SimHostOptions ho;
+  ho.clock = o.clock;
+  ho.state_rate_hz = o.state_rate_hz;
+  ho.timeout_s = o.timeout_s;
+  ho.sim.cell_m = o.world.cell_m;
+  ho.sim.system_capacity = o.system_capacity;
+  ho.sim.threads = o.threads;
+  ho.external_robots = o.external;
+  ho.ros_pose_robots = o.ros_pose_robots;
+  return ho;
+}
+
+monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
+  monitor::MonitorOptions mo;
+  mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;
+  mo.run.window_cap = o.window_cap;
+  mo.run.timeout_s = o.sim.timeout_s;
+  mo.run.stall_timeout_s = o.stall_timeout_s;
+  mo.run.max_sim_time_s = o.max_sim_time_s;
+  mo.cell_m = o.sim.world.cell_m;
+  mo.resume = o.resume;
+  return mo;
+}
+
+namespace {
+std::string id_list(const std::vector<uint32_t>& ids) {
+  std::string out;
+  for (const auto id : ids) out += (out.empty() ? "" : ",") + std::to_string(id);
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o) {
+  const auto& w = o.world;
+  std::vector<std::string> argv{exe, "sim"};
+  const auto dds = dds_argv(o.dds);
+  argv.insert(argv.end(), dds.begin(), dds.end());
+  argv.insert(argv.end(),
+              {"--map", w.map, "--scen", w.scen, "--agents", std::to_string(w.agents),
+               "--initial-heading", enum_name(w.heading, kHeadingNames), "--cell-m",
+               exact(w.cell_m), "--robot", w.robot, "--clock", enum_name(o.clock, kClockNames),
+               "--state-rate-hz", exact(o.state_rate_hz), "--timeout-s", exact(o.timeout_s),
+               "--system-capacity", std::to_string(o.system_capacity), "--threads",
+               std::to_string(o.threads)});
+  if (!o.ros_pose_robots.empty()) argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
+  if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});
+  return argv;
+}
+
+}  // namespace smart::tools
