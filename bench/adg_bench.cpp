@@ -1,6 +1,6 @@
 // ADG build time and memory (issue: "Plans in, ADG out"). Target: 2000 robots with makespan
 // ~500 in under 1 s on one core. Plans: SMART's 500/1000-robot warehouse plans and seeded
-// random-walk plans (monitor/random_plan.hpp) of 100..2000 robots, 500 timesteps, on the
+// random-walk plans (planning/random_plan.hpp) of 100..2000 robots, 500 timesteps, on the
 // warehouse (161x63) and sortation (500x140) maps from ../shared/benchmarks.
 #include <benchmark/benchmark.h>
 

@@ -16,7 +16,7 @@ namespace {
 struct Channels {
   int pwm, in1, in2;  // Adafruit: speed on pwm, direction on in1/in2; Waveshare: ina=in1, inb=in2
 };
-// Adafruit_DCMotor pin map (hardware.md §1).
+// Adafruit_DCMotor pin map (docs/hardware.md §1).
 constexpr Channels kAdafruitLeft{8, 10, 9}, kAdafruitRight{13, 11, 12};
 // Waveshare: (ina, inb) = (1, 0) for motor 1 and (2, 3) for motor 2.
 constexpr Channels kWaveshareLeft{-1, 1, 0}, kWaveshareRight{-1, 2, 3};

@@ -15,7 +15,7 @@ Pca9685::Pca9685(I2cBus& bus, uint8_t address, Sleeper sleeper)
 
 void Pca9685::init(double f) {
   using namespace pca9685;
-  // Adafruit_PWM_Servo_Driver constructor, then setPWMFreq (hardware.md §2, steps 1-5).
+  // Adafruit_PWM_Servo_Driver constructor, then setPWMFreq (docs/hardware.md §2, steps 1-5).
   bus_.write_register(address_, kAllLedOnL, 0);
   bus_.write_register(address_, kAllLedOnH, 0);
   bus_.write_register(address_, kAllLedOffL, 0);

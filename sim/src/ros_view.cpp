@@ -33,8 +33,7 @@ std::vector<int8_t> occupancy_cells(const grid::Grid& grid) {
 
 namespace {
 // Header frame ids point at this (the C message types hold char*, never written through).
-char g_map_frame[] = "map";
-static_assert(sizeof g_map_frame == dds::kRosMapFrame.size() + 1);
+std::string g_map_frame(dds::kRosMapFrame);
 }  // namespace
 
 RosView::RosView(const dds::Participant& participant, const dds::QosProfile& qos,
@@ -72,12 +71,12 @@ void RosView::publish(const World& world) {
     pose_buffer_[i] = {{p.x_m, p.y_m, 0.0}, q};
     auto& t = tf_buffer_[i];
     t.header.stamp = stamp;
-    t.header.frame_id = g_map_frame;
+    t.header.frame_id = g_map_frame.data();
     t.child_frame_id = frames_[i].data();
     t.transform = {{p.x_m, p.y_m, 0.0}, q};
   }
   geometry_msgs_msg_dds__PoseArray_ poses{};
-  poses.header = {stamp, g_map_frame};
+  poses.header = {stamp, g_map_frame.data()};
   poses.poses._buffer = pose_buffer_.data();
   poses.poses._length = poses.poses._maximum = static_cast<uint32_t>(pose_buffer_.size());
   poses.poses._release = false;
@@ -91,7 +90,7 @@ void RosView::publish(const World& world) {
 
   for (std::size_t k = 0; k < pose_robots_.size(); ++k) {
     geometry_msgs_msg_dds__PoseStamped_ m{};
-    m.header = {stamp, g_map_frame};
+    m.header = {stamp, g_map_frame.data()};
     m.pose = pose_buffer_[pose_robots_[k]];
     pose_writers_[k].write(m);
   }
@@ -100,11 +99,11 @@ void RosView::publish(const World& world) {
 void RosView::publish_map(const grid::Grid& grid, double cell_m) {
   auto cells = occupancy_cells(grid);
   nav_msgs_msg_dds__OccupancyGrid_ m{};
-  m.header = {ros_stamp(0.0), g_map_frame};
+  m.header = {ros_stamp(0.0), g_map_frame.data()};
   m.info.resolution = static_cast<float>(cell_m);
   m.info.width = static_cast<uint32_t>(grid.width());
   m.info.height = static_cast<uint32_t>(grid.height());
-  // Cell centres are at multiples of cell_m (monitor/grid.hpp), so the grid starts half a cell
+  // Cell centres are at multiples of cell_m (grid/grid.hpp), so the grid starts half a cell
   // before the first centre.
   m.info.origin = {{-cell_m / 2, -cell_m / 2, 0.0}, yaw_quaternion(0.0)};
   m.data._buffer = cells.data();

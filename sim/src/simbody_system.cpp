@@ -62,7 +62,7 @@ SimbodySystem::SimbodySystem(const RobotForces& forces, std::size_t capacity, do
   I.state = I.system.getDefaultState();
   I.system.realizeModel(I.state);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
-    // Verified layout (simulation.md pitfall 8): Planar bodies on Ground at q = u = 3k,
+    // Verified layout (docs/simulation.md, pitfall 8): Planar bodies on Ground at q = u = 3k,
     // q = (θ, x, y) about/along the ground frame's axes.
     const int i = static_cast<int>(3 * k);
     if (static_cast<int>(bodies[k].getFirstQIndex(I.state)) != i ||

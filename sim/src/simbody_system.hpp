@@ -26,8 +26,8 @@ class RobotForces {
 //
 // Slots, not robots, are what the system owns: a robot is put into a slot by copying its state
 // in, and taken out by reading it back, so the World can pack the robots that are moving into
-// few systems and leave the rest out of Simbody altogether (design note simulation.md, "robots
-// at rest should cost next to nothing"; pitfall 6: topology is fixed, so park unused bodies).
+// few systems and leave the rest out of Simbody altogether (docs/simulation.md, design (c');
+// pitfall 6: topology is fixed, so park unused bodies).
 // A vacant slot holds a body at rest with no force on it; it costs its share of the step but its
 // state never changes.
 //

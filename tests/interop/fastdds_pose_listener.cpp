@@ -1,4 +1,4 @@
-// A Fast DDS 2.9 program standing in for a ROS 2 node (architecture.md, "ROS 2 view"): it
+// A Fast DDS 2.9 program standing in for a ROS 2 node (docs/architecture.md, "ROS 2 view"): it
 // subscribes to rt/smart/poses as geometry_msgs/msg/PoseArray, with the type support written
 // here by hand (no code generator: the ROS 2 message layout is small and fixed, XCDR1 as
 // rmw_cyclonedds and rmw_fastrtps both use). A second DDS vendor reading what SMART-DDS writes

@@ -26,10 +26,4 @@ class PoseSource {
   virtual PoseSample read() = 0;
 };
 
-class Clock {
- public:
-  virtual ~Clock() = default;
-  virtual double now_s() const = 0;
-};
-
 }  // namespace smart::agent

@@ -1,4 +1,4 @@
-// Contract: plain value types of the agent, in the world frame of monitor/grid.hpp (metres,
+// Contract: plain value types of the agent, in the world frame of grid/grid.hpp (metres,
 // yaw counter-clockwise from +x). Times are in seconds of whichever clock drives the agent (sim
 // time in simulation, wall time on hardware); an agent never mixes the two.
 #pragma once

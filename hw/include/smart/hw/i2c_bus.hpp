@@ -1,5 +1,5 @@
 // Contract: an I2C bus as the PCA9685 driver needs it (Linux i2c-dev semantics,
-// ../shared/design/hardware.md §3): write bytes to a 7-bit address (the first byte is the
+// docs/hardware.md §3): write bytes to a 7-bit address (the first byte is the
 // register), read one register. LinuxI2cBus talks to /dev/i2c-N with open + ioctl(I2C_SLAVE) +
 // write/read and throws I2cError carrying errno text and the device. emergency_off_fd() exposes
 // the file descriptor for an async-signal-safe stop (write(2) only).

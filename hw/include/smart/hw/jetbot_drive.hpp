@@ -1,5 +1,5 @@
 // Contract: the JetBot motor driver — a PCA9685 driving two TB6612 H-bridge channels —
-// implementing the agent's DriveBackend (../shared/design/hardware.md §1-2).
+// implementing the agent's DriveBackend (docs/hardware.md §1-2).
 // - Boards: Adafruit Motor HAT (left = M1: PWM 8, IN2 9, IN1 10; right = M2: PWM 13, IN2 12,
 //   IN1 11; forward = IN1 high, IN2 low; speed s in 0..255 -> setPWM(pwm, 0, 16·s)) and the
 //   Waveshare board (motor inputs on channels 0-3: left (ina, inb) = (1, 0), right (2, 3);

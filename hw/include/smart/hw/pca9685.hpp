@@ -1,5 +1,5 @@
 // Contract: the PCA9685 16-channel PWM controller (NXP data sheet; register map and the
-// Adafruit init sequence in ../shared/design/hardware.md §2). init() runs: all outputs off,
+// Adafruit init sequence in docs/hardware.md §2). init() runs: all outputs off,
 // MODE2 totem pole, MODE1 ALLCALL, wake, set the prescale for the PWM frequency (only while
 // asleep), restart. set_pwm() writes a channel's four ON/OFF registers; full_on/full_off use
 // bit 4 of ON_H / OFF_H. all_off() writes the full-off bit to ALL_LED_OFF_H, which loads it into

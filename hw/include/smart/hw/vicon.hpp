@@ -1,4 +1,4 @@
-// Contract: Vicon Tracker's UDP object stream (../shared/design/hardware.md §5): little-endian
+// Contract: Vicon Tracker's UDP object stream (docs/hardware.md §5): little-endian
 // datagrams of uint32 frame number, uint8 item count, then per item uint8 id (0 = object),
 // uint16 data size (72), char name[24], float64 x, y, z (mm) and Euler XYZ rotations (rad).
 // parse_vicon_datagram() is pure and never throws: malformed input (short, wrong item size,

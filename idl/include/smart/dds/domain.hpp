@@ -4,7 +4,7 @@
 // dds_create_domain() and keeps it alive while any copy (or any Participant in it) exists.
 //
 // Loopback by default: this machine kind has a second interface Cyclone would multicast on
-// (../shared/design/architecture.md, "Tests and CI"), so the default is interface "lo", no
+// (docs/architecture.md, "Tests and CI"), so the default is interface "lo", no
 // multicast and unicast discovery to 127.0.0.1. Set interfaces empty to let Cyclone choose.
 #pragma once
 
@@ -26,7 +26,7 @@ struct TransportConfig {
   std::optional<Millis> nack_delay;
   std::optional<Millis> auto_resched_nack_delay;
   // Internal/Test/XmitLossiness: per mille of outgoing packets dropped, 0..1000. Models a lossy
-  // link in this process's sends (architecture.md, "Lossy links").
+  // link in this process's sends (docs/architecture.md, "Lossy links").
   int loss_per_mille = 0;
   bool operator==(const TransportConfig&) const = default;
 };

@@ -1,4 +1,4 @@
-// Contract: the fleet as ROS 2 tools see it (architecture.md, "ROS 2 view"; topic names and
+// Contract: the fleet as ROS 2 tools see it (docs/architecture.md, "ROS 2 view"; topic names and
 // frames in smart/dds/topics.hpp). publish() writes, from the World's current poses and sim
 // time: rt/smart/poses (geometry_msgs/PoseArray, robot i at index i), rt/tf
 // (tf2_msgs/TFMessage, "map" -> "robot_<i>" for every robot) and, for the robots chosen at

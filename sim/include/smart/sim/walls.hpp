@@ -1,8 +1,8 @@
 // Contract: pure geometry of a disc (a robot) against the blocked cells of a grid map, in the
-// world frame of monitor/grid.hpp. Walls are the exposed faces of blocked cells (a face next to
+// world frame of grid/grid.hpp. Walls are the exposed faces of blocked cells (a face next to
 // a free cell) as half-planes and their convex corners (a grid vertex touched by exactly one
 // blocked cell) as points; outside the map counts as blocked. This is the grid-face wall model
-// of ../shared/design/simulation.md: flat walls without the dents of per-cell spheres.
+// of docs/simulation.md: flat walls without the dents of per-cell spheres.
 #pragma once
 
 #include <vector>

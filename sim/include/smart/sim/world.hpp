@@ -1,7 +1,7 @@
 // Contract: a headless Simbody world of N differential-drive robots on a MovingAI grid map
-// (design (c') of ../shared/design/simulation.md).
+// (design (c') of docs/simulation.md).
 // - A robot that moves is a MobilizedBody::Planar body (q = θ, x, y in the world frame of
-//   monitor/grid.hpp) in one of several Simbody systems of `system_capacity` bodies, stepped in
+//   grid/grid.hpp) in one of several Simbody systems of `system_capacity` bodies, stepped in
 //   parallel with fixed-step semi-explicit Euler.
 // - A robot at rest (no command, no motion, no contact) sleeps: it leaves its Simbody system and
 //   stays in the snapshot as an obstacle, so robots waiting for their next action or finished
