@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libi2c-dev
   libfastrtps-dev
+  clang-tidy
 )
 
 missing=()

@@ -41,18 +41,11 @@ void build_csr(std::size_t n, const std::vector<std::pair<uint32_t, uint32_t>>& 
   for (const auto& [u, v] : edges) list[fill[by_src ? u : v]++] = by_src ? v : u;
 }
 
-}  // namespace
-
-Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
-              std::vector<Problem>& problems) {
-  Adg adg;
-  const std::size_t n = ap.actions.size();
-  const std::size_t robots = ap.robots();
-
-  // Occupancies, robot by robot.
+// Every stay of every robot at a location, robot by robot.
+std::vector<Occupancy> occupancies(const ActionPlan& ap, const Grid& grid) {
   std::vector<Occupancy> occ;
-  occ.reserve(ap.moves + robots);
-  for (uint32_t r = 0; r < robots; ++r) {
+  occ.reserve(ap.moves + ap.robots());
+  for (uint32_t r = 0; r < ap.robots(); ++r) {
     Occupancy cur{static_cast<uint32_t>(grid.half_index(ap.start[r])), -1.0, r, kNone, kNone};
     for (uint32_t node = ap.offset[r]; node < ap.offset[r + 1]; ++node) {
       const Action& a = ap.actions[node];
@@ -63,19 +56,33 @@ Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
     }
     occ.push_back(cur);
   }
+  return occ;
+}
 
-  // Group by location (counting sort keeps each robot's order), then order by arrival.
-  const std::size_t locations = grid.half_cell_count();
-  std::vector<uint32_t> start(locations + 1, 0);
+// Grouped by location (a counting sort keeps each robot's order); location l's occupancies are
+// [start[l], start[l + 1]).
+std::vector<Occupancy> by_location(std::vector<Occupancy> occ, std::size_t locations,
+                                   std::vector<uint32_t>& start) {
+  start.assign(locations + 1, 0);
   for (const auto& o : occ) ++start[o.location + 1];
   for (std::size_t i = 0; i < locations; ++i) start[i + 1] += start[i];
   std::vector<Occupancy> sorted(occ.size());
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (const auto& o : occ) sorted[fill[o.location]++] = o;
-  }
-  occ.clear();
-  occ.shrink_to_fit();
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (const auto& o : occ) sorted[fill[o.location]++] = o;
+  return sorted;
+}
+
+}  // namespace
+
+Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
+              std::vector<Problem>& problems) {
+  Adg adg;
+  const std::size_t n = ap.actions.size();
+  const std::size_t robots = ap.robots();
+
+  const std::size_t locations = grid.half_cell_count();
+  std::vector<uint32_t> start;
+  std::vector<Occupancy> sorted = by_location(occupancies(ap, grid), locations, start);
 
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(ap.moves);

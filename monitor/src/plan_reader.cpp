@@ -119,8 +119,9 @@ class PathCollector {
         expected = robot;
       }
       // An empty path is only worth saying when no parse problem explains it already.
+      const int id = robot;  // a structured binding cannot be captured before C++20 (clang 14)
       const bool explained = std::any_of(problems_.begin(), problems_.end(),
-                                         [&](const Problem& p) { return p.robot == robot; });
+                                         [id](const Problem& p) { return p.robot == id; });
       if (path.steps.empty() && !explained) {
         problems_.push_back({source_, path.line, robot, "path has no steps"});
       }

@@ -21,6 +21,94 @@ Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fractio
               "random-" + std::to_string(width) + "x" + std::to_string(height));
 }
 
+namespace {
+
+// One timestep at a time: every robot picks a move (or stays), then maybe one rotation cycle.
+struct Walker {
+  const Grid& grid;
+  const RandomPlanOptions& o;
+  std::mt19937_64& rng;
+  std::size_t n;
+  std::vector<Cell> pos, target;
+  std::vector<uint32_t> now, next, order;
+  std::vector<uint8_t> decided;
+  std::bernoulli_distribution try_move, try_rotate;
+  std::uniform_int_distribution<std::size_t> pick;
+  std::size_t rotation_cycles = 0;
+
+  Walker(const Grid& g, const RandomPlanOptions& opt, std::mt19937_64& r, std::vector<Cell> start)
+      : grid(g), o(opt), rng(r), n(start.size()), pos(std::move(start)), target(n),
+        now(static_cast<std::size_t>(g.width()) * g.height(), kEmpty), next(now.size(), kEmpty),
+        order(n), decided(n), try_move(opt.move_probability),
+        try_rotate(opt.rotation_probability), pick(0, n - 1) {
+    for (std::size_t r = 0; r < n; ++r) {
+      now[grid.index(pos[r])] = static_cast<uint32_t>(r);
+      order[r] = static_cast<uint32_t>(r);
+    }
+  }
+
+  void step() {
+    std::shuffle(order.begin(), order.end(), rng);
+    std::fill(decided.begin(), decided.end(), 0);
+    for (const uint32_t r : order) choose(r);
+    if (try_rotate(rng)) rotate_one();
+    for (std::size_t r = 0; r < n; ++r) {
+      now[grid.index(pos[r])] = kEmpty;
+      next[grid.index(target[r])] = kEmpty;
+    }
+    for (std::size_t r = 0; r < n; ++r) {
+      pos[r] = target[r];
+      now[grid.index(pos[r])] = static_cast<uint32_t>(r);
+    }
+  }
+
+  void choose(uint32_t r) {
+    target[r] = pos[r];
+    if (try_move(rng)) {
+      int dirs[4] = {0, 1, 2, 3};
+      std::shuffle(std::begin(dirs), std::end(dirs), rng);
+      for (const int d : dirs) {
+        const Cell c{pos[r].x + kSteps[d].x, pos[r].y + kSteps[d].y};
+        if (!grid.free(c) || next[grid.index(c)] != kEmpty) continue;
+        const uint32_t occupant = now[grid.index(c)];
+        // Follow only a robot that has committed to leave, and never swap with it.
+        if (occupant != kEmpty &&
+            (!decided[occupant] || target[occupant] == c || target[occupant] == pos[r])) {
+          continue;
+        }
+        target[r] = c;
+        break;
+      }
+    }
+    decided[r] = 1;
+    next[grid.index(target[r])] = r;
+  }
+
+  // Rotation cycle: four robots waiting on a 2x2 block each move one cell round it. Look for
+  // such a block around the robots in random order and rotate the first one found.
+  void rotate_one() {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Cell p = pos[order[(i + pick(rng)) % n]];
+      for (const Cell c0 : {p, Cell{p.x - 1, p.y}, Cell{p.x, p.y - 1}, Cell{p.x - 1, p.y - 1}}) {
+        const Cell block[4] = {c0, {c0.x + 1, c0.y}, {c0.x + 1, c0.y + 1}, {c0.x, c0.y + 1}};
+        uint32_t who[4];
+        bool ok = true;
+        for (int k = 0; k < 4 && ok; ++k) {
+          ok = grid.free(block[k]) && (who[k] = now[grid.index(block[k])]) != kEmpty &&
+               target[who[k]] == pos[who[k]];
+        }
+        if (!ok) continue;
+        for (int k = 0; k < 4; ++k) target[who[k]] = block[(k + 1) % 4];
+        for (int k = 0; k < 4; ++k) next[grid.index(block[(k + 1) % 4])] = who[k];
+        ++rotation_cycles;
+        return;
+      }
+    }
+  }
+};
+
+}  // namespace
+
 GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions& o) {
   std::mt19937_64 rng(o.seed);
   std::vector<Cell> free;
@@ -36,80 +124,16 @@ GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions
   }
   std::shuffle(free.begin(), free.end(), rng);
   const std::size_t n = o.robots;
-  std::vector<Cell> pos(free.begin(), free.begin() + static_cast<std::ptrdiff_t>(n));
+  Walker walk(grid, o, rng,
+              std::vector<Cell>(free.begin(), free.begin() + static_cast<std::ptrdiff_t>(n)));
   std::vector<std::vector<Cell>> paths(n);
-  for (std::size_t r = 0; r < n; ++r) paths[r].push_back(pos[r]);
-
-  std::vector<uint32_t> now(static_cast<std::size_t>(grid.width()) * grid.height(), kEmpty);
-  std::vector<uint32_t> next(now.size(), kEmpty);
-  for (std::size_t r = 0; r < n; ++r) now[grid.index(pos[r])] = static_cast<uint32_t>(r);
-  std::vector<uint32_t> order(n);
-  for (std::size_t r = 0; r < n; ++r) order[r] = static_cast<uint32_t>(r);
-  std::vector<Cell> target(n);
-  std::vector<uint8_t> decided(n);
-  std::bernoulli_distribution try_move(o.move_probability), try_rotate(o.rotation_probability);
-  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
-  GeneratedInstance out;
-
+  for (std::size_t r = 0; r < n; ++r) paths[r].push_back(walk.pos[r]);
   for (std::size_t t = 1; t <= o.steps; ++t) {
-    std::shuffle(order.begin(), order.end(), rng);
-    std::fill(decided.begin(), decided.end(), 0);
-    for (const uint32_t r : order) {
-      target[r] = pos[r];
-      if (try_move(rng)) {
-        int dirs[4] = {0, 1, 2, 3};
-        std::shuffle(std::begin(dirs), std::end(dirs), rng);
-        for (const int d : dirs) {
-          const Cell c{pos[r].x + kSteps[d].x, pos[r].y + kSteps[d].y};
-          if (!grid.free(c) || next[grid.index(c)] != kEmpty) continue;
-          const uint32_t occupant = now[grid.index(c)];
-          if (occupant != kEmpty) {
-            // Follow only a robot that has committed to leave, and never swap with it.
-            if (!decided[occupant] || target[occupant] == c || target[occupant] == pos[r]) {
-              continue;
-            }
-          }
-          target[r] = c;
-          break;
-        }
-      }
-      decided[r] = 1;
-      next[grid.index(target[r])] = r;
-    }
-    // Rotation cycle: four robots waiting on a 2x2 block each move one cell round it. Look for
-    // such a block around the robots in random order and rotate the first one found.
-    if (try_rotate(rng)) {
-      bool rotated = false;
-      for (std::size_t i = 0; i < n && !rotated; ++i) {
-        const Cell p = pos[order[(i + pick(rng)) % n]];
-        for (const Cell c0 : {p, Cell{p.x - 1, p.y}, Cell{p.x, p.y - 1}, Cell{p.x - 1, p.y - 1}}) {
-          const Cell block[4] = {c0, {c0.x + 1, c0.y}, {c0.x + 1, c0.y + 1}, {c0.x, c0.y + 1}};
-          uint32_t who[4];
-          bool ok = true;
-          for (int k = 0; k < 4 && ok; ++k) {
-            ok = grid.free(block[k]) && (who[k] = now[grid.index(block[k])]) != kEmpty &&
-                 target[who[k]] == pos[who[k]];
-          }
-          if (!ok) continue;
-          for (int k = 0; k < 4; ++k) target[who[k]] = block[(k + 1) % 4];
-          for (int k = 0; k < 4; ++k) next[grid.index(block[(k + 1) % 4])] = who[k];
-          ++out.rotation_cycles;
-          rotated = true;
-          break;
-        }
-      }
-    }
-    for (std::size_t r = 0; r < n; ++r) {
-      now[grid.index(pos[r])] = kEmpty;
-      next[grid.index(target[r])] = kEmpty;
-    }
-    for (std::size_t r = 0; r < n; ++r) {
-      pos[r] = target[r];
-      now[grid.index(pos[r])] = static_cast<uint32_t>(r);
-      paths[r].push_back(pos[r]);
-    }
+    walk.step();
+    for (std::size_t r = 0; r < n; ++r) paths[r].push_back(walk.pos[r]);
   }
-
+  GeneratedInstance out;
+  out.rotation_cycles = walk.rotation_cycles;
   out.plan.source = "<random seed " + std::to_string(o.seed) + ">";
   out.plan.format = PlanFormat::kSmart;
   out.scen.source = out.plan.source;

@@ -40,6 +40,18 @@ TEST(QosProfile, ShippedProfilesLoadWithTheirDocumentedSettings) {
   EXPECT_EQ(lossy.topic(TopicRole::kState).reliability, Reliability::kBestEffort);
 }
 
+TEST(QosProfile, SimStatusHasARoleOfItsOwn) {
+  for (const char* name : {"lan", "wifi", "lossy-wifi"}) {
+    const auto p = find_qos_profile(name);
+    EXPECT_EQ(p.topic(TopicRole::kStatus).reliability, Reliability::kReliable) << name;
+    EXPECT_EQ(p.topic(TopicRole::kStatus).durability, Durability::kTransientLocal) << name;
+    EXPECT_FALSE(p.status.autodispose) << name;
+  }
+  const auto p = parse_qos_profile("name: s\ntopics:\n  status:\n    depth: 3\n", "s.yaml");
+  EXPECT_EQ(p.status.depth, 3);
+  EXPECT_EQ(p.progress, default_qos_profile().progress);  // no longer borrowed from progress
+}
+
 TEST(QosProfile, LoadsByPath) {
   const auto p = find_qos_profile(std::string(SMART_SOURCE_DIR) + "/config/qos/wifi.yaml");
   EXPECT_EQ(p.name, "wifi");
