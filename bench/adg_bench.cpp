@@ -8,13 +8,13 @@
 #include <map>
 #include <memory>
 
+#include "smart/grid/map_reader.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
-#include "smart/grid/map_reader.hpp"
 #include "smart/monitor/plan_reader.hpp"
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/planning/random_plan.hpp"
-#include "smart/grid/text_file.hpp"
 #include "smart/tools/machine.hpp"
 
 namespace {

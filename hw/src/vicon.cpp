@@ -111,7 +111,8 @@ ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port, Vic
   a.sin_port = htons(port);
   if (::inet_pton(AF_INET, bind_address.c_str(), &a.sin_addr) != 1) {
     ::close(fd_);
-    throw std::invalid_argument("vicon: '" + bind_address + "' is not an IPv4 address; give --vicon-bind as a.b.c.d");
+    throw std::invalid_argument("vicon: '" + bind_address +
+                                "' is not an IPv4 address; give --vicon-bind as a.b.c.d");
   }
   if (::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) < 0) {
     const std::string err = std::strerror(errno);

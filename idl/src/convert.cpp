@@ -12,8 +12,7 @@ smart_msg_Location location(const grid::Grid& grid, grid::HalfCell h, double cel
 smart_msg_ActionStep to_wire(const grid::Action& a, const grid::Grid& grid, double cell_m) {
   smart_msg_ActionStep step{};
   step.seq = a.seq;
-  step.type =
-      a.type == grid::ActionType::kMove ? smart_msg_ACTION_MOVE : smart_msg_ACTION_ROTATE;
+  step.type = a.type == grid::ActionType::kMove ? smart_msg_ACTION_MOVE : smart_msg_ACTION_ROTATE;
   step.from = location(grid, a.from, cell_m);
   step.to = location(grid, a.to, cell_m);
   step.heading_rad = grid::yaw_rad(a.heading);
@@ -24,7 +23,8 @@ smart_msg_ActionStep to_wire(const grid::Action& a, const grid::Grid& grid, doub
 agent::AgentAction from_wire(const smart_msg_ActionStep& s) {
   agent::AgentAction a;
   a.seq = s.seq;
-  a.kind = s.type == smart_msg_ACTION_ROTATE ? agent::ActionKind::kRotate : agent::ActionKind::kMove;
+  a.kind =
+      s.type == smart_msg_ACTION_ROTATE ? agent::ActionKind::kRotate : agent::ActionKind::kMove;
   a.from_x_m = s.from.x_m;
   a.from_y_m = s.from.y_m;
   a.to_x_m = s.to.x_m;

@@ -2,8 +2,8 @@
 
 #include <chrono>
 
-#include "smart/monitor/vocabulary.hpp"
 #include "smart/monitor/plan_validator.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

@@ -77,9 +77,7 @@ struct MonitorNode::Impl {
         clocks(p, qos),
         status(p, qos) {}
 
-  double now_s() const {
-    return std::chrono::duration<double>(SteadyClock::now() - wall0).count();
-  }
+  double now_s() const { return std::chrono::duration<double>(SteadyClock::now() - wall0).count(); }
 
   void read_clocks() {
     clocks.take_each([&](const smart_msg_Clock& c) {
@@ -200,8 +198,8 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   ticks.attach_status(I.clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
   if (I.opt.resume && !I.resume()) return I.sup.result();
   I.sup.start(I.now_s());
-  spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim",
-               I.sup.result().run_id, I.sup.result().robots.size(), I.sup.tracker().total());
+  spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim", I.sup.result().run_id,
+               I.sup.result().robots.size(), I.sup.tracker().total());
   double last_check_s = 0;
   while (!I.sup.over()) {
     if (stop_requested.load()) {

@@ -229,8 +229,8 @@ void RunSupervisor::check_liveness(double now_s) {
 void RunSupervisor::finish(double now_s) {
   if (!over()) end(Outcome::kStopped, "stopped before the run ended");
   // Tell every host the run is over (at the last tick answered, so a waiting sim sees it).
-  writer_.answer_tick({res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(),
-                       true});
+  writer_.answer_tick(
+      {res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(), true});
   res_.finished_actions = tracker_.finished_total();
   res_.wall_time_s = now_s;
 }
@@ -289,8 +289,8 @@ std::string RunSupervisor::resume_check(const std::vector<ProgressEvent>& report
                                         std::vector<int64_t>& target, uint64_t& run) const {
   for (const auto& p : reported) {
     if (p.robot >= target.size()) {
-      return "cannot resume: progress for robot " + std::to_string(p.robot) +
-             " but the plan has " + std::to_string(target.size()) +
+      return "cannot resume: progress for robot " + std::to_string(p.robot) + " but the plan has " +
+             std::to_string(target.size()) +
              " robots; use the plan and --agents of the run being resumed";
     }
     if (run != 0 && p.run_id != run) {

@@ -9,10 +9,10 @@ namespace smart::planning {
 
 namespace {
 
-std::vector<int32_t> component_labels(const Grid& g, int32_t* largest) {
+std::vector<int32_t> component_labels(const grid::Grid& g, int32_t* largest) {
   std::vector<int32_t> label(static_cast<std::size_t>(g.width()) * g.height(), -1);
   std::vector<std::size_t> sizes;
-  std::vector<Cell> stack;
+  std::vector<grid::Cell> stack;
   for (int32_t y = 0; y < g.height(); ++y) {
     for (int32_t x = 0; x < g.width(); ++x) {
       if (g.blocked({x, y}) || label[g.index({x, y})] >= 0) continue;
@@ -21,11 +21,11 @@ std::vector<int32_t> component_labels(const Grid& g, int32_t* largest) {
       stack.push_back({x, y});
       label[g.index({x, y})] = id;
       while (!stack.empty()) {
-        const Cell c = stack.back();
+        const grid::Cell c = stack.back();
         stack.pop_back();
         ++sizes.back();
-        for (const Cell n :
-             {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
+        for (const grid::Cell n : {grid::Cell{c.x + 1, c.y}, grid::Cell{c.x - 1, c.y},
+                                   grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
           if (g.free(n) && label[g.index(n)] < 0) {
             label[g.index(n)] = id;
             stack.push_back(n);
@@ -43,7 +43,7 @@ std::vector<int32_t> component_labels(const Grid& g, int32_t* largest) {
 
 }  // namespace
 
-Grid generate_warehouse(const WarehouseOptions& o) {
+grid::Grid generate_warehouse(const WarehouseOptions& o) {
   if (o.shelf_rows < 1 || o.shelf_cols < 1 || o.shelf_length < 1 || o.shelf_height < 1 ||
       o.aisle < 1 || o.margin < 1) {
     throw std::invalid_argument("warehouse: every size must be at least 1");
@@ -63,29 +63,29 @@ Grid generate_warehouse(const WarehouseOptions& o) {
       }
     }
   }
-  return Grid(w, h, std::move(cells), "warehouse");
+  return grid::Grid(w, h, std::move(cells), "warehouse");
 }
 
-Grid generate_random_map(int32_t width, int32_t height, double fraction, uint64_t seed) {
+grid::Grid generate_random_map(int32_t width, int32_t height, double fraction, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution blocked(fraction);
   std::vector<uint8_t> cells(static_cast<std::size_t>(width) * height);
   for (auto& c : cells) c = blocked(rng) ? 1 : 0;
-  Grid g(width, height, cells, "random");
+  grid::Grid g(width, height, cells, "random");
   int32_t largest = -1;
   const auto label = component_labels(g, &largest);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (label[i] != largest) cells[i] = 1;  // isolated pockets become obstacles
   }
-  return Grid(width, height, std::move(cells), "random");
+  return grid::Grid(width, height, std::move(cells), "random");
 }
 
-Grid generate_empty_map(int32_t width, int32_t height) {
-  return Grid(width, height, std::vector<uint8_t>(static_cast<std::size_t>(width) * height, 0),
-              "empty");
+grid::Grid generate_empty_map(int32_t width, int32_t height) {
+  return grid::Grid(width, height,
+                    std::vector<uint8_t>(static_cast<std::size_t>(width) * height, 0), "empty");
 }
 
-Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed) {
+grid::Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed) {
   if (corridor < 1) throw std::invalid_argument("maze: corridor width must be at least 1");
   const int unit = corridor + 1;
   const int cw = std::max(1, (width + 1) / unit), ch = std::max(1, (height + 1) / unit);
@@ -131,10 +131,10 @@ Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed) {
     }
     stack.push_back({nx, ny});
   }
-  return Grid(width, height, std::move(cells), "maze");
+  return grid::Grid(width, height, std::move(cells), "maze");
 }
 
-std::string to_movingai_map(const Grid& g, char blocked_symbol) {
+std::string to_movingai_map(const grid::Grid& g, char blocked_symbol) {
   std::ostringstream s;
   s << "type octile\nheight " << g.height() << "\nwidth " << g.width() << "\nmap\n";
   for (int32_t y = 0; y < g.height(); ++y) {
@@ -144,15 +144,15 @@ std::string to_movingai_map(const Grid& g, char blocked_symbol) {
   return s.str();
 }
 
-std::vector<int32_t> bfs_distances(const Grid& g, Cell from) {
+std::vector<int32_t> bfs_distances(const grid::Grid& g, grid::Cell from) {
   std::vector<int32_t> d(static_cast<std::size_t>(g.width()) * g.height(), -1);
   if (!g.free(from)) return d;
-  std::vector<Cell> queue{from};
+  std::vector<grid::Cell> queue{from};
   d[g.index(from)] = 0;
   for (std::size_t head = 0; head < queue.size(); ++head) {
-    const Cell c = queue[head];
-    for (const Cell n :
-         {Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
+    const grid::Cell c = queue[head];
+    for (const grid::Cell n : {grid::Cell{c.x + 1, c.y}, grid::Cell{c.x - 1, c.y},
+                               grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
       if (g.free(n) && d[g.index(n)] < 0) {
         d[g.index(n)] = d[g.index(c)] + 1;
         queue.push_back(n);
@@ -162,11 +162,11 @@ std::vector<int32_t> bfs_distances(const Grid& g, Cell from) {
   return d;
 }
 
-Scenario generate_scenario(const Grid& g, std::size_t agents, uint64_t seed,
-                           const std::string& map_name) {
+grid::Scenario generate_scenario(const grid::Grid& g, std::size_t agents, uint64_t seed,
+                                 const std::string& map_name) {
   int32_t largest = -1;
   const auto label = component_labels(g, &largest);
-  std::vector<Cell> cells;
+  std::vector<grid::Cell> cells;
   for (int32_t y = 0; y < g.height(); ++y) {
     for (int32_t x = 0; x < g.width(); ++x) {
       if (!g.blocked({x, y}) && label[g.index({x, y})] == largest) cells.push_back({x, y});
@@ -181,7 +181,7 @@ Scenario generate_scenario(const Grid& g, std::size_t agents, uint64_t seed,
   auto starts = cells, goals = cells;
   std::shuffle(starts.begin(), starts.end(), rng);
   std::shuffle(goals.begin(), goals.end(), rng);
-  Scenario s;
+  grid::Scenario s;
   s.source = "generated";
   s.map_name = map_name;
   s.map_width = g.width();
@@ -192,7 +192,7 @@ Scenario generate_scenario(const Grid& g, std::size_t agents, uint64_t seed,
   return s;
 }
 
-std::string to_movingai_scen(const Scenario& scen, const Grid& g) {
+std::string to_movingai_scen(const grid::Scenario& scen, const grid::Grid& g) {
   std::ostringstream s;
   s << "version 1\n";
   for (const auto& a : scen.agents) {

@@ -45,7 +45,7 @@ struct Reservations {
 };
 
 // Space-time A*; empty result when no path within the horizon.
-std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, uint32_t start,
+std::vector<uint32_t> space_time_astar(const grid::Grid& g, const Reservations& res, uint32_t start,
                                        uint32_t goal, const std::vector<int32_t>& h,
                                        int32_t max_t) {
   struct Node {
@@ -85,9 +85,9 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
       return path;
     }
     if (n.t >= max_t || ++expansions > 400'000) continue;
-    const Cell c{int32_t(n.cell % W), int32_t(n.cell / W)};
-    for (const Cell m :
-         {c, Cell{c.x + 1, c.y}, Cell{c.x - 1, c.y}, Cell{c.x, c.y + 1}, Cell{c.x, c.y - 1}}) {
+    const grid::Cell c{int32_t(n.cell % W), int32_t(n.cell / W)};
+    for (const grid::Cell m : {c, grid::Cell{c.x + 1, c.y}, grid::Cell{c.x - 1, c.y},
+                               grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
       if (!g.free(m)) continue;
       const auto mc = static_cast<uint32_t>(g.index(m));
       const int32_t t = n.t + 1;
@@ -103,7 +103,8 @@ std::vector<uint32_t> space_time_astar(const Grid& g, const Reservations& res, u
 
 }  // namespace
 
-PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const PlannerOptions& o) {
+PlannerResult plan_prioritized(const grid::Grid& g, const grid::Scenario& scen,
+                               const PlannerOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   PlannerResult out;
   const std::size_t n = scen.agents.size();
@@ -116,7 +117,8 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
     dist[i] = bfs_distances(g, scen.agents[i].goal);
     if (dist[i][g.index(scen.agents[i].start)] < 0) {
       out.error = "robot " + std::to_string(i) + " cannot reach its goal " +
-                  to_string(scen.agents[i].goal) + " from " + to_string(scen.agents[i].start);
+                  grid::to_string(scen.agents[i].goal) + " from " +
+                  grid::to_string(scen.agents[i].start);
       return out;
     }
   }
@@ -162,11 +164,11 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
     if (!ok) continue;
     const auto W = static_cast<uint32_t>(g.width());
     out.plan.source = "<built-in planner>";
-    out.plan.format = PlanFormat::kSmart;
-    out.plan.axis = AxisOrder::kXY;
+    out.plan.format = grid::PlanFormat::kSmart;
+    out.plan.axis = grid::AxisOrder::kXY;
     out.plan.timed = true;
     for (std::size_t i = 0; i < n; ++i) {
-      RobotPath rp{static_cast<int>(i), static_cast<int>(i) + 1, {}};
+      grid::RobotPath rp{static_cast<int>(i), static_cast<int>(i) + 1, {}};
       for (std::size_t t = 0; t < paths[i].size(); ++t) {
         rp.steps.push_back({{int32_t(paths[i][t] % W), int32_t(paths[i][t] / W)},
                             double(t),
@@ -182,7 +184,7 @@ PlannerResult plan_prioritized(const Grid& g, const Scenario& scen, const Planne
   return out;
 }
 
-std::string to_smart_plan_text(const Plan& plan) {
+std::string to_smart_plan_text(const grid::Plan& plan) {
   std::ostringstream s;
   for (const auto& p : plan.paths) {
     s << "Agent " << p.robot << ":";

@@ -9,38 +9,49 @@ namespace smart::planning {
 
 namespace {
 constexpr uint32_t kEmpty = std::numeric_limits<uint32_t>::max();
-constexpr Cell kSteps[4] = {{1, 0}, {0, -1}, {-1, 0}, {0, 1}};
+constexpr grid::Cell kSteps[4] = {{1, 0}, {0, -1}, {-1, 0}, {0, 1}};
 }  // namespace
 
-Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fraction, uint64_t seed) {
+grid::Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fraction,
+                                uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::bernoulli_distribution blocked(obstacle_fraction);
   std::vector<uint8_t> cells(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (auto& c : cells) c = blocked(rng) ? 1 : 0;
-  return Grid(width, height, std::move(cells),
-              "random-" + std::to_string(width) + "x" + std::to_string(height));
+  return grid::Grid(width, height, std::move(cells),
+                    "random-" + std::to_string(width) + "x" + std::to_string(height));
 }
 
 namespace {
 
 // One timestep at a time: every robot picks a move (or stays), then maybe one rotation cycle.
 struct Walker {
-  const Grid& grid;
+  const grid::Grid& grid;
   const RandomPlanOptions& o;
   std::mt19937_64& rng;
   std::size_t n;
-  std::vector<Cell> pos, target;
+  std::vector<grid::Cell> pos, target;
   std::vector<uint32_t> now, next, order;
   std::vector<uint8_t> decided;
   std::bernoulli_distribution try_move, try_rotate;
   std::uniform_int_distribution<std::size_t> pick;
   std::size_t rotation_cycles = 0;
 
-  Walker(const Grid& g, const RandomPlanOptions& opt, std::mt19937_64& r, std::vector<Cell> start)
-      : grid(g), o(opt), rng(r), n(start.size()), pos(std::move(start)), target(n),
-        now(static_cast<std::size_t>(g.width()) * g.height(), kEmpty), next(now.size(), kEmpty),
-        order(n), decided(n), try_move(opt.move_probability),
-        try_rotate(opt.rotation_probability), pick(0, n - 1) {
+  Walker(const grid::Grid& g, const RandomPlanOptions& opt, std::mt19937_64& r,
+         std::vector<grid::Cell> start)
+      : grid(g),
+        o(opt),
+        rng(r),
+        n(start.size()),
+        pos(std::move(start)),
+        target(n),
+        now(static_cast<std::size_t>(g.width()) * g.height(), kEmpty),
+        next(now.size(), kEmpty),
+        order(n),
+        decided(n),
+        try_move(opt.move_probability),
+        try_rotate(opt.rotation_probability),
+        pick(0, n - 1) {
     for (std::size_t r = 0; r < n; ++r) {
       now[grid.index(pos[r])] = static_cast<uint32_t>(r);
       order[r] = static_cast<uint32_t>(r);
@@ -68,7 +79,7 @@ struct Walker {
       int dirs[4] = {0, 1, 2, 3};
       std::shuffle(std::begin(dirs), std::end(dirs), rng);
       for (const int d : dirs) {
-        const Cell c{pos[r].x + kSteps[d].x, pos[r].y + kSteps[d].y};
+        const grid::Cell c{pos[r].x + kSteps[d].x, pos[r].y + kSteps[d].y};
         if (!grid.free(c) || next[grid.index(c)] != kEmpty) continue;
         const uint32_t occupant = now[grid.index(c)];
         // Follow only a robot that has committed to leave, and never swap with it.
@@ -88,9 +99,10 @@ struct Walker {
   // such a block around the robots in random order and rotate the first one found.
   void rotate_one() {
     for (std::size_t i = 0; i < n; ++i) {
-      const Cell p = pos[order[(i + pick(rng)) % n]];
-      for (const Cell c0 : {p, Cell{p.x - 1, p.y}, Cell{p.x, p.y - 1}, Cell{p.x - 1, p.y - 1}}) {
-        const Cell block[4] = {c0, {c0.x + 1, c0.y}, {c0.x + 1, c0.y + 1}, {c0.x, c0.y + 1}};
+      const grid::Cell p = pos[order[(i + pick(rng)) % n]];
+      for (const grid::Cell c0 :
+           {p, grid::Cell{p.x - 1, p.y}, grid::Cell{p.x, p.y - 1}, grid::Cell{p.x - 1, p.y - 1}}) {
+        const grid::Cell block[4] = {c0, {c0.x + 1, c0.y}, {c0.x + 1, c0.y + 1}, {c0.x, c0.y + 1}};
         uint32_t who[4];
         bool ok = true;
         for (int k = 0; k < 4 && ok; ++k) {
@@ -109,9 +121,9 @@ struct Walker {
 
 }  // namespace
 
-GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions& o) {
+GeneratedInstance generate_random_plan(const grid::Grid& grid, const RandomPlanOptions& o) {
   std::mt19937_64 rng(o.seed);
-  std::vector<Cell> free;
+  std::vector<grid::Cell> free;
   for (int32_t y = 0; y < grid.height(); ++y) {
     for (int32_t x = 0; x < grid.width(); ++x) {
       if (!grid.blocked({x, y})) free.push_back({x, y});
@@ -125,8 +137,8 @@ GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions
   std::shuffle(free.begin(), free.end(), rng);
   const std::size_t n = o.robots;
   Walker walk(grid, o, rng,
-              std::vector<Cell>(free.begin(), free.begin() + static_cast<std::ptrdiff_t>(n)));
-  std::vector<std::vector<Cell>> paths(n);
+              std::vector<grid::Cell>(free.begin(), free.begin() + static_cast<std::ptrdiff_t>(n)));
+  std::vector<std::vector<grid::Cell>> paths(n);
   for (std::size_t r = 0; r < n; ++r) paths[r].push_back(walk.pos[r]);
   for (std::size_t t = 1; t <= o.steps; ++t) {
     walk.step();
@@ -135,7 +147,7 @@ GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions
   GeneratedInstance out;
   out.rotation_cycles = walk.rotation_cycles;
   out.plan.source = "<random seed " + std::to_string(o.seed) + ">";
-  out.plan.format = PlanFormat::kSmart;
+  out.plan.format = grid::PlanFormat::kSmart;
   out.scen.source = out.plan.source;
   out.scen.map_name = grid.name();
   out.scen.map_width = grid.width();
@@ -143,7 +155,7 @@ GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions
   for (std::size_t r = 0; r < n; ++r) {
     auto& p = paths[r];
     while (p.size() > 1 && p[p.size() - 1] == p[p.size() - 2]) p.pop_back();
-    RobotPath rp{static_cast<int>(r), static_cast<int>(r) + 1, {}};
+    grid::RobotPath rp{static_cast<int>(r), static_cast<int>(r) + 1, {}};
     for (std::size_t k = 0; k < p.size(); ++k) {
       rp.steps.push_back({p[k], static_cast<double>(k), static_cast<int>(r) + 1});
     }

@@ -69,9 +69,10 @@ struct SimHost::Impl {
   bool accept_window(const agent::WindowInfo& w) {
     if (w.robot_id >= fleet.robots()) {
       if (rejected_windows++ == 0) {
-        spdlog::error("sim host: window for robot {} but this host has {} robots; check "
-                      "--agents on both sides",
-                      w.robot_id, fleet.robots());
+        spdlog::error(
+            "sim host: window for robot {} but this host has {} robots; check "
+            "--agents on both sides",
+            w.robot_id, fleet.robots());
       }
       return false;
     }
@@ -117,8 +118,8 @@ struct SimHost::Impl {
   }
 
   void publish_clock() {
-    clock_out.write(wire::to_wire(
-        {run_id, tick, fleet.world().time_s(), finished_total, false}, dds::kSimClockSource));
+    clock_out.write(wire::to_wire({run_id, tick, fleet.world().time_s(), finished_total, false},
+                                  dds::kSimClockSource));
   }
 
   void publish_status(bool force) {
@@ -129,10 +130,9 @@ struct SimHost::Impl {
       return;
     }
     last_status = c;
-    status_out.write(smart_msg_SimStatus{dds::kSimClockSource, run_id, fleet.world().time_s(),
-                                         static_cast<uint32_t>(fleet.robots()),
-                                         c.robot_robot_events, c.robot_wall_events, c.min_gap_m,
-                                         wall_s(), common::peak_rss_mb()});
+    status_out.write(smart_msg_SimStatus{
+        dds::kSimClockSource, run_id, fleet.world().time_s(), static_cast<uint32_t>(fleet.robots()),
+        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), common::peak_rss_mb()});
   }
 
   SimHostResult finish(bool ok, std::string error, bool by_monitor) {
@@ -208,7 +208,7 @@ SimHost::~SimHost() = default;
 
 SimHostResult SimHost::run(const std::atomic<bool>& stop_requested) {
   return impl_->opt.clock == ClockMode::kLockstep ? impl_->run_lockstep(stop_requested)
-                                                   : impl_->run_realtime(stop_requested);
+                                                  : impl_->run_realtime(stop_requested);
 }
 
 }  // namespace smart::sim

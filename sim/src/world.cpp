@@ -51,8 +51,7 @@ World::World(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
     const auto cell = cell_at(grid, config.cell_m, p.x_m, p.y_m);
     if (!grid.free(cell)) {
       throw std::invalid_argument("robot " + std::to_string(i) + " starts at " +
-                                  grid::to_string(cell) +
-                                  ", which is outside the map or blocked");
+                                  grid::to_string(cell) + ", which is outside the map or blocked");
     }
     I.x[i] = p.x_m;
     I.y[i] = p.y_m;

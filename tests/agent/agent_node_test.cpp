@@ -7,8 +7,8 @@
 #include <chrono>
 #include <thread>
 
-#include "smart/dds/domain.hpp"
 #include "smart/dds/action_window.hpp"
+#include "smart/dds/domain.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/wire/convert.hpp"
 #include "support/dds_test_support.hpp"

@@ -18,8 +18,8 @@ TEST(Convert, AnActionReachesTheAgentInWorldMetresWithItsHalfCells) {
   EXPECT_EQ(step.from.col2, 2);
   EXPECT_EQ(step.to.row2, 3);
   EXPECT_DOUBLE_EQ(step.from.x_m, 0.5);
-  EXPECT_DOUBLE_EQ(step.from.y_m, 0.0);   // row 2 of 3 is the bottom
-  EXPECT_DOUBLE_EQ(step.to.y_m, 0.25);    // half a cell up
+  EXPECT_DOUBLE_EQ(step.from.y_m, 0.0);  // row 2 of 3 is the bottom
+  EXPECT_DOUBLE_EQ(step.to.y_m, 0.25);   // half a cell up
   EXPECT_DOUBLE_EQ(step.plan_time_s, 1.0);
   const auto back = from_wire(step);
   EXPECT_EQ(back.seq, 5u);

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "smart/grid/map_reader.hpp"
-#include "smart/monitor/plan_reader.hpp"
 #include "smart/grid/text_file.hpp"
+#include "smart/monitor/plan_reader.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {

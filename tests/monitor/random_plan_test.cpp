@@ -1,5 +1,5 @@
-// Property tests over many seeded random valid plans (planning/random_plan.hpp): the ADG is acyclic,
-// any execution order the tracker allows never puts two robots in one location and always
+// Property tests over many seeded random valid plans (planning/random_plan.hpp): the ADG is
+// acyclic, any execution order the tracker allows never puts two robots in one location and always
 // finishes, and the reduced Type-2 edge set implies every edge of the all-pairs rule.
 #include "smart/planning/random_plan.hpp"
 

@@ -49,7 +49,9 @@ SupervisorConfig lockstep_config() {
   return c;
 }
 
-wire::Tick tick(uint64_t k, uint64_t sync_total) { return {kRun, k, 0.1 * double(k), sync_total, false}; }
+wire::Tick tick(uint64_t k, uint64_t sync_total) {
+  return {kRun, k, 0.1 * double(k), sync_total, false};
+}
 
 struct Scripted {
   Instance in = corridor();

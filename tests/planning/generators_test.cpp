@@ -9,6 +9,8 @@
 namespace smart::planning {
 namespace {
 
+using namespace grid;  // the vocabulary the planners work in
+
 TEST(Generators, DefaultWarehouseIsMovingAIsWarehouse10201021CellForCell) {
   const auto dir = test::benchmarks_dir() / "maps";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;

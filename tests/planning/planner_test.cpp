@@ -4,12 +4,14 @@
 
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
-#include "smart/planning/generators.hpp"
 #include "smart/monitor/plan_reader.hpp"
 #include "smart/monitor/plan_validator.hpp"
+#include "smart/planning/generators.hpp"
 
 namespace smart::planning {
 namespace {
+
+using namespace grid;  // the vocabulary the planners work in
 using monitor::build_actions;
 using monitor::build_adg;
 using monitor::check_acyclic;

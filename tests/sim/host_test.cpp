@@ -5,9 +5,9 @@
 
 #include <thread>
 
-#include "smart/dds/wire.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/waitset.hpp"
+#include "smart/dds/wire.hpp"
 #include "smart/dds/writer.hpp"
 #include "support/dds_test_support.hpp"
 #include "support/monitor_fixtures.hpp"

@@ -48,10 +48,10 @@ TEST(SmartMain, MissingFilesAndConfigAreBadInput) {
 }
 
 TEST(SmartMain, AnI2cBusThatCannotBeOpenedIsASystemFailure) {
-  const auto r = smart_with_stderr(
-      "agent --robot-id 0 --i2c /nonexistent/i2c-9 --vicon-port 0 --domain " +
-          std::to_string(test::kAgentI2cMissing),
-      "i2c");
+  const auto r =
+      smart_with_stderr("agent --robot-id 0 --i2c /nonexistent/i2c-9 --vicon-port 0 --domain " +
+                            std::to_string(test::kAgentI2cMissing),
+                        "i2c");
   EXPECT_EQ(r.code, 3) << r.out;
   EXPECT_THAT(r.out, HasSubstr("I2C error"));
   EXPECT_THAT(r.out, HasSubstr("/nonexistent/i2c-9"));

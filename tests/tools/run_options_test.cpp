@@ -40,11 +40,38 @@ TEST(RunOptions, AnUnknownEnumNameIsAParseErrorListingTheNames) {
 
 TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   SimCliOptions o;
-  parse_sim(o, {"--map", "maps/a b.map", "--scen", "x.scen", "--agents", "17", "--cell-m", "0.3",
-                "--initial-heading", "west", "--robot", "jetbot", "--clock", "realtime",
-                "--state-rate-hz", "0.7", "--timeout-s", "12.5", "--system-capacity", "8",
-                "--threads", "1", "--ros-pose-robots", "1,4", "--external-robots", "2",
-                "--domain", "33", "--qos", "wifi", "--network", "network"});
+  parse_sim(o, {"--map",
+                "maps/a b.map",
+                "--scen",
+                "x.scen",
+                "--agents",
+                "17",
+                "--cell-m",
+                "0.3",
+                "--initial-heading",
+                "west",
+                "--robot",
+                "jetbot",
+                "--clock",
+                "realtime",
+                "--state-rate-hz",
+                "0.7",
+                "--timeout-s",
+                "12.5",
+                "--system-capacity",
+                "8",
+                "--threads",
+                "1",
+                "--ros-pose-robots",
+                "1,4",
+                "--external-robots",
+                "2",
+                "--domain",
+                "33",
+                "--qos",
+                "wifi",
+                "--network",
+                "network"});
   const auto argv = sim_argv("/bin/smart", o);
   ASSERT_GE(argv.size(), 2u);
   EXPECT_EQ(argv[0], "/bin/smart");
@@ -72,9 +99,24 @@ TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {
   MonitorCliOptions o;
   CLI::App app;
   add_monitor_options(&app, o);
-  std::vector<std::string> args{"--map", "m", "--scen", "s", "--plan", "p", "--axis", "rowcol",
-                                "--window-cap", "5", "--stall-timeout-s", "9", "--clock",
-                                "realtime", "--max-sim-time-s", "100", "--format", "lacam"};
+  std::vector<std::string> args{"--map",
+                                "m",
+                                "--scen",
+                                "s",
+                                "--plan",
+                                "p",
+                                "--axis",
+                                "rowcol",
+                                "--window-cap",
+                                "5",
+                                "--stall-timeout-s",
+                                "9",
+                                "--clock",
+                                "realtime",
+                                "--max-sim-time-s",
+                                "100",
+                                "--format",
+                                "lacam"};
   std::reverse(args.begin(), args.end());
   app.parse(args);
   const auto mo = monitor_options(o);

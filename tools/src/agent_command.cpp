@@ -92,7 +92,8 @@ Pose open_pose(const AgentOptions& o, const dds::Participant& participant) {
   if (o.pose == PoseKind::kVicon) {
     p.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, transform,
                                                   std::vector<std::string>{p.object}, steady_s);
-    p.source = std::make_unique<hw::ViconPoseSource>(*p.vicon, p.object, o.pose_max_age_s, steady_s);
+    p.source =
+        std::make_unique<hw::ViconPoseSource>(*p.vicon, p.object, o.pose_max_age_s, steady_s);
     return p;
   }
   if (o.ros_topic.empty()) {
@@ -110,8 +111,9 @@ std::unique_ptr<hw::I2cBus> open_bus(const AgentOptions& o, const hw::JetbotConf
     throw std::invalid_argument("--i2c emulated needs --emulate-pose X,Y,YAW and --pose vicon");
   }
   return std::make_unique<hw::EmulatedJetbot>(
-      hwc, model.wheel_base_m, agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]},
-      pose.object, pose.vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
+      hwc, model.wheel_base_m,
+      agent::Pose2D{o.emulate_pose[0], o.emulate_pose[1], o.emulate_pose[2]}, pose.object,
+      pose.vicon->port(), std::max(model.max_accel_mps2, model.max_decel_mps2) * 1.5);
 }
 
 nlohmann::json agent_report(const agent::Agent& robot, bool stopped_by_monitor, const Pose& pose) {
@@ -173,7 +175,8 @@ void register_agent_command(CLI::App& app, int& exit_code) {
                                  "from `smart monitor` over DDS");
   add_dds_options(cmd, o->dds);
   cmd->add_option("--robot-id", o->robot_id, "the robot's index in the plan")->required();
-  add_enum_option(cmd, "--backend", o->backend, kBackendNames, "the robot's drive (default jetbot)");
+  add_enum_option(cmd, "--backend", o->backend, kBackendNames,
+                  "the robot's drive (default jetbot)");
   cmd->add_option("--config", o->config, "robot model with a hardware: section (name or file)")
       ->capture_default_str();
   cmd->add_option("--i2c", o->i2c, "I2C device (default from the robot file) or 'emulated'");

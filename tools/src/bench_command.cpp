@@ -11,15 +11,15 @@
 #include <thread>
 
 #include "smart/agent/agent.hpp"
-#include "smart/monitor/action_builder.hpp"
-#include "smart/wire/convert.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
+#include "smart/monitor/action_builder.hpp"
 #include "smart/sim/fleet.hpp"
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
+#include "smart/wire/convert.hpp"
 
 namespace smart::tools {
 
@@ -74,7 +74,8 @@ int run_bench_sim(const BenchSimOptions& o) {
     return kExitBadInput;
   }
   std::shuffle(free.begin(), free.end(), rng);
-  const auto plan = random_walks(grid, free, o.robots, static_cast<std::size_t>(o.sim_seconds) + 10, rng);
+  const auto plan =
+      random_walks(grid, free, o.robots, static_cast<std::size_t>(o.sim_seconds) + 10, rng);
   const auto actions = monitor::build_actions(plan, grid::Heading::kEast);
   sim::SimConfig cfg;
   cfg.cell_m = o.cell_m;

@@ -3,8 +3,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "smart/monitor/instance.hpp"
 #include "smart/grid/problem.hpp"
+#include "smart/monitor/instance.hpp"
 #include "smart/monitor/results.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"

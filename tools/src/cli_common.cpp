@@ -1,8 +1,8 @@
 #include "smart/tools/cli_common.hpp"
 
+#include <fmt/format.h>
 #include <signal.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
@@ -35,8 +35,8 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
 }
 
 std::vector<std::string> dds_argv(const DdsOptions& o) {
-  return {"--domain", std::to_string(o.domain), "--qos", o.qos, "--network",
-          enum_name(o.network, kNetworkNames)};
+  return {"--domain",  std::to_string(o.domain),           "--qos", o.qos,
+          "--network", enum_name(o.network, kNetworkNames)};
 }
 
 dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile) {

@@ -119,7 +119,12 @@ struct Pinger {
   std::size_t progress_samples = 0, state_samples = 0, clock_replies = 0;
 
   Pinger(const dds::Participant& p, const dds::QosProfile& q, const PingOptions& o)
-      : po(o), actions(p, q), clock_out(p, q), progress(p, q), states(p, q), clocks(p, q),
+      : po(o),
+        actions(p, q),
+        clock_out(p, q),
+        progress(p, q),
+        states(p, q),
+        clocks(p, q),
         waitset(p) {
     waitset.attach_status(progress.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
     waitset.attach_status(clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);

@@ -4,12 +4,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "smart/planning/generators.hpp"
 #include "smart/grid/map_reader.hpp"
-#include "smart/monitor/plan_validator.hpp"
-#include "smart/planning/planner.hpp"
 #include "smart/grid/scen_reader.hpp"
 #include "smart/grid/text_file.hpp"
+#include "smart/monitor/plan_validator.hpp"
+#include "smart/planning/generators.hpp"
+#include "smart/planning/planner.hpp"
 #include "smart/tools/commands.hpp"
 
 namespace smart::tools {
@@ -33,9 +33,9 @@ struct PlanOptions {
 }  // namespace
 
 const EnumNames<MapKind> kMapKindNames{{"warehouse", MapKind::kWarehouse},
-                                        {"random", MapKind::kRandom},
-                                        {"empty", MapKind::kEmpty},
-                                        {"maze", MapKind::kMaze}};
+                                       {"random", MapKind::kRandom},
+                                       {"empty", MapKind::kEmpty},
+                                       {"maze", MapKind::kMaze}};
 
 int generate_map(MapKind kind, const std::string& out, const GenMapOptionsPublic& o) {
   grid::Grid g;

@@ -75,8 +75,8 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
   for (const auto r : ids) {
     if (r >= robots) {
       throw std::invalid_argument("--ros-pose-robots: robot " + std::to_string(r) +
-                                  " but the run has " + std::to_string(robots) + " robots (ids 0.." +
-                                  std::to_string(robots - 1) + ")");
+                                  " but the run has " + std::to_string(robots) +
+                                  " robots (ids 0.." + std::to_string(robots - 1) + ")");
     }
   }
 }

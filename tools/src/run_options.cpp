@@ -129,14 +129,30 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
   std::vector<std::string> argv{exe, "sim"};
   const auto dds = dds_argv(o.dds);
   argv.insert(argv.end(), dds.begin(), dds.end());
-  argv.insert(argv.end(),
-              {"--map", w.map, "--scen", w.scen, "--agents", std::to_string(w.agents),
-               "--initial-heading", enum_name(w.heading, kHeadingNames), "--cell-m",
-               exact(w.cell_m), "--robot", w.robot, "--clock", enum_name(o.clock, kClockNames),
-               "--state-rate-hz", exact(o.state_rate_hz), "--timeout-s", exact(o.timeout_s),
-               "--system-capacity", std::to_string(o.system_capacity), "--threads",
-               std::to_string(o.threads)});
-  if (!o.ros_pose_robots.empty()) argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
+  argv.insert(argv.end(), {"--map",
+                           w.map,
+                           "--scen",
+                           w.scen,
+                           "--agents",
+                           std::to_string(w.agents),
+                           "--initial-heading",
+                           enum_name(w.heading, kHeadingNames),
+                           "--cell-m",
+                           exact(w.cell_m),
+                           "--robot",
+                           w.robot,
+                           "--clock",
+                           enum_name(o.clock, kClockNames),
+                           "--state-rate-hz",
+                           exact(o.state_rate_hz),
+                           "--timeout-s",
+                           exact(o.timeout_s),
+                           "--system-capacity",
+                           std::to_string(o.system_capacity),
+                           "--threads",
+                           std::to_string(o.threads)});
+  if (!o.ros_pose_robots.empty())
+    argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
   if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});
   return argv;
 }

@@ -24,11 +24,11 @@ namespace smart::dds {
 template <class T>
 struct WireTopic;  // static constexpr std::string_view name; static constexpr TopicRole role;
 
-#define SMART_DDS_WIRE_TOPIC(CType, Name, Role)         \
-  template <>                                           \
-  struct WireTopic<CType> {                             \
-    static constexpr std::string_view name = Name;      \
-    static constexpr TopicRole role = TopicRole::Role;  \
+#define SMART_DDS_WIRE_TOPIC(CType, Name, Role)        \
+  template <>                                          \
+  struct WireTopic<CType> {                            \
+    static constexpr std::string_view name = Name;     \
+    static constexpr TopicRole role = TopicRole::Role; \
   }
 
 SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction);

@@ -9,8 +9,8 @@
 
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
-#include "smart/monitor/vocabulary.hpp"
 #include "smart/monitor/plan_reader.hpp"
+#include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
 

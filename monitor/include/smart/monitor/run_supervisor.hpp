@@ -155,8 +155,8 @@ class RunSupervisor {
   void update_waiting(double sim_time_s);
   void check_end();
   void check_liveness(double now_s);
-  std::string resume_check(const std::vector<ProgressEvent>& reported,
-                           std::vector<int64_t>& target, uint64_t& run) const;
+  std::string resume_check(const std::vector<ProgressEvent>& reported, std::vector<int64_t>& target,
+                           uint64_t& run) const;
   void resume_fixpoint(const std::vector<int64_t>& target);
 
   const Instance& in_;
@@ -164,7 +164,7 @@ class RunSupervisor {
   RunWriter& writer_;
   ExecutionTracker tracker_;
   wire::MonitorHandshake handshake_;
-  wire::SyncCounter sent_;  // end of the windows published, per robot
+  wire::SyncCounter sent_;                     // end of the windows published, per robot
   std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
   std::vector<uint8_t> waiting_;
   std::vector<double> robot_seen_s_;  // real time: when each robot's host was last heard of

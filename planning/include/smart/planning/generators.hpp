@@ -15,7 +15,9 @@
 #include <cstdint>
 #include <string>
 
-#include "smart/planning/vocabulary.hpp"
+#include "smart/grid/grid.hpp"
+#include "smart/grid/plan.hpp"
+#include "smart/grid/scen_reader.hpp"
 
 namespace smart::planning {
 
@@ -28,20 +30,21 @@ struct WarehouseOptions {
   int margin = 25;
 };
 
-Grid generate_warehouse(const WarehouseOptions& o);
-Grid generate_random_map(int32_t width, int32_t height, double obstacle_fraction, uint64_t seed);
-Grid generate_empty_map(int32_t width, int32_t height);
-Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed);
+grid::Grid generate_warehouse(const WarehouseOptions& o);
+grid::Grid generate_random_map(int32_t width, int32_t height, double obstacle_fraction,
+                               uint64_t seed);
+grid::Grid generate_empty_map(int32_t width, int32_t height);
+grid::Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t seed);
 
 // MovingAI .map text ('.' free, '@' blocked; warehouses use 'T' like the MovingAI originals).
-std::string to_movingai_map(const Grid& grid, char blocked_symbol = '@');
+std::string to_movingai_map(const grid::Grid& grid, char blocked_symbol = '@');
 
 // Throws std::invalid_argument when the largest free region has fewer than `agents` cells.
-Scenario generate_scenario(const Grid& grid, std::size_t agents, uint64_t seed,
-                           const std::string& map_name);
-std::string to_movingai_scen(const Scenario& scen, const Grid& grid);
+grid::Scenario generate_scenario(const grid::Grid& grid, std::size_t agents, uint64_t seed,
+                                 const std::string& map_name);
+std::string to_movingai_scen(const grid::Scenario& scen, const grid::Grid& grid);
 
 // 4-connected shortest-path distances from `from` to every cell (-1: unreachable).
-std::vector<int32_t> bfs_distances(const Grid& grid, Cell from);
+std::vector<int32_t> bfs_distances(const grid::Grid& grid, grid::Cell from);
 
 }  // namespace smart::planning

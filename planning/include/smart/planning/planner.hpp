@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <string>
 
-#include "smart/planning/vocabulary.hpp"
+#include "smart/grid/grid.hpp"
+#include "smart/grid/plan.hpp"
+#include "smart/grid/scen_reader.hpp"
 
 namespace smart::planning {
 
@@ -24,15 +26,16 @@ struct PlannerOptions {
 
 struct PlannerResult {
   bool solved = false;
-  Plan plan;
+  grid::Plan plan;
   int restarts_used = 0;
   double runtime_s = 0;
   std::string error;  // why not solved
 };
 
-PlannerResult plan_prioritized(const Grid& grid, const Scenario& scen, const PlannerOptions& o);
+PlannerResult plan_prioritized(const grid::Grid& grid, const grid::Scenario& scen,
+                               const PlannerOptions& o);
 
 // SMART timed plan text: "Agent i:(x,y,t)->...", x = column (read it back with axis xy).
-std::string to_smart_plan_text(const Plan& plan);
+std::string to_smart_plan_text(const grid::Plan& plan);
 
 }  // namespace smart::planning

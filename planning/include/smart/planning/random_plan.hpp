@@ -10,7 +10,9 @@
 
 #include <cstdint>
 
-#include "smart/planning/vocabulary.hpp"
+#include "smart/grid/grid.hpp"
+#include "smart/grid/plan.hpp"
+#include "smart/grid/scen_reader.hpp"
 
 namespace smart::planning {
 
@@ -23,14 +25,15 @@ struct RandomPlanOptions {
 };
 
 struct GeneratedInstance {
-  Plan plan;
-  Scenario scen;
+  grid::Plan plan;
+  grid::Scenario scen;
   std::size_t rotation_cycles = 0;
 };
 
-Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fraction, uint64_t seed);
+grid::Grid generate_random_grid(int32_t width, int32_t height, double obstacle_fraction,
+                                uint64_t seed);
 
 // Throws std::invalid_argument when the grid has fewer free cells than robots.
-GeneratedInstance generate_random_plan(const Grid& grid, const RandomPlanOptions& options);
+GeneratedInstance generate_random_plan(const grid::Grid& grid, const RandomPlanOptions& options);
 
 }  // namespace smart::planning

@@ -55,9 +55,9 @@ struct SimHostResult {
 
 class SimHost {
  public:
-  SimHost(const dds::Participant& participant, const dds::QosProfile& qos,
-          const grid::Grid& grid, const agent::RobotModel& model,
-          const std::vector<agent::Pose2D>& starts, const SimHostOptions& options);
+  SimHost(const dds::Participant& participant, const dds::QosProfile& qos, const grid::Grid& grid,
+          const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
+          const SimHostOptions& options);
   ~SimHost();
   SimHostResult run(const std::atomic<bool>& stop_requested);
 

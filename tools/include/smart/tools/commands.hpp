@@ -4,11 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "smart/tools/cli_common.hpp"
-
-#include "smart/planning/generators.hpp"
 #include "smart/grid/grid.hpp"
 #include "smart/grid/scen_reader.hpp"
+#include "smart/planning/generators.hpp"
+#include "smart/tools/cli_common.hpp"
 
 namespace smart::tools {
 
