@@ -17,7 +17,6 @@ namespace smart::sim {
 
 namespace {
 using SteadyClock = std::chrono::steady_clock;
-constexpr double kReannounceS = 0.5;  // a monitor that joins late missed the tick
 }  // namespace
 
 struct SimHost::Impl {
@@ -50,7 +49,7 @@ struct SimHost::Impl {
         clock_out(p, qos),
         status_out(p, qos),
         states_in(p, qos),
-        handshake(o.timeout_s, kReannounceS),
+        handshake(o.timeout_s, dds::kClockReannounceS),
         windows(starts.size()) {
     for (const uint32_t e : o.external_robots) fleet.set_external(e);
     for (uint32_t i = 0; i < fleet.robots(); ++i) {

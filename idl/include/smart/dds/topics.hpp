@@ -48,6 +48,7 @@ inline constexpr uint32_t kSimClockSource = smart_msg_CLOCK_SOURCE_SIM;
 inline constexpr uint32_t kMonitorClockSource = smart_msg_CLOCK_SOURCE_MONITOR;
 inline constexpr int32_t kNoSeq = smart_msg_NO_SEQ;
 inline constexpr uint32_t kMaxWindowActions = smart_msg_MAX_WINDOW_ACTIONS;
+inline constexpr double kClockReannounceS = smart_msg_CLOCK_REANNOUNCE_MS / 1000.0;
 
 }  // namespace smart::dds
 
