@@ -6,9 +6,10 @@
 
 namespace smart::dds {
 
-Participant::Participant(const Domain& domain)
+Participant::Participant(const Domain& domain, std::string run)
     : domain_(domain),
       entity_(check(dds_create_participant(domain.id(), nullptr, nullptr),
-                    "creating a participant in domain " + std::to_string(domain.id()))) {}
+                    "creating a participant in domain " + std::to_string(domain.id()))),
+      run_(std::move(run)) {}
 
 }  // namespace smart::dds

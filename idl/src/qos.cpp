@@ -84,6 +84,10 @@ Qos& Qos::autodispose_unregistered(bool autodispose) {
   dds_qset_writer_data_lifecycle(qos_, autodispose);
   return *this;
 }
+Qos& Qos::partition(const std::string& name) {
+  dds_qset_partition1(qos_, name.c_str());
+  return *this;
+}
 Qos& Qos::resource_limits(int32_t max_samples, int32_t max_instances, int32_t max_per_instance) {
   dds_qset_resource_limits(qos_, max_samples, max_instances, max_per_instance);
   return *this;

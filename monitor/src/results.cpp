@@ -115,6 +115,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"total_actions", r.total_actions},
       {"rejected_progress", r.rejected_progress},
       {"run_id", r.run_id},
+      {"run", info.run},
       {"seed", info.seed},
       {"clock", info.clock},
       {"qos", info.qos},

@@ -13,6 +13,7 @@
 #include "smart/dds/reader.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
+#include "smart/dds/wire.hpp"
 #include "smart/dds/writer.hpp"
 #include "smart/tools/child_process.hpp"
 #include "support/dds_test_support.hpp"
@@ -37,15 +38,11 @@ TEST(CrossProcess, EchoAnswersEveryTopicType) {
   Domain domain(domain_id, test::loopback());
   Participant p(domain);
   const auto profile = find_qos_profile("lan");
-  Topic<smart_msg_ActionWindow> ta(p, std::string(kActionTopic));
-  Topic<smart_msg_Progress> tp(p, std::string(kProgressTopic));
-  Topic<smart_msg_RobotState> tst(p, std::string(kStateTopic));
-  Topic<smart_msg_Clock> tc(p, std::string(kClockTopic));
-  Writer<smart_msg_ActionWindow> actions(p, ta, profile.action.to_dds());
-  Writer<smart_msg_Clock> clock_out(p, tc, profile.clock.to_dds());
-  Reader<smart_msg_Progress> progress(p, tp, profile.progress.to_dds());
-  Reader<smart_msg_RobotState> states(p, tst, profile.state.to_dds());
-  Reader<smart_msg_Clock> clocks(p, tc, profile.clock.to_dds());
+  WireWriter<smart_msg_ActionWindow> actions(p, profile);
+  WireWriter<smart_msg_Clock> clock_out(p, profile);
+  WireReader<smart_msg_Progress> progress(p, profile);
+  WireReader<smart_msg_RobotState> states(p, profile);
+  WireReader<smart_msg_Clock> clocks(p, profile);
   ASSERT_TRUE(actions.wait_for_readers(1, 10s)) << "dds-echo did not join domain " << domain_id;
   ASSERT_TRUE(clock_out.wait_for_readers(2, 10s));  // our own reader and the echo's
   ASSERT_TRUE(states.wait_for_writers(1, 10s));
@@ -122,7 +119,7 @@ std::set<uint32_t> receive_lossy_burst(int domain_id, const std::string& reliabi
   TopicQos q = default_qos_profile().progress;
   q.reliability = reliability == "reliable" ? Reliability::kReliable : Reliability::kBestEffort;
   q.history = HistoryKind::kKeepAll;
-  Reader<smart_msg_Progress> r(p, t, q.to_dds());
+  Reader<smart_msg_Progress> r(p, t, q.to_dds().partition(p.run_partition()));
   ChildProcess sender({test::smart_exe().string(), "dds-send", "--qos", "lossy-wifi", "--domain",
                        std::to_string(domain_id), "--reliability", reliability, "--count",
                        std::to_string(count), "--interval-ms", "2"},

@@ -53,6 +53,8 @@ enum DomainId : int {
   kAgentNodeProgress = 142,
   kAgentNodeAccept = 143,
   kAgentI2cMissing = 144,
+  kIsolationTwoRuns = 145,
+  kIsolationNamedRuns = 146,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -12,19 +12,18 @@
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/reader.hpp"
 #include "smart/dds/topics.hpp"
+#include "smart/dds/wire.hpp"
 #include "support/dds_test_support.hpp"
 
 namespace smart::test {
 
 class FleetWatcher {
  public:
-  explicit FleetWatcher(int domain_id)
+  explicit FleetWatcher(int domain_id, const std::string& run = smart_msg_DEFAULT_RUN)
       : domain_(domain_id, loopback()),
-        participant_(domain_),
-        progress_topic_(participant_, std::string(dds::kProgressTopic)),
-        state_topic_(participant_, std::string(dds::kStateTopic)),
-        progress_(participant_, progress_topic_, dds::default_qos_profile().progress.to_dds()),
-        states_(participant_, state_topic_, dds::default_qos_profile().state.to_dds()) {}
+        participant_(domain_, run),
+        progress_(participant_, dds::default_qos_profile()),
+        states_(participant_, dds::default_qos_profile()) {}
 
   // Waits until some robot (or `robot`) reports finished_seq >= at_least; returns the highest
   // finished_seq seen (-1: none).
@@ -55,10 +54,8 @@ class FleetWatcher {
   }
   dds::Domain domain_;
   dds::Participant participant_;
-  dds::Topic<smart_msg_Progress> progress_topic_;
-  dds::Topic<smart_msg_RobotState> state_topic_;
-  dds::Reader<smart_msg_Progress> progress_;
-  dds::Reader<smart_msg_RobotState> states_;
+  dds::WireReader<smart_msg_Progress> progress_;
+  dds::WireReader<smart_msg_RobotState> states_;
   std::map<uint32_t, smart_msg_Pose2D> poses_;
 };
 

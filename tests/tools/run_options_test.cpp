@@ -71,7 +71,9 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
                 "--qos",
                 "wifi",
                 "--network",
-                "network"});
+                "network",
+                "--run",
+                "exp-1.b_2"});
   const auto argv = sim_argv("/bin/smart", o);
   ASSERT_GE(argv.size(), 2u);
   EXPECT_EQ(argv[0], "/bin/smart");
@@ -93,6 +95,8 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   EXPECT_EQ(back.dds.domain, 33);
   EXPECT_EQ(back.dds.qos, "wifi");
   EXPECT_EQ(back.dds.network, Network::kNetwork);
+  EXPECT_EQ(back.dds.run, "exp-1.b_2");
+  EXPECT_TRUE(back.dds.run_given);
 }
 
 TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {

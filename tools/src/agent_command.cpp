@@ -136,7 +136,7 @@ int run_agent(const AgentOptions& o) {
   if (!o.i2c.empty()) hwc.i2c_device = o.i2c;
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.dds.run);
   const Pose pose = open_pose(o, participant);  // first: an emulated JetBot streams to it
   const auto bus = open_bus(o, hwc, model, pose);
   hw::JetbotDrive drive(

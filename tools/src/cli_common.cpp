@@ -4,7 +4,9 @@
 #include <signal.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <stdexcept>
 
@@ -29,14 +31,37 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   cmd->add_option("--qos", o.qos, "QoS profile: lan, wifi, lossy-wifi or a YAML file")
       ->envname("SMART_QOS")
       ->capture_default_str();
+  cmd->add_option("--run", o.run,
+                  "run name: processes of one run share it, concurrent runs on one domain never "
+                  "see each other (default: 'default'; `smart run` makes a fresh one)")
+      ->envname("SMART_RUN")
+      ->check(CLI::Validator(
+          [](std::string& s) -> std::string {
+            const bool ok = !s.empty() && s.size() <= 64 &&
+                            s.find_first_not_of(
+                                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                "0123456789._-") == std::string::npos;
+            return ok ? "" : "'" + s + "' is not a run name: use 1-64 of A-Z a-z 0-9 . _ -";
+          },
+          "NAME", "run name"))
+      ->each([&o](const std::string&) { o.run_given = true; });
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
 }
 
 std::vector<std::string> dds_argv(const DdsOptions& o) {
-  return {"--domain",  std::to_string(o.domain),           "--qos", o.qos,
-          "--network", enum_name(o.network, kNetworkNames)};
+  return {"--domain",  std::to_string(o.domain),
+          "--qos",     o.qos,
+          "--network", enum_name(o.network, kNetworkNames),
+          "--run",     o.run};
+}
+
+std::string fresh_run_name() {
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count();
+  return "run-" + std::to_string(::getpid()) + "-" + std::to_string(ns % 1000000000000LL);
 }
 
 dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile) {

@@ -39,7 +39,7 @@ constexpr uint32_t kEchoSource = dds::kMonitorClockSource;
 int run_echo(const DdsOptions& o, double duration_s) {
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.run);
   dds::WireReader<smart_msg_ActionWindow> actions(participant, profile);
   dds::WireReader<smart_msg_Clock> clocks(participant, profile);
   dds::WireWriter<smart_msg_Progress> progress(participant, profile);
@@ -189,7 +189,7 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
   }
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.run);
   Pinger ping(participant, profile, po);
   const auto timeout = milliseconds(static_cast<long>(po.timeout_s * 1000));
   if (!ping.actions.wait_for_readers(1, timeout) || !ping.progress.wait_for_writers(1, timeout)) {
@@ -231,7 +231,7 @@ struct SendOptions {
 int run_send(const DdsOptions& o, const SendOptions& so) {
   const auto profile = dds::find_qos_profile(o.qos);
   dds::Domain domain(o.domain, domain_config(o, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.run);
   // Progress QoS made keep-all: every sample counts, so losses show.
   dds::Topic<smart_msg_Progress> topic(participant, std::string(dds::kProgressTopic));
   auto qos = profile.progress;
@@ -239,7 +239,8 @@ int run_send(const DdsOptions& o, const SendOptions& so) {
       so.reliability == "reliable" ? dds::Reliability::kReliable : dds::Reliability::kBestEffort;
   qos.history = dds::HistoryKind::kKeepAll;
   qos.max_blocking = milliseconds(static_cast<long>(so.timeout_s * 1000));
-  dds::Writer<smart_msg_Progress> writer(participant, topic, qos.to_dds());
+  dds::Writer<smart_msg_Progress> writer(participant, topic,
+                                         qos.to_dds().partition(participant.run_partition()));
   const auto timeout = milliseconds(static_cast<long>(so.timeout_s * 1000));
   if (!writer.wait_for_readers(1, timeout)) {
     std::cerr << "dds-send: no reader matched on domain " << o.domain << " within " << so.timeout_s

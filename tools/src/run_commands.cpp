@@ -46,7 +46,7 @@ int run_sim(const SimCliOptions& o) {
   const auto model = agent::load_robot_model(find_config_file("robots", w.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.dds.run);
   std::vector<grid::Cell> starts;
   for (const auto& a : scen.agents) starts.push_back(a.start);
   sim::SimHost host(participant, profile, grid, model,
@@ -108,6 +108,7 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.robot = robot_file;
   info.qos = o.sim.dds.qos;
   info.clock = enum_name(o.sim.clock, kClockNames);
+  info.run = o.sim.dds.run;
   info.cell_m = o.sim.world.cell_m;
   info.monitor_peak_rss_mb = peak_rss_mb();
   info.machine = machine_description();
@@ -115,7 +116,9 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
 }
 
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
-int run_monitor(const MonitorCliOptions& o, bool spawn_sim_child) {
+int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
+  // A run this process starts whole gets a run (partition) of its own unless one was named.
+  if (spawn_sim_child && !o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
   const auto in = monitor::load_instance(instance_options(o.sim.world, o.plan, o.axis, o.format));
   check_ros_pose_robots(o.sim.ros_pose_robots, in.plan.paths.size());
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
@@ -124,7 +127,7 @@ int run_monitor(const MonitorCliOptions& o, bool spawn_sim_child) {
   std::optional<ChildProcess> sim;
   if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile));
-  dds::Participant participant(domain);
+  dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {

@@ -43,6 +43,9 @@ class Qos {
   Qos& lifespan(Millis duration);
   Qos& liveliness(LivelinessKind kind, Millis lease);
   Qos& autodispose_unregistered(bool autodispose);
+  // The one partition this reader or writer is in (on a reader/writer made directly on the
+  // participant, Cyclone applies it to the implicit publisher/subscriber).
+  Qos& partition(const std::string& name);
   // Resource limits bound the reader/writer cache when keep_all is used.
   Qos& resource_limits(int32_t max_samples, int32_t max_instances, int32_t max_per_instance);
 

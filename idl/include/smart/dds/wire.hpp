@@ -1,7 +1,7 @@
 // Contract: endpoints on the SMART topics made from the one table in topics.hpp: a
 // WireWriter<T> / WireReader<T> owns its topic and takes name and QoS (by the topic's role in
-// the QosProfile) from there, so no caller repeats either. They are a Writer<T> / Reader<T> in
-// every other respect.
+// the QosProfile) from there, so no caller repeats either, and put it in the participant's run
+// partition. They are a Writer<T> / Reader<T> in every other respect.
 #pragma once
 
 #include <string>
@@ -22,16 +22,19 @@ struct WireTopicHolder {
 };
 }  // namespace detail
 
+// The topic's QoS role in the profile, in the participant's run partition.
 template <class T>
-Qos wire_qos(const QosProfile& profile) {
-  return profile.topic(WireTopic<T>::role).to_dds();
+Qos wire_qos(const Participant& participant, const QosProfile& profile) {
+  Qos q = profile.topic(WireTopic<T>::role).to_dds();
+  q.partition(participant.run_partition());
+  return q;
 }
 
 template <class T>
 class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
  public:
   WireWriter(const Participant& p, const QosProfile& profile)
-      : detail::WireTopicHolder<T>(p), Writer<T>(p, this->topic_, wire_qos<T>(profile)) {}
+      : detail::WireTopicHolder<T>(p), Writer<T>(p, this->topic_, wire_qos<T>(p, profile)) {}
 };
 
 template <class T>
@@ -40,7 +43,7 @@ class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
   WireReader(const Participant& p, const QosProfile& profile,
              typename Reader<T>::Callback on_data_available = nullptr)
       : detail::WireTopicHolder<T>(p),
-        Reader<T>(p, this->topic_, wire_qos<T>(profile), std::move(on_data_available)) {}
+        Reader<T>(p, this->topic_, wire_qos<T>(p, profile), std::move(on_data_available)) {}
 };
 
 }  // namespace smart::dds

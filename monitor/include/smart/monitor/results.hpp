@@ -22,6 +22,7 @@ namespace smart::monitor {
 
 struct RunInfo {
   std::string map, scen, plan, robot, qos, clock;
+  std::string run;  // the run name (its DDS partition, idl/smart.idl "Runs")
   double cell_m = 1.0;
   double control_period_s = 0.1;
   uint64_t seed = 0;
