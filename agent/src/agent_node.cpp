@@ -1,11 +1,19 @@
 #include "smart/agent/agent_node.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "smart/wire/convert.hpp"
 
 namespace smart::agent {
 
-AgentNode::AgentNode(const dds::Participant& p, const dds::QosProfile& qos)
-    : actions_(p, qos), clocks_(p, qos), progress_(p, qos), states_(p, qos) {}
+AgentNode::AgentNode(const dds::Participant& p, const dds::QosProfile& qos, std::size_t robots,
+                     std::optional<wire::Bounds> bounds)
+    : robots_(robots),
+      bounds_(bounds),
+      actions_(p, qos),
+      clocks_(p, qos),
+      progress_(p, qos),
+      states_(p, qos) {}
 
 void AgentNode::host(Agent& agent) {
   if (hosted_.size() <= agent.robot_id()) hosted_.resize(agent.robot_id() + 1);
@@ -18,6 +26,12 @@ AgentNode::Hosted* AgentNode::hosted(uint32_t robot) {
 
 std::size_t AgentNode::take_windows(const Accept& accept) {
   return actions_.take_each([&](const smart_msg_ActionWindow& m) {
+    if (auto why = wire::check_window(m, robots_, bounds_); !why.empty()) {
+      if (rejections_.count("action", why)) {
+        spdlog::warn("window for robot {} (run {}) rejected: {}", m.robot_id, m.run_id, why);
+      }
+      return;
+    }
     const uint32_t n = m.actions._length;
     const WindowInfo info{m.robot_id, m.run_id, m.total_actions,
                           n == 0 ? 0 : m.actions._buffer[n - 1].seq + 1, n == 0};

@@ -9,6 +9,7 @@
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/wire/convert.hpp"
+#include "smart/wire/validate.hpp"
 
 namespace smart::monitor {
 
@@ -64,6 +65,10 @@ struct MonitorNode::Impl {
   dds::WireReader<smart_msg_RobotState> states;
   dds::WireReader<smart_msg_Clock> clocks;
   dds::WireReader<smart_msg_SimStatus> status;
+  // Anything received is checked before it becomes an event (wire/validate.hpp).
+  const std::size_t robots;
+  const wire::Bounds bounds;
+  wire::Rejections rejections;
   const SteadyClock::time_point wall0 = SteadyClock::now();
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
@@ -75,29 +80,42 @@ struct MonitorNode::Impl {
         progress(p, qos),
         states(p, qos),
         clocks(p, qos),
-        status(p, qos) {}
+        status(p, qos),
+        robots(in.actions.robots()),
+        bounds(wire::bounds_of(in.grid, o.cell_m)) {}
+
+  // True when the sample passed; otherwise it is counted and (rate-limited) logged.
+  bool valid(const char* topic, const std::string& why) {
+    if (why.empty()) return true;
+    if (rejections.count(topic, why)) spdlog::warn("monitor: {} sample rejected: {}", topic, why);
+    return false;
+  }
 
   double now_s() const { return std::chrono::duration<double>(SteadyClock::now() - wall0).count(); }
 
   void read_clocks() {
     clocks.take_each([&](const smart_msg_Clock& c) {
-      if (c.source_id == dds::kSimClockSource) sup.on_clock(wire::from_wire(c), now_s());
+      if (c.source_id != dds::kSimClockSource || !valid("clock", wire::check_clock(c))) return;
+      sup.on_clock(wire::from_wire(c), now_s());
     });
   }
 
   void read_progress() {
     progress.take_each([&](const smart_msg_Progress& p) {
+      if (!valid("progress", wire::check_progress(p, robots))) return;
       sup.on_progress({p.robot_id, p.run_id, p.finished_seq}, now_s());
     });
   }
 
   void read_observations() {
     states.take_each([&](const smart_msg_RobotState& s) {
+      if (!valid("state", wire::check_state(s, robots, bounds))) return;
       if (!sup.on_state({s.robot_id, s.run_id}, now_s()) || !opt.on_state) return;
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
     status.take_each([&](const smart_msg_SimStatus& s) {
+      if (!valid("sim_status", wire::check_status(s))) return;
       sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb});
     });
   }
@@ -168,6 +186,7 @@ struct MonitorNode::Impl {
     }
     MonitorResult r = sup.result();
     r.wall_time_s = now_s();
+    r.rejected_samples = rejections.counts();
     return r;
   }
 

@@ -114,6 +114,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"finished_actions", r.finished_actions},
       {"total_actions", r.total_actions},
       {"rejected_progress", r.rejected_progress},
+      {"rejected_samples", r.rejected_samples},
       {"run_id", r.run_id},
       {"run", info.run},
       {"seed", info.seed},

@@ -12,6 +12,7 @@
 #include "smart/sim/ros_view.hpp"
 #include "smart/wire/convert.hpp"
 #include "smart/wire/lockstep.hpp"
+#include "smart/wire/validate.hpp"
 
 namespace smart::sim {
 
@@ -23,8 +24,9 @@ struct SimHost::Impl {
   const dds::Participant& participant;
   SimHostOptions opt;
   Fleet fleet;
-  agent::AgentNode node;
-  RosView ros_view;  // ROS 2 view (poses, tf, chosen robots' pose topics), at the state rate
+  wire::Bounds bounds;
+  agent::AgentNode node;  // drops windows that fail the wire checks (robot ids, NaN, off-map)
+  RosView ros_view;       // ROS 2 view (poses, tf, chosen robots' pose topics), at the state rate
   dds::WireWriter<smart_msg_Clock> clock_out;
   dds::WireWriter<smart_msg_SimStatus> status_out;
   dds::WireReader<smart_msg_RobotState> states_in;  // external robots' poses
@@ -34,7 +36,7 @@ struct SimHost::Impl {
   uint64_t run_id = 0;
   uint64_t tick = 0;
   uint64_t state_every = 1;
-  uint64_t rejected_windows = 0;
+  wire::Rejections rejected_states;  // external robots' states
   ContactStats last_status{};
   const SteadyClock::time_point wall0 = SteadyClock::now();
 
@@ -44,7 +46,8 @@ struct SimHost::Impl {
       : participant(p),
         opt(o),
         fleet(grid, model, o.sim, starts, o.pose_timeout_s),
-        node(p, qos),
+        bounds(wire::bounds_of(grid, o.sim.cell_m)),
+        node(p, qos, starts.size(), bounds),
         ros_view(p, qos, starts.size(), o.ros_pose_robots),
         clock_out(p, qos),
         status_out(p, qos),
@@ -66,15 +69,6 @@ struct SimHost::Impl {
 
   // Windows of every robot count for the handshake, driven here or not.
   bool accept_window(const agent::WindowInfo& w) {
-    if (w.robot_id >= fleet.robots()) {
-      if (rejected_windows++ == 0) {
-        spdlog::error(
-            "sim host: window for robot {} but this host has {} robots; check "
-            "--agents on both sides",
-            w.robot_id, fleet.robots());
-      }
-      return false;
-    }
     if (w.run_id < run_id) return false;  // history of an earlier run
     if (w.run_id > run_id) {
       run_id = w.run_id;
@@ -90,7 +84,11 @@ struct SimHost::Impl {
 
   void track_external_robots() {
     states_in.take_each([&](const smart_msg_RobotState& s) {
-      if (s.robot_id < fleet.robots() && fleet.external(s.robot_id)) {
+      if (auto why = wire::check_state(s, fleet.robots(), bounds); !why.empty()) {
+        if (rejected_states.count("state", why)) spdlog::warn("sim host: state rejected: {}", why);
+        return;
+      }
+      if (fleet.external(s.robot_id)) {
         fleet.world().set_external_pose(s.robot_id, {s.pose.x_m, s.pose.y_m, s.pose.yaw_rad});
       }
     });
@@ -148,6 +146,9 @@ struct SimHost::Impl {
     r.contacts = fleet.world().contacts();
     r.mean_awake_robots = s.mean_awake_robots;
     r.mean_active_systems = s.mean_active_systems;
+    r.rejected_samples = node.rejections().counts();
+    for (const auto& [topic, reasons] : rejected_states.counts())
+      r.rejected_samples[topic] = reasons;
     return r;
   }
 

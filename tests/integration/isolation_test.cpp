@@ -19,10 +19,12 @@ class Isolation : public ::testing::Test {
     if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
   }
   std::vector<std::string> random_map(int domain, const std::string& agents) const {
-    return {"--map",  (b_ / "maps/random-32-32-20.map").string(),
-            "--scen", (b_ / "scens/random-32-32-20-random-1.scen").string(),
-            "--plan", (b_ / "smart-examples/example_paths_xy.txt").string(),
-            "--axis", "xy", "--agents", agents, "--domain", std::to_string(domain),
+    return {"--map",        (b_ / "maps/random-32-32-20.map").string(),
+            "--scen",       (b_ / "scens/random-32-32-20-random-1.scen").string(),
+            "--plan",       (b_ / "smart-examples/example_paths_xy.txt").string(),
+            "--axis",       "xy",
+            "--agents",     agents,
+            "--domain",     std::to_string(domain),
             "--no-progress"};
   }
   static std::vector<std::string> with(std::string command, std::vector<std::string> args) {
@@ -62,11 +64,11 @@ TEST_F(Isolation, TwoRunsAtOnceOnOneDomainGiveWhatEachGivesAlone) {
 TEST_F(Isolation, AMonitorAndASimOfDifferentRunsNeverMeet) {
   const int d = kIsolationNamedRuns;
   const auto sim_out = temp_file("iso_sim.out");
-  auto sim = start_smart(with("sim", {"--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-                                      (b_ / "scens/random-32-32-20-random-1.scen").string(),
-                                      "--agents", "10", "--domain", std::to_string(d), "--run",
-                                      "experiment-b", "--timeout-s", "20"}),
-                         sim_out);
+  auto sim = start_smart(
+      with("sim", {"--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+                   (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents", "10",
+                   "--domain", std::to_string(d), "--run", "experiment-b", "--timeout-s", "20"}),
+      sim_out);
   auto args = with("monitor", random_map(d, "10"));
   args.insert(args.end(), {"--run", "experiment-a", "--timeout-s", "3"});
   const auto r = run_smart(args, 60s, "iso_monitor");

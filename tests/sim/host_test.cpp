@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <thread>
 
 #include "smart/dds/action_window.hpp"
@@ -105,6 +106,55 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
   EXPECT_TRUE(result.ok) << result.error;
   EXPECT_TRUE(result.stopped_by_monitor);
   EXPECT_GT(result.ticks, 5u);
+}
+
+// Regression: a window with NaN coordinates crashed the sim host inside Simbody ("Inertia
+// matrix contains a NaN"); one for a robot it does not have was half-applied. Both are now
+// dropped at the edge, counted by reason, and the host goes on.
+TEST(SimHost, MalformedWindowsAreDroppedNotExecuted) {
+  const auto grid = test::grid_of({"......", "......"});
+  dds::Domain domain(test::kSimHostBadWindows, test::loopback());
+  dds::Participant host_p(domain), mon_p(domain);
+  const auto qos = dds::default_qos_profile();
+  SimHostOptions opt;
+  opt.timeout_s = 20;
+  SimHost host(host_p, qos, grid, fast_model(), start_poses(grid, 1.0, {{0, 0}, {0, 1}}, 0.0), opt);
+  std::atomic<bool> stop{false};
+  SimHostResult result;
+  std::thread t([&] { result = host.run(stop); });
+  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos);
+  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos);
+  dds::WireReader<smart_msg_Progress> progress(mon_p, qos);
+  ASSERT_TRUE(windows.wait_for_readers(1, 10s));
+  const uint64_t run = 7;
+  smart_msg_ActionStep nan_step{};
+  nan_step.type = smart_msg_ACTION_MOVE;
+  nan_step.to = {std::nan(""), 1e300, 1, 0};
+  dds::ActionWindowBuffer bad(0, run, 1, {nan_step});
+  smart_msg_ActionStep fine{};
+  fine.type = smart_msg_ACTION_MOVE;
+  fine.to = {0.5, 0.0, 1, 2};
+  dds::ActionWindowBuffer stranger(9, run, 1, {fine});
+  dds::ActionWindowBuffer idle(1, run, 0);  // a valid (empty) window: the host joins run 7
+  windows.write(bad.view());
+  windows.write(stranger.view());
+  windows.write(idle.view());
+  // The host never counted the bad windows, so a total of 0 lets it step.
+  for (uint64_t tick = 0; tick < 20; ++tick) {
+    answers.write(smart_msg_Clock{dds::kMonitorClockSource, run, tick, 0.0, 0, false});
+    std::this_thread::sleep_for(5ms);
+  }
+  answers.write(smart_msg_Clock{dds::kMonitorClockSource, run, 20, 0.0, 0, true});
+  t.join();
+  EXPECT_TRUE(result.ok) << result.error;
+  EXPECT_GT(result.ticks, 0u);
+  ASSERT_EQ(result.rejected_samples.count("action"), 1u);
+  const auto& reasons = result.rejected_samples.at("action");
+  ASSERT_EQ(reasons.size(), 2u);
+  EXPECT_EQ(reasons.begin()->second + std::next(reasons.begin())->second, 2u);
+  bool any_progress = false;
+  progress.take_each([&](const smart_msg_Progress&) { any_progress = true; });
+  EXPECT_FALSE(any_progress) << "a dropped window was executed";
 }
 
 }  // namespace

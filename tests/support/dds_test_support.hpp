@@ -55,6 +55,8 @@ enum DomainId : int {
   kAgentI2cMissing = 144,
   kIsolationTwoRuns = 145,
   kIsolationNamedRuns = 146,
+  kSimHostBadWindows = 147,
+  kMonitorBadSamples = 148,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

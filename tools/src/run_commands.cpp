@@ -35,6 +35,7 @@ nlohmann::json sim_report(const sim::SimHostResult& r) {
           {"wall_contacts", r.contacts.robot_wall_events},
           {"mean_awake_robots", r.mean_awake_robots},
           {"mean_active_systems", r.mean_active_systems},
+          {"rejected_samples", r.rejected_samples},
           {"peak_rss_mb", peak_rss_mb()}};
 }
 

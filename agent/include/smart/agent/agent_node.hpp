@@ -1,8 +1,10 @@
 // Contract: the DDS loop of the robots one process hosts (the sim host: every robot of the
 // fleet; `smart agent`: one), shared so both speak to the monitor the same way:
-// - take_windows() routes each received action window (keyed topic, demultiplexed by robot id)
-//   to the hosted agent of that robot, when `accept` (if given) agrees; `accept` sees every
-//   window, hosted robot or not (the sim host counts them for the lock-step handshake);
+// - take_windows() drops windows that fail the wire checks (wire/validate.hpp; counted in
+//   rejections(), logged rate-limited), and routes each other received action window (keyed topic,
+//   demultiplexed by robot id) to the hosted agent of that robot, when `accept` (if given) agrees;
+//   `accept` sees every window, hosted robot or not (the sim host counts them for the lock-step
+//   handshake);
 // - publish_progress() publishes a robot's cumulative progress only when it changed, for
 //   robots that have a run, and returns how many actions were newly reported finished;
 // - publish_state() publishes one robot's state; take_monitor_clock() the monitor's newest
@@ -20,6 +22,7 @@
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/wire/lockstep.hpp"
+#include "smart/wire/validate.hpp"
 
 namespace smart::agent {
 
@@ -33,7 +36,10 @@ struct WindowInfo {
 
 class AgentNode {
  public:
-  AgentNode(const dds::Participant& participant, const dds::QosProfile& qos);
+  // robots: the fleet size when known (0: not known here); bounds: the map's, when known.
+  // Windows that fail wire::check_window never reach an agent nor `accept`.
+  AgentNode(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots = 0,
+            std::optional<wire::Bounds> bounds = std::nullopt);
 
   // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node.
   void host(Agent& agent);
@@ -45,6 +51,7 @@ class AgentNode {
                      WheelSpeeds wheels);
   std::optional<wire::Tick> take_monitor_clock();
 
+  const wire::Rejections& rejections() const { return rejections_; }
   dds_entity_t action_reader() const { return actions_.handle(); }
   dds_entity_t clock_reader() const { return clocks_.handle(); }
 
@@ -57,6 +64,9 @@ class AgentNode {
   Hosted* hosted(uint32_t robot);
 
   std::vector<Hosted> hosted_;  // by robot id; agent == nullptr: not hosted here
+  std::size_t robots_;
+  std::optional<wire::Bounds> bounds_;
+  wire::Rejections rejections_;
   dds::WireReader<smart_msg_ActionWindow> actions_;
   dds::WireReader<smart_msg_Clock> clocks_;
   dds::WireWriter<smart_msg_Progress> progress_;

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,6 +78,9 @@ struct MonitorResult {
   std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
   uint64_t rejected_progress = 0;
+  // Samples the edge dropped before they became events (wire/validate.hpp): topic -> reason ->
+  // count.
+  std::map<std::string, std::map<std::string, uint64_t>> rejected_samples;
 };
 
 struct SupervisorConfig {

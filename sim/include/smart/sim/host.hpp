@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +52,8 @@ struct SimHostResult {
   // On average per period: robots stepped by Simbody (the rest sleep) and Simbody systems.
   double mean_awake_robots = 0;
   double mean_active_systems = 0;
+  // Samples dropped by the wire checks: topic -> reason -> count.
+  std::map<std::string, std::map<std::string, uint64_t>> rejected_samples;
 };
 
 class SimHost {

@@ -1,0 +1,111 @@
+#include "smart/wire/validate.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <utility>
+
+namespace smart::wire {
+
+namespace {
+
+using Field = std::pair<const char*, double>;
+
+std::string first_not_finite(std::initializer_list<Field> fields, const std::string& where = "") {
+  for (const auto& [name, value] : fields) {
+    if (!std::isfinite(value)) return "not a finite number: " + where + name;
+  }
+  return {};
+}
+
+std::string robot_range(uint32_t robot, std::size_t robots) {
+  if (robots == 0 || robot < robots) return {};
+  return "robot " + std::to_string(robot) + " is not in this fleet of " + std::to_string(robots) +
+         " robots (check --agents on every process of the run)";
+}
+
+std::string outside(double x, double y, const std::optional<Bounds>& b, const std::string& what) {
+  if (!b || (x >= b->min_x_m && x <= b->max_x_m && y >= b->min_y_m && y <= b->max_y_m)) return {};
+  return what + " lies outside the map";
+}
+
+std::string check_step(const smart_msg_ActionStep& s, const std::string& at,
+                       const std::optional<Bounds>& bounds) {
+  if (s.type != smart_msg_ACTION_MOVE && s.type != smart_msg_ACTION_ROTATE) {
+    return "unknown action type at " + at;
+  }
+  auto why = first_not_finite({{"from.x_m", s.from.x_m},
+                               {"from.y_m", s.from.y_m},
+                               {"to.x_m", s.to.x_m},
+                               {"to.y_m", s.to.y_m},
+                               {"heading_rad", s.heading_rad},
+                               {"plan_time_s", s.plan_time_s}},
+                              at + ".");
+  if (why.empty()) why = outside(s.from.x_m, s.from.y_m, bounds, at + ".from");
+  if (why.empty()) why = outside(s.to.x_m, s.to.y_m, bounds, at + ".to");
+  return why;
+}
+
+}  // namespace
+
+Bounds bounds_of(const grid::Grid& grid, double cell_m) {
+  return {-cell_m, -cell_m, grid.width() * cell_m, grid.height() * cell_m};
+}
+
+std::string check_window(const smart_msg_ActionWindow& w, std::size_t robots,
+                         const std::optional<Bounds>& bounds) {
+  if (auto why = robot_range(w.robot_id, robots); !why.empty()) return why;
+  const uint32_t n = w.actions._length;
+  if (n > smart_msg_MAX_WINDOW_ACTIONS) return "window longer than MAX_WINDOW_ACTIONS";
+  if (n > 0 && w.actions._buffer == nullptr) return "window without its actions";
+  for (uint32_t i = 0; i < n; ++i) {
+    const auto& s = w.actions._buffer[i];
+    const std::string at = "actions[" + std::to_string(i) + "]";
+    if (i > 0 && s.seq != w.actions._buffer[i - 1].seq + 1) return "seqs not consecutive at " + at;
+    if (s.seq >= w.total_actions) return "seq past total_actions at " + at;
+    if (auto why = check_step(s, at, bounds); !why.empty()) return why;
+  }
+  return {};
+}
+
+std::string check_state(const smart_msg_RobotState& s, std::size_t robots,
+                        const std::optional<Bounds>& bounds) {
+  if (auto why = robot_range(s.robot_id, robots); !why.empty()) return why;
+  auto why = first_not_finite({{"sim_time_s", s.sim_time_s},
+                               {"pose.x_m", s.pose.x_m},
+                               {"pose.y_m", s.pose.y_m},
+                               {"pose.yaw_rad", s.pose.yaw_rad},
+                               {"linear_mps", s.linear_mps},
+                               {"angular_radps", s.angular_radps},
+                               {"wheel_left_mps", s.wheel_left_mps},
+                               {"wheel_right_mps", s.wheel_right_mps}});
+  return why.empty() ? outside(s.pose.x_m, s.pose.y_m, bounds, "pose") : why;
+}
+
+std::string check_progress(const smart_msg_Progress& p, std::size_t robots) {
+  if (auto why = robot_range(p.robot_id, robots); !why.empty()) return why;
+  if (p.finished_seq < smart_msg_NO_SEQ || p.executing_seq < smart_msg_NO_SEQ) {
+    return "seq below NO_SEQ";
+  }
+  return {};
+}
+
+std::string check_clock(const smart_msg_Clock& c) {
+  if (auto why = first_not_finite({{"sim_time_s", c.sim_time_s}}); !why.empty()) return why;
+  return c.sim_time_s < 0 ? "negative sim_time_s" : "";
+}
+
+std::string check_status(const smart_msg_SimStatus& s) {
+  return first_not_finite({{"sim_time_s", s.sim_time_s},
+                           {"min_gap_m", s.min_gap_m},
+                           {"wall_time_s", s.wall_time_s},
+                           {"peak_rss_mb", s.peak_rss_mb}});
+}
+
+bool Rejections::count(const std::string& topic, const std::string& reason) {
+  ++counts_[topic][reason];
+  ++total_;
+  const uint64_t n = ++per_topic_[topic];
+  return n <= 5 || n % 1000 == 0;
+}
+
+}  // namespace smart::wire

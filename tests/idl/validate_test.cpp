@@ -1,0 +1,98 @@
+// The checks every received sample passes before it touches a core or a results file.
+#include "smart/wire/validate.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace smart::wire {
+namespace {
+
+using ::testing::HasSubstr;
+
+smart_msg_ActionStep step(uint32_t seq, double x, double y) {
+  smart_msg_ActionStep s{};
+  s.seq = seq;
+  s.type = smart_msg_ACTION_MOVE;
+  s.from = {x, y, 0, 0};
+  s.to = {x + 0.5, y, 1, 0};
+  return s;
+}
+
+struct Window {
+  std::vector<smart_msg_ActionStep> steps;
+  smart_msg_ActionWindow msg{};
+  Window(uint32_t robot, uint32_t total, std::vector<smart_msg_ActionStep> s) : steps(std::move(s)) {
+    msg.robot_id = robot;
+    msg.total_actions = total;
+    msg.actions._buffer = steps.data();
+    msg.actions._length = msg.actions._maximum = static_cast<uint32_t>(steps.size());
+  }
+};
+
+const Bounds kMap = bounds_of(grid::Grid(4, 3, std::vector<uint8_t>(12, 0)), 1.0);
+
+TEST(Validate, AWellFormedWindowPasses) {
+  Window w(1, 5, {step(2, 0, 0), step(3, 0.5, 0)});
+  EXPECT_EQ(check_window(w.msg, 4, kMap), "");
+  EXPECT_EQ(check_window(Window(1, 0, {}).msg, 4, kMap), "");
+}
+
+TEST(Validate, WindowsThatCouldHurtAreRejectedWithTheReason) {
+  auto nan = step(0, 0, 0);
+  nan.to.x_m = std::nan("");
+  EXPECT_THAT(check_window(Window(0, 5, {nan}).msg, 4, kMap),
+              HasSubstr("not a finite number: actions[0].to.x_m"));
+  auto far = step(0, 0, 0);
+  far.to.y_m = 1e300;
+  EXPECT_THAT(check_window(Window(0, 5, {far}).msg, 4, kMap), HasSubstr("outside the map"));
+  EXPECT_THAT(check_window(Window(0, 5, {far}).msg, 4, std::nullopt), "");  // no map known
+  EXPECT_THAT(check_window(Window(7, 5, {step(0, 0, 0)}).msg, 4, kMap),
+              HasSubstr("robot 7 is not in this fleet of 4 robots (check --agents"));
+  EXPECT_THAT(check_window(Window(0, 5, {step(0, 0, 0), step(2, 0, 0)}).msg, 4, kMap),
+              HasSubstr("seqs not consecutive at actions[1]"));
+  EXPECT_THAT(check_window(Window(0, 1, {step(1, 0, 0)}).msg, 4, kMap),
+              HasSubstr("seq past total_actions"));
+  auto odd = step(0, 0, 0);
+  odd.type = static_cast<smart_msg_ActionType>(7);
+  EXPECT_THAT(check_window(Window(0, 5, {odd}).msg, 4, kMap), HasSubstr("unknown action type"));
+}
+
+TEST(Validate, StatesProgressClockAndStatus) {
+  smart_msg_RobotState s{};
+  s.robot_id = 1;
+  s.pose = {1.0, 1.0, 0.0};
+  EXPECT_EQ(check_state(s, 4, kMap), "");
+  s.linear_mps = std::numeric_limits<double>::infinity();
+  EXPECT_THAT(check_state(s, 4, kMap), HasSubstr("linear_mps"));
+  s.linear_mps = 0;
+  s.pose.x_m = -50;
+  EXPECT_THAT(check_state(s, 4, kMap), HasSubstr("outside the map"));
+  EXPECT_EQ(check_progress({2, 1, -1, 0}, 4), "");
+  EXPECT_THAT(check_progress({4, 1, 0, 0}, 4), HasSubstr("robot 4 is not in this fleet"));
+  EXPECT_THAT(check_progress({0, 1, -5, 0}, 4), HasSubstr("below NO_SEQ"));
+  EXPECT_EQ(check_clock({0, 1, 3, 0.3, 0, false}), "");
+  EXPECT_THAT(check_clock({0, 1, 3, std::nan(""), 0, false}), HasSubstr("sim_time_s"));
+  EXPECT_THAT(check_clock({0, 1, 3, -1.0, 0, false}), HasSubstr("negative"));
+  smart_msg_SimStatus st{};
+  EXPECT_EQ(check_status(st), "");
+  st.min_gap_m = std::nan("");
+  EXPECT_THAT(check_status(st), HasSubstr("min_gap_m"));
+}
+
+TEST(Validate, RejectionsAreCountedByTopicAndReasonAndLoggedSparingly) {
+  Rejections r;
+  int logged = 0;
+  for (int i = 0; i < 2000; ++i) logged += r.count("state", "not a finite number: pose.x_m") ? 1 : 0;
+  logged += r.count("clock", "negative sim_time_s") ? 1 : 0;
+  EXPECT_EQ(logged, 5 + 2 + 1);  // first five, the 1000th and 2000th; the clock's first
+  EXPECT_EQ(r.total(), 2001u);
+  EXPECT_EQ(r.counts().at("state").at("not a finite number: pose.x_m"), 2000u);
+  EXPECT_EQ(r.counts().at("clock").size(), 1u);
+}
+
+}  // namespace
+}  // namespace smart::wire
