@@ -62,6 +62,9 @@ std::chrono::milliseconds millis(const std::string& source, const YAML::Node& no
                                  const std::string& key) {
   const auto v = scalar<long long>(source, node, key, "a whole number of milliseconds");
   if (v < 0) fail(source, node, "'" + key + "' is negative; give a duration >= 0 ms");
+  // Longer than an hour is a typo, and DDS turns huge durations into slow, misleading failures.
+  if (v > 3'600'000)
+    fail(source, node, "'" + key + "' is more than an hour; give at most 3600000 ms");
   return std::chrono::milliseconds(v);
 }
 

@@ -24,15 +24,34 @@ int classify(char c) {
   }
 }
 
-}  // namespace
+// Before the grid is allocated: a size no map has, or a header promising more rows than the
+// text holds (a 100000x100000 header used to allocate 10 GB first).
+void check_size(long long width, long long height, std::size_t rows_left, int last_line,
+                const std::string& source, std::vector<Problem>& problems) {
+  if (width * height > kMaxGridCells) {
+    problems.push_back({source, 0, -1,
+                        "a " + std::to_string(width) + "x" + std::to_string(height) +
+                            " map has more than " + std::to_string(kMaxGridCells) +
+                            " cells, more than this reader accepts"});
+  } else if (static_cast<long long>(rows_left) < height) {
+    problems.push_back({source, last_line, -1,
+                        "the map has " + std::to_string(rows_left) + " rows but 'height' is " +
+                            std::to_string(height) + "; the file may be truncated"});
+  }
+}
 
-Grid parse_map(std::string_view text, const std::string& source) {
-  const auto lines = split_lines(text);
-  std::vector<Problem> problems;
+struct Header {
+  long long height = -1, width = -1;
+  std::size_t first_row_line = 0;  // index of the line after 'map'
+};
+
+// Reads 'type', 'height', 'width' up to and including 'map'; problems go to `problems`.
+Header parse_header(const std::vector<std::string_view>& lines, const std::string& source,
+                    std::vector<Problem>& problems) {
   auto problem = [&](int line, std::string msg) {
     problems.push_back({source, line, -1, std::move(msg)});
   };
-  long long height = -1, width = -1;
+  Header header;
   std::size_t i = 0;
   bool saw_type = false, saw_map = false;
   for (; i < lines.size() && !saw_map; ++i) {
@@ -43,12 +62,12 @@ Grid parse_map(std::string_view text, const std::string& source) {
       saw_type = true;
     } else if (words[0] == "height" || words[0] == "width") {
       const auto v = words.size() == 2 ? parse_int(words[1]) : std::nullopt;
-      if (!v || *v <= 0 || *v > 100000) {
+      if (!v || *v <= 0 || *v > kMaxGridSide) {
         problem(ln, "'" + excerpt(lines[i]) + "': " + std::string(words[0]) +
-                        " must be a positive whole number, e.g. '" + std::string(words[0]) +
-                        " 32'");
+                        " must be a positive whole number up to " + std::to_string(kMaxGridSide) +
+                        ", e.g. '" + std::string(words[0]) + " 32'");
       } else {
-        (words[0] == "height" ? height : width) = *v;
+        (words[0] == "height" ? header.height : header.width) = *v;
       }
     } else if (words[0] == "map") {
       saw_map = true;
@@ -62,12 +81,30 @@ Grid parse_map(std::string_view text, const std::string& source) {
   if (!saw_type && problems.empty()) {
     problem(1, "missing 'type octile' header line; is this a MovingAI .map file?");
   }
-  if (height < 0 && problems.empty()) problem(0, "missing 'height H' header line");
-  if (width < 0 && problems.empty()) problem(0, "missing 'width W' header line");
+  if (header.height < 0 && problems.empty()) problem(0, "missing 'height H' header line");
+  if (header.width < 0 && problems.empty()) problem(0, "missing 'width W' header line");
   if (!saw_map && problems.empty()) problem(0, "missing 'map' line before the grid rows");
+  header.first_row_line = i;
+  return header;
+}
+
+}  // namespace
+
+Grid parse_map(std::string_view text, const std::string& source) {
+  const auto lines = split_lines(text);
+  std::vector<Problem> problems;
+  auto problem = [&](int line, std::string msg) {
+    problems.push_back({source, line, -1, std::move(msg)});
+  };
+  const Header header = parse_header(lines, source, problems);
+  std::size_t i = header.first_row_line;
+  if (problems.empty()) {
+    check_size(header.width, header.height, lines.size() - i, static_cast<int>(lines.size()),
+               source, problems);
+  }
   throw_if_any(problems);
 
-  const auto w = static_cast<int32_t>(width), h = static_cast<int32_t>(height);
+  const auto w = static_cast<int32_t>(header.width), h = static_cast<int32_t>(header.height);
   std::vector<uint8_t> blocked(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 1);
   int32_t row = 0;
   for (; i < lines.size(); ++i) {

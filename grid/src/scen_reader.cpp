@@ -36,11 +36,11 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
     const char* names[6] = {"width", "height", "start_x", "start_y", "goal_x", "goal_y"};
     for (int k = 0; k < 6; ++k) {
       const auto p = parse_int(fields[static_cast<std::size_t>(k) + 2]);
-      if (!p || *p < 0) {
-        problems.push_back({source, ln, -1,
-                            std::string(names[k]) + " is '" +
-                                excerpt(fields[static_cast<std::size_t>(k) + 2]) +
-                                "'; it must be a whole number >= 0"});
+      if (!p || *p < 0 || *p > kMaxGridSide) {
+        problems.push_back(
+            {source, ln, -1,
+             std::string(names[k]) + " is '" + excerpt(fields[static_cast<std::size_t>(k) + 2]) +
+                 "'; it must be a whole number from 0 to " + std::to_string(kMaxGridSide)});
         ok = false;
       } else {
         v[k] = *p;
@@ -56,6 +56,13 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
       scen.map_name = std::string(trim(fields[1]));
       scen.map_width = static_cast<int32_t>(v[0]);
       scen.map_height = static_cast<int32_t>(v[1]);
+    } else if (v[0] != scen.map_width || v[1] != scen.map_height) {
+      problems.push_back({source, ln, -1,
+                          "map size " + std::to_string(v[0]) + "x" + std::to_string(v[1]) +
+                              " differs from the " + std::to_string(scen.map_width) + "x" +
+                              std::to_string(scen.map_height) +
+                              " of the first row; a scenario belongs to one map"});
+      continue;
     }
     scen.agents.push_back({{static_cast<int32_t>(v[2]), static_cast<int32_t>(v[3])},
                            {static_cast<int32_t>(v[4]), static_cast<int32_t>(v[5])},

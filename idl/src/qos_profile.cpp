@@ -22,6 +22,15 @@ using config::reject_unknown;
 using config::require_map;
 using config::scalar;
 
+// A period that must not be 0: a deadline or lease of 0 ms asks DDS to react all the time (the
+// monitor spun at 100 % CPU and never exited).
+std::chrono::milliseconds positive_millis(const std::string& source, const YAML::Node& v,
+                                          const std::string& key) {
+  const auto ms = millis(source, v, key);
+  if (ms.count() == 0) fail(source, v, "'" + key + "' must be at least 1 ms (or left out)");
+  return ms;
+}
+
 void parse_topic(const std::string& source, const YAML::Node& node, const std::string& path,
                  TopicQos& q) {
   require_map(source, node, path);
@@ -44,13 +53,15 @@ void parse_topic(const std::string& source, const YAML::Node& node, const std::s
           {{"keep_last", HistoryKind::kKeepLast}, {"keep_all", HistoryKind::kKeepAll}});
     } else if (key == "depth") {
       q.depth = scalar<int32_t>(source, v, full, "a whole number >= 1");
-      if (q.depth < 1) fail(source, v, "'" + full + "' must be >= 1 (samples kept per robot)");
+      if (q.depth < 1 || q.depth > 10000) {
+        fail(source, v, "'" + full + "' must be >= 1 and <= 10000 (samples kept per robot)");
+      }
     } else if (key == "durability") {
       q.durability = choice<Durability>(
           source, v, full,
           {{"volatile", Durability::kVolatile}, {"transient_local", Durability::kTransientLocal}});
     } else if (key == "deadline_ms") {
-      q.deadline = millis(source, v, full);
+      q.deadline = positive_millis(source, v, full);
     } else if (key == "lifespan_ms") {
       q.lifespan = millis(source, v, full);
     } else if (key == "liveliness") {
@@ -60,7 +71,7 @@ void parse_topic(const std::string& source, const YAML::Node& node, const std::s
                                   {"manual_by_participant", LivelinessKind::kManualByParticipant},
                                   {"manual_by_topic", LivelinessKind::kManualByTopic}});
     } else if (key == "liveliness_lease_ms") {
-      q.liveliness_lease = millis(source, v, full);
+      q.liveliness_lease = positive_millis(source, v, full);
     } else if (key == "autodispose") {
       q.autodispose = scalar<bool>(source, v, full, "true or false");
     }
@@ -75,7 +86,9 @@ void parse_transport(const std::string& source, const YAML::Node& node, Transpor
   for (const auto& kv : node) {
     const auto key = kv.first.as<std::string>();
     const auto full = "transport." + key;
-    if (key == "heartbeat_interval_ms") t.heartbeat_interval = millis(source, kv.second, full);
+    if (key == "heartbeat_interval_ms") {
+      t.heartbeat_interval = positive_millis(source, kv.second, full);
+    }
     if (key == "nack_delay_ms") t.nack_delay = millis(source, kv.second, full);
     if (key == "auto_resched_nack_delay_ms") {
       t.auto_resched_nack_delay = millis(source, kv.second, full);

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "smart/monitor/vocabulary.hpp"
@@ -80,6 +83,11 @@ std::optional<Tuple> parse_tuple(std::string_view inside, std::string* error) {
     *error = "'(" + excerpt(inside) + ")': cell coordinates must be whole numbers";
     return std::nullopt;
   }
+  if (std::abs(*a) > grid::kMaxGridSide || std::abs(*b) > grid::kMaxGridSide) {
+    *error = "'(" + excerpt(inside) + ")': cell coordinates must be between -" +
+             std::to_string(grid::kMaxGridSide) + " and " + std::to_string(grid::kMaxGridSide);
+    return std::nullopt;
+  }
   Tuple t{*a, *b, std::nullopt};
   if (parts.size() == 3) {
     t.t = parse_double(parts[2]);
@@ -89,6 +97,25 @@ std::optional<Tuple> parse_tuple(std::string_view inside, std::string* error) {
     }
   }
   return t;
+}
+
+// What is wrong with one YAML step {x, y, t} beyond its types: repeated keys (yaml-cpp keeps
+// one silently), coordinates that would wrap, times that are not finite.
+std::string yaml_step_problem(const YAML::Node& step) {
+  if (!step.IsMap()) return "each step must be a mapping {x, y, t}";
+  std::set<std::string> keys;
+  for (const auto& kv : step) {
+    const auto key = kv.first.as<std::string>();
+    if (!keys.insert(key).second) return "key '" + excerpt(key) + "' appears twice in one step";
+  }
+  for (const char* k : {"x", "y"}) {
+    if (step[k] && std::abs(step[k].as<long long>()) > grid::kMaxGridSide) {
+      return std::string(k) + " must be between -" + std::to_string(grid::kMaxGridSide) + " and " +
+             std::to_string(grid::kMaxGridSide);
+    }
+  }
+  if (step["t"] && !std::isfinite(step["t"].as<double>())) return "t must be a finite number";
+  return {};
 }
 
 // Collects paths by robot id and reports duplicates, gaps and empty paths.
@@ -155,7 +182,7 @@ void parse_smart(std::string_view text, Plan& plan, AxisOrder axis,
       continue;
     }
     const auto id = c.integer();
-    if (!id || *id < 0 || *id > 10'000'000 || !c.eat(':')) {
+    if (!id || *id < 0 || *id > grid::kMaxRobots || !c.eat(':')) {
       problems.push_back(
           {plan.source, ln, -1,
            "expected a robot number and ':' after 'Agent', found '" + excerpt(lines[li]) + "'"});
@@ -307,6 +334,12 @@ void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis, std::vector<P
     std::size_t d = name.size();
     while (d > 0 && std::isdigit(static_cast<unsigned char>(name[d - 1]))) --d;
     const auto suffix = parse_int(std::string_view(name).substr(d));
+    if (suffix && *suffix > grid::kMaxRobots) {
+      problems.push_back({plan.source, ln, -1,
+                          "'" + excerpt(name) + "': robot number too large (at most " +
+                              std::to_string(grid::kMaxRobots) + ")"});
+      continue;
+    }
     const int robot = suffix ? static_cast<int>(*suffix) : order;
     ++order;
     RobotPath* path = collector.add(robot, ln);
@@ -318,6 +351,10 @@ void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis, std::vector<P
     for (const auto& step : kv.second) {
       const int sl = step.Mark().line + 1;
       try {
+        if (auto why = yaml_step_problem(step); !why.empty()) {
+          problems.push_back({plan.source, sl, robot, why});
+          break;
+        }
         const auto x = step["x"].as<long long>(), y = step["y"].as<long long>();
         const double t = step["t"].as<double>();
         path->steps.push_back({make_cell(x, y, axis), t, sl});

@@ -89,6 +89,14 @@ TEST(MapReader, ReadsEveryBenchmarkMap) {
   EXPECT_EQ(small.free_cells(), 64u);
 }
 
+// Regression: a 100000x100000 header allocated 10 GB before the rows were checked.
+TEST(MapReaderErrors, AHugeHeaderIsRefusedBeforeAnythingIsAllocated) {
+  EXPECT_THAT(error_of("type octile\nheight 100000\nwidth 100000\nmap\n..\n"),
+              HasSubstr("more than 100000000 cells"));
+  EXPECT_THAT(error_of("type octile\nheight 90000\nwidth 1000\nmap\n..\n"),
+              HasSubstr("the map has 1 rows but 'height' is 90000"));
+}
+
 TEST(TextFile, MissingFileNamesThePath) {
   try {
     read_text_file("/nonexistent/dir/x.map", "map");

@@ -52,6 +52,15 @@ TEST(ScenReaderErrors, MalformedLines) {
   EXPECT_THAT(error_of("version 1\n"), HasSubstr("lists no agents"));
 }
 
+// Regressions from fuzzing: 4294967303 was read as 7, and a later row could name another map.
+TEST(ScenReaderErrors, CoordinatesThatWouldWrapAndMixedMapSizes) {
+  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t4294967303\t0\t3\t2\t5\n"),
+              HasSubstr("start_x is '4294967303'; it must be a whole number from 0 to 100000"));
+  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t2\t5\n"
+                       "0\tm.map\t8\t3\t0\t1\t3\t1\t3\n"),
+              HasSubstr("s.scen:3: map size 8x3 differs from the 4x3 of the first row"));
+}
+
 TEST(ScenReaderErrors, AgainstTheMap) {
   const auto grid = test::grid_of({"..@.", "....", "...."});
   auto s = parse_scen(

@@ -52,6 +52,19 @@ TEST(QosProfile, SimStatusHasARoleOfItsOwn) {
   EXPECT_EQ(p.progress, default_qos_profile().progress);  // no longer borrowed from progress
 }
 
+// Regressions from fuzzing the QoS YAML: depth 2147483647 aborted inside dds_write,
+// deadline_ms: 0 made the monitor spin forever, huge timers failed slowly as "host left".
+TEST(QosProfileErrors, ValuesDdsCannotLiveWithAreRefused) {
+  EXPECT_THAT(error_of("name: x\ntopics:\n  action:\n    depth: 2147483647\n"),
+              HasSubstr("'topics.action.depth' must be >= 1 and <= 10000"));
+  EXPECT_THAT(error_of("name: x\ntopics:\n  state:\n    deadline_ms: 0\n"),
+              HasSubstr("'topics.state.deadline_ms' must be at least 1 ms"));
+  EXPECT_THAT(error_of("name: x\ntransport:\n  heartbeat_interval_ms: 99999999999\n"),
+              HasSubstr("is more than an hour"));
+  EXPECT_THAT(error_of("name: x\ntopics:\n  clock:\n    liveliness_lease_ms: 0\n"),
+              HasSubstr("at least 1 ms"));
+}
+
 TEST(QosProfile, LoadsByPath) {
   const auto p = find_qos_profile(std::string(SMART_SOURCE_DIR) + "/config/qos/wifi.yaml");
   EXPECT_EQ(p.name, "wifi");

@@ -25,7 +25,8 @@ smart_msg_ActionStep step(uint32_t seq, double x, double y) {
 struct Window {
   std::vector<smart_msg_ActionStep> steps;
   smart_msg_ActionWindow msg{};
-  Window(uint32_t robot, uint32_t total, std::vector<smart_msg_ActionStep> s) : steps(std::move(s)) {
+  Window(uint32_t robot, uint32_t total, std::vector<smart_msg_ActionStep> s)
+      : steps(std::move(s)) {
     msg.robot_id = robot;
     msg.total_actions = total;
     msg.actions._buffer = steps.data();
@@ -86,7 +87,8 @@ TEST(Validate, StatesProgressClockAndStatus) {
 TEST(Validate, RejectionsAreCountedByTopicAndReasonAndLoggedSparingly) {
   Rejections r;
   int logged = 0;
-  for (int i = 0; i < 2000; ++i) logged += r.count("state", "not a finite number: pose.x_m") ? 1 : 0;
+  for (int i = 0; i < 2000; ++i)
+    logged += r.count("state", "not a finite number: pose.x_m") ? 1 : 0;
   logged += r.count("clock", "negative sim_time_s") ? 1 : 0;
   EXPECT_EQ(logged, 5 + 2 + 1);  // first five, the 1000th and 2000th; the clock's first
   EXPECT_EQ(r.total(), 2001u);

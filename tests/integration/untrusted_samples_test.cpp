@@ -46,8 +46,8 @@ TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
       s.robot_id = 4000;
       s.pose = {1.0, 1.0, 0.0};
       states.write(s);
-      clocks.write(smart_msg_Clock{dds::kSimClockSource, 0, 5, -std::numeric_limits<double>::infinity(),
-                                   0, false});
+      clocks.write(smart_msg_Clock{dds::kSimClockSource, 0, 5,
+                                   -std::numeric_limits<double>::infinity(), 0, false});
       std::this_thread::sleep_for(20ms);
     }
   });

@@ -118,6 +118,28 @@ TEST(PlanReaderErrors, EveryProblemIsReported) {
   }
 }
 
+// Regressions from fuzzing the readers: numbers past 32 bits wrapped into valid-looking values
+// (4294967303 read as 7, agent4294967296 became robot 0) and YAML took `t: .inf` and a repeated
+// `t:` key.
+TEST(PlanReaderErrors, NumbersThatWouldWrapAreRejected) {
+  EXPECT_THAT(error_of("Agent 0:(4294967303,1)->"),
+              HasSubstr("cell coordinates must be between -100000 and 100000"));
+  EXPECT_THAT(error_of("Agent 4294967296:(1,1)->"), HasSubstr("expected a robot number"));
+  EXPECT_THAT(error_of("solution=\n0:(1,4294967297),\n", {}),
+              HasSubstr("cell coordinates must be between"));
+  EXPECT_THAT(error_of("schedule:\n  agent4294967296:\n    - {x: 1, y: 1, t: 0}\n", {}),
+              HasSubstr("robot number too large"));
+  EXPECT_THAT(error_of("schedule:\n  agent0:\n    - {x: 4294967297, y: 1, t: 0}\n", {}),
+              HasSubstr("x must be between"));
+}
+
+TEST(PlanReaderErrors, YamlTimesMustBeFiniteAndKeysUnique) {
+  EXPECT_THAT(error_of("schedule:\n  agent0:\n    - {x: 1, y: 1, t: .inf}\n", {}),
+              HasSubstr("t must be a finite number"));
+  EXPECT_THAT(error_of("schedule:\n  agent0:\n    - {x: 1, y: 1, t: 0, t: 5}\n", {}),
+              HasSubstr("key 't' appears twice in one step"));
+}
+
 TEST(PlanReaderErrors, LacamAndYaml) {
   EXPECT_THAT(error_of("solution=\n0:(1,1),(2,2),\n1:(1,2),\n", {}),
               HasSubstr("timestep 1 lists 1 robots but timestep 0 lists 2"));

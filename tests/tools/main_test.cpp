@@ -38,6 +38,13 @@ TEST(SmartMain, CommandLineErrorsAreBadInput) {
   EXPECT_EQ(r.code, 2) << r.out;
 }
 
+// Regression: `smart agent --period-s 0` busy-looped at 100 % CPU.
+TEST(SmartMain, AZeroControlPeriodIsBadInput) {
+  const auto r = smart_with_stderr("agent --robot-id 0 --period-s 0", "period");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("'0' is not a number from 0.005 to 10"));
+}
+
 TEST(SmartMain, MissingFilesAndConfigAreBadInput) {
   auto r = smart_with_stderr("sim --map /nonexistent.map --scen x.scen", "nomap");
   EXPECT_EQ(r.code, 2) << r.out;

@@ -38,6 +38,27 @@ TEST(RunOptions, AnUnknownEnumNameIsAParseErrorListingTheNames) {
   }
 }
 
+// Regressions from fuzzing the flags: `--cell-m nan` passed CLI::Range and crashed Simbody
+// later; NaN and negative timeouts and rates were accepted; `--agents -5` wrapped.
+TEST(RunOptions, NonFiniteNegativeAndZeroValuesAreParseErrors) {
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--cell-m", "nan"},
+                                              {"--cell-m", "inf"},
+                                              {"--timeout-s", "-1"},
+                                              {"--timeout-s", "nan"},
+                                              {"--state-rate-hz", "0"},
+                                              {"--agents", "-5"},
+                                              {"--agents", "0"}}) {
+    SimCliOptions o;
+    std::vector<std::string> args{"--map", "m", "--scen", "s"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    EXPECT_THROW(parse_sim(o, args), CLI::ParseError) << bad[0] << " " << bad[1];
+  }
+  SimCliOptions o;
+  parse_sim(o, {"--map", "m", "--scen", "s", "--cell-m", "0.5", "--agents", "3"});
+  EXPECT_EQ(o.world.cell_m, 0.5);
+  EXPECT_EQ(o.world.agents, 3u);
+}
+
 TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   SimCliOptions o;
   parse_sim(o, {"--map",

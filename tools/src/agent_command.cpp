@@ -197,8 +197,11 @@ void register_agent_command(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->expected(2);
   cmd->add_option("--pose-max-age-s", o->pose_max_age_s, "older poses stop the robot")
+      ->check(finite_in(0.001, 60.0))
       ->capture_default_str();
-  cmd->add_option("--period-s", o->period_s, "control period")->capture_default_str();
+  cmd->add_option("--period-s", o->period_s, "control period")
+      ->check(finite_in(0.005, 10.0))
+      ->capture_default_str();
   cmd->add_option("--emulate-pose", o->emulate_pose, "start pose X Y YAW of an emulated JetBot")
       ->delimiter(',')
       ->expected(3);

@@ -210,10 +210,10 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   sim->add_option("--map", o->map, "MovingAI .map file")->required();
   sim->add_option("--robots", o->robots)->check(CLI::Range(1ul, 100000ul))->capture_default_str();
   sim->add_option("--sim-seconds", o->sim_seconds)
-      ->check(CLI::Range(0.1, 1e6))
+      ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
   sim->add_option("--robot", o->robot, "robot model name or YAML file")->capture_default_str();
-  sim->add_option("--cell-m", o->cell_m)->capture_default_str();
+  sim->add_option("--cell-m", o->cell_m)->check(finite_in(0.05, 100.0))->capture_default_str();
   sim->add_option("--seed", o->seed)->capture_default_str();
   sim->add_option("--system-capacity", o->system_capacity,
                   "robot bodies per Simbody system (0: automatic)")

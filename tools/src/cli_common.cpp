@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -48,6 +49,19 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
+}
+
+CLI::Validator finite_in(double lo, double hi) {
+  const std::string range = exact(lo) + " to " + exact(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& s) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v) || v < lo || v > hi) {
+          return "'" + s + "' is not a number from " + range;
+        }
+        return {};
+      },
+      "FINITE in [" + range + "]", "finite");
 }
 
 std::vector<std::string> dds_argv(const DdsOptions& o) {

@@ -118,7 +118,7 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   gm->add_option("--width", o->width)->check(CLI::Range(1, 4096))->capture_default_str();
   gm->add_option("--height", o->height)->check(CLI::Range(1, 4096))->capture_default_str();
   gm->add_option("--obstacles", o->obstacles, "random: obstacle probability")
-      ->check(CLI::Range(0.0, 0.9))
+      ->check(finite_in(0.0, 0.9))
       ->capture_default_str();
   gm->add_option("--corridor", o->corridor, "maze: corridor width")
       ->check(CLI::Range(1, 64))
@@ -148,10 +148,13 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
       "timed plan (axis xy) that passes `smart check-plan`");
   pl->add_option("--map", po->map)->required();
   pl->add_option("--scen", po->scen)->required();
-  pl->add_option("--agents", po->agents, "first N agents (default: all)");
+  pl->add_option("--agents", po->agents, "first N agents (default: all)")
+      ->check(CLI::PositiveNumber);
   pl->add_option("--seed", po->seed, "seed for priority orders after a failure")
       ->capture_default_str();
-  pl->add_option("--time-limit-s", po->time_limit_s)->capture_default_str();
+  pl->add_option("--time-limit-s", po->time_limit_s)
+      ->check(finite_in(0.001, 1e6))
+      ->capture_default_str();
   pl->add_option("--out", po->out, "the plan file to write")->required();
   pl->callback([&exit_code, po] {
     exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out);

@@ -20,12 +20,13 @@ const EnumNames<grid::PlanFormat> kFormatNames{{"auto", grid::PlanFormat::kAuto}
 void add_world_options(CLI::App* cmd, WorldCliOptions& o, bool fleet) {
   cmd->add_option("--map", o.map, "MovingAI .map file")->required();
   cmd->add_option("--scen", o.scen, "MovingAI .scen file (robot starts)")->required();
-  cmd->add_option("--agents", o.agents, "number of robots (first N of the scenario / plan)");
+  cmd->add_option("--agents", o.agents, "number of robots (first N of the scenario / plan)")
+      ->check(CLI::PositiveNumber);
   add_enum_option(cmd, "--initial-heading", o.heading, kHeadingNames,
                   "heading every robot starts with (default east)");
   if (!fleet) return;
   cmd->add_option("--cell-m", o.cell_m, "grid cell size in metres")
-      ->check(CLI::Range(0.05, 100.0))
+      ->check(finite_in(0.05, 100.0))
       ->capture_default_str();
   cmd->add_option("--robot", o.robot, "robot model: name in config/robots or a YAML file")
       ->capture_default_str();
@@ -45,8 +46,10 @@ void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
   add_enum_option(cmd, "--clock", o.clock, kClockNames,
                   "lockstep (bit-identical; default) or realtime");
   cmd->add_option("--state-rate-hz", o.state_rate_hz, "robot state samples per sim second")
+      ->check(finite_in(0.001, 1000.0))
       ->capture_default_str();
   cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the other side before failing")
+      ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
 }
 
@@ -72,8 +75,10 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
+      ->check(finite_in(0.1, 1e9))
       ->capture_default_str();
-  cmd->add_option("--max-sim-time-s", o.max_sim_time_s, "fail past this sim time (0: no limit)");
+  cmd->add_option("--max-sim-time-s", o.max_sim_time_s, "fail past this sim time (0: no limit)")
+      ->check(finite_in(0.0, 1e9));
   cmd->add_flag("!--no-progress", o.progress, "no progress bar");
 }
 

@@ -29,6 +29,11 @@ struct HalfCell {
   bool is_cell() const { return x2 % 2 == 0 && y2 % 2 == 0; }
 };
 
+// Readers reject numbers beyond these instead of letting them wrap into valid-looking values.
+inline constexpr int32_t kMaxGridSide = 100000;        // cells along one side of a map
+inline constexpr int64_t kMaxGridCells = 100'000'000;  // cells of one map (100 MB of grid)
+inline constexpr int64_t kMaxRobots = 10'000'000;      // robot ids in plan files
+
 // Headings in the world frame; yaw = value · π/2.
 enum class Heading : uint8_t { kEast = 0, kNorth = 1, kWest = 2, kSouth = 3 };
 

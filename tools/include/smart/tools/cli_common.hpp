@@ -70,6 +70,10 @@ CLI::Option* add_enum_option(CLI::App* cmd, const std::string& flag, T& value,
 
 extern const EnumNames<Network> kNetworkNames;
 
+// A finite number from lo to hi. (CLI::Range lets NaN through: every comparison with NaN is
+// false; `--cell-m nan` used to reach Simbody.)
+CLI::Validator finite_in(double lo, double hi);
+
 void add_dds_options(CLI::App* cmd, DdsOptions& options);
 // The same options as command-line words, for a child process.
 std::vector<std::string> dds_argv(const DdsOptions& options);
