@@ -94,11 +94,22 @@ std::string check_clock(const smart_msg_Clock& c) {
   return c.sim_time_s < 0 ? "negative sim_time_s" : "";
 }
 
-std::string check_status(const smart_msg_SimStatus& s) {
-  return first_not_finite({{"sim_time_s", s.sim_time_s},
-                           {"min_gap_m", s.min_gap_m},
-                           {"wall_time_s", s.wall_time_s},
-                           {"peak_rss_mb", s.peak_rss_mb}});
+std::string check_status(const smart_msg_SimStatus& s, std::size_t robots) {
+  auto why = first_not_finite({{"sim_time_s", s.sim_time_s},
+                               {"min_gap_m", s.min_gap_m},
+                               {"wall_time_s", s.wall_time_s},
+                               {"peak_rss_mb", s.peak_rss_mb}});
+  if (!why.empty()) return why;
+  for (const int32_t r : {s.first_contact_a, s.first_contact_b}) {
+    if (r < -1 || r >= static_cast<int64_t>(robots)) {
+      return "first_contact robot " + std::to_string(r) + " is not one of the " +
+             std::to_string(robots) + " robots of this run";
+    }
+  }
+  if (s.robot_contacts > 0 && s.first_contact_a < 0) {
+    return "robot_contacts " + std::to_string(s.robot_contacts) + " without the robots involved";
+  }
+  return {};
 }
 
 bool Rejections::count(const std::string& topic, const std::string& reason) {

@@ -49,9 +49,10 @@ class DdsRunWriter final : public RunWriter {
   dds::WireWriter<smart_msg_Clock> clock_;
 };
 
-SupervisorConfig with_run_id(SupervisorConfig c, int domain_id) {
+SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
   if (c.run_id == 0) c.run_id = wall_clock_run_id();
   c.domain_id = domain_id;
+  c.cell_m = cell_m;
   return c;
 }
 }  // namespace
@@ -76,7 +77,7 @@ struct MonitorNode::Impl {
       : participant(p),
         opt(o),
         writer(p, qos, in, o.cell_m),
-        sup(in, with_run_id(o.run, p.domain_id()), writer),
+        sup(in, with_run_id(o.run, p.domain_id(), o.cell_m), writer),
         progress(p, qos),
         states(p, qos),
         clocks(p, qos),
@@ -110,13 +111,15 @@ struct MonitorNode::Impl {
   void read_observations() {
     states.take_each([&](const smart_msg_RobotState& s) {
       if (!valid("state", wire::check_state(s, robots, bounds))) return;
-      if (!sup.on_state({s.robot_id, s.run_id}, now_s()) || !opt.on_state) return;
+      if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s()) || !opt.on_state)
+        return;
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
     status.take_each([&](const smart_msg_SimStatus& s) {
-      if (!valid("sim_status", wire::check_status(s))) return;
-      sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb});
+      if (!valid("sim_status", wire::check_status(s, robots))) return;
+      sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
+                         s.first_contact_a, s.first_contact_b});
     });
   }
 
@@ -175,25 +178,27 @@ struct MonitorNode::Impl {
   }
 
   // Tell every host the run is over, make sure it was delivered, and take the sim's final
-  // status, which follows its stop.
+  // states and status, which follow its stop; then the verdict.
   MonitorResult finish() {
     sup.finish(now_s());
     writer.wait_for_acks(milliseconds(1000));
     const auto drain_until = SteadyClock::now() + milliseconds(300);
     while (SteadyClock::now() < drain_until && sup.result().outcome != Outcome::kHostLost) {
-      status_waitset().wait(milliseconds(20));
+      drain_waitset().wait(milliseconds(20));
       read_observations();
     }
+    sup.conclude();
     MonitorResult r = sup.result();
     r.wall_time_s = now_s();
     r.rejected_samples = rejections.counts();
     return r;
   }
 
-  dds::WaitSet& status_waitset() {
+  dds::WaitSet& drain_waitset() {
     if (!drain_) {
       drain_ = std::make_unique<dds::WaitSet>(participant);
       drain_->attach_status(status.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+      drain_->attach_status(states.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
     }
     return *drain_;
   }

@@ -83,7 +83,9 @@ nlohmann::json plan_json(const Plan& plan, const PlanStats& st) {
 
 nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
   double sum = 0, makespan = 0;
-  bool times_known = true;  // not when a resumed run had robots done before the resume
+  // Times are known once every action finished, whatever the verdict (a run with a collision
+  // still has an AET worth reporting), except for robots done before a resume.
+  bool times_known = r.finished_actions == r.total_actions;
   for (const auto& m : r.robots) {
     if (std::isnan(m.finish_time_s)) {
       times_known = false;
@@ -97,13 +99,18 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"success", r.success()},
       {"outcome", to_string(r.outcome)},
       {"robots", r.robots.size()},
-      {"aet_s", r.success() && times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
-      {"makespan_s",
-       r.success() && times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
+      {"aet_s", times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
+      {"makespan_s", times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
       {"sim_time_s", r.sim_time_s},
       {"wall_time_s", r.wall_time_s},
       {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
       {"collisions", r.robot_contacts},
+      {"first_collision", r.first_collision ? nlohmann::json::array({r.first_collision->first,
+                                                                     r.first_collision->second})
+                                            : nlohmann::json(nullptr)},
+      {"goal_tolerance_m", r.goal_tolerance_m},
+      {"robots_off_goal", r.off_goal},
+      {"robots_goal_unverified", r.goal_unverified},
       {"wall_contacts", r.wall_contacts},
       {"min_separation_m", r.min_gap_m ? nlohmann::json(*r.min_gap_m) : nlohmann::json(nullptr)},
       {"sim_status_received", r.have_sim_status},

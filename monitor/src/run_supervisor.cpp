@@ -21,6 +21,10 @@ std::string_view to_string(Outcome o) {
       return "host lost";
     case Outcome::kStopped:
       return "stopped";
+    case Outcome::kCollision:
+      return "collision";
+    case Outcome::kOffGoal:
+      return "not at goal";
   }
   return "unknown";
 }
@@ -33,10 +37,19 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
       tracker_(instance.actions, instance.adg),
       sent_(instance.actions.robots()),
       waiting_(instance.actions.robots(), 0),
-      robot_seen_s_(instance.actions.robots(), 0.0) {
+      robot_seen_s_(instance.actions.robots(), 0.0),
+      last_pose_(instance.actions.robots()),
+      seen_done_(instance.actions.robots(), 0) {
   const std::size_t n = instance.actions.robots();
   res_.robots.resize(n);
-  for (uint32_t r = 0; r < n; ++r) res_.robots[r].actions = instance.actions.count(r);
+  res_.goal_tolerance_m =
+      config.goal_tolerance_m > 0 ? config.goal_tolerance_m : 0.25 * config.cell_m;
+  for (uint32_t r = 0; r < n; ++r) {
+    const uint32_t count = instance.actions.count(r);
+    res_.robots[r].actions = count;
+    const auto goal = count ? instance.actions.at(r, count - 1).to : instance.actions.start[r];
+    goal_.push_back(instance.grid.to_world(goal, config.cell_m));
+  }
   res_.run_id = config.run_id;
   res_.total_actions = instance.actions.actions.size();
 }
@@ -106,7 +119,7 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
   last_finish_sim_s_ = sim_time_s;
   for (const uint32_t r : u.robots_changed) {
     publish_window(r);
-    if (tracker_.robot_done(r)) res_.robots[r].finish_time_s = sim_time_s;
+    if (tracker_.robot_done(r)) mark_done(r, sim_time_s);
   }
   res_.finished_actions = tracker_.finished_total();
 }
@@ -152,16 +165,29 @@ void RunSupervisor::check_end() {
   }
 }
 
+void RunSupervisor::mark_done(uint32_t robot, double sim_time_s) {
+  res_.robots[robot].finish_time_s = sim_time_s;
+  seen_done_[robot] = 0;  // the pose that counts is one seen from now on
+}
+
 bool RunSupervisor::on_state(const StateEvent& s, double now_s) {
   if (s.run_id != res_.run_id && s.run_id != 0) return false;
-  if (s.robot < robot_seen_s_.size()) robot_seen_s_[s.robot] = now_s;
-  return s.run_id == res_.run_id;
+  if (s.robot >= robot_seen_s_.size()) return false;
+  robot_seen_s_[s.robot] = now_s;
+  if (s.run_id != res_.run_id) return false;
+  last_pose_[s.robot] = {s.x_m, s.y_m};
+  if (tracker_.robot_done(s.robot)) seen_done_[s.robot] = 1;
+  return true;
 }
 
 void RunSupervisor::on_sim_status(const SimStatusEvent& s) {
   if (s.run_id != res_.run_id && s.run_id != 0) return;
   res_.have_sim_status = true;
   res_.robot_contacts = s.robot_contacts;
+  if (s.first_contact_a >= 0 && s.first_contact_b >= 0) {
+    res_.first_collision = {static_cast<uint32_t>(s.first_contact_a),
+                            static_cast<uint32_t>(s.first_contact_b)};
+  }
   res_.wall_contacts = s.wall_contacts;
   if (s.min_gap_m < 1e8) res_.min_gap_m = s.min_gap_m;
   if (s.peak_rss_mb > 0) {
@@ -233,6 +259,45 @@ void RunSupervisor::finish(double now_s) {
       {res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(), true});
   res_.finished_actions = tracker_.finished_total();
   res_.wall_time_s = now_s;
+}
+
+namespace {
+std::string robot_list(const std::vector<uint32_t>& robots) {
+  std::string out;
+  for (std::size_t i = 0; i < robots.size() && i < 10; ++i) {
+    out += (i ? ", " : "") + std::to_string(robots[i]);
+  }
+  if (robots.size() > 10) out += " and " + std::to_string(robots.size() - 10) + " more";
+  return out;
+}
+}  // namespace
+
+void RunSupervisor::conclude() {
+  if (res_.outcome != Outcome::kSuccess) return;
+  const double tol = res_.goal_tolerance_m;
+  for (uint32_t r = 0; r < goal_.size(); ++r) {
+    if (!seen_done_[r]) {
+      res_.goal_unverified.push_back(r);
+      continue;
+    }
+    const double d = std::hypot(last_pose_[r].x_m - goal_[r].x_m, last_pose_[r].y_m - goal_[r].y_m);
+    if (d > tol) res_.off_goal.push_back(r);
+  }
+  if (res_.robot_contacts > 0) {
+    const auto names = res_.first_collision
+                           ? "robots " + std::to_string(res_.first_collision->first) + " and " +
+                                 std::to_string(res_.first_collision->second)
+                           : std::string("unknown robots");
+    return end(Outcome::kCollision,
+               "collision: every action finished, but the sim host saw " +
+                   std::to_string(res_.robot_contacts) + " robot-robot collisions, first " + names +
+                   "; a host executed actions out of order or something forged progress");
+  }
+  if (!res_.off_goal.empty()) {
+    end(Outcome::kOffGoal, "not at goal: every action finished, but robots " +
+                               robot_list(res_.off_goal) + " were last seen more than " +
+                               std::to_string(tol) + " m from their goals");
+  }
 }
 
 std::size_t RunSupervisor::robots_done() const {

@@ -148,6 +148,10 @@ void World::Impl::find_contacts(bool everyone) {
   for (const auto p : pairs_now) {
     auto [it, fresh] = pair_last_contact.emplace(p, now);
     if (fresh || now - it->second > cfg.contact_debounce_s) ++stats.robot_robot_events;
+    if (stats.first_pair_a < 0) {
+      stats.first_pair_a = static_cast<int64_t>(p >> 32);
+      stats.first_pair_b = static_cast<int64_t>(p & 0xffffffffu);
+    }
     it->second = now;
   }
   stats.robot_robot_now = static_cast<uint32_t>(pairs_now.size());

@@ -129,10 +129,12 @@ struct SimHost::Impl {
     last_status = c;
     status_out.write(smart_msg_SimStatus{
         dds::kSimClockSource, run_id, fleet.world().time_s(), static_cast<uint32_t>(fleet.robots()),
-        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), common::peak_rss_mb()});
+        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), common::peak_rss_mb(),
+        static_cast<int32_t>(c.first_pair_a), static_cast<int32_t>(c.first_pair_b)});
   }
 
   SimHostResult finish(bool ok, std::string error, bool by_monitor) {
+    publish_states();  // the monitor judges the robots' final poses (success means success)
     publish_status(true);
     fleet.deactivate();
     const auto s = fleet.stats();

@@ -79,9 +79,17 @@ TEST(Validate, StatesProgressClockAndStatus) {
   EXPECT_THAT(check_clock({0, 1, 3, std::nan(""), 0, false}), HasSubstr("sim_time_s"));
   EXPECT_THAT(check_clock({0, 1, 3, -1.0, 0, false}), HasSubstr("negative"));
   smart_msg_SimStatus st{};
-  EXPECT_EQ(check_status(st), "");
+  st.first_contact_a = st.first_contact_b = -1;
+  EXPECT_EQ(check_status(st, 4), "");
+  st.robot_contacts = 1;
+  EXPECT_THAT(check_status(st, 4), HasSubstr("without the robots involved"));
+  st.first_contact_a = 0;
+  st.first_contact_b = 4;
+  EXPECT_THAT(check_status(st, 4), HasSubstr("first_contact robot 4"));
+  st.first_contact_b = 3;
+  EXPECT_EQ(check_status(st, 4), "");
   st.min_gap_m = std::nan("");
-  EXPECT_THAT(check_status(st), HasSubstr("min_gap_m"));
+  EXPECT_THAT(check_status(st, 4), HasSubstr("min_gap_m"));
 }
 
 TEST(Validate, RejectionsAreCountedByTopicAndReasonAndLoggedSparingly) {

@@ -58,6 +58,10 @@ TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
   EXPECT_EQ(j["robots"], 50);
   EXPECT_EQ(j["collisions"], 0);
   EXPECT_EQ(j["finished_actions"], j["total_actions"]);
+  // Success means success: every robot was seen at its goal after it finished.
+  EXPECT_EQ(j["outcome"], "success");
+  EXPECT_EQ(j["robots_off_goal"], nlohmann::json::array());
+  EXPECT_EQ(j["robots_goal_unverified"], nlohmann::json::array());
   EXPECT_GT(j["aet_s"].get<double>(), 0);
   EXPECT_GE(j["makespan_s"].get<double>(), j["aet_s"].get<double>());
   EXPECT_GT(j["min_separation_m"].get<double>(), 0.0);

@@ -74,8 +74,7 @@ TEST(RunSupervisor, StartPublishesEveryWindowAndTheFirstTickIsAnsweredWithTheirS
 }
 
 // Runs the corridor to success, progress before or after the tick that announces it.
-MonitorResult run_to_success(bool progress_first) {
-  Scripted r;
+void drive_to_success(Scripted& r, bool progress_first) {
   r.sup.start(0);
   r.sup.on_clock(tick(0, 0), 0);
   auto step = [&](uint64_t k, uint64_t total, ProgressEvent p) {
@@ -87,6 +86,11 @@ MonitorResult run_to_success(bool progress_first) {
   EXPECT_EQ(r.out.windows[1].end, 2u);  // robot 0 left (1,0): robot 1 may enter
   step(9, 4, {1, kRun, 1});
   EXPECT_TRUE(r.out.answers.back().stop);
+}
+
+MonitorResult run_to_success(bool progress_first) {
+  Scripted r;
+  drive_to_success(r, progress_first);
   return r.sup.result();
 }
 
@@ -314,7 +318,76 @@ TEST(RunSupervisor, ResumeRefusesProgressThatDoesNotFitThePlan) {
   EXPECT_THAT(nothing.sup.resume({}), HasSubstr("report no progress yet"));
 }
 
+// The corridor's goals in the world frame (cell 1 m, one row): robot 0 (2,0), robot 1 (1,0).
+TEST(RunSupervisor, SuccessMeansEveryRobotSeenAtItsGoalAfterItFinished) {
+  Scripted r;
+  drive_to_success(r, true);
+  r.sup.finish(1);
+  r.sup.on_state({0, kRun, 2.05, 0.02}, 1);  // within a quarter cell
+  r.sup.on_state({1, kRun, 0.9, -0.1}, 1);
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kSuccess);
+  EXPECT_DOUBLE_EQ(r.sup.result().goal_tolerance_m, 0.25);
+  EXPECT_TRUE(r.sup.result().off_goal.empty());
+  EXPECT_TRUE(r.sup.result().goal_unverified.empty());
+}
+
+TEST(RunSupervisor, ForgedProgressThatFinishesARobotAwayFromItsGoalIsNotSuccess) {
+  Scripted r;
+  drive_to_success(r, false);
+  r.sup.finish(1);
+  r.sup.on_state({0, kRun, 2.0, 0.0}, 1);
+  r.sup.on_state({1, kRun, 0.0, 0.0}, 1);      // still at its start: it never drove
+  r.sup.on_state({1, kRun + 1, 1.0, 0.0}, 1);  // another run's sample does not count
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kOffGoal);
+  EXPECT_FALSE(r.sup.result().success());
+  EXPECT_THAT(r.sup.result().off_goal, ::testing::ElementsAre(1u));
+  EXPECT_THAT(r.sup.result().error, HasSubstr("robots 1 were last seen more than 0.25"));
+}
+
+TEST(RunSupervisor, APoseSeenOnlyBeforeTheRobotFinishedLeavesItUnverifiedNotFailed) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_state({1, kRun, 0.0, 0.0}, 0);  // before it moved; its final state was lost
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_clock(tick(5, 2), 0);
+  r.sup.on_progress({0, kRun, 1}, 0);
+  r.sup.on_clock(tick(9, 4), 0);
+  r.sup.on_progress({1, kRun, 1}, 0);
+  r.sup.finish(1);
+  r.sup.on_state({0, kRun, 2.0, 0.0}, 1);
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kSuccess);
+  EXPECT_THAT(r.sup.result().goal_unverified, ::testing::ElementsAre(1u));
+}
+
+TEST(RunSupervisor, ACollisionMakesACompleteRunFailAndNamesTheRobots) {
+  Scripted r;
+  drive_to_success(r, true);
+  r.sup.finish(1);
+  r.sup.on_state({0, kRun, 2.0, 0.0}, 1);
+  r.sup.on_state({1, kRun, 1.0, 0.0}, 1);
+  r.sup.on_sim_status({kRun, 1, 0, 0.0, 10, 1, 0});
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kCollision);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("1 robot-robot collisions, first robots 1 and 0"));
+}
+
+TEST(RunSupervisor, ConcludeLeavesAFailedRunAsItIs) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.stop("stopped by signal");
+  r.sup.finish(1);
+  r.sup.on_sim_status({kRun, 3, 0, 0.0, 10, 0, 1});
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kStopped);
+  EXPECT_EQ(r.sup.result().error, "stopped by signal");
+}
+
 TEST(RunSupervisor, OutcomeNames) {
+  EXPECT_EQ(to_string(Outcome::kCollision), "collision");
+  EXPECT_EQ(to_string(Outcome::kOffGoal), "not at goal");
   EXPECT_EQ(to_string(Outcome::kSuccess), "success");
   EXPECT_EQ(to_string(Outcome::kHostLost), "host lost");
   EXPECT_EQ(to_string(Outcome::kTimeLimit), "time limit");

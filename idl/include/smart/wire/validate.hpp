@@ -29,7 +29,7 @@ std::string check_state(const smart_msg_RobotState& s, std::size_t robots,
                         const std::optional<Bounds>& bounds);
 std::string check_progress(const smart_msg_Progress& p, std::size_t robots);
 std::string check_clock(const smart_msg_Clock& c);
-std::string check_status(const smart_msg_SimStatus& s);
+std::string check_status(const smart_msg_SimStatus& s, std::size_t robots);
 
 class Rejections {
  public:

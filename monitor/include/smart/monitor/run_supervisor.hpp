@@ -15,9 +15,15 @@
 //   The sim host's writers leaving, or no tick for timeout_s, loses the run.
 // - Real time: progress is taken on arrival at the wall time; a robot fails the run only when
 //   nothing was heard of it (its states) for timeout_s, so a host may restart within it.
-// - Either: success when every action finished; deadlock when no robot has an enqueued action
+// - Either: the execution is complete when every action finished; deadlock when no robot has an
+// enqueued action
 //   left yet some remain; stalled after stall_timeout_s of sim time without a finished action;
 //   time limit past max_sim_time_s; no host at all within timeout_s.
+// - Success means success (conclude(), once the hosts' final reports are in): a complete run is
+//   a success only when no robot-robot collision was reported and every robot's last pose seen
+//   after its last action finished lies within goal_tolerance_m of its goal; otherwise the
+//   outcome is collision or not-at-goal and the error names the robots. A robot whose pose was
+//   not seen after it finished (a lost sample) is listed as unverified, not failed.
 // - Progress of another run is ignored; progress the tracker rejects (out of range, never
 //   enqueued) is counted and described in notes(); stale (duplicate, older) progress is harmless.
 // - resume(): rebuild the tracker from the hosts' last progress (a fixpoint: what robot A
@@ -38,7 +44,17 @@
 
 namespace smart::monitor {
 
-enum class Outcome { kRunning, kSuccess, kDeadlock, kStalled, kTimeLimit, kHostLost, kStopped };
+enum class Outcome {
+  kRunning,
+  kSuccess,
+  kDeadlock,
+  kStalled,
+  kTimeLimit,
+  kHostLost,
+  kStopped,
+  kCollision,  // every action finished, but robots collided
+  kOffGoal,    // every action finished, but a robot is not at its goal
+};
 std::string_view to_string(Outcome outcome);
 
 struct StateRow {
@@ -77,6 +93,10 @@ struct MonitorResult {
   std::size_t finished_before_resume = 0;  // actions
   std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
+  std::optional<std::pair<uint32_t, uint32_t>> first_collision;  // robots, from the sim host
+  double goal_tolerance_m = 0;
+  std::vector<uint32_t> off_goal;         // robots seen away from their goal after finishing
+  std::vector<uint32_t> goal_unverified;  // robots not seen after finishing
   uint64_t rejected_progress = 0;
   // Samples the edge dropped before they became events (wire/validate.hpp): topic -> reason ->
   // count.
@@ -92,6 +112,10 @@ struct SupervisorConfig {
   double max_sim_time_s = 0;       // 0: no limit
   uint64_t run_id = 1;
   int domain_id = 0;  // named in "no host joined" errors
+  double cell_m = 1.0;
+  // How far from its goal cell's centre a finished robot may stand; 0: a quarter cell, well
+  // beyond a controller's stop tolerance (centimetres) and well short of a neighbouring cell.
+  double goal_tolerance_m = 0;
 };
 
 // Samples as the supervisor sees them (the edge converts the wire types).
@@ -103,6 +127,7 @@ struct ProgressEvent {
 struct StateEvent {
   uint32_t robot = 0;
   uint64_t run_id = 0;
+  double x_m = 0, y_m = 0;  // world frame (grid/grid.hpp)
 };
 struct SimStatusEvent {
   uint64_t run_id = 0;
@@ -110,6 +135,7 @@ struct SimStatusEvent {
   uint64_t wall_contacts = 0;
   double min_gap_m = 0;
   double peak_rss_mb = 0;
+  int64_t first_contact_a = -1, first_contact_b = -1;  // -1: no collision
 };
 
 // Where the supervisor's decisions go (the DDS edge; a recording fake in tests).
@@ -141,6 +167,8 @@ class RunSupervisor {
   void poll(double now_s);
   // Ends the run (if it is not over yet: stopped) and sends every host the final stop.
   void finish(double now_s);
+  // After finish() and the hosts' final states and status: the verdict on a complete run.
+  void conclude();
 
   bool over() const { return res_.outcome != Outcome::kRunning; }
   // Lock-step: nothing to do with progress until a tick is pending (the edge may sleep on ticks).
@@ -162,6 +190,7 @@ class RunSupervisor {
   std::string resume_check(const std::vector<ProgressEvent>& reported, std::vector<int64_t>& target,
                            uint64_t& run) const;
   void resume_fixpoint(const std::vector<int64_t>& target);
+  void mark_done(uint32_t robot, double sim_time_s);
 
   const Instance& in_;
   SupervisorConfig config_;
@@ -171,7 +200,10 @@ class RunSupervisor {
   wire::SyncCounter sent_;                     // end of the windows published, per robot
   std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
   std::vector<uint8_t> waiting_;
-  std::vector<double> robot_seen_s_;  // real time: when each robot's host was last heard of
+  std::vector<double> robot_seen_s_;         // real time: when each robot's host was last heard of
+  std::vector<grid::WorldPoint> goal_;       // per robot, world frame
+  std::vector<grid::WorldPoint> last_pose_;  // per robot, the last pose seen
+  std::vector<uint8_t> seen_done_;           // a pose was seen after the robot finished
   MonitorResult res_;
   std::vector<std::string> notes_;
   double last_finish_sim_s_ = 0;

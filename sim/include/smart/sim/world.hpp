@@ -54,6 +54,8 @@ struct ContactStats {
   uint32_t robot_robot_now = 0;  // pairs in contact after the last sub-step
   uint32_t robot_wall_now = 0;
   double min_gap_m = 1e9;  // smallest surface distance between two robots seen so far
+  int64_t first_pair_a = -1;  // robots of the first robot-robot episode (-1: none yet)
+  int64_t first_pair_b = -1;
 };
 
 class World {
