@@ -84,6 +84,11 @@ Qos& Qos::autodispose_unregistered(bool autodispose) {
   dds_qset_writer_data_lifecycle(qos_, autodispose);
   return *this;
 }
+Qos& Qos::exclusive_ownership(int32_t strength) {
+  dds_qset_ownership(qos_, DDS_OWNERSHIP_EXCLUSIVE);
+  dds_qset_ownership_strength(qos_, strength);
+  return *this;
+}
 Qos& Qos::partition(const std::string& name) {
   dds_qset_partition1(qos_, name.c_str());
   return *this;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <vector>
 
+#include "ownership_edge.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
@@ -27,8 +28,8 @@ uint64_t wall_clock_run_id() {
 class DdsRunWriter final : public RunWriter {
  public:
   DdsRunWriter(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
-               double cell_m)
-      : in_(in), cell_m_(cell_m), actions_(p, qos), clock_(p, qos) {}
+               double cell_m, int32_t strength)
+      : in_(in), cell_m_(cell_m), actions_(p, qos, strength), clock_(p, qos, strength) {}
 
   void publish_window(uint32_t robot, uint64_t run_id, ExecutionTracker::Window w) override {
     dds::ActionWindowBuffer buf(robot, run_id, in_.actions.count(robot));
@@ -60,6 +61,8 @@ SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
 struct MonitorNode::Impl {
   const dds::Participant& participant;
   MonitorOptions opt;
+  SupervisorConfig config;
+  MonitorAnnouncer announcer;  // before the writers: they take its ownership strength
   DdsRunWriter writer;
   RunSupervisor sup;
   dds::WireReader<smart_msg_Progress> progress;
@@ -70,20 +73,25 @@ struct MonitorNode::Impl {
   const std::size_t robots;
   const wire::Bounds bounds;
   wire::Rejections rejections;
+  SenderGate senders;
+  std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
   const SteadyClock::time_point wall0 = SteadyClock::now();
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
        const MonitorOptions& o)
       : participant(p),
         opt(o),
-        writer(p, qos, in, o.cell_m),
-        sup(in, with_run_id(o.run, p.domain_id(), o.cell_m), writer),
+        config(with_run_id(o.run, p.domain_id(), o.cell_m)),
+        announcer(p, qos, config.run_id, o.resume),
+        writer(p, qos, in, o.cell_m, announcer.strength()),
+        sup(in, config, writer),
         progress(p, qos),
         states(p, qos),
         clocks(p, qos),
         status(p, qos),
         robots(in.actions.robots()),
-        bounds(wire::bounds_of(in.grid, o.cell_m)) {}
+        bounds(wire::bounds_of(in.grid, o.cell_m)),
+        senders(robots) {}
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.
   bool valid(const char* topic, const std::string& why) {
@@ -95,15 +103,20 @@ struct MonitorNode::Impl {
   double now_s() const { return std::chrono::duration<double>(SteadyClock::now() - wall0).count(); }
 
   void read_clocks() {
-    clocks.take_each([&](const smart_msg_Clock& c) {
-      if (c.source_id != dds::kSimClockSource || !valid("clock", wire::check_clock(c))) return;
+    clocks.take_each_from([&](const smart_msg_Clock& c, dds_instance_handle_t from) {
+      if (!valid("clock", wire::check_clock(c)) || c.source_id != dds::kSimClockSource) return;
+      if (!valid("clock", senders.clock(from, clocks))) return;
       sup.on_clock(wire::from_wire(c), now_s());
     });
   }
 
   void read_progress() {
-    progress.take_each([&](const smart_msg_Progress& p) {
+    progress.take_each_from([&](const smart_msg_Progress& p, dds_instance_handle_t from) {
       if (!valid("progress", wire::check_progress(p, robots))) return;
+      if (!valid("progress", senders.progress(p, from, progress))) return;
+      sup.on_progress({p.robot_id, p.run_id, p.finished_seq}, now_s());
+    });
+    senders.release_held_back(progress, [&](const smart_msg_Progress& p) {
       sup.on_progress({p.robot_id, p.run_id, p.finished_seq}, now_s());
     });
   }
@@ -116,11 +129,25 @@ struct MonitorNode::Impl {
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
-    status.take_each([&](const smart_msg_SimStatus& s) {
+    status.take_each_from([&](const smart_msg_SimStatus& s, dds_instance_handle_t from) {
       if (!valid("sim_status", wire::check_status(s, robots))) return;
-      sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
-                         s.first_contact_a, s.first_contact_b});
+      if (!senders.sim_known()) {
+        early_status = {s, from};  // the newest; placed once the sim host's first tick is in
+        return;
+      }
+      take_status(s, from);
     });
+    if (early_status && senders.sim_known()) {
+      const auto [s, from] = *early_status;
+      early_status.reset();
+      take_status(s, from);
+    }
+  }
+
+  void take_status(const smart_msg_SimStatus& s, dds_instance_handle_t from) {
+    if (!valid("sim_status", senders.status(from, status))) return;
+    sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
+                       s.first_contact_a, s.first_contact_b});
   }
 
   void log_notes() {
@@ -174,6 +201,7 @@ struct MonitorNode::Impl {
     const double now = now_s();
     sup.poll(now);
     sup.on_hosts_matched(progress.subscription_matched().current_count, now);
+    if (auto refusal = announcer.poll()) sup.refuse(*refusal);
     log_notes();
   }
 
@@ -220,6 +248,12 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   any.attach_status(I.progress.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
   any.attach_status(I.clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
   ticks.attach_status(I.clocks.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
+  const auto refusal =
+      I.announcer.settle([&] { return I.progress.subscription_matched().current_count > 0; }, 1.0);
+  if (refusal) {
+    I.sup.refuse(*refusal);
+    return I.finish();
+  }
   if (I.opt.resume && !I.resume()) return I.sup.result();
   I.sup.start(I.now_s());
   spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim", I.sup.result().run_id,

@@ -25,6 +25,8 @@ std::string_view to_string(Outcome o) {
       return "collision";
     case Outcome::kOffGoal:
       return "not at goal";
+    case Outcome::kRefused:
+      return "refused";
   }
   return "unknown";
 }
@@ -214,6 +216,10 @@ void RunSupervisor::on_host_failure(const std::string& what) {
   if (!over()) end(Outcome::kHostLost, what);
 }
 
+void RunSupervisor::refuse(const std::string& why) {
+  if (!over()) end(Outcome::kRefused, why);
+}
+
 void RunSupervisor::stop(const std::string& why) {
   if (!over()) end(Outcome::kStopped, why);
 }
@@ -254,9 +260,12 @@ void RunSupervisor::check_liveness(double now_s) {
 
 void RunSupervisor::finish(double now_s) {
   if (!over()) end(Outcome::kStopped, "stopped before the run ended");
-  // Tell every host the run is over (at the last tick answered, so a waiting sim sees it).
-  writer_.answer_tick(
-      {res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(), true});
+  // Tell every host the run is over (at the last tick answered, so a waiting sim sees it),
+  // unless the run belongs to another monitor.
+  if (res_.outcome != Outcome::kRefused) {
+    writer_.answer_tick(
+        {res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(), true});
+  }
   res_.finished_actions = tracker_.finished_total();
   res_.wall_time_s = now_s;
 }

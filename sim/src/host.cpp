@@ -78,6 +78,11 @@ struct SimHost::Impl {
     return true;
   }
 
+  // A stop ends only the run this host executes (any answer that is not a stop passes).
+  bool stop_of_this_run(const wire::Tick& answer) const {
+    return !answer.stop || run_id == 0 || answer.run_id == run_id;
+  }
+
   void read_windows() {
     node.take_windows([this](const agent::WindowInfo& w) { return accept_window(w); });
   }
@@ -174,7 +179,9 @@ SimHostResult SimHost::Impl::run_lockstep(const std::atomic<bool>& stop_requeste
     if (stop_requested.load()) return finish(false, "stopped by signal", false);
     if (handshake.timed_out(wall_s())) return finish(false, silent_monitor(), false);
     waitset.wait(std::chrono::milliseconds(20));
-    if (auto answer = node.take_monitor_clock()) handshake.on_answer(*answer);
+    if (auto answer = node.take_monitor_clock(); answer && stop_of_this_run(*answer)) {
+      handshake.on_answer(*answer);
+    }
     if (handshake.stop()) return finish(true, "", true);
     read_windows();
     if (handshake.may_step(run_id, windows.total())) {
@@ -194,7 +201,9 @@ SimHostResult SimHost::Impl::run_realtime(const std::atomic<bool>& stop_requeste
   for (;;) {
     if (stop_requested.load()) return finish(false, "stopped by signal", false);
     read_windows();
-    if (auto c = node.take_monitor_clock(); c && c->stop) return finish(true, "", true);
+    if (auto c = node.take_monitor_clock(); c && c->stop && stop_of_this_run(*c)) {
+      return finish(true, "", true);
+    }
     advance();
     next += period;
     std::this_thread::sleep_until(next);

@@ -45,7 +45,7 @@ struct Rig {
   dds::Domain domain;
   dds::Participant mon, host;
   dds::QosProfile qos = dds::default_qos_profile();
-  dds::WireWriter<smart_msg_ActionWindow> windows{mon, qos};
+  dds::WireWriter<smart_msg_ActionWindow> windows{mon, qos, dds::kMonitorStrengthMin};
   dds::WireReader<smart_msg_Progress> progress{mon, qos};
   AgentNode node{host, qos};
   explicit Rig(int domain_id) : domain(domain_id, test::loopback()), mon(domain), host(domain) {}

@@ -1,6 +1,9 @@
 // Samples from a rogue participant on the run's domain and partition: malformed states and
 // clocks are dropped at the monitor's edge, counted in summary.json, and never reach
-// states.csv; the run still succeeds with the numbers it gives undisturbed.
+// states.csv; the run still succeeds with the numbers it gives undisturbed. The rogue knows the
+// protocol: its states of robot 3 outrank the sim host's (exclusive ownership, idl/smart.idl),
+// so robot 3's real states are hidden; the verdict then says robot 3's final pose is
+// unverified, never a false "at goal" (only DDS Security keeps such a rogue out).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -34,7 +37,7 @@ TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
   dds::Domain domain(d, loopback());
   dds::Participant rogue_p(domain);
   const auto qos = dds::find_qos_profile("lan");  // the run's profile: its QoS is compatible
-  dds::WireWriter<smart_msg_RobotState> states(rogue_p, qos);
+  dds::WireWriter<smart_msg_RobotState> states(rogue_p, qos, dds::kHostStrength + 1);
   dds::WireWriter<smart_msg_Clock> clocks(rogue_p, qos);
   std::atomic<bool> done{false};
   std::thread rogue([&] {
@@ -46,8 +49,7 @@ TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
       s.robot_id = 4000;
       s.pose = {1.0, 1.0, 0.0};
       states.write(s);
-      clocks.write(smart_msg_Clock{dds::kSimClockSource, 0, 5,
-                                   -std::numeric_limits<double>::infinity(), 0, false});
+      clocks.write(smart_msg_Clock{7, 0, 5, -std::numeric_limits<double>::infinity(), 0, false});
       std::this_thread::sleep_for(20ms);
     }
   });
@@ -69,6 +71,8 @@ TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
   EXPECT_GT(count("state", "not a finite number: pose.x_m"), 0) << rejected;
   EXPECT_GT(count("clock", "not a finite number: sim_time_s"), 0) << rejected;
   EXPECT_THAT(rejected.dump(), HasSubstr("robot 4000 is not in this fleet of 20"));
+  EXPECT_EQ(j["robots_goal_unverified"], nlohmann::json::array({3}));
+  EXPECT_EQ(j["robots_off_goal"], nlohmann::json::array());
   const auto csv = slurp(out / "states.csv");
   EXPECT_EQ(csv.find("nan"), std::string::npos);
   EXPECT_EQ(csv.find(",4000,"), std::string::npos);

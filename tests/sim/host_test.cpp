@@ -48,8 +48,8 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
 
   // The monitor side: windows out, clock answers, progress and the ROS view in.
   dds::Topic<geometry_msgs_msg_dds__PoseArray_> tr(mon_p, "rt/smart/poses");
-  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos);
-  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos);
+  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos, dds::kMonitorStrengthMin);
+  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos, dds::kMonitorStrengthMin);
   dds::WireReader<smart_msg_Clock> ticks(mon_p, qos);
   dds::WireReader<smart_msg_Progress> progress(mon_p, qos);
   dds::Reader<geometry_msgs_msg_dds__PoseArray_> ros(mon_p, tr, qos.state.to_dds());
@@ -122,8 +122,8 @@ TEST(SimHost, MalformedWindowsAreDroppedNotExecuted) {
   std::atomic<bool> stop{false};
   SimHostResult result;
   std::thread t([&] { result = host.run(stop); });
-  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos);
-  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos);
+  dds::WireWriter<smart_msg_ActionWindow> windows(mon_p, qos, dds::kMonitorStrengthMin);
+  dds::WireWriter<smart_msg_Clock> answers(mon_p, qos, dds::kMonitorStrengthMin);
   dds::WireReader<smart_msg_Progress> progress(mon_p, qos);
   ASSERT_TRUE(windows.wait_for_readers(1, 10s));
   const uint64_t run = 7;

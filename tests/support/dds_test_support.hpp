@@ -57,6 +57,10 @@ enum DomainId : int {
   kIsolationNamedRuns = 146,
   kSimHostBadWindows = 147,
   kMonitorBadSamples = 148,
+  kFaultsSecondMonitor = 149,
+  kFaultsSecondMonitorAlone = 150,
+  kFaultsRogue = 151,
+  kFaultsRogueAlone = 152,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

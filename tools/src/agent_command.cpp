@@ -55,6 +55,7 @@ double steady_s() {
 // or a signal arrives (false).
 bool control_loop(agent::Agent& robot, agent::AgentNode& node, double period_s) {
   auto next = std::chrono::steady_clock::now();
+  double repeated_s = steady_s();
   while (!g_stop_requested.load()) {
     node.take_windows();
     if (auto c = node.take_monitor_clock(); c && c->stop && c->run_id == robot.run_id()) {
@@ -63,6 +64,10 @@ bool control_loop(agent::Agent& robot, agent::AgentNode& node, double period_s) 
     const double now = steady_s();
     robot.step(now);
     node.publish_progress();
+    if (now - repeated_s >= 1.0) {
+      node.republish_progress();
+      repeated_s = now;
+    }
     if (robot.last_pose().valid) {
       node.publish_state(robot.robot_id(), robot.run_id(), now, robot.last_pose(),
                          robot.last_command());

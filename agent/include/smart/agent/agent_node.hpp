@@ -9,6 +9,11 @@
 //   robots that have a run, and returns how many actions were newly reported finished;
 // - publish_state() publishes one robot's state; take_monitor_clock() the monitor's newest
 //   clock sample (its answers and its stop).
+// - Only the run's monitor is heard (idl/smart.idl, "Ownership"): windows and clock answers
+//   from writers weaker than MONITOR_STRENGTH_MIN are dropped (counted, reason "not a
+//   monitor's writer"); DDS exclusive ownership delivers the strongest monitor's windows, and
+//   clock answers count only from the participant whose windows were taken last (or, before any
+//   window, the first monitor heard).
 // Edge code: the agent core never sees DDS types (wire/convert.hpp converts).
 #pragma once
 
@@ -47,6 +52,10 @@ class AgentNode {
   using Accept = std::function<bool(const WindowInfo&)>;
   std::size_t take_windows(const Accept& accept = {});
   uint64_t publish_progress();
+  // Real time: writes every hosted robot's last reported progress again. Progress is cumulative,
+  // so a repeat is harmless, and it reaches a monitor that dropped the first copy (a restarted
+  // agent's writer owns its robot's instance only once the dead one's lease ran out).
+  void republish_progress();
   void publish_state(uint32_t robot, uint64_t run_id, double time_s, const PoseSample& pose,
                      WheelSpeeds wheels);
   std::optional<wire::Tick> take_monitor_clock();
@@ -63,7 +72,10 @@ class AgentNode {
   };
   Hosted* hosted(uint32_t robot);
 
-  std::vector<Hosted> hosted_;  // by robot id; agent == nullptr: not hosted here
+  bool from_monitor(const char* topic, dds_instance_handle_t from, bool window);
+
+  std::vector<Hosted> hosted_;         // by robot id; agent == nullptr: not hosted here
+  std::optional<dds_guid_t> monitor_;  // participant of the last accepted window
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;

@@ -43,6 +43,9 @@ class Qos {
   Qos& lifespan(Millis duration);
   Qos& liveliness(LivelinessKind kind, Millis lease);
   Qos& autodispose_unregistered(bool autodispose);
+  // Exclusive ownership (readers take an instance from its strongest live writer only) with
+  // this writer's strength; shared ownership is the default.
+  Qos& exclusive_ownership(int32_t strength);
   // The one partition this reader or writer is in (on a reader/writer made directly on the
   // participant, Cyclone applies it to the implicit publisher/subscriber).
   Qos& partition(const std::string& name);

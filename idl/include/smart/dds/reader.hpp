@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "smart/dds/entity.hpp"
@@ -86,6 +87,12 @@ class LoanedSamples {
   int32_t count_;
 };
 
+// A writer as a reader knows it (matched publication data).
+struct Publication {
+  dds_guid_t participant;
+  int32_t strength = 0;  // 0 when the writer has no exclusive ownership
+};
+
 template <class T>
 class Reader {
  public:
@@ -136,6 +143,46 @@ class Reader {
         }
       }
     }
+  }
+
+  // Like take_each, with the sender: fn(const T&, dds_instance_handle_t publication), the
+  // handle of the writer that wrote the sample (sample info, DDS spec 2.2.2.5.5).
+  template <class Fn>
+  std::size_t take_each_from(Fn&& fn) {
+    std::size_t n = 0;
+    for (;;) {
+      auto samples = take();
+      if (samples.empty()) return n;
+      for (auto s : samples) {
+        if (s.valid()) {
+          fn(s.data(), s.info().publication_handle);
+          ++n;
+        }
+      }
+    }
+  }
+
+  // A matched writer's participant and ownership strength, or nothing when the writer is no
+  // longer matched (it left, or was never seen).
+  std::optional<Publication> publication(dds_instance_handle_t handle) const {
+    dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(entity_.handle(), handle);
+    if (e == nullptr) return std::nullopt;
+    Publication p{e->participant_key, 0};
+    if (e->qos != nullptr && !dds_qget_ownership_strength(e->qos, &p.strength)) p.strength = 0;
+    dds_builtintopic_free_endpoint(e);
+    return p;
+  }
+  std::optional<dds_guid_t> participant_of(dds_instance_handle_t handle) const {
+    const auto p = publication(handle);
+    return p ? std::optional<dds_guid_t>(p->participant) : std::nullopt;
+  }
+  bool writer_matched(dds_instance_handle_t handle) const {
+    return publication(handle).has_value();
+  }
+  // The writer is matched and at least as strong as `strength`.
+  bool writer_at_least(dds_instance_handle_t handle, int32_t strength) const {
+    const auto p = publication(handle);
+    return p && p->strength >= strength;
   }
 
   dds_subscription_matched_status_t subscription_matched() const {

@@ -18,24 +18,31 @@ SMART_DDS_TOPIC_TYPE(smart_msg_Progress)
 SMART_DDS_TOPIC_TYPE(smart_msg_RobotState)
 SMART_DDS_TOPIC_TYPE(smart_msg_Clock)
 SMART_DDS_TOPIC_TYPE(smart_msg_SimStatus)
+SMART_DDS_TOPIC_TYPE(smart_msg_MonitorInfo)
 
 namespace smart::dds {
 
+// static constexpr std::string_view name; static constexpr TopicRole role; static constexpr bool
+// exclusive (ownership, idl/smart.idl "Ownership").
 template <class T>
-struct WireTopic;  // static constexpr std::string_view name; static constexpr TopicRole role;
+struct WireTopic;
 
-#define SMART_DDS_WIRE_TOPIC(CType, Name, Role)        \
-  template <>                                          \
-  struct WireTopic<CType> {                            \
-    static constexpr std::string_view name = Name;     \
-    static constexpr TopicRole role = TopicRole::Role; \
+#define SMART_DDS_WIRE_TOPIC(CType, Name, Role, Exclusive) \
+  template <>                                              \
+  struct WireTopic<CType> {                                \
+    static constexpr std::string_view name = Name;         \
+    static constexpr TopicRole role = TopicRole::Role;     \
+    static constexpr bool exclusive = Exclusive;           \
   }
 
-SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction);
-SMART_DDS_WIRE_TOPIC(smart_msg_Progress, smart_msg_TOPIC_PROGRESS, kProgress);
-SMART_DDS_WIRE_TOPIC(smart_msg_RobotState, smart_msg_TOPIC_STATE, kState);
-SMART_DDS_WIRE_TOPIC(smart_msg_Clock, smart_msg_TOPIC_CLOCK, kClock);
-SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus);
+SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_Progress, smart_msg_TOPIC_PROGRESS, kProgress, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_RobotState, smart_msg_TOPIC_STATE, kState, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_Clock, smart_msg_TOPIC_CLOCK, kClock, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, true);
+// Latest per monitor, kept for late joiners: the status role's QoS; shared, every monitor is
+// seen.
+SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false);
 #undef SMART_DDS_WIRE_TOPIC
 
 inline constexpr std::string_view kActionTopic = WireTopic<smart_msg_ActionWindow>::name;
@@ -49,6 +56,9 @@ inline constexpr uint32_t kMonitorClockSource = smart_msg_CLOCK_SOURCE_MONITOR;
 inline constexpr int32_t kNoSeq = smart_msg_NO_SEQ;
 inline constexpr uint32_t kMaxWindowActions = smart_msg_MAX_WINDOW_ACTIONS;
 inline constexpr double kClockReannounceS = smart_msg_CLOCK_REANNOUNCE_MS / 1000.0;
+inline constexpr int32_t kHostStrength = smart_msg_HOST_STRENGTH;
+inline constexpr int32_t kMonitorStrengthMin = smart_msg_MONITOR_STRENGTH_MIN;
+inline constexpr int32_t kMonitorStrengthResume = smart_msg_MONITOR_STRENGTH_RESUME;
 
 }  // namespace smart::dds
 

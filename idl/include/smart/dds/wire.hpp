@@ -22,19 +22,24 @@ struct WireTopicHolder {
 };
 }  // namespace detail
 
-// The topic's QoS role in the profile, in the participant's run partition.
+// The topic's QoS role in the profile, in the participant's run partition, with the topic's
+// ownership (a writer's strength; readers ignore it).
 template <class T>
-Qos wire_qos(const Participant& participant, const QosProfile& profile) {
+Qos wire_qos(const Participant& participant, const QosProfile& profile,
+             int32_t strength = kHostStrength) {
   Qos q = profile.topic(WireTopic<T>::role).to_dds();
   q.partition(participant.run_partition());
+  if constexpr (WireTopic<T>::exclusive) q.exclusive_ownership(strength);
   return q;
 }
 
+// Writes with the hosts' ownership strength unless given another (a monitor's).
 template <class T>
 class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
  public:
-  WireWriter(const Participant& p, const QosProfile& profile)
-      : detail::WireTopicHolder<T>(p), Writer<T>(p, this->topic_, wire_qos<T>(p, profile)) {}
+  WireWriter(const Participant& p, const QosProfile& profile, int32_t strength = kHostStrength)
+      : detail::WireTopicHolder<T>(p),
+        Writer<T>(p, this->topic_, wire_qos<T>(p, profile, strength)) {}
 };
 
 template <class T>

@@ -54,6 +54,7 @@ enum class Outcome {
   kStopped,
   kCollision,  // every action finished, but robots collided
   kOffGoal,    // every action finished, but a robot is not at its goal
+  kRefused,    // another monitor owns the run
 };
 std::string_view to_string(Outcome outcome);
 
@@ -163,6 +164,8 @@ class RunSupervisor {
   void on_sim_status(const SimStatusEvent& status);
   void on_hosts_matched(uint32_t count, double now_s);
   void on_host_failure(const std::string& what);
+  // Another monitor owns the run: end without a word to the hosts (they follow the owner).
+  void refuse(const std::string& why);
   void stop(const std::string& why);
   void poll(double now_s);
   // Ends the run (if it is not over yet: stopped) and sends every host the final stop.

@@ -1,0 +1,114 @@
+// The monitor's side of run ownership (idl/smart.idl, "Ownership"), at the DDS edge:
+// - MonitorAnnouncer: announces this monitor on the run's MonitorInfo topic (kept while it
+//   lives) and watches the others; poll() returns why this monitor must give way, naming the
+//   monitor that owns the run (wire/ownership.hpp decides), or nothing.
+// - SenderGate: who may report what: progress for a robot only from the writer that first
+//   reported it (until that writer leaves: a restarted host takes over, and its newest refused
+//   sample is taken then, as its progress is cumulative), clock ticks only from
+//   one sim host, its status only from that same participant.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "smart/dds/wire.hpp"
+#include "smart/wire/ownership.hpp"
+
+namespace smart::monitor {
+
+class MonitorAnnouncer {
+ public:
+  MonitorAnnouncer(const dds::Participant& p, const dds::QosProfile& qos, uint64_t run_id,
+                   bool resume);
+  int32_t strength() const { return self_.strength; }
+  // A refusal naming the owner, or nothing; logs (once per monitor) monitors this one outranks.
+  std::optional<std::string> poll();
+  // Before start(): give another monitor of the run time to be discovered (up to max, less once
+  // hosts are matched); returns poll()'s verdict.
+  std::optional<std::string> settle(const std::function<bool()>& hosts_matched, double max_s);
+
+ private:
+  wire::MonitorClaim self_;
+  std::string run_name_;
+  int domain_id_;
+  dds::WireWriter<smart_msg_MonitorInfo> out_;
+  dds::WireReader<smart_msg_MonitorInfo> in_;
+  std::map<uint64_t, wire::MonitorClaim> others_;  // alive, by monitor_id
+  std::set<uint64_t> warned_;
+};
+
+class SenderGate {
+ public:
+  explicit SenderGate(std::size_t robots) : progress_holder_(robots, 0), held_back_(robots) {}
+  // Each returns why the sample is refused, or an empty string. `matched` says whether a writer
+  // (publication handle) is still matched; `participant` gives a writer's participant.
+  template <class Reader>
+  std::string progress(const smart_msg_Progress& sample, dds_instance_handle_t from,
+                       const Reader& reader) {
+    const uint32_t robot = sample.robot_id;
+    auto& holder = progress_holder_[robot];
+    if (holder == from) return {};
+    if (!reader.writer_at_least(from, dds::kHostStrength)) return kWeakWriter;
+    if (holder != 0 && reader.writer_matched(holder)) {
+      held_back_[robot] = {from, sample};
+      return "robot " + std::to_string(robot) +
+             " is held by another host's writer in this run; progress from a second writer "
+             "is refused";
+    }
+    holder = from;
+    held_back_[robot].reset();
+    return {};
+  }
+  // Newest refused progress of writers whose robot's holder has left since: fn(sample).
+  template <class Reader, class Fn>
+  void release_held_back(const Reader& reader, Fn&& fn) {
+    for (std::size_t r = 0; r < held_back_.size(); ++r) {
+      if (!held_back_[r] || reader.writer_matched(progress_holder_[r])) continue;
+      const auto [from, sample] = *held_back_[r];
+      held_back_[r].reset();
+      if (reader.writer_matched(from)) {
+        progress_holder_[r] = from;
+        fn(sample);
+      }
+    }
+  }
+  template <class Reader>
+  std::string clock(dds_instance_handle_t from, const Reader& reader) {
+    if (sim_clock_ == from) return {};
+    if (!reader.writer_at_least(from, dds::kHostStrength)) return kWeakWriter;
+    if (sim_clock_ != 0 && reader.writer_matched(sim_clock_)) {
+      return "clock ticks from a second sim host; this run follows the first";
+    }
+    sim_clock_ = from;
+    sim_participant_ = reader.participant_of(from);
+    return {};
+  }
+  // Before the sim host's first tick its status cannot be placed: keep it until then.
+  bool sim_known() const { return sim_participant_.has_value(); }
+  template <class Reader>
+  std::string status(dds_instance_handle_t from, const Reader& reader) const {
+    const auto who = reader.participant_of(from);
+    if (!sim_participant_ || !who || !same(*who, *sim_participant_)) {
+      return "sim status from a participant that is not this run's sim host";
+    }
+    return {};
+  }
+
+ private:
+  static constexpr const char* kWeakWriter =
+      "from a writer weaker than a SMART host's (not a sim host or agent of this version)";
+  static bool same(const dds_guid_t& a, const dds_guid_t& b);
+  std::vector<dds_instance_handle_t> progress_holder_;
+  std::vector<std::optional<std::pair<dds_instance_handle_t, smart_msg_Progress>>> held_back_;
+  dds_instance_handle_t sim_clock_ = 0;
+  std::optional<dds_guid_t> sim_participant_;
+};
+
+}  // namespace smart::monitor
