@@ -13,6 +13,7 @@ packages=(
   libi2c-dev
   libfastrtps-dev
   clang-tidy
+  openssl libddsc0debian
 )
 
 missing=()

@@ -10,6 +10,32 @@ namespace {
 std::string ms(Millis m) { return std::to_string(m.count()) + " ms"; }
 }  // namespace
 
+namespace {
+// Cyclone's <Security> section (cyclonedds-doc, "DDS Security" configuration); the plugin
+// libraries by absolute path, as Debian keeps them out of the default library path.
+std::string security_xml(const SecurityFiles& s) {
+  const std::string dir = SMART_DDS_SECURITY_PLUGIN_DIR;
+  auto file = [](const std::string& path) { return "file:" + path; };
+  std::ostringstream x;
+  x << "<Security><Authentication><Library path=\"" << dir
+    << "/libdds_security_auth.so\" initFunction=\"init_authentication\" "
+       "finalizeFunction=\"finalize_authentication\"/>"
+    << "<IdentityCA>" << file(s.identity_ca) << "</IdentityCA><IdentityCertificate>"
+    << file(s.identity_certificate) << "</IdentityCertificate><PrivateKey>" << file(s.private_key)
+    << "</PrivateKey></Authentication>";
+  x << "<AccessControl><Library path=\"" << dir
+    << "/libdds_security_ac.so\" initFunction=\"init_access_control\" "
+       "finalizeFunction=\"finalize_access_control\"/>"
+    << "<PermissionsCA>" << file(s.permissions_ca) << "</PermissionsCA><Governance>"
+    << file(s.governance) << "</Governance><Permissions>" << file(s.permissions)
+    << "</Permissions></AccessControl>";
+  x << "<Cryptographic><Library path=\"" << dir
+    << "/libdds_security_crypto.so\" initFunction=\"init_crypto\" "
+       "finalizeFunction=\"finalize_crypto\"/></Cryptographic></Security>";
+  return x.str();
+}
+}  // namespace
+
 std::string render_cyclone_config(const DomainConfig& c) {
   if (c.transport.loss_per_mille < 0 || c.transport.loss_per_mille > 1000) {
     throw ConfigError("loss_per_mille is " + std::to_string(c.transport.loss_per_mille) +
@@ -43,7 +69,9 @@ std::string render_cyclone_config(const DomainConfig& c) {
   if (c.transport.loss_per_mille > 0) {
     x << "<Test><XmitLossiness>" << c.transport.loss_per_mille << "</XmitLossiness></Test>";
   }
-  x << "</Internal><Tracing><Verbosity>" << c.tracing_verbosity
+  x << "</Internal>";
+  if (c.security) x << security_xml(*c.security);
+  x << "<Tracing><Verbosity>" << c.tracing_verbosity
     << "</Verbosity><OutputFile>stderr</OutputFile></Tracing>";
   x << "</Domain></CycloneDDS>";
   return x.str();

@@ -92,9 +92,16 @@ class SenderGate {
   }
   // Before the sim host's first tick its status cannot be placed: keep it until then.
   bool sim_known() const { return sim_participant_.has_value(); }
+  // The sim host's final status is often read after it left: its writer's participant is
+  // remembered from earlier samples.
   template <class Reader>
-  std::string status(dds_instance_handle_t from, const Reader& reader) const {
-    const auto who = reader.participant_of(from);
+  std::string status(dds_instance_handle_t from, const Reader& reader) {
+    auto who = reader.participant_of(from);
+    if (who) {
+      status_writers_[from] = *who;
+    } else if (auto it = status_writers_.find(from); it != status_writers_.end()) {
+      who = it->second;
+    }
     if (!sim_participant_ || !who || !same(*who, *sim_participant_)) {
       return "sim status from a participant that is not this run's sim host";
     }
@@ -109,6 +116,7 @@ class SenderGate {
   std::vector<std::optional<std::pair<dds_instance_handle_t, smart_msg_Progress>>> held_back_;
   dds_instance_handle_t sim_clock_ = 0;
   std::optional<dds_guid_t> sim_participant_;
+  std::map<dds_instance_handle_t, dds_guid_t> status_writers_;
 };
 
 }  // namespace smart::monitor

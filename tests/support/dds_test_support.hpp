@@ -61,6 +61,9 @@ enum DomainId : int {
   kFaultsSecondMonitorAlone = 150,
   kFaultsRogue = 151,
   kFaultsRogueAlone = 152,
+  kSecureRogue = 153,
+  kSecurePlain = 154,
+  kSecureViewer = 155,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

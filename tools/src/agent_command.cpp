@@ -140,7 +140,8 @@ int run_agent(const AgentOptions& o) {
   auto hwc = hw::parse_jetbot_config(config::read_file(path, "robot"), path);
   if (!o.i2c.empty()) hwc.i2c_device = o.i2c;
   const auto profile = dds::find_qos_profile(o.dds.qos);
-  dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
+  dds::Domain domain(o.dds.domain,
+                     domain_config(o.dds, profile, "agent-" + std::to_string(o.robot_id)));
   dds::Participant participant(domain, o.dds.run);
   const Pose pose = open_pose(o, participant);  // first: an emulated JetBot streams to it
   const auto bus = open_bus(o, hwc, model, pose);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "smart/config/yaml_checks.hpp"
+#include "smart/tools/security.hpp"
 
 namespace smart::tools {
 
@@ -46,6 +47,14 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
           },
           "NAME", "run name"))
       ->each([&o](const std::string&) { o.run_given = true; });
+  cmd->add_option("--security", o.security,
+                  "DDS Security keystore made by `smart security init` (authentication, access "
+                  "control, encryption); every process of the run needs it")
+      ->envname("SMART_SECURITY")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--identity", o.identity,
+                  "identity in the --security keystore (default: this command's role: monitor, "
+                  "sim, agent-<robot id>)");
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
@@ -65,10 +74,12 @@ CLI::Validator finite_in(double lo, double hi) {
 }
 
 std::vector<std::string> dds_argv(const DdsOptions& o) {
-  return {"--domain",  std::to_string(o.domain),
-          "--qos",     o.qos,
-          "--network", enum_name(o.network, kNetworkNames),
-          "--run",     o.run};
+  std::vector<std::string> argv{"--domain",  std::to_string(o.domain),
+                                "--qos",     o.qos,
+                                "--network", enum_name(o.network, kNetworkNames),
+                                "--run",     o.run};
+  if (!o.security.empty()) argv.insert(argv.end(), {"--security", o.security});
+  return argv;
 }
 
 std::string fresh_run_name() {
@@ -78,9 +89,13 @@ std::string fresh_run_name() {
   return "run-" + std::to_string(::getpid()) + "-" + std::to_string(ns % 1000000000000LL);
 }
 
-dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile) {
-  return profile.domain_config(o.network == Network::kNetwork ? dds::DomainConfig::network()
-                                                              : dds::DomainConfig::loopback());
+dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile,
+                                const std::string& role) {
+  auto c = profile.domain_config(o.network == Network::kNetwork ? dds::DomainConfig::network()
+                                                                : dds::DomainConfig::loopback());
+  if (!o.security.empty())
+    c.security = identity_files(o.security, o.identity.empty() ? role : o.identity);
+  return c;
 }
 
 std::string exact(double value) { return fmt::format("{}", value); }

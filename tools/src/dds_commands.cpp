@@ -38,7 +38,7 @@ constexpr uint32_t kEchoSource = dds::kMonitorClockSource;
 
 int run_echo(const DdsOptions& o, double duration_s) {
   const auto profile = dds::find_qos_profile(o.qos);
-  dds::Domain domain(o.domain, domain_config(o, profile));
+  dds::Domain domain(o.domain, domain_config(o, profile, "viewer"));
   dds::Participant participant(domain, o.run);
   dds::WireReader<smart_msg_ActionWindow> actions(participant, profile);
   dds::WireReader<smart_msg_Clock> clocks(participant, profile);
@@ -188,7 +188,7 @@ int run_ping(const DdsOptions& o, const PingOptions& po) {
     echo.emplace(argv);
   }
   const auto profile = dds::find_qos_profile(o.qos);
-  dds::Domain domain(o.domain, domain_config(o, profile));
+  dds::Domain domain(o.domain, domain_config(o, profile, "viewer"));
   dds::Participant participant(domain, o.run);
   Pinger ping(participant, profile, po);
   const auto timeout = milliseconds(static_cast<long>(po.timeout_s * 1000));
@@ -230,7 +230,7 @@ struct SendOptions {
 
 int run_send(const DdsOptions& o, const SendOptions& so) {
   const auto profile = dds::find_qos_profile(o.qos);
-  dds::Domain domain(o.domain, domain_config(o, profile));
+  dds::Domain domain(o.domain, domain_config(o, profile, "viewer"));
   dds::Participant participant(domain, o.run);
   // Progress QoS made keep-all: every sample counts, so losses show.
   dds::Topic<smart_msg_Progress> topic(participant, std::string(dds::kProgressTopic));

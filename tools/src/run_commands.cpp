@@ -46,7 +46,7 @@ int run_sim(const SimCliOptions& o) {
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
   const auto model = agent::load_robot_model(find_config_file("robots", w.robot));
   const auto profile = dds::find_qos_profile(o.dds.qos);
-  dds::Domain domain(o.dds.domain, domain_config(o.dds, profile));
+  dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
   dds::Participant participant(domain, o.dds.run);
   std::vector<grid::Cell> starts;
   for (const auto& a : scen.agents) starts.push_back(a.start);
@@ -127,7 +127,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto profile = dds::find_qos_profile(o.sim.dds.qos);
   std::optional<ChildProcess> sim;
   if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
-  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile));
+  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
   std::optional<monitor::StatesCsvWriter> states;

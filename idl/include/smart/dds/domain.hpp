@@ -31,6 +31,19 @@ struct TransportConfig {
   bool operator==(const TransportConfig&) const = default;
 };
 
+// DDS Security (OMG DDS Security 1.1, builtin plugins: PKI-DH authentication, permissions access
+// control, AES-GCM crypto; Debian ships Cyclone's in libddsc0debian): the files of one identity
+// as `smart security init` writes them (README, "Running safely on a shared network").
+struct SecurityFiles {
+  std::string identity_ca;           // PEM: the CA that signed every identity
+  std::string identity_certificate;  // PEM: this participant's certificate
+  std::string private_key;           // PEM
+  std::string permissions_ca;        // PEM: the CA that signed governance and permissions
+  std::string governance;            // S/MIME-signed XML (.p7s)
+  std::string permissions;           // S/MIME-signed XML (.p7s): this identity's grant
+  bool operator==(const SecurityFiles&) const = default;
+};
+
 struct DomainConfig {
   std::vector<std::string> interfaces{"lo"};
   std::vector<std::string> peers{"127.0.0.1"};
@@ -38,6 +51,7 @@ struct DomainConfig {
   int max_auto_participant_index = 60;
   TransportConfig transport;
   std::string tracing_verbosity = "warning";
+  std::optional<SecurityFiles> security;  // none: no DDS Security
 
   // Everything default: loopback only (tests, single-host runs).
   static DomainConfig loopback() { return DomainConfig{}; }

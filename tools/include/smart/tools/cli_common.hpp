@@ -32,6 +32,8 @@ struct DdsOptions {
   Network network = Network::kLoopback;
   std::string run = smart_msg_DEFAULT_RUN;  // the run's DDS partition (idl/smart.idl, "Runs")
   bool run_given = false;                   // --run / SMART_RUN was set
+  std::string security;  // keystore of `smart security init` (empty: no DDS Security)
+  std::string identity;  // identity in the keystore (empty: the command's own role)
 };
 
 // A named value of an enum option, as shown in --help and accepted on the command line.
@@ -80,7 +82,10 @@ std::vector<std::string> dds_argv(const DdsOptions& options);
 // A fresh run name for a process that starts a whole run (`smart run`): its pid and the time.
 std::string fresh_run_name();
 // Loads the QoS profile and renders the domain configuration for `options`.
-dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile& profile);
+// With --security, the identity `options.identity` or else `role` (monitor, sim, agent-<id>,
+// viewer; tools/security.hpp).
+dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile& profile,
+                                const std::string& role);
 
 // A config file given by name ("footbot" -> <config dir>/<kind>/footbot.yaml) or by path
 // (anything with '/' or ending in .yaml). Throws config::ConfigError listing where it looked.

@@ -1,0 +1,136 @@
+// The fault cases under DDS Security (label faults): every process of the run has an identity
+// from `smart security init`; a participant without one sees nothing and changes nothing, even
+// writing at the strongest ownership strength; a viewer identity reads but cannot publish
+// actions; the run gives the same numbers as without security.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "smart/dds/action_window.hpp"
+#include "smart/dds/error.hpp"
+#include "smart/dds/wire.hpp"
+#include "smart/tools/security.hpp"
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+class SecureFaults : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    keystore_ = new std::filesystem::path(temp_file("keystore"));
+    std::filesystem::remove_all(*keystore_);
+    const auto r = run_smart(
+        {"security", "init", "--out", keystore_->string(), "--agent-ids", "0-1", "--days", "2"},
+        60s, "security_init");
+    ASSERT_EQ(r.code, 0) << r.out;
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*keystore_);
+    delete keystore_;
+  }
+  void SetUp() override {
+    b_ = benchmarks_dir();
+    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+  }
+  std::vector<std::string> args(std::string command, int domain, bool plan, bool secure) const {
+    std::vector<std::string> a{std::move(command),
+                               "--map",
+                               (b_ / "maps/random-32-32-20.map").string(),
+                               "--scen",
+                               (b_ / "scens/random-32-32-20-random-1.scen").string(),
+                               "--agents",
+                               "20",
+                               "--domain",
+                               std::to_string(domain)};
+    if (plan) {
+      a.insert(a.end(), {"--plan", (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis",
+                         "xy", "--no-progress"});
+    }
+    if (secure) a.insert(a.end(), {"--security", keystore_->string()});
+    return a;
+  }
+  static std::filesystem::path* keystore_;
+  std::filesystem::path b_;
+};
+std::filesystem::path* SecureFaults::keystore_ = nullptr;
+
+TEST_F(SecureFaults, KeystoreHoldsEveryRoleAndItsPermissionsAreSigned) {
+  for (const char* id : {"monitor", "sim", "viewer", "agent-0", "agent-1"}) {
+    EXPECT_NO_THROW((void)tools::identity_files(*keystore_, id)) << id;
+  }
+  EXPECT_THROW((void)tools::identity_files(*keystore_, "agent-7"), config::ConfigError);
+  const auto p7s = slurp(*keystore_ / "viewer" / "permissions.p7s");
+  EXPECT_THAT(p7s, ::testing::HasSubstr("application/x-pkcs7-signature"));
+  EXPECT_THAT(p7s, ::testing::HasSubstr("<subject_name>CN=viewer,O=SMART-DDS</subject_name>"));
+}
+
+// A rogue without an identity, writing at the strongest strength (which, without security,
+// hides robot 3's states: untrusted_samples_test), and reading: it sees nothing, changes
+// nothing, and the secured run's numbers equal the unsecured run's.
+TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
+  const int d = kSecureRogue;
+  dds::Domain domain(d, loopback());
+  dds::Participant rogue_p(domain);
+  const auto qos = dds::find_qos_profile("lan");
+  dds::WireWriter<smart_msg_RobotState> states(rogue_p, qos, dds::kMonitorStrengthResume);
+  dds::WireWriter<smart_msg_Clock> clocks(rogue_p, qos, dds::kMonitorStrengthResume);
+  dds::WireReader<smart_msg_RobotState> spy(rogue_p, qos);
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> seen{0};
+  std::thread rogue([&] {
+    while (!done) {
+      smart_msg_RobotState s{};
+      s.robot_id = 3;
+      s.pose = {5.0, 5.0, 0.0};
+      states.write(s);
+      clocks.write(smart_msg_Clock{dds::kMonitorClockSource, 0, 0, 0.0, 0, true});
+      // Its own samples come back (local delivery); any other is the fleet's.
+      spy.take_each([&](const smart_msg_RobotState& m) {
+        if (m.robot_id != 3 || m.pose.x_m != 5.0) ++seen;
+      });
+      std::this_thread::sleep_for(10ms);
+    }
+  });
+  auto sim = start_smart(args("sim", d, false, true), temp_file("secure_sim.out"));
+  const auto r = run_smart(args("monitor", d, true, true), 120s, "secure_monitor");
+  done = true;
+  rogue.join();
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(sim.wait(30s).value_or(-1), 0);
+  EXPECT_EQ(seen.load(), 0u) << "an unauthenticated participant read the fleet's states";
+  const auto secured = r.last_json();
+  EXPECT_EQ(secured["robots_goal_unverified"], nlohmann::json::array());
+  const auto plain = run_smart(args("run", kSecurePlain, true, false), 120s, "secure_plain");
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  for (const char* key : {"success", "aet_s", "makespan_s", "sim_time_s", "finished_actions",
+                          "collisions", "stops", "waiting_time_s"}) {
+    EXPECT_EQ(secured[key], plain.last_json()[key]) << key;
+  }
+}
+
+TEST_F(SecureFaults, AViewerReadsTheFleetButCannotPublishActions) {
+  const int d = kSecureViewer;
+  auto config = loopback();
+  config.security = tools::identity_files(*keystore_, "viewer");
+  dds::Domain domain(d, config);
+  dds::Participant viewer(domain);
+  const auto qos = dds::find_qos_profile("lan");
+  EXPECT_THROW(dds::WireWriter<smart_msg_ActionWindow>(viewer, qos, dds::kMonitorStrengthResume),
+               dds::Error);
+  dds::WireReader<smart_msg_RobotState> states(viewer, qos);
+  auto sim = start_smart(args("sim", d, false, true), temp_file("viewer_sim.out"));
+  const auto r = run_smart(args("monitor", d, true, true), 120s, "viewer_monitor");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(r.last_json()["success"].get<bool>());
+  EXPECT_GT(states.take_each([](const smart_msg_RobotState&) {}), 0u);
+  EXPECT_EQ(sim.wait(30s).value_or(-1), 0);
+}
+
+}  // namespace
+}  // namespace smart::test
