@@ -5,7 +5,7 @@ BUILD_TYPE ?= Release
 JOBS ?= 2
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 
-.PHONY: all deps configure build test demo bench asan asan-test format clean
+.PHONY: all deps configure build test demo bench asan asan-test fuzz format clean
 
 all: build
 
@@ -40,8 +40,23 @@ asan: deps
 asan-test: asan
 	ctest --preset asan -LE long
 
+# libFuzzer (clang) on every reader of untrusted input, FUZZ_SECONDS each, from the seed corpus
+# (tests/fuzz/corpus, replayed by `make test`); new finds go to build-fuzz/corpus/<target>.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := map scen plan robot_yaml qos_yaml samples
+fuzz: deps
+	@cmake -S . -B build-fuzz -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSMART_FUZZ=ON >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_targets
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p build-fuzz/corpus/$$t; \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  build-fuzz/bin/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    build-fuzz/corpus/$$t tests/fuzz/corpus/$$t || exit 1; \
+	done
+
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-fuzz

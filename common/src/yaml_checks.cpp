@@ -39,7 +39,9 @@ void reject_unknown(const std::string& source, const YAML::Node& node, const std
                     const std::vector<std::string>& known) {
   const std::set<std::string> k(known.begin(), known.end());
   for (const auto& kv : node) {
-    const auto key = kv.first.as<std::string>();
+    // A key may be any YAML node ("[a, b]: 1"); only a plain word names a setting.
+    if (!kv.first.IsScalar()) fail(source, kv.first, "a key in '" + path + "' is not a plain word");
+    const auto key = kv.first.Scalar();
     if (!k.count(key)) {
       fail(source, kv.first,
            "unknown key '" + key + "' in '" + path + "'; known keys: " + join(known));

@@ -329,7 +329,11 @@ void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis, std::vector<P
   int order = 0;
   for (const auto& kv : schedule) {
     const int ln = kv.first.Mark().line + 1;
-    const auto name = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) {  // found by fuzzing: "[a]: ..." escaped as BadConversion
+      problems.push_back({plan.source, ln, -1, "an agent name must be a plain word, e.g. agent3"});
+      continue;
+    }
+    const auto name = kv.first.Scalar();
     // "agent7" is robot 7; names without a number are numbered in file order.
     std::size_t d = name.size();
     while (d > 0 && std::isdigit(static_cast<unsigned char>(name[d - 1]))) --d;

@@ -36,6 +36,14 @@ TEST(YamlChecks, SyntaxErrorsAndUnknownKeys) {
               HasSubstr("/nonexistent.yaml: cannot open the robot file"));
 }
 
+// Found by fuzzing (tests/fuzz/corpus/robot_yaml/regression_non_scalar_key.yaml): a key that is
+// a sequence escaped as YAML::BadConversion, not a ConfigError naming the file and line.
+TEST(YamlChecks, ANonScalarKeyIsAConfigErrorNotABadConversion) {
+  const auto root = load("good: 1\n[a, b]: 2\n", "k.yaml");
+  EXPECT_THAT(error_of([&] { reject_unknown("k.yaml", root, "robot", {"good"}); }),
+              HasSubstr("k.yaml:2:1: a key in 'robot' is not a plain word"));
+}
+
 TEST(YamlChecks, ChoiceListsOptions) {
   const auto root = load("kind: maybe\n", "c.yaml");
   EXPECT_THAT(error_of([&] {

@@ -140,6 +140,13 @@ TEST(PlanReaderErrors, YamlTimesMustBeFiniteAndKeysUnique) {
               HasSubstr("key 't' appears twice in one step"));
 }
 
+// Found by fuzzing (tests/fuzz/corpus/plan/regression_non_scalar_agent_name.yaml): an agent
+// name that is not a plain word escaped as YAML::BadConversion instead of a plan problem.
+TEST(PlanReaderErrors, YamlAgentNameThatIsNotAWordIsAProblemNotABadConversion) {
+  EXPECT_THAT(error_of("schedule:\n  [agent0]:\n    - {x: 1, y: 1, t: 0}\n", {}),
+              HasSubstr("an agent name must be a plain word"));
+}
+
 TEST(PlanReaderErrors, LacamAndYaml) {
   EXPECT_THAT(error_of("solution=\n0:(1,1),(2,2),\n1:(1,2),\n", {}),
               HasSubstr("timestep 1 lists 1 robots but timestep 0 lists 2"));

@@ -212,7 +212,6 @@ class RunSupervisor {
   double last_finish_sim_s_ = 0;
   double last_metrics_sim_s_ = 0;
   double last_sim_sign_s_ = 0;
-  double last_liveness_s_ = 0;
   uint32_t max_matched_ = 0;
   bool sim_seen_ = false;
 };
