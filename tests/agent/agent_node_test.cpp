@@ -118,5 +118,48 @@ TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
   EXPECT_EQ(got[0].executing_seq, -1);
 }
 
+TEST(AgentNode, RepublishRepeatsTheLastReportedProgressForARestartedAgentsSake) {
+  Rig rig(test::kAgentNodeRepublish);
+  test::FakeRobot body(0.3);
+  Agent a({1, footbot(), 0.1, 0.5}, body, body);
+  a.activate();
+  rig.node.host(a);
+  rig.node.republish_progress();  // nothing reported yet: nothing repeated
+  a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
+  a.step(0.0);
+  ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
+  EXPECT_EQ(rig.node.publish_progress(), 1u);
+  std::vector<smart_msg_Progress> got;
+  auto take = [&] {
+    rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
+    return got.size();
+  };
+  ASSERT_TRUE(eventually([&] { return take() >= 1; }));  // keep last 1: take it first
+  rig.node.republish_progress();
+  ASSERT_TRUE(eventually([&] { return take() >= 2; }));
+  EXPECT_EQ(got[1].finished_seq, got[0].finished_seq);
+  EXPECT_EQ(got[1].run_id, 9u);
+}
+
+// Only a monitor's writers are heard (idl/smart.idl, "Ownership"): a stray writer with a
+// host's strength cannot hand a robot a window.
+TEST(AgentNode, WindowsFromAWriterWeakerThanAMonitorAreDropped) {
+  Rig rig(test::kAgentNodeWeakMonitor);
+  dds::WireWriter<smart_msg_ActionWindow> stray{rig.mon, rig.qos};  // HOST_STRENGTH
+  test::FakeRobot body(0.3);
+  Agent a({0, footbot(), 0.1, 0.5}, body, body);
+  rig.node.host(a);
+  ASSERT_TRUE(stray.wait_for_readers(1, 3000ms));
+  dds::ActionWindowBuffer buf(0, 9, 4, {rotate_step(0, 1.0)});
+  stray.write(buf.view());
+  ASSERT_TRUE(eventually([&] {
+    rig.node.take_windows();
+    return rig.node.rejections().total() > 0;
+  }));
+  EXPECT_EQ(a.run_id(), 0u);
+  EXPECT_EQ(rig.node.rejections().counts().at("action").begin()->first,
+            "not a monitor's writer (ownership strength below MONITOR_STRENGTH_MIN)");
+}
+
 }  // namespace
 }  // namespace smart::agent

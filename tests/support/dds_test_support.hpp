@@ -64,6 +64,8 @@ enum DomainId : int {
   kSecureRogue = 153,
   kSecurePlain = 154,
   kSecureViewer = 155,
+  kAgentNodeRepublish = 156,
+  kAgentNodeWeakMonitor = 157,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
