@@ -94,9 +94,14 @@ struct MonitorNode::Impl {
         senders(robots) {}
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.
-  bool valid(const char* topic, const std::string& why) {
+  template <class Reader>
+  bool valid(const char* topic, const std::string& why, const Reader& reader,
+             dds_instance_handle_t from) {
     if (why.empty()) return true;
-    if (rejections.count(topic, why)) spdlog::warn("monitor: {} sample rejected: {}", topic, why);
+    if (rejections.count(topic, why)) {
+      spdlog::warn("monitor: {} sample from {} rejected: {}", topic,
+                   describe_sender(reader.participant_of(from)), why);
+    }
     return false;
   }
 
@@ -104,16 +109,18 @@ struct MonitorNode::Impl {
 
   void read_clocks() {
     clocks.take_each_from([&](const smart_msg_Clock& c, dds_instance_handle_t from) {
-      if (!valid("clock", wire::check_clock(c)) || c.source_id != dds::kSimClockSource) return;
-      if (!valid("clock", senders.clock(from, clocks))) return;
+      if (!valid("clock", wire::check_clock(c), clocks, from) ||
+          c.source_id != dds::kSimClockSource)
+        return;
+      if (!valid("clock", senders.clock(from, clocks), clocks, from)) return;
       sup.on_clock(wire::from_wire(c), now_s());
     });
   }
 
   void read_progress() {
     progress.take_each_from([&](const smart_msg_Progress& p, dds_instance_handle_t from) {
-      if (!valid("progress", wire::check_progress(p, robots))) return;
-      if (!valid("progress", senders.progress(p, from, progress))) return;
+      if (!valid("progress", wire::check_progress(p, robots), progress, from)) return;
+      if (!valid("progress", senders.progress(p, from, progress), progress, from)) return;
       sup.on_progress({p.robot_id, p.run_id, p.finished_seq}, now_s());
     });
     senders.release_held_back(progress, [&](const smart_msg_Progress& p) {
@@ -122,15 +129,15 @@ struct MonitorNode::Impl {
   }
 
   void read_observations() {
-    states.take_each([&](const smart_msg_RobotState& s) {
-      if (!valid("state", wire::check_state(s, robots, bounds))) return;
+    states.take_each_from([&](const smart_msg_RobotState& s, dds_instance_handle_t from) {
+      if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
       if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s()) || !opt.on_state)
         return;
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
     status.take_each_from([&](const smart_msg_SimStatus& s, dds_instance_handle_t from) {
-      if (!valid("sim_status", wire::check_status(s, robots))) return;
+      if (!valid("sim_status", wire::check_status(s, robots), status, from)) return;
       if (!senders.sim_known()) {
         early_status = {s, from};  // the newest; placed once the sim host's first tick is in
         return;
@@ -145,7 +152,7 @@ struct MonitorNode::Impl {
   }
 
   void take_status(const smart_msg_SimStatus& s, dds_instance_handle_t from) {
-    if (!valid("sim_status", senders.status(from, status))) return;
+    if (!valid("sim_status", senders.status(from, status), status, from)) return;
     sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
                        s.first_contact_a, s.first_contact_b});
   }

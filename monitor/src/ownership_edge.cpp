@@ -93,6 +93,18 @@ std::optional<std::string> MonitorAnnouncer::settle(const std::function<bool()>&
   return poll();
 }
 
+std::string describe_sender(const std::optional<dds_guid_t>& participant) {
+  if (!participant) return "a writer that left";
+  std::string out = "participant ";
+  char hex[3];
+  for (std::size_t i = 0; i < 12; ++i) {  // the GUID prefix; the rest names the entity
+    std::snprintf(hex, sizeof(hex), "%02x", participant->v[i]);
+    out += hex;
+    if (i % 4 == 3 && i < 11) out += ':';
+  }
+  return out;
+}
+
 bool SenderGate::same(const dds_guid_t& a, const dds_guid_t& b) {
   return std::memcmp(a.v, b.v, sizeof(a.v)) == 0;
 }

@@ -23,6 +23,10 @@
 
 namespace smart::monitor {
 
+// "participant 0110a2b3:..." (its GUID prefix: the host and process that sent a sample), or
+// "a writer that left" when it is no longer matched.
+std::string describe_sender(const std::optional<dds_guid_t>& participant);
+
 class MonitorAnnouncer {
  public:
   MonitorAnnouncer(const dds::Participant& p, const dds::QosProfile& qos, uint64_t run_id,

@@ -71,8 +71,9 @@ TEST_F(SecureFaults, KeystoreHoldsEveryRoleAndItsPermissionsAreSigned) {
 }
 
 // A rogue without an identity, writing at the strongest strength (which, without security,
-// hides robot 3's states: untrusted_samples_test), and reading: it sees nothing, changes
-// nothing, and the secured run's numbers equal the unsecured run's.
+// hides robot 3's states: untrusted_samples_test) states, stops, windows, progress for every
+// robot and a collision report, and reading: it sees nothing, changes nothing, and the secured
+// run's numbers equal the unsecured run's.
 TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
   const int d = kSecureRogue;
   dds::Domain domain(d, loopback());
@@ -80,6 +81,9 @@ TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
   const auto qos = dds::find_qos_profile("lan");
   dds::WireWriter<smart_msg_RobotState> states(rogue_p, qos, dds::kMonitorStrengthResume);
   dds::WireWriter<smart_msg_Clock> clocks(rogue_p, qos, dds::kMonitorStrengthResume);
+  dds::WireWriter<smart_msg_ActionWindow> windows(rogue_p, qos, dds::kMonitorStrengthResume);
+  dds::WireWriter<smart_msg_Progress> progress(rogue_p, qos, dds::kMonitorStrengthResume);
+  dds::WireWriter<smart_msg_SimStatus> status(rogue_p, qos, dds::kMonitorStrengthResume);
   dds::WireReader<smart_msg_RobotState> spy(rogue_p, qos);
   std::atomic<bool> done{false};
   std::atomic<std::size_t> seen{0};
@@ -90,6 +94,15 @@ TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
       s.pose = {5.0, 5.0, 0.0};
       states.write(s);
       clocks.write(smart_msg_Clock{dds::kMonitorClockSource, 0, 0, 0.0, 0, true});
+      dds::ActionWindowBuffer w(4, 0, 1);
+      smart_msg_ActionStep step{};
+      step.type = smart_msg_ACTION_MOVE;
+      step.from = {1.0, 1.0, 2, 2};
+      step.to = {30.0, 30.0, 60, 60};
+      w.steps().push_back(step);
+      windows.write(w.view());
+      for (uint32_t r = 0; r < 20; ++r) progress.write(smart_msg_Progress{r, 0, 1000, -1});
+      status.write(smart_msg_SimStatus{dds::kSimClockSource, 0, 1.0, 20, 9, 0, 0.0, 0, 0, 1, 2});
       // Its own samples come back (local delivery); any other is the fleet's.
       spy.take_each([&](const smart_msg_RobotState& m) {
         if (m.robot_id != 3 || m.pose.x_m != 5.0) ++seen;

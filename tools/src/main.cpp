@@ -33,8 +33,8 @@ int report(const std::exception_ptr& error) {
     return ExitCode::kExitBadInput;
   } catch (const smart::dds::Error& e) {
     std::cerr << "smart: DDS error: " << e.what()
-              << "\n(check --domain and --network, and that no firewall or sandbox blocks "
-                 "UDP on this host)\n";
+              << "\n(check --domain, --network and --security, and that no firewall or "
+                 "sandbox blocks UDP on this host)\n";
     return ExitCode::kExitSystem;
   } catch (const smart::hw::I2cError& e) {
     std::cerr << "smart: I2C error: " << e.what() << "\n";
