@@ -14,6 +14,7 @@ packages=(
   libfastrtps-dev
   clang-tidy
   openssl libddsc0debian
+  libcpp-httplib-dev
 )
 
 missing=()

@@ -66,6 +66,7 @@ enum DomainId : int {
   kSecureViewer = 155,
   kAgentNodeRepublish = 156,
   kAgentNodeWeakMonitor = 157,
+  kServeRuns = 158,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

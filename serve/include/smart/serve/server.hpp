@@ -1,0 +1,51 @@
+// Contract: `smart serve`'s HTTP edge (cpp-httplib, Debian): a small JSON API over runs that
+// execute as real `smart run` processes (monitor + sim host over DDS, each in its own run
+// partition), at most max_running at once, the rest queued.
+//   POST /api/runs               multipart: map, scen, plan (files); axis (xy|rowcol), agents,
+//                                robot (a model name). 200 {"id"}; 400 {"error", "problems":
+//                                [{file, line, robot, message}]} as `smart check-plan` lists them
+//   GET  /api/runs               [{id, state, map, robots}]
+//   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}
+//   GET  /api/runs/{id}/recording the run's poses in the SMRC format (recording.hpp)
+//   GET  /...                    the web app's built files (web_dir), when given
+// Files live only under data_dir/<id>/ with fixed names; ids come from RunRegistry and anything
+// else in a URL is a 404, so no request reads or writes outside data_dir. Uploads are bounded
+// (max_upload_bytes). A run that fails or crashes is recorded as failed; the server goes on.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace smart::serve {
+
+struct ServeOptions {
+  std::string bind = "127.0.0.1";
+  int port = 8080;  // 0: any free port (bind() returns it)
+  std::filesystem::path data_dir;
+  std::filesystem::path web_dir;     // empty: API only
+  std::filesystem::path smart_exe;   // the `smart` executable that runs each run
+  std::filesystem::path config_dir;  // robot models offered (config/robots)
+  std::size_t max_running = 1;
+  std::size_t max_upload_bytes = 64u << 20;
+  int domain = 0;
+  std::string qos = "lan";
+};
+
+class Server {
+ public:
+  explicit Server(ServeOptions options);
+  ~Server();
+  // Binds the socket; returns the port. Throws std::runtime_error naming bind:port on failure.
+  int bind();
+  // Serves until stop is set (checked every 100 ms); runs still going are stopped.
+  void run(const std::atomic<bool>& stop);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace smart::serve

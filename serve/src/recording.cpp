@@ -1,0 +1,114 @@
+#include "smart/serve/recording.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+namespace smart::serve {
+
+namespace {
+constexpr uint32_t kVersion = 1;
+constexpr std::size_t kHeader = 4 + 3 * 4 + 3 * 8;
+constexpr std::size_t kPerRobot = 6;
+
+template <class T>
+void put(std::string& out, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  out.append(b, sizeof(T));
+}
+template <class T>
+T get(std::string_view in, std::size_t& at) {
+  if (at + sizeof(T) > in.size()) throw std::invalid_argument("recording is truncated");
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return v;
+}
+
+bool field(std::string_view& line, double& out) {
+  const auto comma = std::min(line.find(','), line.size());
+  const auto [end, ec] = std::from_chars(line.data(), line.data() + comma, out);
+  line.remove_prefix(std::min(comma + 1, line.size()));
+  return ec == std::errc() && std::isfinite(out);
+}
+}  // namespace
+
+std::vector<PoseRow> parse_states_csv(std::string_view text) {
+  std::vector<PoseRow> rows;
+  std::size_t line_no = 0;
+  while (!text.empty()) {
+    const auto nl = std::min(text.find('\n'), text.size());
+    std::string_view line = text.substr(0, nl);
+    text.remove_prefix(std::min(nl + 1, text.size()));
+    if (++line_no == 1 || line.empty()) continue;  // header
+    double t, robot, x, y, yaw;
+    if (!field(line, t) || !field(line, robot) || !field(line, x) || !field(line, y) ||
+        !field(line, yaw) || robot < 0 || robot > 1e7) {
+      throw std::invalid_argument("states.csv line " + std::to_string(line_no) +
+                                  ": expected t_s,robot,x_m,y_m,yaw_rad,... numbers");
+    }
+    rows.push_back({t, static_cast<uint32_t>(robot), x, y, yaw});
+  }
+  return rows;
+}
+
+std::string encode_recording(const std::vector<PoseRow>& rows) {
+  uint32_t robots = 0;
+  double min_x = 0, min_y = 0, max_x = 1, max_y = 1;
+  if (!rows.empty()) min_x = max_x = rows[0].x_m, min_y = max_y = rows[0].y_m;
+  std::map<double, std::vector<const PoseRow*>> frames;
+  for (const auto& r : rows) {
+    robots = std::max(robots, r.robot + 1);
+    min_x = std::min(min_x, r.x_m), max_x = std::max(max_x, r.x_m);
+    min_y = std::min(min_y, r.y_m), max_y = std::max(max_y, r.y_m);
+    frames[r.t_s].push_back(&r);
+  }
+  const double quantum = std::max({max_x - min_x, max_y - min_y, 1e-3}) / 65535.0;
+  std::string out = "SMRC";
+  put(out, kVersion), put(out, robots), put(out, static_cast<uint32_t>(frames.size()));
+  put(out, min_x), put(out, min_y), put(out, quantum);
+  std::vector<uint16_t> qx(robots, 0), qy(robots, 0);
+  std::vector<int16_t> yaw(robots, 0);
+  for (const auto& [t, frame] : frames) {
+    for (const PoseRow* r : frame) {
+      qx[r->robot] = static_cast<uint16_t>(std::lround((r->x_m - min_x) / quantum));
+      qy[r->robot] = static_cast<uint16_t>(std::lround((r->y_m - min_y) / quantum));
+      const double wrapped = std::remainder(r->yaw_rad, 2 * M_PI);
+      yaw[r->robot] = static_cast<int16_t>(std::lround(wrapped * 1e4));
+    }
+    put(out, static_cast<float>(t));
+    for (uint32_t i = 0; i < robots; ++i) put(out, qx[i]), put(out, qy[i]), put(out, yaw[i]);
+  }
+  return out;
+}
+
+Recording decode_recording(std::string_view in) {
+  if (in.size() < kHeader || in.substr(0, 4) != "SMRC") {
+    throw std::invalid_argument("not a SMART-DDS recording (no SMRC header)");
+  }
+  std::size_t at = 4;
+  if (get<uint32_t>(in, at) != kVersion) throw std::invalid_argument("recording version is not 1");
+  Recording rec;
+  rec.robots = get<uint32_t>(in, at);
+  const auto frames = get<uint32_t>(in, at);
+  if (rec.robots > 10000000) throw std::invalid_argument("recording claims too many robots");
+  const auto min_x = get<double>(in, at), min_y = get<double>(in, at), q = get<double>(in, at);
+  if (in.size() != kHeader + std::size_t{frames} * (4 + std::size_t{rec.robots} * kPerRobot)) {
+    throw std::invalid_argument("recording size does not match its header");
+  }
+  for (uint32_t f = 0; f < frames; ++f) {
+    rec.times_s.push_back(get<float>(in, at));
+    for (uint32_t r = 0; r < rec.robots; ++r) {
+      const auto x = get<uint16_t>(in, at), y = get<uint16_t>(in, at);
+      const auto yaw = get<int16_t>(in, at);
+      rec.poses.push_back({rec.times_s.back(), r, min_x + x * q, min_y + y * q, yaw * 1e-4});
+    }
+  }
+  return rec;
+}
+
+}  // namespace smart::serve

@@ -1,0 +1,290 @@
+#include "smart/serve/server.hpp"
+
+#include <httplib.h>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "smart/grid/problem.hpp"
+#include "smart/monitor/instance.hpp"
+#include "smart/serve/recording.hpp"
+#include "smart/serve/run_registry.hpp"
+#include "smart/tools/child_process.hpp"
+
+namespace smart::serve {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void reply(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+// Problems name the files as the user uploaded them, not the server's scratch paths.
+json problems_json(const std::vector<grid::Problem>& problems, const httplib::Request& req,
+                   const fs::path& scratch) {
+  const std::map<std::string, std::string> names{
+      {(scratch / "map.map").string(), req.get_file_value("map").filename},
+      {(scratch / "scen.scen").string(), req.get_file_value("scen").filename},
+      {(scratch / "plan.txt").string(), req.get_file_value("plan").filename}};
+  json out = json::array();
+  for (const auto& p : problems) {
+    const auto it = names.find(p.source);
+    out.push_back({{"file", it == names.end() ? p.source : it->second},
+                   {"line", p.line},
+                   {"robot", p.robot},
+                   {"message", p.message}});
+  }
+  return out;
+}
+
+bool plain_name(const std::string& s) {
+  return !s.empty() && s.size() <= 64 &&
+         s.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos;
+}
+
+// What an upload asks for beyond its files; an error text when a field is wrong.
+struct RunRequest {
+  std::string axis = "xy";
+  std::size_t agents = 0;
+  std::string robot = "footbot";
+  std::string error;
+};
+
+RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) {
+  RunRequest r;
+  auto field = [&](const char* name) {
+    return req.has_file(name) ? std::optional(req.get_file_value(name).content) : std::nullopt;
+  };
+  for (const char* f : {"plan", "scen", "map"}) {  // the first missing one is named
+    if (!req.has_file(f)) r.error = "missing the '" + std::string(f) + "' file field";
+  }
+  if (auto a = field("axis")) r.axis = *a;
+  if (r.axis != "xy" && r.axis != "rowcol") r.error = "axis must be xy or rowcol";
+  if (auto n = field("agents")) {
+    try {
+      const long long v = std::stoll(*n);
+      if (v < 0 || v > 100000) throw std::out_of_range(*n);
+      r.agents = static_cast<std::size_t>(v);
+    } catch (const std::logic_error&) {
+      r.error = "agents must be a whole number from 0 (all) to 100000";
+    }
+  }
+  if (auto m = field("robot")) r.robot = *m;
+  if (!plain_name(r.robot) || !fs::is_regular_file(robots_dir / (r.robot + ".yaml"))) {
+    r.error = "robot must name a model in config/robots, e.g. footbot";
+  }
+  return r;
+}
+}  // namespace
+
+struct Server::Impl {
+  ServeOptions opt;
+  httplib::Server http;
+  std::mutex m;
+  RunRegistry registry;
+  std::map<std::string, std::vector<std::string>> argv;  // queued runs' `smart run` command
+  std::map<std::string, tools::ChildProcess> children;   // running ones
+  uint64_t uploads = 0;
+
+  explicit Impl(ServeOptions o) : opt(std::move(o)) {}
+
+  fs::path dir(const std::string& id) const { return opt.data_dir / id; }
+
+  std::vector<std::string> run_argv(const std::string& id, const RunRequest& r) const {
+    const auto d = dir(id);
+    return {opt.smart_exe.string(),
+            "run",
+            "--map",
+            (d / "map.map").string(),
+            "--scen",
+            (d / "scen.scen").string(),
+            "--plan",
+            (d / "plan.txt").string(),
+            "--axis",
+            r.axis,
+            "--agents",
+            std::to_string(r.agents),
+            "--robot",
+            r.robot,
+            "--domain",
+            std::to_string(opt.domain),
+            "--qos",
+            opt.qos,
+            "--out",
+            (d / "results").string(),
+            "--no-progress"};
+  }
+
+  // Writes the upload under a scratch folder and checks it as `smart check-plan` would.
+  std::optional<json> check_upload(const httplib::Request& req, const fs::path& scratch,
+                                   const RunRequest& r) {
+    fs::create_directories(scratch);
+    for (const auto& [field, name] :
+         {std::pair{"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}}) {
+      std::ofstream(scratch / name, std::ios::binary) << req.get_file_value(field).content;
+    }
+    monitor::InstanceOptions io;
+    io.map = scratch / "map.map";
+    io.scen = scratch / "scen.scen";
+    io.plan = scratch / "plan.txt";
+    io.agents = r.agents;
+    io.read.axis = r.axis == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
+    try {
+      (void)monitor::load_instance(io);
+      return std::nullopt;
+    } catch (const grid::InputError& e) {
+      return json{{"error", "the upload has problems"},
+                  {"problems", problems_json(e.problems(), req, scratch)}};
+    } catch (const std::exception& e) {
+      return json{{"error", e.what()}, {"problems", json::array()}};
+    }
+  }
+
+  void post_run(const httplib::Request& req, httplib::Response& res) {
+    const RunRequest r = read_fields(req, opt.config_dir / "robots");
+    if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
+    fs::path scratch;
+    {
+      std::lock_guard lock(m);
+      scratch = opt.data_dir / ("upload-" + std::to_string(++uploads));
+    }
+    if (auto bad = check_upload(req, scratch, r)) {
+      fs::remove_all(scratch);
+      return reply(res, 400, *bad);
+    }
+    std::lock_guard lock(m);
+    const auto id = registry.add(req.get_file_value("map").filename, r.agents);
+    fs::rename(scratch, dir(id));
+    argv[id] = run_argv(id, r);
+    reply(res, 200, {{"id", id}});
+  }
+
+  json entry_json(const RunEntry& e) const {
+    return {{"id", e.id},
+            {"state", to_string(e.state)},
+            {"map", e.map_name},
+            {"robots", e.robots},
+            {"error", e.error}};
+  }
+
+  void get_run(const std::string& id, httplib::Response& res) {
+    std::optional<RunEntry> e;
+    {
+      std::lock_guard lock(m);
+      if (is_run_id(id)) e = registry.get(id);
+    }
+    if (!e) return reply(res, 404, {{"error", "no run " + id}});
+    json j = entry_json(*e);
+    const auto summary = dir(id) / "results" / "summary.json";
+    if (e->state == RunState::kDone && fs::exists(summary))
+      j["summary"] = json::parse(slurp(summary));
+    reply(res, 200, j);
+  }
+
+  void get_recording(const std::string& id, httplib::Response& res) {
+    std::optional<RunEntry> e;
+    {
+      std::lock_guard lock(m);
+      if (is_run_id(id)) e = registry.get(id);
+    }
+    const auto states = dir(id) / "results" / "states.csv";
+    if (!e || e->state != RunState::kDone || !fs::exists(states)) {
+      return reply(res, 404, {{"error", "no recording of " + id + " (yet)"}});
+    }
+    const auto cached = dir(id) / "recording.smrc";
+    if (!fs::exists(cached)) {
+      std::ofstream(cached, std::ios::binary) << encode_recording(parse_states_csv(slurp(states)));
+    }
+    res.set_content(slurp(cached), "application/octet-stream");
+  }
+
+  void routes() {
+    http.set_payload_max_length(opt.max_upload_bytes);
+    http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
+    http.Get("/api/runs", [this](const auto&, auto& res) {
+      json list = json::array();
+      std::lock_guard lock(m);
+      for (const auto& e : registry.list()) list.push_back(entry_json(e));
+      reply(res, 200, list);
+    });
+    http.Get(R"(/api/runs/([^/]+))",
+             [this](const auto& req, auto& res) { get_run(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/recording)",
+             [this](const auto& req, auto& res) { get_recording(req.matches[1], res); });
+    if (!opt.web_dir.empty()) http.set_mount_point("/", opt.web_dir.string());
+  }
+
+  // Starts what may start, collects what ended.
+  void tend_runs() {
+    std::lock_guard lock(m);
+    for (const auto& id : registry.start_ready(opt.max_running)) {
+      children.emplace(id, tools::ChildProcess(argv.at(id), dir(id) / "run.out"));
+      spdlog::info("serve: {} started", id);
+    }
+    for (auto it = children.begin(); it != children.end();) {
+      const auto rc = it->second.wait(std::chrono::milliseconds(0));
+      if (!rc) {
+        ++it;
+        continue;
+      }
+      const bool summary = fs::exists(dir(it->first) / "results" / "summary.json");
+      const bool ok = (*rc == 0 || *rc == 1) && summary;
+      registry.finish(it->first, ok,
+                      ok ? ""
+                         : "smart run exited with code " + std::to_string(*rc) + "; see " +
+                               (dir(it->first) / "run.out").string());
+      spdlog::info("serve: {} ended (exit code {})", it->first, *rc);
+      it = children.erase(it);
+    }
+  }
+};
+
+Server::Server(ServeOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
+  fs::create_directories(impl_->opt.data_dir);
+  impl_->routes();
+}
+
+Server::~Server() = default;
+
+int Server::bind() {
+  auto& I = *impl_;
+  const int port = I.opt.port == 0
+                       ? I.http.bind_to_any_port(I.opt.bind)
+                       : (I.http.bind_to_port(I.opt.bind, I.opt.port) ? I.opt.port : -1);
+  if (port < 0) {
+    throw std::runtime_error("cannot listen on " + I.opt.bind + ":" + std::to_string(I.opt.port) +
+                             "; is the port taken? choose another with --port");
+  }
+  return port;
+}
+
+void Server::run(const std::atomic<bool>& stop) {
+  auto& I = *impl_;
+  std::thread listener([&] { I.http.listen_after_bind(); });
+  while (!stop.load()) {
+    I.tend_runs();
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  I.http.stop();
+  listener.join();
+  std::lock_guard lock(I.m);
+  I.children.clear();  // ChildProcess stops what still runs
+}
+
+}  // namespace smart::serve

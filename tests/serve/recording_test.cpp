@@ -1,0 +1,49 @@
+// The SMRC recording: states.csv in, compact frames out, poses back within one quantum.
+#include "smart/serve/recording.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace smart::serve {
+namespace {
+
+const char* kCsv =
+    "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n"
+    "0,0,1,2,0,0,0,0,0,1\n"
+    "0,1,5,2,3.14159,0,0,0,0,1\n"
+    "0.5,0,1.25,2,0.5,0.5,0,0.5,0.5,1\n";  // robot 1 not reported: keeps its pose
+
+TEST(Recording, RoundTripsPosesFrameByFrameAndCarriesMissingRobotsForward) {
+  const auto rows = parse_states_csv(kCsv);
+  ASSERT_EQ(rows.size(), 3u);
+  const auto bytes = encode_recording(rows);
+  EXPECT_EQ(bytes.substr(0, 4), "SMRC");
+  EXPECT_EQ(bytes.size(), 40u + 2 * (4 + 2 * 6));
+  const auto rec = decode_recording(bytes);
+  ASSERT_EQ(rec.robots, 2u);
+  ASSERT_EQ(rec.times_s, (std::vector<float>{0.0f, 0.5f}));
+  const double q = 4.0 / 65535;            // extent 4 m
+  EXPECT_NEAR(rec.poses[2].x_m, 1.25, q);  // frame 1, robot 0
+  EXPECT_NEAR(rec.poses[2].yaw_rad, 0.5, 1e-4);
+  EXPECT_NEAR(rec.poses[3].x_m, 5.0, q);  // frame 1, robot 1: carried forward
+  EXPECT_NEAR(std::abs(rec.poses[1].yaw_rad), 3.14159, 1e-4);
+}
+
+TEST(Recording, BadInputIsAnErrorNamingWhatIsWrong) {
+  EXPECT_THROW(decode_recording("SMRX"), std::invalid_argument);
+  auto bytes = encode_recording(parse_states_csv(kCsv));
+  bytes.pop_back();
+  EXPECT_THROW(decode_recording(bytes), std::invalid_argument);
+  try {
+    parse_states_csv("header\n0,0,1,2,0\n0,zero,1,2,0\n");
+    FAIL() << "a row with a word for a number was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("states.csv line 3"));
+  }
+  EXPECT_THROW(parse_states_csv("h\n0,0,nan,2,0\n"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace smart::serve

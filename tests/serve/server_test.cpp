@@ -1,0 +1,105 @@
+// `smart serve` as a user meets it: a real server process on a free loopback port, real runs
+// (`smart run` children over DDS), driven with an HTTP client (cpp-httplib).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <thread>
+
+#include "smart/serve/recording.hpp"
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+class Serve : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    b_ = benchmarks_dir();
+    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    data_ = temp_file("serve_data");
+    std::filesystem::remove_all(data_);
+    out_ = temp_file("serve.out");
+    server_.emplace(start_smart(
+        {"serve", "--port", "0", "--data", data_.string(), "--domain", std::to_string(kServeRuns)},
+        out_));
+    for (int i = 0; i < 100 && port_ == 0; ++i) {
+      std::this_thread::sleep_for(50ms);
+      const auto j = summary_in(slurp(out_));
+      if (j.is_object()) port_ = std::stoi(j["listening"].get<std::string>().substr(17));
+    }
+    ASSERT_NE(port_, 0) << "smart serve did not say where it listens: " << slurp(out_);
+  }
+  void TearDown() override {
+    server_.reset();
+    std::filesystem::remove_all(data_);
+  }
+  httplib::Result upload(const std::string& plan_file, const std::string& agents) {
+    httplib::MultipartFormDataItems items{
+        {"map", slurp(b_ / "maps/random-32-32-20.map"), "random-32-32-20.map", ""},
+        {"scen", slurp(b_ / "scens/random-32-32-20-random-1.scen"), "random.scen", ""},
+        {"plan", slurp(plan_file), "paths.txt", ""},
+        {"agents", agents, "", ""}};
+    return client().Post("/api/runs", items);
+  }
+  httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
+  std::filesystem::path b_, data_, out_;
+  std::optional<tools::ChildProcess> server_;
+  int port_ = 0;
+};
+
+TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
+  const auto posted = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20");
+  ASSERT_TRUE(posted);
+  ASSERT_EQ(posted->status, 200) << posted->body;
+  const auto id = json::parse(posted->body)["id"].get<std::string>();
+  json run;
+  for (int i = 0; i < 600; ++i) {
+    run = json::parse(client().Get("/api/runs/" + id)->body);
+    if (run["state"] == "done" || run["state"] == "failed") break;
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_EQ(run["state"], "done") << run.dump();
+  EXPECT_TRUE(run["summary"]["success"].get<bool>());
+  EXPECT_EQ(run["summary"]["robots"], 20);
+  const auto list = json::parse(client().Get("/api/runs")->body);
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0]["map"], "random-32-32-20.map");
+  const auto rec = client().Get("/api/runs/" + id + "/recording");
+  ASSERT_EQ(rec->status, 200);
+  const auto decoded = serve::decode_recording(rec->body);
+  EXPECT_EQ(decoded.robots, 20u);
+  EXPECT_GT(decoded.times_s.size(), 10u);
+}
+
+TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
+  const auto bad = temp_file("bad_plan.txt");
+  std::ofstream(bad) << "Agent 0:(1,1)->(9,9)->\n";  // a jump of 16 cells
+  const auto r = upload(bad.string(), "1");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  const auto j = json::parse(r->body);
+  ASSERT_FALSE(j["problems"].empty()) << r->body;
+  EXPECT_EQ(j["problems"][0]["file"], "paths.txt");
+  EXPECT_THAT(j.dump(), HasSubstr(R"("line":1)")) << "the jump is on line 1 of paths.txt";
+  EXPECT_EQ(json::parse(client().Get("/api/runs")->body).size(), 0u);
+  for (const char* path : {"/api/runs/../../etc/passwd", "/api/runs/%2e%2e%2fserve.out",
+                           "/api/runs/run-000001", "/api/runs/upload-1/recording"}) {
+    const auto g = client().Get(path);
+    ASSERT_TRUE(g);
+    EXPECT_EQ(g->status, 404) << path;
+  }
+  httplib::MultipartFormDataItems missing{{"map", "x", "m.map", ""}};
+  const auto m = client().Post("/api/runs", missing);
+  EXPECT_EQ(m->status, 400);
+  EXPECT_THAT(m->body, HasSubstr("missing the 'scen' file field"));
+  std::filesystem::remove(bad);
+}
+
+}  // namespace
+}  // namespace smart::test

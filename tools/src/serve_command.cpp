@@ -1,0 +1,75 @@
+// `smart serve`: the web API and viewer over runs (serve/include/smart/serve/server.hpp).
+#include <cstdlib>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "smart/serve/server.hpp"
+#include "smart/tools/child_process.hpp"
+#include "smart/tools/commands.hpp"
+
+namespace smart::tools {
+
+namespace {
+struct ServeCliOptions {
+  serve::ServeOptions serve;
+  DdsOptions dds;
+  double max_upload_mb = 64;
+};
+
+// The user's cache folder (XDG), where uploads and results live unless --data says otherwise.
+std::filesystem::path default_data_dir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) {
+    return std::filesystem::path(x) / "smart-dds" / "serve";
+  }
+  if (const char* h = std::getenv("HOME"); h && *h) {
+    return std::filesystem::path(h) / ".cache" / "smart-dds" / "serve";
+  }
+  return std::filesystem::temp_directory_path() / "smart-dds-serve";
+}
+
+int serve_runs(ServeCliOptions o) {
+  auto& s = o.serve;
+  if (s.data_dir.empty()) s.data_dir = default_data_dir();
+  s.smart_exe = self_executable();
+  s.config_dir =
+      std::filesystem::path(find_config_file("robots", "footbot")).parent_path().parent_path();
+  s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mb * (1 << 20));
+  s.domain = o.dds.domain;
+  s.qos = o.dds.qos;
+  serve::Server server(s);
+  const int port = server.bind();
+  std::cout << nlohmann::json{{"listening", "http://" + s.bind + ":" + std::to_string(port)},
+                              {"data", s.data_dir.string()}}
+            << std::endl;
+  install_stop_handlers();
+  server.run(g_stop_requested);
+  return kExitSuccess;
+}
+}  // namespace
+
+void register_serve_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ServeCliOptions>();
+  auto* cmd = app.add_subcommand(
+      "serve", "HTTP API (and web viewer) to upload, run and replay runs: smart run per upload");
+  cmd->add_option("--bind", o->serve.bind, "address to listen on")->capture_default_str();
+  cmd->add_option("--port", o->serve.port, "port (0: any free port, printed)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--data", o->serve.data_dir,
+                  "folder for uploads and results (default: ~/.cache/smart-dds/serve)");
+  cmd->add_option("--web", o->serve.web_dir, "built web app to serve at / (web/dist)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--max-runs", o->serve.max_running, "runs executing at once; the rest queue")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--max-upload-mb", o->max_upload_mb, "largest upload accepted")
+      ->check(finite_in(0.001, 4096))
+      ->capture_default_str();
+  cmd->add_option("--domain", o->dds.domain, "DDS domain id of the runs (0-230)")
+      ->check(CLI::Range(0, 230))
+      ->capture_default_str();
+  cmd->add_option("--qos", o->dds.qos, "QoS profile of the runs")->capture_default_str();
+  cmd->callback([o, &exit_code] { exit_code = serve_runs(*o); });
+}
+
+}  // namespace smart::tools
