@@ -86,6 +86,28 @@ std::string encode_recording(const std::vector<PoseRow>& rows) {
   return out;
 }
 
+void PoseTail::feed(std::string_view appended) {
+  partial_.append(appended);
+  std::size_t start = 0;
+  for (std::size_t nl; (nl = partial_.find('\n', start)) != std::string::npos; start = nl + 1) {
+    std::string_view line(partial_.data() + start, nl - start);
+    if (!header_seen_) {
+      header_seen_ = true;
+      continue;
+    }
+    double t, robot, x, y, yaw;
+    if (!field(line, t) || !field(line, robot) || !field(line, x) || !field(line, y) ||
+        !field(line, yaw) || robot < 0 || robot > 1e6) {
+      continue;
+    }
+    const auto r = static_cast<uint32_t>(robot);
+    if (latest_.size() <= r) latest_.resize(r + 1);
+    latest_[r] = {t, r, x, y, yaw};
+    time_s_ = std::max(time_s_, t);
+  }
+  partial_.erase(0, start);
+}
+
 Recording decode_recording(std::string_view in) {
   if (in.size() < kHeader || in.substr(0, 4) != "SMRC") {
     throw std::invalid_argument("not a SMART-DDS recording (no SMRC header)");

@@ -25,6 +25,12 @@ std::string RunRegistry::add(std::string map_name, std::size_t robots) {
   return id;
 }
 
+std::string RunRegistry::add_done(std::string map_name, std::size_t robots) {
+  const auto id = add(std::move(map_name), robots);
+  runs_[id].state = RunState::kDone;
+  return id;
+}
+
 std::vector<std::string> RunRegistry::start_ready(std::size_t max_running) {
   std::vector<std::string> started;
   std::size_t busy = running();

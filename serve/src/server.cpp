@@ -214,6 +214,46 @@ struct Server::Impl {
     res.set_content(slurp(cached), "application/octet-stream");
   }
 
+  std::optional<RunEntry> entry(const std::string& id) {
+    std::lock_guard lock(m);
+    return is_run_id(id) ? registry.get(id) : std::nullopt;
+  }
+
+  // One event per call, paced; the stream ends after the event that shows the run ended.
+  bool live_event(const std::string& id, PoseTail& tail, std::uintmax_t& offset,
+                  httplib::DataSink& sink) {
+    const auto e = entry(id);
+    const auto states = dir(id) / "results" / "states.csv";
+    std::ifstream in(states, std::ios::binary);
+    if (in && in.seekg(static_cast<std::streamoff>(offset))) {
+      std::string chunk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      offset += chunk.size();
+      tail.feed(chunk);
+    }
+    json poses = json::array();
+    for (const auto& p : tail.latest()) poses.push_back({p.x_m, p.y_m, p.yaw_rad});
+    const std::string state(to_string(e->state));
+    const auto msg =
+        "data: " + json{{"state", state}, {"t_s", tail.time_s()}, {"poses", poses}}.dump() + "\n\n";
+    if (!sink.write(msg.data(), msg.size())) return false;
+    if (e->state == RunState::kDone || e->state == RunState::kFailed) {
+      sink.done();
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    return true;
+  }
+
+  void get_live(const std::string& id, httplib::Response& res) {
+    if (!entry(id)) return reply(res, 404, {{"error", "no run " + id}});
+    auto tail = std::make_shared<PoseTail>();
+    auto offset = std::make_shared<std::uintmax_t>(0);
+    res.set_chunked_content_provider("text/event-stream",
+                                     [this, id, tail, offset](size_t, httplib::DataSink& sink) {
+                                       return live_event(id, *tail, *offset, sink);
+                                     });
+  }
+
   void routes() {
     http.set_payload_max_length(opt.max_upload_bytes);
     http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
@@ -227,6 +267,8 @@ struct Server::Impl {
              [this](const auto& req, auto& res) { get_run(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/recording)",
              [this](const auto& req, auto& res) { get_recording(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/live)",
+             [this](const auto& req, auto& res) { get_live(req.matches[1], res); });
     if (!opt.web_dir.empty()) http.set_mount_point("/", opt.web_dir.string());
   }
 
@@ -261,6 +303,26 @@ Server::Server(ServeOptions options) : impl_(std::make_unique<Impl>(std::move(op
 }
 
 Server::~Server() = default;
+
+std::string Server::open_results(const fs::path& results) {
+  auto& I = *impl_;
+  for (const char* f : {"summary.json", "states.csv"}) {
+    if (!fs::is_regular_file(results / f)) {
+      throw std::runtime_error("--open " + results.string() + ": no " + f +
+                               "; give a folder written by `smart run --out`");
+    }
+  }
+  const auto summary = json::parse(slurp(results / "summary.json"));
+  std::lock_guard lock(I.m);
+  const auto map = summary.value("files", json::object()).value("map", std::string("?"));
+  const auto id = I.registry.add_done(fs::path(map).filename().string(),
+                                      summary.value("robots", std::size_t{0}));
+  fs::create_directories(I.dir(id) / "results");
+  for (const auto& e : fs::directory_iterator(results)) {
+    if (e.is_regular_file()) fs::copy_file(e.path(), I.dir(id) / "results" / e.path().filename());
+  }
+  return id;
+}
 
 int Server::bind() {
   auto& I = *impl_;

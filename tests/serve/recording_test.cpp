@@ -45,5 +45,20 @@ TEST(Recording, BadInputIsAnErrorNamingWhatIsWrong) {
   EXPECT_THROW(parse_states_csv("h\n0,0,nan,2,0\n"), std::invalid_argument);
 }
 
+TEST(PoseTail, KeepsTheNewestPosePerRobotFromPiecesOfAGrowingFile) {
+  PoseTail tail;
+  const std::string text = kCsv;
+  tail.feed(text.substr(0, 80));  // the header and a piece of the first row
+  EXPECT_TRUE(tail.latest().empty());
+  tail.feed(text.substr(80));
+  ASSERT_EQ(tail.latest().size(), 2u);
+  EXPECT_DOUBLE_EQ(tail.latest()[0].x_m, 1.25);
+  EXPECT_DOUBLE_EQ(tail.latest()[1].x_m, 5.0);
+  EXPECT_DOUBLE_EQ(tail.time_s(), 0.5);
+  tail.feed("0.6,1,oops\n1.0,1,6,2,0,0,0,0,0,0\n");  // a torn row is skipped
+  EXPECT_DOUBLE_EQ(tail.latest()[1].x_m, 6.0);
+  EXPECT_DOUBLE_EQ(tail.time_s(), 1.0);
+}
+
 }  // namespace
 }  // namespace smart::serve

@@ -24,10 +24,14 @@ class Serve : public ::testing::Test {
     if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
     data_ = temp_file("serve_data");
     std::filesystem::remove_all(data_);
+  }
+  // Starts `smart serve` on a free port and waits for the line saying where it listens.
+  void start(std::vector<std::string> extra = {}) {
     out_ = temp_file("serve.out");
-    server_.emplace(start_smart(
-        {"serve", "--port", "0", "--data", data_.string(), "--domain", std::to_string(kServeRuns)},
-        out_));
+    std::vector<std::string> args{
+        "serve", "--port", "0", "--data", data_.string(), "--domain", std::to_string(kServeRuns)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    server_.emplace(start_smart(args, out_));
     for (int i = 0; i < 100 && port_ == 0; ++i) {
       std::this_thread::sleep_for(50ms);
       const auto j = summary_in(slurp(out_));
@@ -54,6 +58,7 @@ class Serve : public ::testing::Test {
 };
 
 TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
+  start();
   const auto posted = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20");
   ASSERT_TRUE(posted);
   ASSERT_EQ(posted->status, 200) << posted->body;
@@ -78,6 +83,7 @@ TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
 }
 
 TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
+  start();
   const auto bad = temp_file("bad_plan.txt");
   std::ofstream(bad) << "Agent 0:(1,1)->(9,9)->\n";  // a jump of 16 cells
   const auto r = upload(bad.string(), "1");
@@ -99,6 +105,50 @@ TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
   EXPECT_EQ(m->status, 400);
   EXPECT_THAT(m->body, HasSubstr("missing the 'scen' file field"));
   std::filesystem::remove(bad);
+}
+
+// The live stream of a run: events while it goes, the last one when it ended, with every robot.
+TEST_F(Serve, ALiveStreamFollowsTheRunUntilItEnds) {
+  start();
+  const auto posted = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20");
+  ASSERT_EQ(posted->status, 200) << posted->body;
+  const auto id = json::parse(posted->body)["id"].get<std::string>();
+  std::string stream;
+  const auto r = client().Get("/api/runs/" + id + "/live", [&](const char* data, size_t n) {
+    stream.append(data, n);
+    return stream.size() < (64u << 20);
+  });
+  ASSERT_TRUE(r);
+  std::vector<json> events;
+  for (std::size_t at = 0; (at = stream.find("data: ", at)) != std::string::npos; at += 6) {
+    events.push_back(json::parse(stream.substr(at + 6, stream.find("\n\n", at) - at - 6)));
+  }
+  ASSERT_GE(events.size(), 2u) << stream.substr(0, 500);
+  EXPECT_EQ(events.back()["state"], "done");
+  EXPECT_EQ(events.back()["poses"].size(), 20u);
+  EXPECT_GT(events.back()["t_s"].get<double>(), 10.0);
+  EXPECT_NE(events.front()["state"], "done");
+}
+
+// A folder written by `smart run --out` is replayed: listed as done, its summary and recording
+// served.
+TEST_F(Serve, OpenReplaysASmartRunOutFolder) {
+  const auto results = temp_file("serve_open_results");
+  std::filesystem::remove_all(results);
+  const auto r = run_smart(
+      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "20",
+       "--domain", std::to_string(kServeOpen), "--out", results.string(), "--no-progress"},
+      120s, "serve_open_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  start({"--open", results.string()});
+  const auto run = json::parse(client().Get("/api/runs/run-000001")->body);
+  EXPECT_EQ(run["state"], "done");
+  EXPECT_EQ(run["summary"]["aet_s"], r.last_json()["aet_s"]);
+  EXPECT_EQ(serve::decode_recording(client().Get("/api/runs/run-000001/recording")->body).robots,
+            20u);
+  std::filesystem::remove_all(results);
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ enum DomainId : int {
   kAgentNodeRepublish = 156,
   kAgentNodeWeakMonitor = 157,
   kServeRuns = 158,
+  kServeOpen = 159,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

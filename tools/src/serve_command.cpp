@@ -14,6 +14,7 @@ struct ServeCliOptions {
   serve::ServeOptions serve;
   DdsOptions dds;
   double max_upload_mb = 64;
+  std::vector<std::filesystem::path> open;  // results folders to replay
 };
 
 // The user's cache folder (XDG), where uploads and results live unless --data says otherwise.
@@ -37,9 +38,12 @@ int serve_runs(ServeCliOptions o) {
   s.domain = o.dds.domain;
   s.qos = o.dds.qos;
   serve::Server server(s);
+  nlohmann::json opened = nlohmann::json::array();
+  for (const auto& dir : o.open) opened.push_back(server.open_results(dir));
   const int port = server.bind();
   std::cout << nlohmann::json{{"listening", "http://" + s.bind + ":" + std::to_string(port)},
-                              {"data", s.data_dir.string()}}
+                              {"data", s.data_dir.string()},
+                              {"opened", opened}}
             << std::endl;
   install_stop_handlers();
   server.run(g_stop_requested);
@@ -58,6 +62,8 @@ void register_serve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--data", o->serve.data_dir,
                   "folder for uploads and results (default: ~/.cache/smart-dds/serve)");
   cmd->add_option("--web", o->serve.web_dir, "built web app to serve at / (web/dist)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--open", o->open, "a `smart run --out` folder to replay (repeatable)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--max-runs", o->serve.max_running, "runs executing at once; the rest queue")
       ->check(CLI::Range(1, 64))

@@ -35,4 +35,20 @@ struct Recording {
 // Throws std::invalid_argument on bytes that are not a version 1 recording.
 Recording decode_recording(std::string_view bytes);
 
+// The newest pose of every robot from states.csv as it grows (a live run): feed() takes the
+// bytes appended since the last call, in any pieces; a partial last line waits for its end.
+// Malformed rows are skipped (the file is being written).
+class PoseTail {
+ public:
+  void feed(std::string_view appended);
+  const std::vector<PoseRow>& latest() const { return latest_; }  // by robot id
+  double time_s() const { return time_s_; }
+
+ private:
+  std::string partial_;
+  bool header_seen_ = false;
+  std::vector<PoseRow> latest_;
+  double time_s_ = 0;
+};
+
 }  // namespace smart::serve

@@ -29,6 +29,8 @@ struct RunEntry {
 class RunRegistry {
  public:
   std::string add(std::string map_name, std::size_t robots);
+  // A run that already happened (a `smart run --out` folder to replay): done at once.
+  std::string add_done(std::string map_name, std::size_t robots);
   std::vector<std::string> start_ready(std::size_t max_running);
   void finish(const std::string& id, bool ok, std::string error);
   std::optional<RunEntry> get(const std::string& id) const;

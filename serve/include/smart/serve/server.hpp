@@ -7,6 +7,8 @@
 //   GET  /api/runs               [{id, state, map, robots}]
 //   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}
 //   GET  /api/runs/{id}/recording the run's poses in the SMRC format (recording.hpp)
+//   GET  /api/runs/{id}/live     Server-Sent Events, about 4 a second until the run ended:
+//                                {"state", "t_s", "poses": [[x_m, y_m, yaw_rad], ...]}
 //   GET  /...                    the web app's built files (web_dir), when given
 // Files live only under data_dir/<id>/ with fixed names; ids come from RunRegistry and anything
 // else in a URL is a 404, so no request reads or writes outside data_dir. Uploads are bounded
@@ -38,6 +40,9 @@ class Server {
  public:
   explicit Server(ServeOptions options);
   ~Server();
+  // Adds a finished run from a `smart run --out` folder (summary.json, states.csv) to replay;
+  // copies it under data_dir. Throws std::runtime_error naming a missing file. Returns its id.
+  std::string open_results(const std::filesystem::path& results_dir);
   // Binds the socket; returns the port. Throws std::runtime_error naming bind:port on failure.
   int bind();
   // Serves until stop is set (checked every 100 ms); runs still going are stopped.
