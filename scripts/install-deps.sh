@@ -12,10 +12,16 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libi2c-dev
   libfastrtps-dev
-  clang-tidy
+  clang-tidy clang
   openssl libddsc0debian
   libcpp-httplib-dev
+  chromium
 )
+# The web viewer's build and browser tests need node and npm; a machine may already have them
+# from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -267,6 +267,13 @@ struct Server::Impl {
              [this](const auto& req, auto& res) { get_run(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/recording)",
              [this](const auto& req, auto& res) { get_recording(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/map)", [this](const auto& req, auto& res) {
+      const std::string id = req.matches[1];
+      if (!entry(id) || !fs::exists(dir(id) / "map.map")) {
+        return reply(res, 404, {{"error", "no map of " + id}});
+      }
+      res.set_content(slurp(dir(id) / "map.map"), "text/plain");
+    });
     http.Get(R"(/api/runs/([^/]+)/live)",
              [this](const auto& req, auto& res) { get_live(req.matches[1], res); });
     if (!opt.web_dir.empty()) http.set_mount_point("/", opt.web_dir.string());
@@ -321,6 +328,8 @@ std::string Server::open_results(const fs::path& results) {
   for (const auto& e : fs::directory_iterator(results)) {
     if (e.is_regular_file()) fs::copy_file(e.path(), I.dir(id) / "results" / e.path().filename());
   }
+  // The map the run was made on, when it is still where summary.json says (for the viewer).
+  if (fs::is_regular_file(map)) fs::copy_file(map, I.dir(id) / "map.map");
   return id;
 }
 

@@ -68,6 +68,7 @@ enum DomainId : int {
   kAgentNodeWeakMonitor = 157,
   kServeRuns = 158,
   kServeOpen = 159,
+  kWebViewer = 160,  // web/test/viewer.test.mjs (SMART_DOMAIN in tests/CMakeLists.txt)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

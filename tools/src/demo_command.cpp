@@ -45,7 +45,10 @@ void register_demo_command(CLI::App& app, int& exit_code) {
                       plan, "--axis", "xy", "--domain", std::to_string(o->domain), "--out",
                       (dir / "results").string()});
     exit_code = run.wait(std::chrono::hours(1)).value_or(124);
-    std::cerr << "demo: results in " << (dir / "results").string() << "\n";
+    std::cerr << "demo: results in " << (dir / "results").string() << "\n"
+              << "demo: watch it in the viewer: " << self_executable().string() << " serve --open "
+              << std::filesystem::absolute(dir / "results").string()
+              << "   then open http://127.0.0.1:8080/\n";
   });
 }
 

@@ -1,8 +1,8 @@
 #include "smart/tools/security.hpp"
 
 #include <charconv>
-#include <cstdlib>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <optional>
@@ -53,8 +53,9 @@ std::string openssl_path() {
     if (fs::is_regular_file(candidate)) return candidate.string();
     dirs.remove_prefix(std::min(colon + 1, dirs.size()));
   }
-  throw std::runtime_error("no openssl program on PATH; install the openssl package "
-                           "(scripts/install-deps.sh)");
+  throw std::runtime_error(
+      "no openssl program on PATH; install the openssl package "
+      "(scripts/install-deps.sh)");
 }
 
 void openssl(const std::vector<std::string>& args, const std::string& step) {

@@ -32,6 +32,9 @@ int serve_runs(ServeCliOptions o) {
   auto& s = o.serve;
   if (s.data_dir.empty()) s.data_dir = default_data_dir();
   s.smart_exe = self_executable();
+  // The viewer built next to this executable (<build>/web-dist), unless --web says otherwise.
+  const auto built = s.smart_exe.parent_path().parent_path() / "web-dist";
+  if (s.web_dir.empty() && std::filesystem::exists(built / "index.html")) s.web_dir = built;
   s.config_dir =
       std::filesystem::path(find_config_file("robots", "footbot")).parent_path().parent_path();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mb * (1 << 20));

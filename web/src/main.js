@@ -1,0 +1,198 @@
+// The SMART-DDS viewer: a run from `smart serve` in 3D (three.js). World frame of the project
+// (docs/architecture.md, "Coordinates"): x_w = column * cell, y_w = (height - 1 - row) * cell;
+// three.js is y-up, so a world point (x_w, y_w) is drawn at (x_w, 0, -y_w).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { readMap, readRecording } from './recording.js';
+
+const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, selected: 0xff3b30 };
+const $ = (id) => document.getElementById(id);
+const viewer = { ready: false, robots: 0, selected: -1, frameTimeMs: 0, t: 0, error: '' };
+window.__viewer = viewer;
+
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+$('view').appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x1d2127);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 2.5));
+const camera = new THREE.PerspectiveCamera(45, 1, 0.1, 5000);
+const controls = new OrbitControls(camera, renderer.domElement);
+
+function resize() {
+  const box = $('view').getBoundingClientRect();
+  renderer.setSize(box.width, box.height);
+  camera.aspect = box.width / Math.max(1, box.height);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+
+async function fetchJson(url) {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
+  return r.json();
+}
+
+function buildMap(map, cell) {
+  const floor = new THREE.Mesh(new THREE.PlaneGeometry(map.width * cell, map.height * cell),
+                               new THREE.MeshLambertMaterial({ color: 0x3a404a }));
+  floor.rotation.x = -Math.PI / 2;
+  floor.position.set((map.width - 1) * cell / 2, 0, -(map.height - 1) * cell / 2);
+  scene.add(floor);
+  const grid = new THREE.GridHelper(Math.max(map.width, map.height) * cell,
+                                    Math.max(map.width, map.height), 0x555d69, 0x444a54);
+  grid.position.set(floor.position.x, 0.001, floor.position.z);
+  scene.add(grid);
+  const cells = [];
+  for (let y = 0; y < map.height; y++) for (let x = 0; x < map.width; x++) if (map.blocked(x, y)) cells.push([x, y]);
+  const walls = new THREE.InstancedMesh(new THREE.BoxGeometry(cell, cell * 0.6, cell),
+                                        new THREE.MeshLambertMaterial({ color: 0x8a8f98 }), cells.length);
+  const m = new THREE.Matrix4();
+  cells.forEach(([x, y], i) => walls.setMatrixAt(i, m.makeTranslation(x * cell, cell * 0.3, -(map.height - 1 - y) * cell)));
+  scene.add(walls);
+  const span = Math.max(map.width, map.height) * cell;
+  camera.position.set(floor.position.x, span * 1.05, floor.position.z + span * 0.75);
+  controls.target.copy(floor.position);
+}
+
+function buildRobots(count, cell) {
+  // A robot: a disc with a nose, so its heading shows from above.
+  const body = new THREE.CylinderGeometry(cell * 0.3, cell * 0.3, cell * 0.25, 20);
+  const nose = new THREE.BoxGeometry(cell * 0.3, cell * 0.27, cell * 0.12).translate(cell * 0.2, 0, 0);
+  const geometry = mergeGeometries(body, nose);
+  const mesh = new THREE.InstancedMesh(geometry, new THREE.MeshLambertMaterial(), count);
+  mesh.frustumCulled = false;  // instances move all over the map
+  for (let i = 0; i < count; i++) mesh.setColorAt(i, new THREE.Color(COLORS.moving));
+  scene.add(mesh);
+  return mesh;
+}
+
+function mergeGeometries(a, b) {
+  const pa = a.toNonIndexed().attributes.position.array, pb = b.toNonIndexed().attributes.position.array;
+  const g = new THREE.BufferGeometry();
+  const all = new Float32Array(pa.length + pb.length);
+  all.set(pa);
+  all.set(pb, pa.length);
+  g.setAttribute('position', new THREE.BufferAttribute(all, 3));
+  g.computeVertexNormals();
+  return g;
+}
+
+const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null };
+// Scratch poses, written by rec.pose().
+const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
+const matrix = new THREE.Matrix4(), quat = new THREE.Quaternion(), up = new THREE.Vector3(0, 1, 0);
+const scale = new THREE.Vector3(1, 1, 1), color = new THREE.Color();
+
+// Poses and colours of every robot at time t: moving, waiting (stands still before its end),
+// done (at its final pose for good).
+function showFrame(t) {
+  const { rec, mesh, cell } = state;
+  const f = rec.frameAt(t), fp = Math.max(0, f - 1), end = rec.frames - 1;
+  for (let i = 0; i < rec.robots; i++) {
+    rec.pose(f, i, pose);
+    rec.pose(fp, i, prev);
+    rec.pose(end, i, last);
+    quat.setFromAxisAngle(up, pose[2]);
+    matrix.compose(new THREE.Vector3(pose[0], cell * 0.15, -pose[1]), quat, scale);
+    mesh.setMatrixAt(i, matrix);
+    const still = Math.hypot(pose[0] - prev[0], pose[1] - prev[1]) < 1e-3 && Math.abs(pose[2] - prev[2]) < 1e-3;
+    const atEnd = Math.hypot(pose[0] - last[0], pose[1] - last[1]) < 1e-3;
+    const kind = i === viewer.selected ? 'selected' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
+    mesh.setColorAt(i, color.setHex(COLORS[kind]));
+  }
+  mesh.instanceMatrix.needsUpdate = true;
+  mesh.instanceColor.needsUpdate = true;
+  viewer.t = t;
+  $('clock').textContent = `${t.toFixed(1)} s`;
+  $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
+  if (viewer.selected >= 0) showRobot(viewer.selected, f);
+}
+
+function showRobot(id, f) {
+  const p = state.rec.pose(f, id, new Float64Array(3));
+  const m = state.summary && state.summary.robots_off_goal || [];
+  $('robot').innerHTML = `<div>robot ${id}</div><div>x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m</div>` +
+    `<div>heading ${(p[2] * 180 / Math.PI).toFixed(0)}°</div>` + (m.includes(id) ? '<div>NOT AT GOAL</div>' : '');
+  if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
+}
+
+viewer.select = (id) => {
+  if (!state.rec || id < 0 || id >= state.rec.robots) return false;
+  viewer.selected = id;
+  showFrame(state.t);
+  return true;
+};
+viewer.pose = (i) => Array.from(state.rec.pose(state.rec.frameAt(state.t), i, new Float64Array(3)));
+viewer.seek = (t) => { state.t = Math.max(0, Math.min(t, state.rec.times[state.rec.frames - 1])); showFrame(state.t); };
+
+function showStats(s) {
+  const row = (k, v) => `<div>${k}: ${v}</div>`;
+  $('stats').innerHTML = row('success', s.success) + row('robots', s.robots) + row('AET', `${(s.aet_s ?? NaN).toFixed(1)} s`) +
+    row('makespan', `${(s.makespan_s ?? NaN).toFixed(1)} s`) + row('sim speed', `${(s.sim_speed ?? 0).toFixed(1)}×`) +
+    row('actions', `${s.finished_actions} / ${s.total_actions}`) + row('collisions', s.collisions);
+}
+
+function wireControls() {
+  $('play').onclick = () => { state.playing = !state.playing; $('play').textContent = state.playing ? 'pause' : 'play'; };
+  $('step').onclick = () => viewer.seek(state.rec.times[Math.min(state.rec.frames - 1, state.rec.frameAt(state.t) + 1)]);
+  $('speed').onchange = (e) => { state.speed = Number(e.target.value); };
+  $('scrub').oninput = (e) => viewer.seek((Number(e.target.value) / 1000) * state.rec.times[state.rec.frames - 1]);
+  $('search').onchange = (e) => viewer.select(Number(e.target.value));
+  $('png').onclick = () => { const a = document.createElement('a'); a.download = 'smart-run.png'; a.href = renderer.domElement.toDataURL('image/png'); a.click(); };
+  const ray = new THREE.Raycaster(), mouse = new THREE.Vector2();
+  renderer.domElement.addEventListener('click', (e) => {
+    const r = renderer.domElement.getBoundingClientRect();
+    mouse.set(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+    ray.setFromCamera(mouse, camera);
+    const hit = ray.intersectObject(state.mesh)[0];
+    if (hit) viewer.select(hit.instanceId);
+  });
+}
+
+let lastNow = performance.now();
+const frameTimes = [];
+function loop(now) {
+  const dt = (now - lastNow) / 1000;
+  lastNow = now;
+  if (state.playing) {
+    const t0 = performance.now();
+    viewer.seek(state.t + dt * state.speed);
+    frameTimes.push(performance.now() - t0);
+    if (frameTimes.length > 120) frameTimes.shift();
+    viewer.frameTimeMs = frameTimes.reduce((a, b) => a + b, 0) / frameTimes.length;
+  }
+  controls.update();
+  const r0 = performance.now();
+  renderer.render(scene, camera);
+  // Frame time = pose update + render (what a frame costs this page, whatever the display rate).
+  if (state.playing) viewer.renderMs = 0.9 * (viewer.renderMs || 0) + 0.1 * (performance.now() - r0);
+  requestAnimationFrame(loop);
+}
+
+async function start() {
+  const runs = await fetchJson('/api/runs');
+  const want = new URLSearchParams(location.search).get('run') || (runs.filter((r) => r.state === 'done').pop() || {}).id;
+  for (const r of runs) $('runs').add(new Option(`${r.id} ${r.map} (${r.state})`, r.id, false, r.id === want));
+  $('runs').onchange = (e) => { location.search = `?run=${e.target.value}`; };
+  if (!want) throw new Error('no finished run to show yet; upload one with POST /api/runs');
+  const t0 = performance.now();
+  const [run, mapText, recBytes] = await Promise.all([
+    fetchJson(`/api/runs/${want}`), fetch(`/api/runs/${want}/map`).then((r) => r.text()),
+    fetch(`/api/runs/${want}/recording`).then((r) => r.arrayBuffer())]);
+  state.summary = run.summary;
+  state.cell = run.summary.cell_m || 1;
+  state.rec = readRecording(recBytes);
+  buildMap(readMap(mapText), state.cell);
+  state.mesh = buildRobots(state.rec.robots, state.cell);
+  showStats(run.summary);
+  resize();
+  wireControls();
+  showFrame(0);
+  renderer.render(scene, camera);
+  viewer.robots = state.rec.robots;
+  viewer.firstFrameMs = performance.now() - t0;
+  viewer.ready = true;
+  requestAnimationFrame(loop);
+}
+
+start().catch((e) => { viewer.error = String(e); $('stats').textContent = String(e); });

@@ -1,0 +1,122 @@
+// The viewer in a real browser: Debian's Chromium, headless, driven by puppeteer-core against a
+// real `smart serve` (serving the built viewer) replaying a real `smart run --out` folder.
+// Checks: the run loads, every robot is drawn (pixels of the robot colours where robots stand),
+// scrubbing moves the clock, selecting a robot fills its panel, a bad upload is refused with
+// its problem list; prints the time to first frame and the frame time while playing.
+// Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+import puppeteer from 'puppeteer-core';
+
+const exe = process.env.SMART_EXE;
+const bench = process.env.SMART_BENCHMARKS;
+const dist = process.env.SMART_WEB_DIST;
+const domain = process.env.SMART_DOMAIN || '160';
+const artifacts = process.env.SMART_ARTIFACTS || tmpdir();
+const work = mkdtempSync(path.join(tmpdir(), 'smart-web-'));
+const files = {
+  map: path.join(bench, 'maps/random-32-32-20.map'),
+  scen: path.join(bench, 'scens/random-32-32-20-random-1.scen'),
+  plan: path.join(bench, 'smart-examples/example_paths_xy.txt'),
+};
+
+function runResults() {
+  const out = path.join(work, 'results');
+  const r = spawnSync(exe, ['run', '--map', files.map, '--scen', files.scen, '--plan', files.plan,
+    '--axis', 'xy', '--agents', '20', '--domain', domain, '--out', out, '--no-progress'],
+  { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  return { out, summary: JSON.parse(readFileSync(path.join(out, 'summary.json'), 'utf8')) };
+}
+
+function startServer(results) {
+  const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'),
+    '--web', dist, '--open', results, '--domain', domain]);
+  return new Promise((resolve, reject) => {
+    let text = '';
+    server.stdout.on('data', (d) => {
+      text += d;
+      const m = text.match(/"listening":"(http:\/\/[^"]+)"/);
+      if (m) resolve({ server, url: m[1] });
+    });
+    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
+  });
+}
+
+async function robotPixels(page) {
+  // Robot colours (main.js COLORS) counted in the canvas.
+  return page.evaluate(() => {
+    const src = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width; c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      const [r, gg, b] = [d[i], d[i + 1], d[i + 2]];
+      const blue = b > 150 && r < 120 && gg > 80 && gg < 180, green = gg > 120 && r < 110 && b < 140 && gg - b > 30;
+      const orange = r > 180 && gg > 110 && gg < 200 && b < 90;
+      if (blue || green || orange) n++;
+    }
+    return n;
+  });
+}
+
+const { out, summary } = runResults();
+const { server, url } = await startServer(out);
+const browser = await puppeteer.launch({
+  executablePath: '/usr/bin/chromium', headless: true,
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1280,800'],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 800 });
+  await page.goto(`${url}/?run=run-000001`);
+  await page.waitForFunction(() => window.__viewer && (window.__viewer.ready || window.__viewer.error), { timeout: 20000 });
+  const v = await page.evaluate(() => ({ ...window.__viewer }));
+  assert.equal(v.error, '', v.error);
+  assert.equal(v.robots, summary.robots);
+  const stats = await page.$eval('#stats', (e) => e.textContent);
+  assert.match(stats, new RegExp(`AET: ${summary.aet_s.toFixed(1)} s`));
+  mkdirSync(artifacts, { recursive: true });
+  await page.screenshot({ path: path.join(artifacts, 'viewer-start.png') });
+  const atStart = await robotPixels(page);
+  assert.ok(atStart > 20 * 20, `robots not drawn: ${atStart} robot-coloured pixels`);
+  // Scrub to the end: the clock says the run's end, and the robots are still drawn.
+  const end = await page.evaluate(() => { window.__viewer.seek(1e9); return window.__viewer.t; });
+  assert.ok(Math.abs(end - summary.sim_time_s) < 1.0, `end ${end} vs sim time ${summary.sim_time_s}`);
+  assert.match(await page.$eval('#clock', (e) => e.textContent), /\d+\.\d s/);
+  // Select robot 3: its panel names it and shows its pose.
+  await page.type('#search', '3');
+  await page.keyboard.press('Tab');
+  assert.match(await page.$eval('#robot', (e) => e.textContent), /robot 3.*x .* m, y .* m/);
+  await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
+  // Play from the start at 64x for a second: the frame time while all robots move.
+  await page.evaluate(() => window.__viewer.seek(0));
+  await page.select('#speed', '64');
+  await page.click('#play');
+  await new Promise((r) => setTimeout(r, 1500));
+  const played = await page.evaluate(() => ({ t: window.__viewer.t, ms: window.__viewer.frameTimeMs + window.__viewer.renderMs }));
+  assert.ok(played.t > 10, `playing did not advance the clock (${played.t} s)`);
+  console.log(JSON.stringify({ first_frame_ms: v.firstFrameMs, frame_ms: played.ms, robot_pixels: atStart }));
+  // A bad upload is refused with its problem list.
+  const bad = await page.evaluate(async () => {
+    const f = new FormData();
+    f.append('map', new Blob(['type octile\nheight 1\nwidth 2\nmap\n..\n']), 'm.map');
+    f.append('scen', new Blob(['version 1\n']), 's.scen');
+    f.append('plan', new Blob(['Agent 0:(0,0)->(5,5)->\n']), 'p.txt');
+    const r = await fetch('/api/runs', { method: 'POST', body: f });
+    return { status: r.status, body: await r.json() };
+  });
+  assert.equal(bad.status, 400);
+  assert.ok(bad.body.problems.length > 0, JSON.stringify(bad.body));
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  rmSync(work, { recursive: true, force: true });
+}
+console.log('viewer test passed');
