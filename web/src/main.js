@@ -169,7 +169,36 @@ function loop(now) {
   requestAnimationFrame(loop);
 }
 
+// The upload form: POST /api/runs; problems are listed as `smart check-plan` prints them; a run
+// that was taken is followed until it ended, then shown.
+function wireUpload() {
+  $('upload').onsubmit = async (e) => {
+    e.preventDefault();
+    $('upload-problems').innerHTML = '';
+    $('upload-status').textContent = 'uploading...';
+    const r = await fetch('/api/runs', { method: 'POST', body: new FormData($('upload')) });
+    const body = await r.json();
+    if (!r.ok) {
+      $('upload-status').textContent = body.error;
+      for (const p of body.problems || []) {
+        const li = document.createElement('li');
+        li.textContent = `${p.file}:${p.line}${p.robot >= 0 ? ` robot ${p.robot}` : ''}: ${p.message}`;
+        $('upload-problems').appendChild(li);
+      }
+      return;
+    }
+    for (;;) {
+      const run = await fetchJson(`/api/runs/${body.id}`);
+      $('upload-status').textContent = `${body.id}: ${run.state}`;
+      if (run.state === 'done') { location.search = `?run=${body.id}`; return; }
+      if (run.state === 'failed') { $('upload-status').textContent = `${body.id} failed: ${run.error}`; return; }
+      await new Promise((res) => setTimeout(res, 500));
+    }
+  };
+}
+
 async function start() {
+  wireUpload();
   const runs = await fetchJson('/api/runs');
   const want = new URLSearchParams(location.search).get('run') || (runs.filter((r) => r.state === 'done').pop() || {}).id;
   for (const r of runs) $('runs').add(new Option(`${r.id} ${r.map} (${r.state})`, r.id, false, r.id === want));

@@ -5,7 +5,7 @@
 // its problem list; prints the time to first frame and the frame time while playing.
 // Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
@@ -103,7 +103,24 @@ try {
   const played = await page.evaluate(() => ({ t: window.__viewer.t, ms: window.__viewer.frameTimeMs + window.__viewer.renderMs }));
   assert.ok(played.t > 10, `playing did not advance the clock (${played.t} s)`);
   console.log(JSON.stringify({ first_frame_ms: v.firstFrameMs, frame_ms: played.ms, robot_pixels: atStart }));
-  // A bad upload is refused with its problem list.
+  // A bad upload through the page's form: its problems are listed with file and line.
+  const jump = path.join(work, 'jump.txt');
+  writeFileSync(jump, 'Agent 0:(1,1)->(9,9)->\n');
+  await (await page.$('#up-map')).uploadFile(files.map);
+  await (await page.$('#up-scen')).uploadFile(files.scen);
+  await (await page.$('#up-plan')).uploadFile(jump);
+  await page.$eval('#upload input[name=agents]', (e) => { e.value = '1'; });
+  await page.click('#up-go');
+  await page.waitForFunction(() => document.querySelectorAll('#upload-problems li').length > 0, { timeout: 10000 });
+  assert.match(await page.$eval('#upload-problems', (e) => e.textContent), /jump\.txt:1/);
+  // A good upload through the form runs to completion and is then shown.
+  await (await page.$('#up-plan')).uploadFile(files.plan);
+  await page.$eval('#upload input[name=agents]', (e) => { e.value = '20'; });
+  await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]);
+  assert.match(page.url(), /run=run-000002/);
+  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 20000 });
+  assert.equal(await page.evaluate(() => window.__viewer.robots), 20);
+  // A bad upload is refused with its problem list (the API directly).
   const bad = await page.evaluate(async () => {
     const f = new FormData();
     f.append('map', new Blob(['type octile\nheight 1\nwidth 2\nmap\n..\n']), 'm.map');
