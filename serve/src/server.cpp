@@ -14,6 +14,7 @@
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/serve/recording.hpp"
+#include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_registry.hpp"
 #include "smart/tools/child_process.hpp"
 
@@ -101,6 +102,7 @@ struct Server::Impl {
   std::map<std::string, std::vector<std::string>> argv;  // queued runs' `smart run` command
   std::map<std::string, tools::ChildProcess> children;   // running ones
   uint64_t uploads = 0;
+  std::map<std::string, std::shared_ptr<const monitor::Instance>> instances;  // loaded on demand
 
   explicit Impl(ServeOptions o) : opt(std::move(o)) {}
 
@@ -171,6 +173,7 @@ struct Server::Impl {
     std::lock_guard lock(m);
     const auto id = registry.add(req.get_file_value("map").filename, r.agents);
     fs::rename(scratch, dir(id));
+    std::ofstream(dir(id) / "request.json") << json{{"axis", r.axis}, {"agents", r.agents}}.dump();
     argv[id] = run_argv(id, r);
     reply(res, 200, {{"id", id}});
   }
@@ -254,6 +257,65 @@ struct Server::Impl {
                                      });
   }
 
+  // The run's instance (plan, actions, ADG), loaded once from its files and request.json.
+  std::shared_ptr<const monitor::Instance> instance(const std::string& id) {
+    {
+      std::lock_guard lock(m);
+      if (auto it = instances.find(id); it != instances.end()) return it->second;
+    }
+    const auto d = dir(id);
+    const auto request = json::parse(slurp(d / "request.json"));
+    monitor::InstanceOptions io;
+    io.map = d / "map.map";
+    io.scen = d / "scen.scen";
+    io.plan = d / "plan.txt";
+    io.agents = request.value("agents", std::size_t{0});
+    io.read.axis =
+        request.value("axis", "xy") == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
+    auto in = std::make_shared<const monitor::Instance>(monitor::load_instance(io));
+    std::lock_guard lock(m);
+    return instances.emplace(id, std::move(in)).first->second;
+  }
+
+  // robots.csv's row of `robot` as JSON (finish and waiting time, stops), if the run wrote one.
+  json robot_results(const std::string& id, uint32_t robot) const {
+    std::ifstream in(dir(id) / "results" / "robots.csv");
+    std::string line;
+    for (std::getline(in, line); std::getline(in, line);) {
+      std::istringstream row(line);
+      std::string cell[5];
+      for (auto& c : cell) std::getline(row, c, ',');
+      if (cell[0] == std::to_string(robot)) {
+        return {{"finish_time_s", std::stod(cell[1])},
+                {"waiting_time_s", std::stod(cell[2])},
+                {"stops", std::stoul(cell[3])}};
+      }
+    }
+    return json::object();
+  }
+
+  void get_robot(const std::string& id, const std::string& robot_text, httplib::Response& res) {
+    const auto e = entry(id);
+    if (!e || !fs::exists(dir(id) / "request.json") ||
+        robot_text.find_first_not_of("0123456789") != std::string::npos || robot_text.size() > 7) {
+      return reply(res, 404, {{"error", "no robot " + robot_text + " in " + id}});
+    }
+    try {
+      const auto robot = static_cast<uint32_t>(std::stoul(robot_text));
+      const auto in = instance(id);
+      json j = robot_detail(*in, robot, summary_cell_m(id));
+      j["results"] = robot_results(id, robot);
+      reply(res, 200, j);
+    } catch (const std::exception& ex) {
+      reply(res, 404, {{"error", ex.what()}});
+    }
+  }
+
+  double summary_cell_m(const std::string& id) const {
+    const auto s = dir(id) / "results" / "summary.json";
+    return fs::exists(s) ? json::parse(slurp(s)).value("cell_m", 1.0) : 1.0;
+  }
+
   void routes() {
     http.set_payload_max_length(opt.max_upload_bytes);
     http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
@@ -273,6 +335,9 @@ struct Server::Impl {
         return reply(res, 404, {{"error", "no map of " + id}});
       }
       res.set_content(slurp(dir(id) / "map.map"), "text/plain");
+    });
+    http.Get(R"(/api/runs/([^/]+)/robots/([^/]+))", [this](const auto& req, auto& res) {
+      get_robot(req.matches[1], req.matches[2], res);
     });
     http.Get(R"(/api/runs/([^/]+)/live)",
              [this](const auto& req, auto& res) { get_live(req.matches[1], res); });
@@ -328,8 +393,21 @@ std::string Server::open_results(const fs::path& results) {
   for (const auto& e : fs::directory_iterator(results)) {
     if (e.is_regular_file()) fs::copy_file(e.path(), I.dir(id) / "results" / e.path().filename());
   }
-  // The map the run was made on, when it is still where summary.json says (for the viewer).
-  if (fs::is_regular_file(map)) fs::copy_file(map, I.dir(id) / "map.map");
+  // The files the run was made on, when still where summary.json says (for the viewer).
+  const auto files = summary.value("files", json::object());
+  bool all = true;
+  for (const auto& [key, name] :
+       {std::pair{"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}}) {
+    const fs::path src = files.value(key, std::string());
+    if (fs::is_regular_file(src)) fs::copy_file(src, I.dir(id) / name);
+    all = all && fs::is_regular_file(src);
+  }
+  if (all) {
+    std::ofstream(I.dir(id) / "request.json") << json{
+        {"axis", summary.value("plan", json::object()).value("axis", "xy")},
+        {"agents",
+         summary.value("robots", std::size_t{0})}}.dump();
+  }
   return id;
 }
 

@@ -80,6 +80,26 @@ TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
   const auto decoded = serve::decode_recording(rec->body);
   EXPECT_EQ(decoded.robots, 20u);
   EXPECT_GT(decoded.times_s.size(), 10u);
+  // Every robot's Type-2 partners add up to the ADG's Type-2 edges, both ways; paths start at
+  // the robot's first recorded pose.
+  std::size_t waits = 0, waited = 0, actions = 0;
+  for (int r = 0; r < 20; ++r) {
+    const auto d =
+        json::parse(client().Get("/api/runs/" + id + "/robots/" + std::to_string(r))->body);
+    for (const auto& p : d["waits_for"]) waits += p["edges"].get<std::size_t>();
+    for (const auto& p : d["waited_by"]) waited += p["edges"].get<std::size_t>();
+    actions += d["actions"].get<std::size_t>();
+    ASSERT_FALSE(d["path"].empty());
+    EXPECT_NEAR(d["path"][0][0].get<double>(), decoded.poses[r].x_m, 0.05) << r;
+    EXPECT_NEAR(d["path"][0][1].get<double>(), decoded.poses[r].y_m, 0.05) << r;
+    EXPECT_GT(d["results"]["finish_time_s"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(waits, run["summary"]["adg"]["type2"].get<std::size_t>());
+  EXPECT_EQ(waited, waits);
+  EXPECT_EQ(actions, run["summary"]["total_actions"].get<std::size_t>());
+  for (const char* bad : {"/robots/20", "/robots/abc", "/robots/-1", "/robots/99999999"}) {
+    EXPECT_EQ(client().Get("/api/runs/" + id + bad)->status, 404) << bad;
+  }
 }
 
 TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {

@@ -111,15 +111,55 @@ function showFrame(t) {
 function showRobot(id, f) {
   const p = state.rec.pose(f, id, new Float64Array(3));
   const m = state.summary && state.summary.robots_off_goal || [];
+  const d = state.detail && state.detail.robot === id ? state.detail : null;
+  const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
   $('robot').innerHTML = `<div>robot ${id}</div><div>x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m</div>` +
-    `<div>heading ${(p[2] * 180 / Math.PI).toFixed(0)}°</div>` + (m.includes(id) ? '<div>NOT AT GOAL</div>' : '');
+    `<div>heading ${(p[2] * 180 / Math.PI).toFixed(0)}°</div>` + (m.includes(id) ? '<div>NOT AT GOAL</div>' : '') +
+    (d ? `<div>actions: ${d.actions}, path: ${d.path.length - 1} cells</div>` +
+      (d.results.finish_time_s !== undefined ? `<div>finished at ${d.results.finish_time_s.toFixed(1)} s, waited ${d.results.waiting_time_s.toFixed(1)} s</div>` : '') +
+      `<div class="waits">waits for: ${list(d.waits_for)}</div><div class="waited">waited by: ${list(d.waited_by)}</div>` : '');
+  if (d) drawEdges(id, f, d);
   if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
+}
+
+// The selected robot's planned path, and lines to the robots it waits for (red) and that wait
+// for it (orange), at their current poses.
+const overlay = { path: null, edges: null };
+function drawPath(d) {
+  if (overlay.path) scene.remove(overlay.path);
+  const pts = d.path.map(([x, y]) => new THREE.Vector3(x, state.cell * 0.05, -y));
+  overlay.path = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: COLORS.selected }));
+  scene.add(overlay.path);
+}
+function drawEdges(id, f, d) {
+  if (overlay.edges) scene.remove(overlay.edges);
+  const me = state.rec.pose(f, id, new Float64Array(3)), other = new Float64Array(3);
+  const pts = [], colors = [], h = state.cell * 0.4;
+  for (const [group, hex] of [[d.waits_for, 0xff3b30], [d.waited_by, 0xf0a030]]) {
+    const c = new THREE.Color(hex);
+    for (const { robot } of group) {
+      state.rec.pose(f, robot, other);
+      pts.push(me[0], h, -me[1], other[0], h, -other[1]);
+      colors.push(c.r, c.g, c.b, c.r, c.g, c.b);
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+  g.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
+  overlay.edges = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+  scene.add(overlay.edges);
 }
 
 viewer.select = (id) => {
   if (!state.rec || id < 0 || id >= state.rec.robots) return false;
   viewer.selected = id;
   showFrame(state.t);
+  fetchJson(`/api/runs/${state.run}/robots/${id}`).then((d) => {
+    state.detail = d;
+    drawPath(d);
+    viewer.detail = d;
+    showFrame(state.t);
+  }).catch(() => {});  // runs replayed without their plan files have no detail
   return true;
 };
 viewer.pose = (i) => Array.from(state.rec.pose(state.rec.frameAt(state.t), i, new Float64Array(3)));
@@ -209,6 +249,7 @@ async function start() {
     fetchJson(`/api/runs/${want}`), fetch(`/api/runs/${want}/map`).then((r) => r.text()),
     fetch(`/api/runs/${want}/recording`).then((r) => r.arrayBuffer())]);
   state.summary = run.summary;
+  state.run = want;
   state.cell = run.summary.cell_m || 1;
   state.rec = readRecording(recBytes);
   buildMap(readMap(mapText), state.cell);

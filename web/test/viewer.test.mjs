@@ -94,6 +94,14 @@ try {
   await page.type('#search', '3');
   await page.keyboard.press('Tab');
   assert.match(await page.$eval('#robot', (e) => e.textContent), /robot 3.*x .* m, y .* m/);
+  // Its planned path and Type-2 partners, as the API gives them from the run's ADG.
+  await page.waitForFunction(() => window.__viewer.detail && window.__viewer.detail.robot === 3, { timeout: 10000 });
+  const detail = await page.evaluate(() => window.__viewer.detail);
+  const panel = await page.$eval('#robot', (e) => e.textContent);
+  assert.match(panel, new RegExp(`actions: ${detail.actions}, path: ${detail.path.length - 1} cells`));
+  const names = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
+  assert.ok(panel.includes(`waits for: ${names(detail.waits_for)}`), panel);
+  assert.ok(panel.includes(`waited by: ${names(detail.waited_by)}`), panel);
   await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
   // Play from the start at 64x for a second: the frame time while all robots move.
   await page.evaluate(() => window.__viewer.seek(0));

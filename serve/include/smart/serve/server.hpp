@@ -8,6 +8,8 @@
 //   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}
 //   GET  /api/runs/{id}/recording the run's poses in the SMRC format (recording.hpp)
 //   GET  /api/runs/{id}/map      the run's MovingAI map text
+//   GET  /api/runs/{id}/robots/{r} planned path, actions, Type-2 partners (robot_detail.hpp)
+//                                and robots.csv's finish/waiting time
 //   GET  /api/runs/{id}/live     Server-Sent Events, about 4 a second until the run ended:
 //                                {"state", "t_s", "poses": [[x_m, y_m, yaw_rad], ...]}
 //   GET  /...                    the web app's built files (web_dir), when given
