@@ -227,14 +227,36 @@ function wireUpload() {
       }
       return;
     }
-    for (;;) {
-      const run = await fetchJson(`/api/runs/${body.id}`);
-      $('upload-status').textContent = `${body.id}: ${run.state}`;
-      if (run.state === 'done') { location.search = `?run=${body.id}`; return; }
-      if (run.state === 'failed') { $('upload-status').textContent = `${body.id} failed: ${run.error}`; return; }
-      await new Promise((res) => setTimeout(res, 500));
-    }
+    location.search = `?run=${body.id}`;  // shown live, then replayed
   };
+}
+
+// A run still going: its map, and every robot's newest pose from the live stream (Server-Sent
+// Events, about 4 a second); when it ended, the page reloads into the replay.
+async function startLive(id) {
+  const [run, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
+  buildMap(readMap(mapText), state.cell);
+  resize();
+  viewer.live = true;
+  viewer.liveEvents = 0;
+  $('stats').textContent = `${id}: ${run.state} (live)`;
+  const source = new EventSource(`/api/runs/${id}/live`);
+  source.onmessage = (e) => {
+    const ev = JSON.parse(e.data);
+    if (!state.mesh && ev.poses.length) state.mesh = buildRobots(ev.poses.length, state.cell);
+    ev.poses.forEach(([x, y, yaw], i) => {
+      quat.setFromAxisAngle(up, yaw);
+      matrix.compose(new THREE.Vector3(x, state.cell * 0.15, -y), quat, scale);
+      state.mesh.setMatrixAt(i, matrix);
+    });
+    if (state.mesh) state.mesh.instanceMatrix.needsUpdate = true;
+    viewer.liveEvents++;
+    viewer.robots = ev.poses.length;
+    $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
+    $('stats').textContent = `${id}: ${ev.state} (live)`;
+    if (ev.state === 'done' || ev.state === 'failed') { source.close(); location.reload(); }
+  };
+  requestAnimationFrame(function live() { controls.update(); renderer.render(scene, camera); if (viewer.live) requestAnimationFrame(live); });
 }
 
 async function start() {
@@ -244,6 +266,8 @@ async function start() {
   for (const r of runs) $('runs').add(new Option(`${r.id} ${r.map} (${r.state})`, r.id, false, r.id === want));
   $('runs').onchange = (e) => { location.search = `?run=${e.target.value}`; };
   if (!want) throw new Error('no finished run to show yet; upload one with POST /api/runs');
+  const chosen = runs.find((r) => r.id === want);
+  if (chosen && (chosen.state === 'queued' || chosen.state === 'running')) return startLive(want);
   const t0 = performance.now();
   const [run, mapText, recBytes] = await Promise.all([
     fetchJson(`/api/runs/${want}`), fetch(`/api/runs/${want}/map`).then((r) => r.text()),

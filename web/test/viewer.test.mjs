@@ -121,13 +121,25 @@ try {
   await page.click('#up-go');
   await page.waitForFunction(() => document.querySelectorAll('#upload-problems li').length > 0, { timeout: 10000 });
   assert.match(await page.$eval('#upload-problems', (e) => e.textContent), /jump\.txt:1/);
-  // A good upload through the form runs to completion and is then shown.
-  await (await page.$('#up-plan')).uploadFile(files.plan);
-  await page.$eval('#upload input[name=agents]', (e) => { e.value = '20'; });
-  await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]);
+  // A good upload through the form is shown live while it runs, then replayed: SMART's
+  // warehouse plan, 100 robots (about ten seconds of wall time, long enough to watch live).
+  await (await page.$('#up-map')).uploadFile(path.join(bench, 'maps/warehouse-10-20-10-2-1.map'));
+  await (await page.$('#up-scen')).uploadFile(path.join(bench, 'scens/warehouse-10-20-10-2-1-random-1.scen'));
+  await (await page.$('#up-plan')).uploadFile(path.join(bench, 'smart-examples/scen_1_1000_paths.txt'));
+  await page.select('#upload select[name=axis]', 'rowcol');
+  await page.$eval('#upload input[name=agents]', (e) => { e.value = '100'; });
+  await Promise.all([page.waitForNavigation({ timeout: 30000 }), page.click('#up-go')]);
   assert.match(page.url(), /run=run-000002/);
-  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 20000 });
-  assert.equal(await page.evaluate(() => window.__viewer.robots), 20);
+  let sawLive = false, replay = null;
+  for (let i = 0; i < 600 && !replay; i++) {
+    const s = await page.evaluate(() => window.__viewer && { ...window.__viewer }).catch(() => null);  // reloads
+    if (s && s.live && s.liveEvents > 0 && s.robots === 100) sawLive = true;
+    if (s && s.ready) replay = s;
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  assert.ok(sawLive, 'the run was never shown live with its 100 robots');
+  assert.ok(replay, 'the finished run was not replayed');
+  assert.equal(replay.robots, 100);
   // A bad upload is refused with its problem list (the API directly).
   const bad = await page.evaluate(async () => {
     const f = new FormData();
