@@ -2,7 +2,10 @@
 
 #include <httplib.h>
 #include <spdlog/spdlog.h>
+#include <yaml-cpp/yaml.h>
 
+#include <charconv>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -11,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "smart/agent/robot_model.hpp"
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/serve/recording.hpp"
@@ -64,8 +68,26 @@ struct RunRequest {
   std::string axis = "xy";
   std::size_t agents = 0;
   std::string robot = "footbot";
+  std::map<std::string, double> limits;  // robot YAML key -> value, from the upload form
   std::string error;
 };
+
+// The kinodynamic limits an upload may override (robot YAML keys, agent/robot_model.hpp).
+constexpr const char* kLimitFields[] = {"max_speed_mps", "max_accel_mps2", "max_turn_rate_radps"};
+
+void read_limits(const httplib::Request& req, RunRequest& r) {
+  for (const char* key : kLimitFields) {
+    if (!req.has_file(key) || req.get_file_value(key).content.empty()) continue;
+    const auto& text = req.get_file_value(key).content;
+    double v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) || v <= 0) {
+      r.error = std::string(key) + " must be a positive number, e.g. 0.5";
+      return;
+    }
+    r.limits[key] = v;
+  }
+}
 
 RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) {
   RunRequest r;
@@ -90,6 +112,7 @@ RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) 
   if (!plain_name(r.robot) || !fs::is_regular_file(robots_dir / (r.robot + ".yaml"))) {
     r.error = "robot must name a model in config/robots, e.g. footbot";
   }
+  if (r.error.empty()) read_limits(req, r);
   return r;
 }
 }  // namespace
@@ -123,7 +146,7 @@ struct Server::Impl {
             "--agents",
             std::to_string(r.agents),
             "--robot",
-            r.robot,
+            (d / "robot.yaml").string(),
             "--domain",
             std::to_string(opt.domain),
             "--qos",
@@ -131,6 +154,22 @@ struct Server::Impl {
             "--out",
             (d / "results").string(),
             "--no-progress"};
+  }
+
+  // The robot model of the run: the named model with the upload's limits, written next to the
+  // run's files and checked like any robot YAML (the limits' ranges come from there).
+  std::optional<json> write_robot(const fs::path& scratch, const RunRequest& r) {
+    try {
+      YAML::Node model = YAML::LoadFile((opt.config_dir / "robots" / (r.robot + ".yaml")).string());
+      for (const auto& [key, value] : r.limits) model[key] = value;
+      YAML::Emitter out;
+      out << model;
+      std::ofstream(scratch / "robot.yaml") << out.c_str();
+      (void)agent::parse_robot_model(out.c_str(), "the upload's robot limits");
+      return std::nullopt;
+    } catch (const std::exception& e) {
+      return json{{"error", e.what()}, {"problems", json::array()}};
+    }
   }
 
   // Writes the upload under a scratch folder and checks it as `smart check-plan` would.
@@ -166,7 +205,9 @@ struct Server::Impl {
       std::lock_guard lock(m);
       scratch = opt.data_dir / ("upload-" + std::to_string(++uploads));
     }
-    if (auto bad = check_upload(req, scratch, r)) {
+    auto bad = check_upload(req, scratch, r);
+    if (!bad) bad = write_robot(scratch, r);
+    if (bad) {
       fs::remove_all(scratch);
       return reply(res, 400, *bad);
     }

@@ -48,7 +48,8 @@ class Serve : public ::testing::Test {
         {"map", slurp(b_ / "maps/random-32-32-20.map"), "random-32-32-20.map", ""},
         {"scen", slurp(b_ / "scens/random-32-32-20-random-1.scen"), "random.scen", ""},
         {"plan", slurp(plan_file), "paths.txt", ""},
-        {"agents", agents, "", ""}};
+        {"agents", agents, "", ""},
+        {"max_speed_mps", "0.75", "", ""}};
     return client().Post("/api/runs", items);
   }
   httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
@@ -72,6 +73,9 @@ TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
   ASSERT_EQ(run["state"], "done") << run.dump();
   EXPECT_TRUE(run["summary"]["success"].get<bool>());
   EXPECT_EQ(run["summary"]["robots"], 20);
+  // The robot limits given with the upload are the ones the run used.
+  const auto robot = slurp(data_ / id / "robot.yaml");
+  EXPECT_THAT(robot, HasSubstr("max_speed_mps: 0.75"));
   const auto list = json::parse(client().Get("/api/runs")->body);
   ASSERT_EQ(list.size(), 1u);
   EXPECT_EQ(list[0]["map"], "random-32-32-20.map");
@@ -120,6 +124,20 @@ TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
     ASSERT_TRUE(g);
     EXPECT_EQ(g->status, 404) << path;
   }
+  // Limits are checked against the robot model's ranges; a word is not a number.
+  httplib::MultipartFormDataItems limits{
+      {"map", slurp(b_ / "maps/random-32-32-20.map"), "m.map", ""},
+      {"scen", slurp(b_ / "scens/random-32-32-20-random-1.scen"), "s.scen", ""},
+      {"plan", slurp(b_ / "smart-examples/example_paths_xy.txt"), "p.txt", ""},
+      {"agents", "2", "", ""},
+      {"max_speed_mps", "fast", "", ""}};
+  auto l = client().Post("/api/runs", limits);
+  EXPECT_EQ(l->status, 400);
+  EXPECT_THAT(l->body, HasSubstr("max_speed_mps must be a positive number"));
+  limits.back() = {"max_turn_rate_radps", "1e9", "", ""};
+  l = client().Post("/api/runs", limits);
+  EXPECT_EQ(l->status, 400);
+  EXPECT_THAT(l->body, HasSubstr("max_turn_rate_radps"));
   httplib::MultipartFormDataItems missing{{"map", "x", "m.map", ""}};
   const auto m = client().Post("/api/runs", missing);
   EXPECT_EQ(m->status, 400);

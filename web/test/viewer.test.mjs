@@ -128,7 +128,11 @@ try {
   await (await page.$('#up-plan')).uploadFile(path.join(bench, 'smart-examples/scen_1_1000_paths.txt'));
   await page.select('#upload select[name=axis]', 'rowcol');
   await page.$eval('#upload input[name=agents]', (e) => { e.value = '100'; });
-  await Promise.all([page.waitForNavigation({ timeout: 30000 }), page.click('#up-go')]);
+  await page.type('#upload input[name=max_accel_mps2]', '0.5');  // a limit from the form
+  await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
+    const status = await page.$eval('#upload', (el) => el.querySelector('#upload-status').textContent + ' ' + el.querySelector('#upload-problems').textContent).catch(() => '?');
+    throw new Error(`no navigation after the upload (${e.message}); the form says: ${status}`);
+  });
   assert.match(page.url(), /run=run-000002/);
   let sawLive = false, replay = null;
   for (let i = 0; i < 600 && !replay; i++) {
@@ -140,6 +144,7 @@ try {
   assert.ok(sawLive, 'the run was never shown live with its 100 robots');
   assert.ok(replay, 'the finished run was not replayed');
   assert.equal(replay.robots, 100);
+  assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
   // A bad upload is refused with its problem list (the API directly).
   const bad = await page.evaluate(async () => {
     const f = new FormData();

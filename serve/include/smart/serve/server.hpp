@@ -2,7 +2,9 @@
 // execute as real `smart run` processes (monitor + sim host over DDS, each in its own run
 // partition), at most max_running at once, the rest queued.
 //   POST /api/runs               multipart: map, scen, plan (files); axis (xy|rowcol), agents,
-//                                robot (a model name). 200 {"id"}; 400 {"error", "problems":
+//                                robot (a model name), max_speed_mps, max_accel_mps2,
+//                                max_turn_rate_radps (overrides of the model's limits, checked
+//                                against its ranges). 200 {"id"}; 400 {"error", "problems":
 //                                [{file, line, robot, message}]} as `smart check-plan` lists them
 //   GET  /api/runs               [{id, state, map, robots}]
 //   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}
