@@ -119,12 +119,27 @@ function showRobot(id, f) {
       (d.results.finish_time_s !== undefined ? `<div>finished at ${d.results.finish_time_s.toFixed(1)} s, waited ${d.results.waiting_time_s.toFixed(1)} s</div>` : '') +
       `<div class="waits">waits for: ${list(d.waits_for)}</div><div class="waited">waited by: ${list(d.waited_by)}</div>` : '');
   if (d) drawEdges(id, f, d);
+  drawTrail(id, f);
   if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
 }
 
 // The selected robot's planned path, and lines to the robots it waits for (red) and that wait
 // for it (orange), at their current poses.
-const overlay = { path: null, edges: null };
+const overlay = { path: null, edges: null, trail: null };
+// Where the selected robot has been so far (one point per recorded frame, up to frame f).
+function drawTrail(id, f) {
+  if (overlay.trail) scene.remove(overlay.trail);
+  const pts = new Float32Array((f + 1) * 3), p = new Float64Array(3);
+  for (let i = 0; i <= f; i++) {
+    state.rec.pose(i, id, p);
+    pts.set([p[0], state.cell * 0.08, -p[1]], i * 3);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pts, 3));
+  overlay.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0xffffff }));
+  scene.add(overlay.trail);
+  viewer.trailPoints = f + 1;
+}
 function drawPath(d) {
   if (overlay.path) scene.remove(overlay.path);
   const pts = d.path.map(([x, y]) => new THREE.Vector3(x, state.cell * 0.05, -y));

@@ -102,6 +102,9 @@ try {
   const names = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
   assert.ok(panel.includes(`waits for: ${names(detail.waits_for)}`), panel);
   assert.ok(panel.includes(`waited by: ${names(detail.waited_by)}`), panel);
+  // Its executed trail: one point per recorded frame up to now (the end of the run).
+  const frames = await page.evaluate(() => window.__viewer.trailPoints);
+  assert.ok(frames > 100, `trail of ${frames} points`);
   await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
   // Play from the start at 64x for a second: the frame time while all robots move.
   await page.evaluate(() => window.__viewer.seek(0));
