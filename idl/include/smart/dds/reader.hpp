@@ -132,17 +132,7 @@ class Reader {
   // Takes everything available, calling fn(const T&) for each valid sample; returns the count.
   template <class Fn>
   std::size_t take_each(Fn&& fn) {
-    std::size_t n = 0;
-    for (;;) {
-      auto samples = take();
-      if (samples.empty()) return n;
-      for (auto s : samples) {
-        if (s.valid()) {
-          fn(s.data());
-          ++n;
-        }
-      }
-    }
+    return take_each_from([&](const T& data, dds_instance_handle_t) { fn(data); });
   }
 
   // Like take_each, with the sender: fn(const T&, dds_instance_handle_t publication), the
