@@ -9,6 +9,7 @@
 
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/wire.hpp"
+#include "support/forged_samples.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
@@ -93,12 +94,7 @@ TEST_F(Faults, ForgedWindowsStopsProgressAndStatusFromAWeakWriterChangeNothing) 
   std::thread rogue([&] {
     while (!done) {
       spy.take_each([&](const smart_msg_ActionWindow& m) { run = m.run_id; });
-      dds::ActionWindowBuffer w(4, run, 1);
-      smart_msg_ActionStep step{};
-      step.type = smart_msg_ACTION_MOVE;
-      step.from = {1.0, 1.0, 2, 2};
-      step.to = {30.0, 30.0, 60, 60};
-      w.steps().push_back(step);
+      auto w = forged_window(run);
       windows.write(w.view());
       clocks.write(smart_msg_Clock{dds::kMonitorClockSource, run, 0, 0.0, 0, true});
       for (int i = 0; i < 50; ++i) progress.write(smart_msg_Progress{4, run, 17, -1});

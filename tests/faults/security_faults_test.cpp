@@ -12,6 +12,7 @@
 #include "smart/dds/error.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/tools/security.hpp"
+#include "support/forged_samples.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
@@ -94,12 +95,7 @@ TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
       s.pose = {5.0, 5.0, 0.0};
       states.write(s);
       clocks.write(smart_msg_Clock{dds::kMonitorClockSource, 0, 0, 0.0, 0, true});
-      dds::ActionWindowBuffer w(4, 0, 1);
-      smart_msg_ActionStep step{};
-      step.type = smart_msg_ACTION_MOVE;
-      step.from = {1.0, 1.0, 2, 2};
-      step.to = {30.0, 30.0, 60, 60};
-      w.steps().push_back(step);
+      auto w = forged_window(0);
       windows.write(w.view());
       for (uint32_t r = 0; r < 20; ++r) progress.write(smart_msg_Progress{r, 0, 1000, -1});
       status.write(smart_msg_SimStatus{dds::kSimClockSource, 0, 1.0, 20, 9, 0, 0.0, 0, 0, 1, 2});
