@@ -168,6 +168,25 @@ void StatesCsvWriter::add(const StateRow& s) {
   ++rows_;
 }
 
+namespace {
+// One row per action in ADG order: who, which, what, and when it finished on the sim clock
+// (empty: never finished, or before a resume).
+void write_actions_csv(const std::filesystem::path& dir, const Instance& in,
+                       const MonitorResult& r) {
+  auto out = open_out(dir / "actions.csv");
+  out << "robot,action,type,finish_time_s\n";
+  for (std::size_t node = 0; node < in.actions.actions.size(); ++node) {
+    const auto& a = in.actions.actions[node];
+    out << a.robot << "," << a.seq << "," << (a.type == grid::ActionType::kMove ? "move" : "rotate")
+        << ",";
+    if (node < r.action_finish_s.size() && !std::isnan(r.action_finish_s[node])) {
+      out << r.action_finish_s[node];
+    }
+    out << "\n";
+  }
+}
+}  // namespace
+
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
                    const RunInfo& info) {
   create_out_dir(dir);
@@ -205,6 +224,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
           << m.actions << "\n";
     }
   }
+  write_actions_csv(dir, in, r);
 }
 
 }  // namespace smart::monitor

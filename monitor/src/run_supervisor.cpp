@@ -54,6 +54,7 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
   }
   res_.run_id = config.run_id;
   res_.total_actions = instance.actions.actions.size();
+  res_.action_finish_s.assign(res_.total_actions, std::nan(""));
 }
 
 void RunSupervisor::end(Outcome outcome, std::string error) {
@@ -112,6 +113,7 @@ void RunSupervisor::on_progress(const ProgressEvent& p, double now_s) {
 
 void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
   if (p.run_id != res_.run_id) return;
+  const uint32_t before = p.robot < tracker_.robots() ? tracker_.finished(p.robot) : 0;
   const auto u = tracker_.on_progress(p.robot, p.finished_seq);
   if (u.result == ExecutionTracker::Result::kRejected) {
     if (res_.rejected_progress++ < 5) notes_.push_back("progress rejected: " + u.reason);
@@ -119,6 +121,10 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
   }
   if (u.result != ExecutionTracker::Result::kAdvanced) return;
   last_finish_sim_s_ = sim_time_s;
+  const uint32_t first = in_.actions.offset[p.robot];
+  for (uint32_t s = before; s < tracker_.finished(p.robot); ++s) {
+    res_.action_finish_s[first + s] = sim_time_s;
+  }
   for (const uint32_t r : u.robots_changed) {
     publish_window(r);
     if (tracker_.robot_done(r)) mark_done(r, sim_time_s);

@@ -93,6 +93,19 @@ TEST(Results, WritesSummaryStatsAndRobotFiles) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Results, ActionsCsvHasEveryActionAndItsFinishTimeEmptyWhenNotFinished) {
+  const auto in = tiny_instance();
+  auto r = finished_run(in);
+  // Half-moves: robot 0 has four, robot 1 a rotation and four; robot 1's last never finished.
+  r.action_finish_s = {1, 2, 3, 8, 2.5, 4, 5, 7.25, std::nan("")};
+  const auto dir = temp_dir("actions");
+  write_results(dir, in, r, RunInfo{});
+  EXPECT_EQ(slurp(dir / "actions.csv"),
+            "robot,action,type,finish_time_s\n0,0,move,1\n0,1,move,2\n0,2,move,3\n0,3,move,8\n"
+            "1,0,rotate,2.5\n1,1,move,4\n1,2,move,5\n1,3,move,7.25\n1,4,move,\n");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Results, AResumedRunWithRobotsDoneBeforeHasNoAetAndSaysSo) {
   const auto in = tiny_instance();
   auto r = finished_run(in);

@@ -106,6 +106,21 @@ TEST(RunSupervisor, SuccessTimesEveryRobotAtTheTickThatAnnouncedItsProgress) {
   }
 }
 
+TEST(RunSupervisor, EveryActionIsTimedAtTheTickThatAnnouncedIt) {
+  Scripted r;
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 0);
+  r.sup.on_clock(tick(3, 1), 0);
+  r.sup.on_progress({0, kRun, 0}, 0);  // robot 0's first half-move at 0.3 s
+  EXPECT_TRUE(std::isnan(r.sup.result().action_finish_s[1]));
+  r.sup.on_clock(tick(5, 2), 0);
+  r.sup.on_progress({0, kRun, 1}, 0);
+  r.sup.on_clock(tick(9, 4), 0);
+  r.sup.on_progress({1, kRun, 1}, 0);  // robot 1's two at once at 0.9 s
+  EXPECT_THAT(r.sup.result().action_finish_s,
+              ::testing::Pointwise(::testing::DoubleEq(), {0.1 * 3, 0.1 * 5, 0.1 * 9, 0.1 * 9}));
+}
+
 TEST(RunSupervisor, ATickIsAnsweredOnlyWhenItsProgressAddsUp) {
   Scripted r;
   r.sup.start(0);

@@ -5,6 +5,7 @@
 // - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats), times
 //   on the sim clock;
 // - robots.csv: per robot finish time, waiting time, stops, actions;
+// - actions.csv: per action (ADG order) robot, seq, type and the sim time it finished;
 // - states.csv: t, robot, x, y, yaw, v, ω, left/right wheel speed, queue length, written row by
 //   row while the run goes (StatesCsvWriter), so memory does not grow with the run.
 #pragma once
@@ -52,8 +53,8 @@ class StatesCsvWriter {
   std::size_t rows_ = 0;
 };
 
-// Writes summary.json, stats.csv and robots.csv into `dir` (created if missing). Throws
-// std::runtime_error naming the file when it cannot be written.
+// Writes summary.json, stats.csv, robots.csv and actions.csv into `dir` (created if missing).
+// Throws std::runtime_error naming the file when it cannot be written.
 void write_results(const std::filesystem::path& dir, const Instance& instance,
                    const MonitorResult& result, const RunInfo& info);
 

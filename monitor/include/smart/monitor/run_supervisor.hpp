@@ -83,6 +83,10 @@ struct MonitorResult {
   std::size_t finished_actions = 0;
   std::size_t total_actions = 0;
   std::vector<RobotMetrics> robots;
+  // Sim time each action finished, by ADG node (ActionPlan::offset[robot] + seq); NaN: not
+  // finished, or finished before a resume. What a viewer needs to show a robot's current
+  // action and who it waits for at any time of a replay (actions.csv).
+  std::vector<double> action_finish_s;
   uint64_t robot_contacts = 0;
   uint64_t wall_contacts = 0;
   std::optional<double> min_gap_m;
