@@ -10,9 +10,9 @@
 namespace smart::serve {
 
 namespace {
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 constexpr std::size_t kHeader = 4 + 3 * 4 + 3 * 8;
-constexpr std::size_t kPerRobot = 6;
+constexpr std::size_t kPerRobot = 7;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -35,6 +35,15 @@ bool field(std::string_view& line, double& out) {
   line.remove_prefix(std::min(comma + 1, line.size()));
   return ec == std::errc() && std::isfinite(out);
 }
+
+// The queue column (the 10th) of what is left of a row after its pose; 0 when the row has none.
+uint32_t queue_field(std::string_view rest) {
+  double v = 0;
+  for (int skip = 0; skip < 4; ++skip) {
+    if (!field(rest, v)) return 0;
+  }
+  return field(rest, v) && v >= 0 ? static_cast<uint32_t>(std::min(v, 1e6)) : 0;
+}
 }  // namespace
 
 std::vector<PoseRow> parse_states_csv(std::string_view text) {
@@ -51,7 +60,7 @@ std::vector<PoseRow> parse_states_csv(std::string_view text) {
       throw std::invalid_argument("states.csv line " + std::to_string(line_no) +
                                   ": expected t_s,robot,x_m,y_m,yaw_rad,... numbers");
     }
-    rows.push_back({t, static_cast<uint32_t>(robot), x, y, yaw});
+    rows.push_back({t, static_cast<uint32_t>(robot), x, y, yaw, queue_field(line)});
   }
   return rows;
 }
@@ -73,15 +82,19 @@ std::string encode_recording(const std::vector<PoseRow>& rows) {
   put(out, min_x), put(out, min_y), put(out, quantum);
   std::vector<uint16_t> qx(robots, 0), qy(robots, 0);
   std::vector<int16_t> yaw(robots, 0);
+  std::vector<uint8_t> queue(robots, 0);
   for (const auto& [t, frame] : frames) {
     for (const PoseRow* r : frame) {
+      queue[r->robot] = static_cast<uint8_t>(std::min<uint32_t>(r->queue, 255));
       qx[r->robot] = static_cast<uint16_t>(std::lround((r->x_m - min_x) / quantum));
       qy[r->robot] = static_cast<uint16_t>(std::lround((r->y_m - min_y) / quantum));
       const double wrapped = std::remainder(r->yaw_rad, 2 * M_PI);
       yaw[r->robot] = static_cast<int16_t>(std::lround(wrapped * 1e4));
     }
     put(out, static_cast<float>(t));
-    for (uint32_t i = 0; i < robots; ++i) put(out, qx[i]), put(out, qy[i]), put(out, yaw[i]);
+    for (uint32_t i = 0; i < robots; ++i) {
+      put(out, qx[i]), put(out, qy[i]), put(out, yaw[i]), put(out, queue[i]);
+    }
   }
   return out;
 }
@@ -113,7 +126,7 @@ Recording decode_recording(std::string_view in) {
     throw std::invalid_argument("not a SMART-DDS recording (no SMRC header)");
   }
   std::size_t at = 4;
-  if (get<uint32_t>(in, at) != kVersion) throw std::invalid_argument("recording version is not 1");
+  if (get<uint32_t>(in, at) != kVersion) throw std::invalid_argument("recording version is not 2");
   Recording rec;
   rec.robots = get<uint32_t>(in, at);
   const auto frames = get<uint32_t>(in, at);
@@ -127,7 +140,8 @@ Recording decode_recording(std::string_view in) {
     for (uint32_t r = 0; r < rec.robots; ++r) {
       const auto x = get<uint16_t>(in, at), y = get<uint16_t>(in, at);
       const auto yaw = get<int16_t>(in, at);
-      rec.poses.push_back({rec.times_s.back(), r, min_x + x * q, min_y + y * q, yaw * 1e-4});
+      const auto queue = get<uint8_t>(in, at);
+      rec.poses.push_back({rec.times_s.back(), r, min_x + x * q, min_y + y * q, yaw * 1e-4, queue});
     }
   }
   return rec;

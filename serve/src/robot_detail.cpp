@@ -1,5 +1,8 @@
 #include "smart/serve/robot_detail.hpp"
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -29,9 +32,109 @@ json partners(const monitor::Instance& in, uint32_t robot, bool incoming) {
   for (const auto& [other, n] : count) out.push_back({{"robot", other}, {"edges", n}});
   return out;
 }
+
+json time_or_null(const std::vector<double>& finish_s, std::size_t node) {
+  return node < finish_s.size() && !std::isnan(finish_s[node]) ? json(finish_s[node]) : json();
+}
+
+// When the robot of `node` had finished every action before it (0 for its first action).
+json ready_time(const monitor::Instance& in, const std::vector<double>& finish_s, uint32_t node) {
+  const auto& a = in.actions.actions[node];
+  if (a.seq == 0) return 0.0;
+  return time_or_null(finish_s, node - 1);
+}
+
+json steps(const monitor::Instance& in, uint32_t robot, const std::vector<double>& finish_s) {
+  const auto& adg = in.adg;
+  json out = json::array();
+  for (uint32_t node = in.actions.offset[robot]; node < in.actions.offset[robot + 1]; ++node) {
+    const auto& a = in.actions.actions[node];
+    json waits = json::array(), waited = json::array();
+    for (uint32_t e = adg.in_begin[node]; e < adg.in_begin[node + 1]; ++e) {
+      const auto& o = in.actions.actions[adg.in[e]];
+      waits.push_back({o.robot, o.seq, time_or_null(finish_s, adg.in[e])});
+    }
+    for (uint32_t e = adg.out_begin[node]; e < adg.out_begin[node + 1]; ++e) {
+      const auto& o = in.actions.actions[adg.out[e]];
+      waited.push_back({o.robot, o.seq, ready_time(in, finish_s, adg.out[e])});
+    }
+    out.push_back({{"type", a.type == grid::ActionType::kMove ? "move" : "rotate"},
+                   {"finish_s", time_or_null(finish_s, node)},
+                   {"in", waits},
+                   {"out", waited}});
+  }
+  return out;
+}
+
+bool next_field(std::string_view& line, std::string_view& field) {
+  if (line.data() == nullptr) return false;
+  const auto comma = line.find(',');
+  field = line.substr(0, comma);
+  line = comma == std::string_view::npos ? std::string_view() : line.substr(comma + 1);
+  return true;
+}
+
+template <class T>
+bool number(std::string_view text, T& out) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return ec == std::errc() && end == text.data() + text.size();
+}
+
+// One row "robot,action,type,finish_time_s" into `times`; false when it does not fit.
+bool read_row(std::string_view line, const monitor::ActionPlan& actions,
+              std::vector<double>& times) {
+  std::string_view robot_text, seq_text, type, finish;
+  uint32_t robot = 0, seq = 0;
+  if (!next_field(line, robot_text) || !next_field(line, seq_text) || !next_field(line, type) ||
+      !next_field(line, finish) || !number(robot_text, robot) || !number(seq_text, seq) ||
+      robot >= actions.robots() || seq >= actions.count(robot)) {
+    return false;
+  }
+  if (finish.empty()) return true;
+  double t = 0;
+  if (!number(finish, t) || !std::isfinite(t) || t < 0) return false;
+  times[actions.offset[robot] + seq] = t;
+  return true;
+}
 }  // namespace
 
-json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m) {
+std::vector<double> parse_action_times(std::string_view csv, const monitor::ActionPlan& actions) {
+  std::vector<double> times(actions.actions.size(), std::nan(""));
+  std::size_t line_no = 0;
+  while (!csv.empty()) {
+    const auto nl = std::min(csv.find('\n'), csv.size());
+    const std::string_view line = csv.substr(0, nl);
+    csv.remove_prefix(std::min(nl + 1, csv.size()));
+    if (++line_no == 1 || line.empty()) continue;  // header
+    if (!read_row(line, actions, times)) {
+      throw std::invalid_argument("actions.csv line " + std::to_string(line_no) +
+                                  ": expected robot,action,type,finish_time_s of an action in "
+                                  "this run's plan");
+    }
+  }
+  return times;
+}
+
+json finished_curve(std::vector<double> finish_s, std::size_t max_points) {
+  std::erase_if(finish_s, [](double t) { return std::isnan(t); });
+  std::sort(finish_s.begin(), finish_s.end());
+  json t = json::array(), n = json::array();
+  const std::size_t total = finish_s.size();
+  const std::size_t step =
+      std::max<std::size_t>(1, (total + max_points - 1) / std::max<std::size_t>(max_points, 1));
+  for (std::size_t i = step; i < total; i += step) {
+    t.push_back(finish_s[i - 1]);
+    n.push_back(i);
+  }
+  if (total > 0) {
+    t.push_back(finish_s.back());
+    n.push_back(total);
+  }
+  return {{"t_s", t}, {"finished", n}};
+}
+
+json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m,
+                  const std::vector<double>& finish_s) {
   if (robot >= in.actions.robots()) {
     throw std::out_of_range("robot " + std::to_string(robot) + " is not in this run");
   }
@@ -45,7 +148,8 @@ json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m) {
           {"actions", in.actions.count(robot)},
           {"path", path},
           {"waits_for", partners(in, robot, true)},
-          {"waited_by", partners(in, robot, false)}};
+          {"waited_by", partners(in, robot, false)},
+          {"steps", steps(in, robot, finish_s)}};
 }
 
 }  // namespace smart::serve

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "smart/agent/robot_model.hpp"
+#include "smart/grid/map_reader.hpp"
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/serve/recording.hpp"
@@ -41,12 +43,16 @@ void reply(httplib::Response& res, int status, const json& body) {
 }
 
 // Problems name the files as the user uploaded them, not the server's scratch paths.
-json problems_json(const std::vector<grid::Problem>& problems, const httplib::Request& req,
-                   const fs::path& scratch) {
-  const std::map<std::string, std::string> names{
-      {(scratch / "map.map").string(), req.get_file_value("map").filename},
-      {(scratch / "scen.scen").string(), req.get_file_value("scen").filename},
-      {(scratch / "plan.txt").string(), req.get_file_value("plan").filename}};
+// What a results folder may hold (monitor/results.hpp); nothing else is kept or served.
+constexpr const char* kResultFiles[] = {"summary.json", "stats.csv", "robots.csv", "actions.csv",
+                                        "states.csv"};
+// A run's own files: upload field or summary.json "files" key -> name under the run's folder.
+constexpr std::pair<const char*, const char*> kRunFiles[] = {
+    {"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}};
+
+// `names`: scratch path -> the name the user knows the file by.
+json problems_json(const std::vector<grid::Problem>& problems,
+                   const std::map<std::string, std::string>& names) {
   json out = json::array();
   for (const auto& p : problems) {
     const auto it = names.find(p.source);
@@ -56,6 +62,20 @@ json problems_json(const std::vector<grid::Problem>& problems, const httplib::Re
                    {"message", p.message}});
   }
   return out;
+}
+
+json problems_json(const std::vector<grid::Problem>& problems, const httplib::Request& req,
+                   const fs::path& scratch) {
+  std::map<std::string, std::string> names;
+  for (const auto& [field, name] : kRunFiles) {
+    names[(scratch / name).string()] = req.get_file_value(field).filename;
+  }
+  return problems_json(problems, names);
+}
+
+bool result_file(const std::string& name) {
+  return std::any_of(std::begin(kResultFiles), std::end(kResultFiles),
+                     [&](const char* f) { return name == f; });
 }
 
 bool plain_name(const std::string& s) {
@@ -126,6 +146,7 @@ struct Server::Impl {
   std::map<std::string, tools::ChildProcess> children;   // running ones
   uint64_t uploads = 0;
   std::map<std::string, std::shared_ptr<const monitor::Instance>> instances;  // loaded on demand
+  std::map<std::string, std::shared_ptr<const std::vector<double>>> action_times;  // by node
 
   explicit Impl(ServeOptions o) : opt(std::move(o)) {}
 
@@ -219,6 +240,110 @@ struct Server::Impl {
     reply(res, 200, {{"id", id}});
   }
 
+  // A staged replay (results/ and the run's files) checked as the viewer will read it; the
+  // recording is made here once. An error naming the file and line, or nothing.
+  std::optional<json> check_results(const fs::path& staged) {
+    const auto bad = [](std::string what) {
+      return json{{"error", std::move(what)}, {"problems", json::array()}};
+    };
+    const auto r = staged / "results";
+    for (const char* f : {"summary.json", "states.csv"}) {
+      if (!fs::is_regular_file(r / f)) return bad(std::string("no ") + f + " in the results");
+    }
+    const auto summary = json::parse(slurp(r / "summary.json"), nullptr, false);
+    if (!summary.is_object() || !summary.contains("robots")) {
+      return bad("summary.json is not the summary `smart run --out` writes (no \"robots\")");
+    }
+    if (!fs::is_regular_file(staged / "map.map")) return bad("no map: give the run's map file");
+    try {
+      (void)grid::parse_map(slurp(staged / "map.map"), "the map");
+      std::ofstream(staged / "recording-v2.smrc", std::ios::binary)
+          << encode_recording(parse_states_csv(slurp(r / "states.csv")));
+      if (fs::is_regular_file(staged / "scen.scen") && fs::is_regular_file(staged / "plan.txt")) {
+        write_request(staged, summary);
+        const auto in = load(staged);
+        if (fs::is_regular_file(r / "actions.csv")) {
+          (void)parse_action_times(slurp(r / "actions.csv"), in.actions);
+        }
+      }
+    } catch (const grid::InputError& e) {
+      return json{{"error", "the run's files have problems"},
+                  {"problems", problems_json(e.problems(), staged_names(staged))}};
+    } catch (const std::exception& e) {
+      return bad(e.what());
+    }
+    return std::nullopt;
+  }
+
+  static std::map<std::string, std::string> staged_names(const fs::path& staged) {
+    std::map<std::string, std::string> names;
+    for (const auto& [field, name] : kRunFiles) names[(staged / name).string()] = field;
+    return names;
+  }
+
+  // How the plan is read again (axis, robots), from the summary of the run that was made on it.
+  static void write_request(const fs::path& staged, const json& summary) {
+    const auto plan = summary.value("plan", json::object());
+    std::ofstream(staged / "request.json") << json{
+        {"axis", plan.is_object() ? plan.value("axis", "xy") : "xy"},
+        {"agents",
+         summary.value("robots", std::size_t{0})}}.dump();
+  }
+
+  // A checked replay becomes a done run.
+  std::string adopt(const fs::path& staged) {
+    const auto summary = json::parse(slurp(staged / "results" / "summary.json"));
+    const auto files = summary.value("files", json::object());
+    const std::string map = files.is_object() ? files.value("map", "?") : "?";
+    std::lock_guard lock(m);
+    const auto id = registry.add_done(fs::path(map).filename().string(),
+                                      summary.value("robots", std::size_t{0}));
+    fs::rename(staged, dir(id));
+    return id;
+  }
+
+  // POST /api/results: a results folder (fields "files", many) with the run's map (and scen and
+  // plan for the robot panel), replayed like --open.
+  void post_results(const httplib::Request& req, httplib::Response& res) {
+    fs::path scratch;
+    {
+      std::lock_guard lock(m);
+      scratch = opt.data_dir / ("upload-" + std::to_string(++uploads));
+    }
+    fs::create_directories(scratch / "results");
+    const auto [first, last] = req.files.equal_range("files");
+    for (auto it = first; it != last; ++it) {
+      const auto name = fs::path(it->second.filename).filename().string();
+      if (result_file(name)) std::ofstream(scratch / "results" / name) << it->second.content;
+    }
+    for (const auto& [field, name] : kRunFiles) {
+      if (req.has_file(field)) std::ofstream(scratch / name) << req.get_file_value(field).content;
+    }
+    if (auto bad = check_results(scratch)) {
+      fs::remove_all(scratch);
+      return reply(res, 400, *bad);
+    }
+    reply(res, 200, {{"id", adopt(scratch)}});
+  }
+
+  // GET /api/runs/{id}/results/{name}: a results file as a download, streamed from disk.
+  void get_result_file(const std::string& id, const std::string& name, httplib::Response& res) {
+    const auto path = dir(id) / "results" / name;
+    if (!entry(id) || !result_file(name) || !fs::is_regular_file(path)) {
+      return reply(res, 404, {{"error", "no " + name + " in the results of " + id}});
+    }
+    res.set_header("Content-Disposition", "attachment; filename=\"" + id + "-" + name + "\"");
+    auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
+    res.set_content_provider(
+        fs::file_size(path), name.ends_with(".json") ? "application/json" : "text/csv",
+        [in](size_t offset, size_t length, httplib::DataSink& sink) {
+          std::vector<char> buf(std::min<size_t>(length, 1 << 16));
+          in->seekg(static_cast<std::streamoff>(offset));
+          in->read(buf.data(), static_cast<std::streamsize>(buf.size()));
+          return in->gcount() > 0 && sink.write(buf.data(), static_cast<size_t>(in->gcount()));
+        });
+  }
+
   json entry_json(const RunEntry& e) const {
     return {{"id", e.id},
             {"state", to_string(e.state)},
@@ -238,6 +363,11 @@ struct Server::Impl {
     const auto summary = dir(id) / "results" / "summary.json";
     if (e->state == RunState::kDone && fs::exists(summary))
       j["summary"] = json::parse(slurp(summary));
+    j["files"] = json::array();
+    for (const char* f : kResultFiles) {
+      if (e->state == RunState::kDone && fs::exists(dir(id) / "results" / f))
+        j["files"].push_back(f);
+    }
     reply(res, 200, j);
   }
 
@@ -251,7 +381,7 @@ struct Server::Impl {
     if (!e || e->state != RunState::kDone || !fs::exists(states)) {
       return reply(res, 404, {{"error", "no recording of " + id + " (yet)"}});
     }
-    const auto cached = dir(id) / "recording.smrc";
+    const auto cached = dir(id) / "recording-v2.smrc";
     if (!fs::exists(cached)) {
       std::ofstream(cached, std::ios::binary) << encode_recording(parse_states_csv(slurp(states)));
     }
@@ -298,13 +428,8 @@ struct Server::Impl {
                                      });
   }
 
-  // The run's instance (plan, actions, ADG), loaded once from its files and request.json.
-  std::shared_ptr<const monitor::Instance> instance(const std::string& id) {
-    {
-      std::lock_guard lock(m);
-      if (auto it = instances.find(id); it != instances.end()) return it->second;
-    }
-    const auto d = dir(id);
+  // The instance in a run's folder: its files read as request.json says.
+  static monitor::Instance load(const fs::path& d) {
     const auto request = json::parse(slurp(d / "request.json"));
     monitor::InstanceOptions io;
     io.map = d / "map.map";
@@ -313,9 +438,50 @@ struct Server::Impl {
     io.agents = request.value("agents", std::size_t{0});
     io.read.axis =
         request.value("axis", "xy") == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
-    auto in = std::make_shared<const monitor::Instance>(monitor::load_instance(io));
+    return monitor::load_instance(io);
+  }
+
+  // The run's instance (plan, actions, ADG), loaded once from its files and request.json.
+  std::shared_ptr<const monitor::Instance> instance(const std::string& id) {
+    {
+      std::lock_guard lock(m);
+      if (auto it = instances.find(id); it != instances.end()) return it->second;
+    }
+    auto in = std::make_shared<const monitor::Instance>(load(dir(id)));
     std::lock_guard lock(m);
     return instances.emplace(id, std::move(in)).first->second;
+  }
+
+  // When each action of a finished run finished (actions.csv), by node; empty while it runs or
+  // when the run wrote none.
+  std::shared_ptr<const std::vector<double>> times(const std::string& id,
+                                                   const monitor::Instance& in) {
+    {
+      std::lock_guard lock(m);
+      if (auto it = action_times.find(id); it != action_times.end()) return it->second;
+    }
+    const auto csv = dir(id) / "results" / "actions.csv";
+    const auto e = entry(id);
+    if (!e || e->state != RunState::kDone || !fs::exists(csv)) {
+      return std::make_shared<const std::vector<double>>();
+    }
+    auto t =
+        std::make_shared<const std::vector<double>>(parse_action_times(slurp(csv), in.actions));
+    std::lock_guard lock(m);
+    return action_times.emplace(id, std::move(t)).first->second;
+  }
+
+  // Finished actions over time (the stats panel's plot), from actions.csv.
+  void get_progress(const std::string& id, httplib::Response& res) {
+    const auto e = entry(id);
+    if (!e || !fs::exists(dir(id) / "request.json")) {
+      return reply(res, 404, {{"error", "no finished actions of " + id + " (no plan files)"}});
+    }
+    try {
+      reply(res, 200, finished_curve(*times(id, *instance(id))));
+    } catch (const std::exception& ex) {
+      reply(res, 404, {{"error", ex.what()}});
+    }
   }
 
   // robots.csv's row of `robot` as JSON (finish and waiting time, stops), if the run wrote one.
@@ -344,7 +510,7 @@ struct Server::Impl {
     try {
       const auto robot = static_cast<uint32_t>(std::stoul(robot_text));
       const auto in = instance(id);
-      json j = robot_detail(*in, robot, summary_cell_m(id));
+      json j = robot_detail(*in, robot, summary_cell_m(id), *times(id, *in));
       j["results"] = robot_results(id, robot);
       reply(res, 200, j);
     } catch (const std::exception& ex) {
@@ -379,6 +545,12 @@ struct Server::Impl {
     });
     http.Get(R"(/api/runs/([^/]+)/robots/([^/]+))", [this](const auto& req, auto& res) {
       get_robot(req.matches[1], req.matches[2], res);
+    });
+    http.Post("/api/results", [this](const auto& req, auto& res) { post_results(req, res); });
+    http.Get(R"(/api/runs/([^/]+)/progress)",
+             [this](const auto& req, auto& res) { get_progress(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/results/([^/]+))", [this](const auto& req, auto& res) {
+      get_result_file(req.matches[1], req.matches[2], res);
     });
     http.Get(R"(/api/runs/([^/]+)/live)",
              [this](const auto& req, auto& res) { get_live(req.matches[1], res); });
@@ -419,37 +591,30 @@ Server::~Server() = default;
 
 std::string Server::open_results(const fs::path& results) {
   auto& I = *impl_;
-  for (const char* f : {"summary.json", "states.csv"}) {
-    if (!fs::is_regular_file(results / f)) {
-      throw std::runtime_error("--open " + results.string() + ": no " + f +
-                               "; give a folder written by `smart run --out`");
-    }
+  fs::path scratch;
+  {
+    std::lock_guard lock(I.m);
+    scratch = I.opt.data_dir / ("upload-" + std::to_string(++I.uploads));
   }
-  const auto summary = json::parse(slurp(results / "summary.json"));
-  std::lock_guard lock(I.m);
-  const auto map = summary.value("files", json::object()).value("map", std::string("?"));
-  const auto id = I.registry.add_done(fs::path(map).filename().string(),
-                                      summary.value("robots", std::size_t{0}));
-  fs::create_directories(I.dir(id) / "results");
-  for (const auto& e : fs::directory_iterator(results)) {
-    if (e.is_regular_file()) fs::copy_file(e.path(), I.dir(id) / "results" / e.path().filename());
+  fs::create_directories(scratch / "results");
+  for (const char* f : kResultFiles) {
+    if (fs::is_regular_file(results / f)) fs::copy_file(results / f, scratch / "results" / f);
   }
-  // The files the run was made on, when still where summary.json says (for the viewer).
-  const auto files = summary.value("files", json::object());
-  bool all = true;
-  for (const auto& [key, name] :
-       {std::pair{"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}}) {
-    const fs::path src = files.value(key, std::string());
-    if (fs::is_regular_file(src)) fs::copy_file(src, I.dir(id) / name);
-    all = all && fs::is_regular_file(src);
+  // The files the run was made on, when still where summary.json says (for the robot panel).
+  json files = json::object();
+  if (fs::is_regular_file(results / "summary.json")) {
+    files = json::parse(slurp(results / "summary.json"), nullptr, false).value("files", files);
   }
-  if (all) {
-    std::ofstream(I.dir(id) / "request.json") << json{
-        {"axis", summary.value("plan", json::object()).value("axis", "xy")},
-        {"agents",
-         summary.value("robots", std::size_t{0})}}.dump();
+  for (const auto& [key, name] : kRunFiles) {
+    const fs::path src = files.is_object() ? files.value(key, std::string()) : std::string();
+    if (!src.empty() && fs::is_regular_file(src)) fs::copy_file(src, scratch / name);
   }
-  return id;
+  if (auto bad = I.check_results(scratch)) {
+    fs::remove_all(scratch);
+    throw std::runtime_error("--open " + results.string() + ": " + bad->value("error", "") +
+                             "; give a folder written by `smart run --out`");
+  }
+  return I.adopt(scratch);
 }
 
 int Server::bind() {

@@ -13,14 +13,14 @@ const char* kCsv =
     "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n"
     "0,0,1,2,0,0,0,0,0,1\n"
     "0,1,5,2,3.14159,0,0,0,0,1\n"
-    "0.5,0,1.25,2,0.5,0.5,0,0.5,0.5,1\n";  // robot 1 not reported: keeps its pose
+    "0.5,0,1.25,2,0.5,0.5,0,0.5,0.5,300\n";  // robot 1 not reported: keeps its pose
 
 TEST(Recording, RoundTripsPosesFrameByFrameAndCarriesMissingRobotsForward) {
   const auto rows = parse_states_csv(kCsv);
   ASSERT_EQ(rows.size(), 3u);
   const auto bytes = encode_recording(rows);
   EXPECT_EQ(bytes.substr(0, 4), "SMRC");
-  EXPECT_EQ(bytes.size(), 40u + 2 * (4 + 2 * 6));
+  EXPECT_EQ(bytes.size(), 40u + 2 * (4 + 2 * 7));
   const auto rec = decode_recording(bytes);
   ASSERT_EQ(rec.robots, 2u);
   ASSERT_EQ(rec.times_s, (std::vector<float>{0.0f, 0.5f}));
@@ -29,6 +29,9 @@ TEST(Recording, RoundTripsPosesFrameByFrameAndCarriesMissingRobotsForward) {
   EXPECT_NEAR(rec.poses[2].yaw_rad, 0.5, 1e-4);
   EXPECT_NEAR(rec.poses[3].x_m, 5.0, q);  // frame 1, robot 1: carried forward
   EXPECT_NEAR(std::abs(rec.poses[1].yaw_rad), 3.14159, 1e-4);
+  EXPECT_EQ(rec.poses[0].queue, 1u);
+  EXPECT_EQ(rec.poses[2].queue, 255u);  // 300 saturates
+  EXPECT_EQ(rec.poses[3].queue, 1u);    // carried forward with the pose
 }
 
 TEST(Recording, BadInputIsAnErrorNamingWhatIsWrong) {

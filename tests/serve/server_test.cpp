@@ -186,6 +186,62 @@ TEST_F(Serve, OpenReplaysASmartRunOutFolder) {
   EXPECT_EQ(run["summary"]["aet_s"], r.last_json()["aet_s"]);
   EXPECT_EQ(serve::decode_recording(client().Get("/api/runs/run-000001/recording")->body).robots,
             20u);
+  // Finished actions over time: rising to every action, at the makespan.
+  const auto curve = json::parse(client().Get("/api/runs/run-000001/progress")->body);
+  EXPECT_EQ(curve["finished"].back(), run["summary"]["total_actions"]);
+  EXPECT_DOUBLE_EQ(curve["t_s"].back().get<double>(), run["summary"]["makespan_s"].get<double>());
+  // Every results file downloads as written; nothing else does.
+  EXPECT_THAT(run["files"].dump(), HasSubstr("actions.csv"));
+  for (const char* f : {"summary.json", "robots.csv", "actions.csv", "states.csv"}) {
+    const auto got = client().Get(std::string("/api/runs/run-000001/results/") + f);
+    ASSERT_EQ(got->status, 200) << f;
+    EXPECT_EQ(got->body, slurp(results / f)) << f;
+    EXPECT_THAT(got->get_header_value("Content-Disposition"), HasSubstr("run-000001-"));
+  }
+  for (const char* bad : {"robot.yaml", "..%2fmap.map", "recording-v2.smrc", "run.out"}) {
+    EXPECT_EQ(client().Get(std::string("/api/runs/run-000001/results/") + bad)->status, 404) << bad;
+  }
+  std::filesystem::remove_all(results);
+}
+
+// POST /api/results: a results folder (and the run's map) uploaded over HTTP is replayed; what
+// is not a results file is ignored; bad files are refused naming the file and line.
+TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {
+  const auto results = temp_file("serve_upload_results");
+  std::filesystem::remove_all(results);
+  const auto r = run_smart(
+      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "5",
+       "--domain", std::to_string(kServeUpload), "--out", results.string(), "--no-progress"},
+      120s, "serve_upload_results_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  start();
+  auto items = [&](const std::string& states) {
+    httplib::MultipartFormDataItems f{
+        {"files", slurp(results / "summary.json"), "out/summary.json", ""},
+        {"files", states, "out/states.csv", ""},
+        {"files", "evil", "../../evil.csv", ""},
+        {"map", slurp(b_ / "maps/random-32-32-20.map"), "random-32-32-20.map", ""}};
+    return f;
+  };
+  auto bad = items(slurp(results / "states.csv") + "1.5,zero,1,1,0\n");
+  auto got = client().Post("/api/results", bad);
+  ASSERT_EQ(got->status, 400);
+  EXPECT_THAT(got->body, HasSubstr("states.csv line"));
+  bad.pop_back();  // no map
+  got = client().Post("/api/results", bad);
+  EXPECT_THAT(got->body, HasSubstr("no map"));
+  got = client().Post("/api/results", items(slurp(results / "states.csv")));
+  ASSERT_EQ(got->status, 200) << got->body;
+  const auto id = json::parse(got->body)["id"].get<std::string>();
+  const auto run = json::parse(client().Get("/api/runs/" + id)->body);
+  EXPECT_EQ(run["state"], "done");
+  EXPECT_EQ(run["files"], json::parse(R"(["summary.json", "states.csv"])"));
+  EXPECT_EQ(serve::decode_recording(client().Get("/api/runs/" + id + "/recording")->body).robots,
+            5u);
+  EXPECT_FALSE(std::filesystem::exists(data_ / "evil.csv"));
+  EXPECT_FALSE(std::filesystem::exists(data_.parent_path() / "evil.csv"));
   std::filesystem::remove_all(results);
 }
 

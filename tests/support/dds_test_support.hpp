@@ -69,6 +69,9 @@ enum DomainId : int {
   kServeRuns = 158,
   kServeOpen = 159,
   kWebViewer = 160,  // web/test/viewer.test.mjs (SMART_DOMAIN in tests/CMakeLists.txt)
+  kServeUpload = 161,
+  kServeWatch = 162,
+  kServeWatchRun = 163,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -3,9 +3,11 @@
 // three.js is y-up, so a world point (x_w, y_w) is drawn at (x_w, 0, -y_w).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { readMap, readRecording } from './recording.js';
+import { firstFrameBytes, readMap, readRecording } from './recording.js';
+import { robotList, robotStatus } from './panel.js';
+import { drawProgress } from './plot.js';
 
-const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, selected: 0xff3b30 };
+const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
 const $ = (id) => document.getElementById(id);
 const viewer = { ready: false, robots: 0, selected: -1, frameTimeMs: 0, t: 0, error: '' };
 window.__viewer = viewer;
@@ -77,7 +79,8 @@ function mergeGeometries(a, b) {
   return g;
 }
 
-const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null };
+const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
+                collided: new Set(), collisionFrame: Infinity, progress: null };
 // Scratch poses, written by rec.pose().
 const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
 const matrix = new THREE.Matrix4(), quat = new THREE.Quaternion(), up = new THREE.Vector3(0, 1, 0);
@@ -97,28 +100,63 @@ function showFrame(t) {
     mesh.setMatrixAt(i, matrix);
     const still = Math.hypot(pose[0] - prev[0], pose[1] - prev[1]) < 1e-3 && Math.abs(pose[2] - prev[2]) < 1e-3;
     const atEnd = Math.hypot(pose[0] - last[0], pose[1] - last[1]) < 1e-3;
-    const kind = i === viewer.selected ? 'selected' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
+    const hit = state.collided.has(i) && f >= state.collisionFrame;
+    const kind = i === viewer.selected ? 'selected' : hit ? 'collided' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
     mesh.setColorAt(i, color.setHex(COLORS[kind]));
   }
   mesh.instanceMatrix.needsUpdate = true;
   mesh.instanceColor.needsUpdate = true;
   viewer.t = t;
+  viewer.frameT = rec.times[f];
   $('clock').textContent = `${t.toFixed(1)} s`;
   $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
   if (viewer.selected >= 0) showRobot(viewer.selected, f);
+  if (state.progress) drawProgress($('plot'), state.progress, t, state.summary.total_actions);
+}
+
+// The pair the sim host reported colliding (summary.first_collision) is drawn as collided from
+// the frame they came closest on: the sim reports that they touched, not when.
+function findCollision() {
+  const pair = state.summary && state.summary.first_collision;
+  if (!Array.isArray(pair) || pair.length !== 2) return;
+  const [a, b] = pair, pa = new Float64Array(3), pb = new Float64Array(3);
+  let best = Infinity;
+  for (let f = 0; f < state.rec.frames; f++) {
+    state.rec.pose(f, a, pa);
+    state.rec.pose(f, b, pb);
+    const d = Math.hypot(pa[0] - pb[0], pa[1] - pb[1]);
+    if (d < best) { best = d; state.collisionFrame = f; }
+  }
+  state.collided = new Set(pair);
+  viewer.collided = [...state.collided];
 }
 
 function showRobot(id, f) {
   const p = state.rec.pose(f, id, new Float64Array(3));
-  const m = state.summary && state.summary.robots_off_goal || [];
+  const offGoal = (state.summary && state.summary.robots_off_goal || []).includes(id);
   const d = state.detail && state.detail.robot === id ? state.detail : null;
-  const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
-  $('robot').innerHTML = `<div>robot ${id}</div><div>x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m</div>` +
-    `<div>heading ${(p[2] * 180 / Math.PI).toFixed(0)}°</div>` + (m.includes(id) ? '<div>NOT AT GOAL</div>' : '') +
-    (d ? `<div>actions: ${d.actions}, path: ${d.path.length - 1} cells</div>` +
-      (d.results.finish_time_s !== undefined ? `<div>finished at ${d.results.finish_time_s.toFixed(1)} s, waited ${d.results.waiting_time_s.toFixed(1)} s</div>` : '') +
-      `<div class="waits">waits for: ${list(d.waits_for)}</div><div class="waited">waited by: ${list(d.waited_by)}</div>` : '');
-  if (d) drawEdges(id, f, d);
+  const row = (cls, text) => `<div class="${cls}">${text}</div>`;
+  let html = row('id', `robot ${id}`) + row('pose', `x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m`) +
+    row('heading', `heading ${(p[2] * 180 / Math.PI).toFixed(0)}°`) + row('queue', `queue: ${state.rec.queue(f, id)}`) +
+    (offGoal ? row('off-goal', 'NOT AT GOAL') : '') + (state.collided.has(id) ? row('collided', 'COLLIDED') : '');
+  if (d) {
+    const s = robotStatus(d, state.rec.times[f]);
+    viewer.status = s;
+    html += row('path', `path: ${d.path.length - 1} cells, ${d.actions} actions`);
+    if (s.timed) {
+      html += row('progress', `finished: ${s.finished} / ${s.total}`) +
+        row('current', s.current >= 0 ? `current: #${s.current} ${s.type}` : 'current: none (done)') +
+        row('waits-now', `waits now for: ${robotList(s.waitsNow)}`) +
+        row('waited-now', `waited for now by: ${robotList(s.waitedByNow)}`);
+    }
+    if (d.results.finish_time_s !== undefined) {
+      html += row('finish', `finished at ${d.results.finish_time_s.toFixed(1)} s, waited ${d.results.waiting_time_s.toFixed(1)} s`);
+    }
+    const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
+    html += row('waits', `in the run waits for: ${list(d.waits_for)}`) + row('waited', `in the run waited by: ${list(d.waited_by)}`);
+    drawEdges(id, f, d, s);
+  }
+  $('robot').innerHTML = html;
   drawTrail(id, f);
   if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
 }
@@ -146,16 +184,22 @@ function drawPath(d) {
   overlay.path = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: COLORS.selected }));
   scene.add(overlay.path);
 }
-function drawEdges(id, f, d) {
+// Lines from the selected robot to who it waits for now (red) and who waits for it now
+// (orange), at their poses at this frame; a run without action times draws every partner.
+function drawEdges(id, f, d, status) {
   if (overlay.edges) scene.remove(overlay.edges);
   const me = state.rec.pose(f, id, new Float64Array(3)), other = new Float64Array(3);
   const pts = [], colors = [], h = state.cell * 0.4;
-  for (const [group, hex] of [[d.waits_for, 0xff3b30], [d.waited_by, 0xf0a030]]) {
+  const groups = status.timed ? [[status.waitsNow, 0xff3b30, 'waits'], [status.waitedByNow, 0xf0a030, 'waited']]
+    : [[d.waits_for, 0xff3b30, 'waits'], [d.waited_by, 0xf0a030, 'waited']];
+  viewer.edgeLines = [];
+  for (const [group, hex, kind] of groups) {
     const c = new THREE.Color(hex);
-    for (const { robot } of group) {
+    for (const robot of new Set(group.map((g) => g.robot))) {
       state.rec.pose(f, robot, other);
       pts.push(me[0], h, -me[1], other[0], h, -other[1]);
       colors.push(c.r, c.g, c.b, c.r, c.g, c.b);
+      viewer.edgeLines.push({ kind, robot, from: [me[0], me[1]], to: [other[0], other[1]] });
     }
   }
   const g = new THREE.BufferGeometry();
@@ -185,6 +229,18 @@ function showStats(s) {
   $('stats').innerHTML = row('success', s.success) + row('robots', s.robots) + row('AET', `${(s.aet_s ?? NaN).toFixed(1)} s`) +
     row('makespan', `${(s.makespan_s ?? NaN).toFixed(1)} s`) + row('sim speed', `${(s.sim_speed ?? 0).toFixed(1)}×`) +
     row('actions', `${s.finished_actions} / ${s.total_actions}`) + row('collisions', s.collisions);
+}
+
+// Export: every results file of the run as a download (GET /api/runs/{id}/results/{name}).
+function showFiles(id, files) {
+  $('files').innerHTML = '';
+  for (const name of files || []) {
+    const a = document.createElement('a');
+    a.href = `/api/runs/${id}/results/${name}`;
+    a.download = `${id}-${name}`;
+    a.textContent = name;
+    $('files').appendChild(a);
+  }
 }
 
 function wireControls() {
@@ -224,26 +280,31 @@ function loop(now) {
   requestAnimationFrame(loop);
 }
 
-// The upload form: POST /api/runs; problems are listed as `smart check-plan` prints them; a run
-// that was taken is followed until it ended, then shown.
-function wireUpload() {
-  $('upload').onsubmit = async (e) => {
+// The upload forms: a new run (POST /api/runs) or a results folder to replay (POST
+// /api/results); problems are listed as `smart check-plan` prints them; an accepted upload is
+// shown (a new run live until it ended, then replayed).
+function wireForm(form, url, status, problems) {
+  $(form).onsubmit = async (e) => {
     e.preventDefault();
-    $('upload-problems').innerHTML = '';
-    $('upload-status').textContent = 'uploading...';
-    const r = await fetch('/api/runs', { method: 'POST', body: new FormData($('upload')) });
+    $(problems).innerHTML = '';
+    $(status).textContent = 'uploading...';
+    const r = await fetch(url, { method: 'POST', body: new FormData($(form)) });
     const body = await r.json();
     if (!r.ok) {
-      $('upload-status').textContent = body.error;
+      $(status).textContent = body.error;
       for (const p of body.problems || []) {
         const li = document.createElement('li');
         li.textContent = `${p.file}:${p.line}${p.robot >= 0 ? ` robot ${p.robot}` : ''}: ${p.message}`;
-        $('upload-problems').appendChild(li);
+        $(problems).appendChild(li);
       }
       return;
     }
-    location.search = `?run=${body.id}`;  // shown live, then replayed
+    location.search = `?run=${body.id}`;
   };
+}
+function wireUpload() {
+  wireForm('upload', '/api/runs', 'upload-status', 'upload-problems');
+  wireForm('replay', '/api/results', 'replay-status', 'replay-problems');
 }
 
 // A run still going: its map, and every robot's newest pose from the live stream (Server-Sent
@@ -274,6 +335,19 @@ async function startLive(id) {
   requestAnimationFrame(function live() { controls.update(); renderer.render(scene, camera); if (viewer.live) requestAnimationFrame(live); });
 }
 
+// The recording in two steps: the header and first frame (a range request, a few kB) are drawn
+// at once, then the whole file replaces it; playback starts when it is there.
+async function loadRecording(id, robots) {
+  const url = `/api/runs/${id}/recording`;
+  const head = await fetch(url, { headers: { Range: `bytes=0-${firstFrameBytes(robots) - 1}` } });
+  if (head.status === 206) {
+    const first = readRecording(await head.arrayBuffer());
+    if (first.frames > 0) return { first, rest: fetch(url).then((r) => r.arrayBuffer()).then(readRecording) };
+  }
+  const all = readRecording(await fetch(url).then((r) => r.arrayBuffer()));
+  return { first: all, rest: Promise.resolve(all) };
+}
+
 async function start() {
   wireUpload();
   const runs = await fetchJson('/api/runs');
@@ -284,24 +358,29 @@ async function start() {
   const chosen = runs.find((r) => r.id === want);
   if (chosen && (chosen.state === 'queued' || chosen.state === 'running')) return startLive(want);
   const t0 = performance.now();
-  const [run, mapText, recBytes] = await Promise.all([
-    fetchJson(`/api/runs/${want}`), fetch(`/api/runs/${want}/map`).then((r) => r.text()),
-    fetch(`/api/runs/${want}/recording`).then((r) => r.arrayBuffer())]);
+  const [run, mapText] = await Promise.all([fetchJson(`/api/runs/${want}`), fetch(`/api/runs/${want}/map`).then((r) => r.text())]);
+  const { first, rest } = await loadRecording(want, run.summary.robots);
   state.summary = run.summary;
   state.run = want;
   state.cell = run.summary.cell_m || 1;
-  state.rec = readRecording(recBytes);
+  state.rec = first;
   buildMap(readMap(mapText), state.cell);
   state.mesh = buildRobots(state.rec.robots, state.cell);
   showStats(run.summary);
+  showFiles(want, run.files);
   resize();
-  wireControls();
   showFrame(0);
   renderer.render(scene, camera);
   viewer.robots = state.rec.robots;
   viewer.firstFrameMs = performance.now() - t0;
-  viewer.ready = true;
   requestAnimationFrame(loop);
+  state.rec = await rest;
+  findCollision();
+  state.progress = await fetchJson(`/api/runs/${want}/progress`).catch(() => null);
+  wireControls();
+  showFrame(0);
+  viewer.loadedMs = performance.now() - t0;
+  viewer.ready = true;
 }
 
 start().catch((e) => { viewer.error = String(e); $('stats').textContent = String(e); });

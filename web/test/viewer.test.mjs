@@ -1,11 +1,15 @@
 // The viewer in a real browser: Debian's Chromium, headless, driven by puppeteer-core against a
 // real `smart serve` (serving the built viewer) replaying a real `smart run --out` folder.
 // Checks: the run loads, every robot is drawn (pixels of the robot colours where robots stand),
-// scrubbing moves the clock, selecting a robot fills its panel, a bad upload is refused with
-// its problem list; prints the time to first frame and the frame time while playing.
+// scrubbing moves the clock, selecting a robot fills its panel (path, progress, current action,
+// queue, who it waits for now, checked against the run's own actions.csv and states.csv, and the
+// lines drawn to those robots), results files download byte for byte, the finished-actions plot
+// is drawn, a bad upload is refused with its problem list, an upload runs live then replays, a
+// results folder uploaded through the form replays (collided robots in their colour); prints
+// the time to first frame and the frame time while playing.
 // Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
@@ -66,6 +70,124 @@ async function robotPixels(page) {
   });
 }
 
+// actions.csv and states.csv of the run, read here (not through the server): robot -> finish
+// times in order; robot -> [[t, queue]].
+function readResults(out) {
+  const finish = new Map(), queue = new Map();
+  for (const line of readFileSync(path.join(out, 'actions.csv'), 'utf8').trim().split('\n').slice(1)) {
+    const [robot, , , t] = line.split(',');
+    if (!finish.has(+robot)) finish.set(+robot, []);
+    finish.get(+robot).push(t === '' ? Infinity : +t);
+  }
+  for (const line of readFileSync(path.join(out, 'states.csv'), 'utf8').trim().split('\n').slice(1)) {
+    const c = line.split(',');
+    if (!queue.has(+c[1])) queue.set(+c[1], []);
+    queue.get(+c[1]).push([+c[0], +c[9]]);
+  }
+  return { finish, queue };
+}
+
+// A robot at a moment it waits for another (a Type-2 edge whose source finished after the robot
+// was ready): the panel's current action, finished count and queue match the run's files, it
+// names the robot it waits for, and the line drawn ends at that robot.
+async function checkWaiting(page, out) {
+  const { finish, queue } = readResults(out);
+  const found = await page.evaluate(async (robots) => {
+    for (let r = 0; r < robots; r++) {
+      const d = await (await fetch(`/api/runs/run-000001/robots/${r}`)).json();
+      for (let k = 1; k < d.steps.length; k++) {
+        const ready = d.steps[k - 1].finish_s;
+        for (const [other, , f] of d.steps[k].in) if (f - ready > 0.5) return { robot: r, step: k, other, t: (ready + f) / 2 };
+      }
+    }
+    return null;
+  }, 20);
+  assert.ok(found, 'no robot in this run ever waits for another (the fixture should have one)');
+  const { robot, step, other, t } = found;
+  await page.evaluate((r, t) => { window.__viewer.select(r); window.__viewer.seek(t); }, robot, t);
+  await page.waitForFunction((r) => window.__viewer.detail && window.__viewer.detail.robot === r, {}, robot);
+  await page.evaluate((t) => window.__viewer.seek(t), t);
+  const frameT = await page.evaluate(() => window.__viewer.frameT);
+  const panel = await page.$eval('#robot', (e) => e.textContent);
+  const done = finish.get(robot).filter((f) => f <= frameT).length;
+  assert.equal(done, step, `robot ${robot} at ${frameT} s: ${done} finished per actions.csv`);
+  assert.ok(panel.includes(`finished: ${step} / ${finish.get(robot).length}`), panel);
+  assert.ok(panel.includes(`current: #${step}`), panel);
+  const waitsNow = await page.$eval('#robot .waits-now', (e) => e.textContent);
+  assert.ok(waitsNow.replace(/ \(\d+\)/g, '').split(': ')[1].split(', ').includes(String(other)), waitsNow);
+  const rows = queue.get(robot).filter(([tt]) => tt <= frameT);
+  assert.ok(panel.includes(`queue: ${Math.min(255, rows[rows.length - 1][1])}`), `${panel} vs states.csv`);
+  const lines = await page.evaluate(() => window.__viewer.edgeLines);
+  const line = lines.find((l) => l.kind === 'waits' && l.robot === other);
+  assert.ok(line, JSON.stringify(lines));
+  const at = await page.evaluate((o) => window.__viewer.pose(o), other);
+  assert.ok(Math.hypot(line.to[0] - at[0], line.to[1] - at[1]) < 1e-6, `line to ${line.to}, robot ${other} at ${at}`);
+  // And the other robot, selected, says it is waited for by this one.
+  await page.evaluate((o) => window.__viewer.select(o), other);
+  await page.waitForFunction((o) => window.__viewer.detail && window.__viewer.detail.robot === o, {}, other);
+  await page.evaluate((t) => window.__viewer.seek(t), t);
+  const waitedNow = await page.$eval('#robot .waited-now', (e) => e.textContent);
+  assert.ok(waitedNow.replace(/ \(\d+\)/g, '').split(': ')[1].split(', ').includes(String(robot)), waitedNow);
+  await page.screenshot({ path: path.join(artifacts, 'viewer-waiting.png') });
+}
+
+// The results files offered for download are the run's files, byte for byte; the finished
+// actions plot is drawn.
+async function checkExportAndPlot(page, out) {
+  const links = await page.$$eval('#files a', (as) => as.map((a) => a.getAttribute('href')));
+  for (const name of ['summary.json', 'robots.csv', 'actions.csv', 'states.csv', 'stats.csv']) {
+    const href = links.find((h) => h.endsWith(`/${name}`));
+    assert.ok(href, `no download of ${name} in ${links}`);
+    const body = await page.evaluate(async (h) => (await fetch(h)).text(), href);
+    assert.equal(body, readFileSync(path.join(out, name), 'utf8'), name);
+  }
+  const green = await page.$eval('#plot', (c) => {
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i + 1] > 150 && d[i] < 100) n++;
+    return n;
+  });
+  assert.ok(green > 50, `finished-actions plot not drawn (${green} green pixels)`);
+}
+
+// A results folder uploaded through the replay form is replayed; this one's summary claims that
+// robots 0 and 1 collided, so they are drawn in the collided colour.
+async function checkResultsUpload(page, out, summary) {
+  const forged = path.join(work, 'forged');
+  mkdirSync(forged, { recursive: true });
+  for (const f of ['states.csv', 'robots.csv', 'actions.csv', 'stats.csv']) copyFileSync(path.join(out, f), path.join(forged, f));
+  writeFileSync(path.join(forged, 'summary.json'), JSON.stringify({ ...summary, success: false, collisions: 1, first_collision: [0, 1] }));
+  await page.goto(`${url}/?run=run-000001`);
+  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 20000 });
+  await (await page.$('#rp-files')).uploadFile(...['summary.json', 'states.csv', 'robots.csv', 'actions.csv', 'stats.csv'].map((f) => path.join(forged, f)));
+  await (await page.$('#rp-map')).uploadFile(files.map);
+  await (await page.$('#rp-scen')).uploadFile(files.scen);
+  await (await page.$('#rp-plan')).uploadFile(files.plan);
+  await Promise.all([page.waitForNavigation({ timeout: 20000 }), page.click('#rp-go')]).catch(async (e) => {
+    const status = await page.$eval('#replay', (el) => el.querySelector('#replay-status').textContent + ' ' +
+      el.querySelector('#replay-problems').textContent + ` (${el.querySelector('#rp-files').files.length} files)`).catch(() => '?');
+    throw new Error(`no navigation after the results upload (${e.message}); the form says: ${status}`);
+  });
+  await page.waitForFunction(() => window.__viewer && (window.__viewer.ready || window.__viewer.error), { timeout: 20000 });
+  const v = await page.evaluate(() => ({ ...window.__viewer }));
+  assert.equal(v.error, '', v.error);
+  assert.deepEqual(v.collided, [0, 1]);
+  await page.evaluate(() => window.__viewer.seek(1e9));
+  await page.screenshot({ path: path.join(artifacts, 'viewer-collided.png') });
+  const magenta = await page.evaluate(() => {
+    const src = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width; c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] > 140 && d[i + 1] < 90 && d[i + 2] > 80 && d[i + 2] < 200) n++;
+    return n;
+  });
+  assert.ok(magenta > 20, `collided robots not drawn in their colour (${magenta} pixels)`);
+}
+
 const { out, summary } = runResults();
 const { server, url } = await startServer(out);
 const browser = await puppeteer.launch({
@@ -98,14 +220,17 @@ try {
   await page.waitForFunction(() => window.__viewer.detail && window.__viewer.detail.robot === 3, { timeout: 10000 });
   const detail = await page.evaluate(() => window.__viewer.detail);
   const panel = await page.$eval('#robot', (e) => e.textContent);
-  assert.match(panel, new RegExp(`actions: ${detail.actions}, path: ${detail.path.length - 1} cells`));
+  assert.match(panel, new RegExp(`path: ${detail.path.length - 1} cells, ${detail.actions} actions`));
   const names = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
-  assert.ok(panel.includes(`waits for: ${names(detail.waits_for)}`), panel);
-  assert.ok(panel.includes(`waited by: ${names(detail.waited_by)}`), panel);
+  assert.ok(panel.includes(`in the run waits for: ${names(detail.waits_for)}`), panel);
+  assert.ok(panel.includes(`in the run waited by: ${names(detail.waited_by)}`), panel);
+  assert.ok(panel.includes(`finished: ${detail.actions} / ${detail.actions}`), panel);  // at the end
   // Its executed trail: one point per recorded frame up to now (the end of the run).
   const frames = await page.evaluate(() => window.__viewer.trailPoints);
   assert.ok(frames > 100, `trail of ${frames} points`);
   await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
+  await checkWaiting(page, out);
+  await checkExportAndPlot(page, out);
   // Play from the start at 64x for a second: the frame time while all robots move.
   await page.evaluate(() => window.__viewer.seek(0));
   await page.select('#speed', '64');
@@ -148,6 +273,7 @@ try {
   assert.ok(replay, 'the finished run was not replayed');
   assert.equal(replay.robots, 50);
   assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
+  await checkResultsUpload(page, out, summary);
   // A bad upload is refused with its problem list (the API directly).
   const bad = await page.evaluate(async () => {
     const f = new FormData();

@@ -1,13 +1,16 @@
 // Contract: the recording a browser plays back, made from a run's robot states (states.csv as
 // the monitor writes it, results.hpp). Pure: text or rows in, bytes out, and back.
 //
-// Format "SMRC" version 1, little endian, fixed size per frame so a viewer can seek by index:
-//   char[4] "SMRC"; u32 version = 1; u32 robots; u32 frames;
+// Format "SMRC" version 2, little endian, fixed size per frame so a viewer can seek by index
+// (and draw the first frame from the first bytes, before the rest arrived):
+//   char[4] "SMRC"; u32 version = 2; u32 robots; u32 frames;
 //   f64 min_x_m, min_y_m, quantum_m   (x_m = min_x_m + qx * quantum_m, same for y)
-//   frames x { f32 t_s; robots x { u16 qx; u16 qy; i16 yaw (1e-4 rad) } }
+//   frames x { f32 t_s; robots x { u16 qx; u16 qy; i16 yaw (1e-4 rad); u8 queue } }
+// queue: the robot's queue length as its agent reported it (actions sent, not finished; 255 and
+// more are 255).
 // A frame is one state time stamp; a robot not reported at a time keeps its last pose. The
 // quantum is the map extent / 65535 (1 m cells: 7.7 mm on the 500 x 140 sortation map).
-// 1000 robots at 2 Hz for 1218 s: 2437 frames of 6 kB, 14.6 MB.
+// 1000 robots at 2 Hz for 1218 s: 2437 frames of 7 kB, 17.1 MB.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +24,7 @@ struct PoseRow {
   double t_s = 0;
   uint32_t robot = 0;
   double x_m = 0, y_m = 0, yaw_rad = 0;
+  uint32_t queue = 0;
 };
 
 // Rows of states.csv; throws std::invalid_argument naming the line of a malformed row.
@@ -32,7 +36,7 @@ struct Recording {
   std::vector<float> times_s;
   std::vector<PoseRow> poses;  // frames x robots, frame-major (decoded, within one quantum)
 };
-// Throws std::invalid_argument on bytes that are not a version 1 recording.
+// Throws std::invalid_argument on bytes that are not a version 2 recording.
 Recording decode_recording(std::string_view bytes);
 
 // The newest pose of every robot from states.csv as it grows (a live run): feed() takes the

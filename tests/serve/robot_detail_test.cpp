@@ -1,0 +1,89 @@
+// What the viewer shows of one robot, on a two-robot corridor with one Type-2 edge.
+#include "smart/serve/robot_detail.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "smart/monitor/plan_validator.hpp"
+#include "support/monitor_fixtures.hpp"
+
+namespace smart::serve {
+namespace {
+
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+// Robot 0 drives (1,0) -> (2,0); robot 1 follows into (1,0) a step later, so robot 1's second
+// half-move (into (1,0)) waits for robot 0's first (out of (1,0)'s centre).
+monitor::Instance corridor() {
+  monitor::Instance in;
+  in.grid = test::grid_of({"...."});
+  in.plan = test::plan_of({{{1, 0}, {2, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}}});
+  in.scen = test::scen_of(in.plan, in.grid);
+  in.actions = monitor::build_actions(in.plan, monitor::Heading::kEast);
+  std::vector<monitor::Problem> problems;
+  in.adg = monitor::build_adg(in.actions, in.grid, "fixture", problems);
+  return in;
+}
+
+constexpr const char* kActionsCsv =
+    "robot,action,type,finish_time_s\n0,0,move,1\n0,1,move,2\n1,0,move,0.5\n1,1,move,\n";
+
+TEST(RobotDetail, PathAndPartnersComeFromThePlanAndTheAdg) {
+  const auto in = corridor();
+  const auto d = robot_detail(in, 1, 0.5);
+  EXPECT_EQ(d["actions"], 2);
+  EXPECT_EQ(d["path"], json::parse("[[0.0, 0.0], [0.5, 0.0]]"));
+  EXPECT_EQ(d["waits_for"], json::parse(R"([{"robot": 0, "edges": 1}])"));
+  EXPECT_TRUE(d["waited_by"].empty());
+  EXPECT_TRUE(d["steps"][1]["finish_s"].is_null());  // no actions.csv: no times
+}
+
+TEST(RobotDetail, StepsTellWhenEachActionFinishedAndWhenItsPartnersDid) {
+  const auto in = corridor();
+  const auto times = parse_action_times(kActionsCsv, in.actions);
+  const auto waiter = robot_detail(in, 1, 1.0, times);
+  EXPECT_EQ(waiter["steps"][0]["finish_s"], 0.5);
+  EXPECT_TRUE(waiter["steps"][1]["finish_s"].is_null());
+  EXPECT_EQ(waiter["steps"][1]["in"], json::parse("[[0, 0, 1.0]]"));  // waits until 1 s
+  const auto leader = robot_detail(in, 0, 1.0, times);
+  EXPECT_EQ(leader["steps"][0]["type"], "move");
+  // Robot 1 was ready for its second half-move at 0.5 s: it waited for robot 0 from then on.
+  EXPECT_EQ(leader["steps"][0]["out"], json::parse("[[1, 1, 0.5]]"));
+  EXPECT_TRUE(leader["steps"][1]["out"].empty());
+}
+
+TEST(RobotDetail, ActionTimesThatDoNotFitThePlanNameTheLine) {
+  const auto in = corridor();
+  for (const char* bad :
+       {"h\n0,0,move,1\n5,0,move,1\n", "h\n0,0,move,1\n0,9,move,1\n",
+        "h\n0,0,move,1\n0,1,move,soon\n", "h\n0,0,move,1\n0,1\n", "h\n0,0,move,1\n0,1,move,-3\n"}) {
+    try {
+      (void)parse_action_times(bad, in.actions);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr("actions.csv line 3")) << bad;
+    }
+  }
+  EXPECT_THROW((void)robot_detail(in, 2, 1.0), std::out_of_range);
+}
+
+TEST(FinishedCurve, CountsFinishedActionsOverTimeInAtMostMaxPoints) {
+  const auto c = finished_curve({3, 1, std::nan(""), 2, 2, 5}, 400);
+  EXPECT_EQ(c["t_s"], json::parse("[1.0, 2.0, 2.0, 3.0, 5.0]"));
+  EXPECT_EQ(c["finished"], json::parse("[1, 2, 3, 4, 5]"));
+  std::vector<double> many(1000);
+  for (std::size_t i = 0; i < many.size(); ++i) many[i] = 0.5 * double(i);
+  const auto d = finished_curve(many, 100);
+  EXPECT_LE(d["t_s"].size(), 101u);
+  EXPECT_EQ(d["finished"].back(), 1000);
+  EXPECT_EQ(d["t_s"].back(), 499.5);
+  EXPECT_EQ(d["finished"][0], 10);
+  EXPECT_EQ(d["t_s"][0], 4.5);  // the 10th action finished at 4.5 s
+  EXPECT_TRUE(finished_curve({}, 10)["t_s"].empty());
+}
+
+}  // namespace
+}  // namespace smart::serve

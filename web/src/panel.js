@@ -1,0 +1,31 @@
+// What a robot is doing at time t of a replay, from its detail (GET /api/runs/{id}/robots/{r},
+// serve/include/smart/serve/robot_detail.hpp): `steps` carry when each action finished, when its
+// Type-2 predecessors finished and when its successors' robots were ready for them.
+const by = (t) => (s) => s !== null && s !== undefined && s <= t;
+
+export function robotStatus(detail, t) {
+  const steps = detail.steps || [];
+  const done = by(t);
+  let finished = 0;
+  while (finished < steps.length && done(steps[finished].finish_s)) finished++;
+  const current = finished < steps.length ? finished : -1;
+  // The current action cannot start before its Type-2 predecessors finished: those not finished
+  // by t are who it waits for now.
+  const waitsNow = current < 0 ? [] : steps[current].in.filter(([, , f]) => !done(f))
+    .map(([robot, action]) => ({ robot, action }));
+  // Another robot ready for an action that needs one of ours not finished yet waits for us.
+  const waitedByNow = [];
+  for (let k = finished; k < steps.length; k++) {
+    for (const [robot, action, ready] of steps[k].out) if (done(ready)) waitedByNow.push({ robot, action });
+  }
+  const timed = steps.some((s) => s.finish_s !== null);
+  return { finished, total: steps.length, current, type: current >= 0 ? steps[current].type : null,
+           waitsNow, waitedByNow, timed };
+}
+
+// The robots in a list of edges, each once, with how many edges: "3, 17 (2)".
+export function robotList(edges) {
+  const count = new Map();
+  for (const { robot } of edges) count.set(robot, (count.get(robot) || 0) + 1);
+  return [...count].map(([r, n]) => `${r}${n > 1 ? ` (${n})` : ''}`).join(', ') || 'none';
+}
