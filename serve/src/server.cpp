@@ -145,6 +145,7 @@ struct Server::Impl {
   std::map<std::string, std::vector<std::string>> argv;  // queued runs' `smart run` command
   std::map<std::string, tools::ChildProcess> children;   // running ones
   uint64_t uploads = 0;
+  std::atomic<bool> stopping{false};
   std::map<std::string, std::shared_ptr<const monitor::Instance>> instances;  // loaded on demand
   std::map<std::string, std::shared_ptr<const std::vector<double>>> action_times;  // by node
 
@@ -523,7 +524,41 @@ struct Server::Impl {
     return fs::exists(s) ? json::parse(slurp(s)).value("cell_m", 1.0) : 1.0;
   }
 
+  // --watch: the board as JSON, once or as a stream (until the page goes away).
+  void watch_routes() {
+    const auto run_of = [](const httplib::Request& req) -> uint64_t {
+      const auto v = req.get_param_value("run_id");
+      uint64_t id = 0;
+      std::from_chars(v.data(), v.data() + v.size(), id);
+      return id;
+    };
+    http.Get("/api/watch", [this, run_of](const auto& req, auto& res) {
+      if (!opt.watch)
+        return reply(res, 404, {{"error", "not watching: start smart serve --watch"}});
+      auto j = opt.watch(run_of(req));
+      j["cell_m"] = opt.watch_cell_m;
+      reply(res, 200, j);
+    });
+    http.Get("/api/watch/map", [this](const auto&, auto& res) {
+      if (opt.watch_map.empty()) return reply(res, 404, {{"error", "no map: give --map"}});
+      res.set_content(slurp(opt.watch_map), "text/plain");
+    });
+    http.Get("/api/watch/live", [this, run_of](const auto& req, auto& res) {
+      if (!opt.watch)
+        return reply(res, 404, {{"error", "not watching: start smart serve --watch"}});
+      const uint64_t run = run_of(req);
+      res.set_chunked_content_provider("text/event-stream", [this, run](size_t, auto& sink) {
+        if (stopping.load()) return false;  // the server is going down: end the stream
+        const auto msg = "data: " + opt.watch(run).dump() + "\n\n";
+        if (!sink.write(msg.data(), msg.size())) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        return true;
+      });
+    });
+  }
+
   void routes() {
+    watch_routes();
     http.set_payload_max_length(opt.max_upload_bytes);
     http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
     http.Get("/api/runs", [this](const auto&, auto& res) {
@@ -636,6 +671,7 @@ void Server::run(const std::atomic<bool>& stop) {
     I.tend_runs();
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
+  I.stopping = true;
   I.http.stop();
   listener.join();
   std::lock_guard lock(I.m);

@@ -1,14 +1,14 @@
-// A mixed run, as on a lab floor but with the emulated JetBot: one `smart monitor` (real-time),
-// a `smart sim` host for robots 0 and 1 that shows robot 2 at its published pose, and a
-// `smart agent --backend jetbot --i2c emulated` process for robot 2 whose PCA9685 register
-// writes drive a wheel model that streams its pose back as Vicon UDP datagrams.
+// A mixed run (support/mixed_fleet.hpp): one `smart monitor` (real time), a `smart sim` host for
+// robots 0 and 1, and an emulated JetBot's `smart agent` for robot 2.
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 
 #include "support/fleet_watcher.hpp"
+#include "support/mixed_fleet.hpp"
 #include "support/smart_process.hpp"
 
 namespace smart::test {
@@ -16,65 +16,17 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr double kCellM = 0.4;
+constexpr double kCellM = MixedFleet::kCellM;
 
-// A 6x6 open map; robot 2 drives from (4,0) down to (4,4) (a rotation and 4 moves as 8
-// half-moves: 9 actions) while robots 0 and 1 move around it. Robot 2 is the JetBot.
 class MixedRun : public ::testing::Test {
  protected:
-  void plan_instance(const std::string& tag) {
-    map_ = temp_file(tag + ".map").string();
-    scen_ = temp_file(tag + ".scen").string();
-    plan_ = temp_file(tag + ".plan").string();
-    std::ofstream(map_) << "type octile\nheight 6\nwidth 6\nmap\n......\n......\n......\n"
-                           "......\n......\n......\n";
-    std::ofstream(scen_) << "version 1\n0\tm.map\t6\t6\t2\t2\t3\t0\t3\n"
-                            "0\tm.map\t6\t6\t5\t5\t4\t5\t1\n0\tm.map\t6\t6\t4\t0\t4\t4\t4\n";
-    ASSERT_EQ(run_smart({"plan", "--map", map_, "--scen", scen_, "--out", plan_}, 30s, tag).code,
-              0);
-  }
-  void TearDown() override {
-    for (const auto& f : {map_, scen_, plan_}) {
-      if (!f.empty()) std::filesystem::remove(f);
-    }
-  }
-  tools::ChildProcess start_sim(int domain) const {
-    return start_smart(
-        {"sim", "--map", map_, "--scen", scen_, "--agents", "3", "--clock", "realtime", "--cell-m",
-         "0.4", "--robot", "jetbot", "--external-robots", "2", "--domain", std::to_string(domain)},
-        "/dev/null");
-  }
-  // Robot 2's agent, its emulated JetBot starting at (x, y, yaw).
+  void plan_instance(const std::string& tag) { fleet_.emplace(tag); }
+  tools::ChildProcess start_sim(int domain) const { return fleet_->start_sim(domain); }
   static tools::ChildProcess start_agent(int domain, double x, double y, double yaw,
                                          const std::filesystem::path& out) {
-    return start_smart({"agent", "--robot-id", "2", "--backend", "jetbot", "--config", "jetbot",
-                        "--i2c", "emulated", "--emulate-pose",
-                        std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(yaw),
-                        "--vicon-port", "0", "--domain", std::to_string(domain)},
-                       out);
+    return MixedFleet::start_agent(domain, x, y, yaw, out);
   }
-  std::vector<std::string> monitor_args(int domain) const {
-    return {"monitor",
-            "--map",
-            map_,
-            "--scen",
-            scen_,
-            "--plan",
-            plan_,
-            "--axis",
-            "xy",
-            "--clock",
-            "realtime",
-            "--cell-m",
-            "0.4",
-            "--robot",
-            "jetbot",
-            "--domain",
-            std::to_string(domain),
-            "--no-progress",
-            "--timeout-s",
-            "15"};
-  }
+  std::vector<std::string> monitor_args(int domain) const { return fleet_->monitor_args(domain); }
   // The finished run: success with nothing lost, and the agent's own report.
   static void expect_complete(const nlohmann::json& summary, const std::filesystem::path& agent_out,
                               nlohmann::json* agent_report) {
@@ -86,7 +38,7 @@ class MixedRun : public ::testing::Test {
     EXPECT_TRUE((*agent_report)["stopped_by_monitor"].get<bool>());
     EXPECT_EQ((*agent_report)["finished_seq"].get<int>() + 1, 9);
   }
-  std::string map_, scen_, plan_;
+  std::optional<MixedFleet> fleet_;
 };
 
 TEST_F(MixedRun, EmulatedJetbotAgentAndSimulatedRobotsCompleteAPlanTogether) {

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
+#include <set>
 #include <thread>
 
 #include "smart/serve/recording.hpp"
+#include "support/mixed_fleet.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
@@ -28,8 +31,10 @@ class Serve : public ::testing::Test {
   // Starts `smart serve` on a free port and waits for the line saying where it listens.
   void start(std::vector<std::string> extra = {}) {
     out_ = temp_file("serve.out");
-    std::vector<std::string> args{
-        "serve", "--port", "0", "--data", data_.string(), "--domain", std::to_string(kServeRuns)};
+    std::vector<std::string> args{"serve", "--port", "0", "--data", data_.string()};
+    if (std::find(extra.begin(), extra.end(), "--domain") == extra.end()) {
+      extra.insert(extra.end(), {"--domain", std::to_string(kServeRuns)});
+    }
     args.insert(args.end(), extra.begin(), extra.end());
     server_.emplace(start_smart(args, out_));
     for (int i = 0; i < 100 && port_ == 0; ++i) {
@@ -243,6 +248,53 @@ TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {
   EXPECT_FALSE(std::filesystem::exists(data_ / "evil.csv"));
   EXPECT_FALSE(std::filesystem::exists(data_.parent_path() / "evil.csv"));
   std::filesystem::remove_all(results);
+}
+
+// --watch: a mixed run (two simulated robots and an emulated JetBot's agent) seen live from the
+// domain by a read-only server, which does not disturb it: the run succeeds.
+TEST_F(Serve, WatchShowsAMixedRunOnTheDomainLive) {
+  MixedFleet fleet("serve_watch");
+  start(
+      {"--watch", "--map", fleet.map, "--cell-m", "0.4", "--domain", std::to_string(kServeWatch)});
+  auto sim = fleet.start_sim(kServeWatch);
+  auto agent = MixedFleet::start_agent_at_start(kServeWatch, "/dev/null");
+  const auto monitor_out = temp_file("serve_watch_monitor.out");
+  auto monitor = start_smart(fleet.monitor_args(kServeWatch), monitor_out);
+  std::set<std::string> statuses;
+  std::optional<double> jetbot_first_x;
+  double jetbot_moved_m = 0;
+  json last;
+  for (int i = 0; i < 600 && !monitor.wait(0ms).has_value(); ++i) {
+    last = json::parse(client().Get("/api/watch")->body);
+    for (const auto& r : last["robots"]) {
+      statuses.insert(r["status"].get<std::string>());
+      if (r["id"] != 2) continue;
+      const double y = r["y_m"].get<double>();
+      if (!jetbot_first_x) jetbot_first_x = y;
+      jetbot_moved_m = std::max(jetbot_moved_m, std::abs(y - *jetbot_first_x));
+    }
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_EQ(monitor.wait(60s).value_or(-1), 0) << slurp(monitor_out);
+  EXPECT_TRUE(summary_in(slurp(monitor_out))["success"].get<bool>());
+  EXPECT_EQ(last["robots"].size(), 3u) << last.dump();
+  EXPECT_EQ(last["monitor"]["pid"], monitor.pid()) << last.dump();
+  EXPECT_DOUBLE_EQ(last["cell_m"].get<double>(), 0.4);
+  EXPECT_TRUE(statuses.count("moving")) << "no robot was ever seen moving";
+  // The JetBot drives 4 cells (1.6 m) down the map: the watch saw most of it.
+  EXPECT_GT(jetbot_moved_m, 1.0);
+  EXPECT_EQ(last["rejected_samples"], 0);
+  EXPECT_EQ(client().Get("/api/watch/map")->body, slurp(fleet.map));
+  (void)agent.wait(10s);
+  (void)sim.wait(10s);
+  std::filesystem::remove(monitor_out);
+}
+
+TEST_F(Serve, WithoutWatchTheWatchApiSaysHowToTurnItOn) {
+  start();
+  const auto r = client().Get("/api/watch");
+  EXPECT_EQ(r->status, 404);
+  EXPECT_THAT(r->body, HasSubstr("smart serve --watch"));
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 // `smart serve`: the web API and viewer over runs (serve/include/smart/serve/server.hpp).
+#include <spdlog/spdlog.h>
+
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "smart/serve/fleet_watch.hpp"
 #include "smart/serve/server.hpp"
 #include "smart/tools/child_process.hpp"
 #include "smart/tools/commands.hpp"
@@ -15,7 +19,22 @@ struct ServeCliOptions {
   DdsOptions dds;
   double max_upload_mb = 64;
   std::vector<std::filesystem::path> open;  // results folders to replay
+  bool watch = false;
 };
+
+// --watch: a read-only view of the domain; under --security the keystore's viewer identity.
+std::unique_ptr<serve::FleetWatch> start_watch(const ServeCliOptions& o) {
+  if (!o.watch) return nullptr;
+  serve::WatchOptions w;
+  w.domain = o.dds.domain;
+  w.qos = dds::find_qos_profile(o.dds.qos);
+  w.config = domain_config(o.dds, w.qos, "viewer");
+  w.run = o.dds.run_given ? o.dds.run : "";
+  auto watch = std::make_unique<serve::FleetWatch>(w);
+  spdlog::info("serve: watching {} on domain {}", w.run.empty() ? "every run" : "run " + w.run,
+               w.domain);
+  return watch;
+}
 
 // The user's cache folder (XDG), where uploads and results live unless --data says otherwise.
 std::filesystem::path default_data_dir() {
@@ -40,6 +59,8 @@ int serve_runs(ServeCliOptions o) {
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mb * (1 << 20));
   s.domain = o.dds.domain;
   s.qos = o.dds.qos;
+  const auto watch = start_watch(o);
+  if (watch) s.watch = [&watch](uint64_t run_id) { return watch->snapshot(run_id); };
   serve::Server server(s);
   nlohmann::json opened = nlohmann::json::array();
   for (const auto& dir : o.open) opened.push_back(server.open_results(dir));
@@ -74,10 +95,15 @@ void register_serve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-upload-mb", o->max_upload_mb, "largest upload accepted")
       ->check(finite_in(0.001, 4096))
       ->capture_default_str();
-  cmd->add_option("--domain", o->dds.domain, "DDS domain id of the runs (0-230)")
-      ->check(CLI::Range(0, 230))
+  cmd->add_flag("--watch", o->watch,
+                "also show what is live on the DDS domain (every run, or --run NAME), read-only: "
+                "simulated and physical robots alike");
+  cmd->add_option("--map", o->serve.watch_map, "the map to draw a watched run on (--watch)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--cell-m", o->serve.watch_cell_m, "the watched run's cell size (--watch)")
+      ->check(finite_in(0.01, 100))
       ->capture_default_str();
-  cmd->add_option("--qos", o->dds.qos, "QoS profile of the runs")->capture_default_str();
+  add_dds_options(cmd, o->dds);
   cmd->callback([o, &exit_code] { exit_code = serve_runs(*o); });
 }
 

@@ -6,6 +6,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { firstFrameBytes, readMap, readRecording } from './recording.js';
 import { robotList, robotStatus } from './panel.js';
 import { drawProgress } from './plot.js';
+import { WATCH_COLORS, extentOf, robotPanel, statusCounts } from './watch.js';
 
 const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
 const $ = (id) => document.getElementById(id);
@@ -348,12 +349,69 @@ async function loadRecording(id, robots) {
   return { first: all, rest: Promise.resolve(all) };
 }
 
+// `smart serve --watch`: every robot of the run live on the domain, its status colour, a click
+// shows its panel; no map given: a floor under the robots.
+async function startWatch(runId) {
+  const first = await fetchJson('/api/watch');
+  state.cell = first.cell_m || 1;
+  const mapResp = await fetch('/api/watch/map');
+  if (mapResp.ok) buildMap(readMap(await mapResp.text()), state.cell);
+  resize();
+  Object.assign(viewer, { live: true, watch: true, liveEvents: 0 });
+  let framed = mapResp.ok, ids = [];
+  const source = new EventSource(`/api/watch/live${runId ? `?run_id=${runId}` : ''}`);
+  source.onmessage = (e) => {
+    const ev = JSON.parse(e.data);
+    if (!framed && ev.robots.length) {
+      const x = extentOf(ev.robots, 2 * state.cell), cells = (v) => Math.ceil(v / state.cell);
+      const w = cells(x.maxX - x.minX), h = cells(x.maxY - x.minY);
+      buildMap({ width: w, height: h, blocked: () => false }, state.cell);
+      framed = true;
+    }
+    if (!state.mesh || state.mesh.count !== ev.robots.length) {
+      if (state.mesh) scene.remove(state.mesh);
+      state.mesh = ev.robots.length ? buildRobots(ev.robots.length, state.cell) : null;
+    }
+    ids = ev.robots.map((r) => r.id);
+    ev.robots.forEach((r, i) => {
+      quat.setFromAxisAngle(up, r.yaw_rad);
+      matrix.compose(new THREE.Vector3(r.x_m, state.cell * 0.15, -r.y_m), quat, scale);
+      state.mesh.setMatrixAt(i, matrix);
+      state.mesh.setColorAt(i, color.setHex(r.id === viewer.selected ? WATCH_COLORS.selected : WATCH_COLORS[r.status]));
+    });
+    if (state.mesh) { state.mesh.instanceMatrix.needsUpdate = true; state.mesh.instanceColor.needsUpdate = true; }
+    const picked = ev.robots.find((r) => r.id === viewer.selected);
+    if (picked) $('robot').innerHTML = robotPanel(picked);
+    const n = statusCounts(ev.robots), m = ev.monitor;
+    $('stats').innerHTML = `<div>watching run ${ev.run_id || '(none yet)'}</div>` +
+      `<div>monitor: ${m ? `${m.host} pid ${m.pid}` : 'not seen'}</div><div>robots: ${ev.robots.length}</div>` +
+      `<div>moving ${n.moving}, idle ${n.idle}, stale ${n.stale}</div><div>dropped samples: ${ev.rejected_samples}</div>`;
+    $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
+    Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, watched: ev.robots, liveEvents: viewer.liveEvents + 1 });
+  };
+  viewer.select = (id) => { viewer.selected = id; return ids.includes(id); };
+  $('search').onchange = (e) => viewer.select(Number(e.target.value));
+  const ray = new THREE.Raycaster(), mouse = new THREE.Vector2();
+  renderer.domElement.addEventListener('click', (e) => {
+    const r = renderer.domElement.getBoundingClientRect();
+    mouse.set(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+    ray.setFromCamera(mouse, camera);
+    const hit = state.mesh && ray.intersectObject(state.mesh)[0];
+    if (hit) viewer.select(ids[hit.instanceId]);
+  });
+  requestAnimationFrame(function live() { controls.update(); renderer.render(scene, camera); requestAnimationFrame(live); });
+  viewer.ready = true;
+}
+
 async function start() {
   wireUpload();
-  const runs = await fetchJson('/api/runs');
-  const want = new URLSearchParams(location.search).get('run') || (runs.filter((r) => r.state === 'done').pop() || {}).id;
+  const params = new URLSearchParams(location.search);
+  const [watching, runs] = await Promise.all([fetch('/api/watch').then((r) => r.ok), fetchJson('/api/runs')]);
+  const want = params.has('watch') ? 'watch' : params.get('run') || (runs.filter((r) => r.state === 'done').pop() || {}).id;
+  if (watching) $('runs').add(new Option('live on the DDS domain (watch)', 'watch', false, want === 'watch' || !want));
   for (const r of runs) $('runs').add(new Option(`${r.id} ${r.map} (${r.state})`, r.id, false, r.id === want));
-  $('runs').onchange = (e) => { location.search = `?run=${e.target.value}`; };
+  $('runs').onchange = (e) => { location.search = e.target.value === 'watch' ? '?watch' : `?run=${e.target.value}`; };
+  if (watching && (want === 'watch' || !want)) return startWatch(params.get('run_id'));
   if (!want) throw new Error('no finished run to show yet; upload one with POST /api/runs');
   const chosen = runs.find((r) => r.id === want);
   if (chosen && (chosen.state === 'queued' || chosen.state === 'running')) return startLive(want);
@@ -377,6 +435,7 @@ async function start() {
   state.rec = await rest;
   findCollision();
   state.progress = await fetchJson(`/api/runs/${want}/progress`).catch(() => null);
+  $('plot').hidden = !state.progress;
   wireControls();
   showFrame(0);
   viewer.loadedMs = performance.now() - t0;

@@ -188,6 +188,38 @@ async function checkResultsUpload(page, out, summary) {
   assert.ok(magenta > 20, `collided robots not drawn in their colour (${magenta} pixels)`);
 }
 
+// `smart serve --watch`: a run going on the domain (real time, 20 robots) is shown live,
+// read-only, with every robot drawn and seen moving; the run is stopped after the check.
+async function checkWatch(browser) {
+  const data = path.join(work, 'watch-data');
+  const watcher = spawn(exe, ['serve', '--port', '0', '--data', data, '--web', dist, '--watch',
+    '--map', files.map, '--domain', domain]);
+  const watchUrl = await new Promise((resolve, reject) => {
+    let text = '';
+    watcher.stdout.on('data', (d) => { text += d; const m = text.match(/"listening":"(http:\/\/[^"]+)"/); if (m) resolve(m[1]); });
+    watcher.on('exit', (code) => reject(new Error(`smart serve --watch exited (${code}): ${text}`)));
+  });
+  const run = spawn(exe, ['run', '--map', files.map, '--scen', files.scen, '--plan', files.plan, '--axis', 'xy',
+    '--agents', '20', '--clock', 'realtime', '--domain', domain, '--no-progress'], { stdio: 'ignore' });
+  const page = await browser.newPage();
+  try {
+    await page.setViewport({ width: 1280, height: 800 });
+    await page.goto(`${watchUrl}/?watch`);
+    await page.waitForFunction(() => window.__viewer && window.__viewer.watch && window.__viewer.robots === 20 &&
+      window.__viewer.watched.some((r) => r.status === 'moving'), { timeout: 30000 });
+    assert.match(await page.$eval('#stats', (e) => e.textContent), /watching run \d+.*robots: 20/);
+    await page.evaluate(() => window.__viewer.select(5));
+    await page.waitForFunction(() => /robot 5.*status: (moving|idle)/.test(document.querySelector('#robot').textContent), { timeout: 5000 });
+    await page.screenshot({ path: path.join(artifacts, 'viewer-watch.png') });
+    const pixels = await robotPixels(page);
+    assert.ok(pixels > 20 * 10, `watched robots not drawn: ${pixels} robot-coloured pixels`);
+  } finally {
+    await page.close();
+    run.kill('SIGTERM');
+    watcher.kill('SIGTERM');
+  }
+}
+
 const { out, summary } = runResults();
 const { server, url } = await startServer(out);
 const browser = await puppeteer.launch({
@@ -274,6 +306,7 @@ try {
   assert.equal(replay.robots, 50);
   assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
   await checkResultsUpload(page, out, summary);
+  await checkWatch(browser);
   // A bad upload is refused with its problem list (the API directly).
   const bad = await page.evaluate(async () => {
     const f = new FormData();

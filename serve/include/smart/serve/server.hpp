@@ -14,6 +14,15 @@
 //                                and robots.csv's finish/waiting time
 //   GET  /api/runs/{id}/live     Server-Sent Events, about 4 a second until the run ended:
 //                                {"state", "t_s", "poses": [[x_m, y_m, yaw_rad], ...]}
+//   GET  /api/watch              (--watch) the runs live on the DDS domain and the newest one's
+//                                robots (fleet_watch.hpp, watch_board.hpp); ?run_id= picks one
+//   GET  /api/watch/live         the same as Server-Sent Events, about 4 a second
+//   GET  /api/watch/map          the map given with --watch (MovingAI text)
+//   POST /api/results            a `smart run --out` folder (fields "files") and the run's map
+//                                (scen, plan optional) to replay; 400 names the bad file/line
+//   GET  /api/runs/{id}/progress finished actions over time (actions.csv)
+//   GET  /api/runs/{id}/results/{name} a results file as a download (summary.json, stats.csv,
+//                                robots.csv, actions.csv, states.csv; nothing else)
 //   GET  /...                    the web app's built files (web_dir), when given
 // Files live only under data_dir/<id>/ with fixed names; ids come from RunRegistry and anything
 // else in a URL is a 404, so no request reads or writes outside data_dir. Uploads are bounded
@@ -23,7 +32,9 @@
 #include <atomic>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace smart::serve {
@@ -39,6 +50,10 @@ struct ServeOptions {
   std::size_t max_upload_bytes = 64u << 20;
   int domain = 0;
   std::string qos = "lan";
+  // --watch: what is live on the domain (run_id 0: the newest), and the map to draw it on.
+  std::function<nlohmann::json(uint64_t run_id)> watch;
+  std::filesystem::path watch_map;
+  double watch_cell_m = 1.0;
 };
 
 class Server {
