@@ -524,6 +524,31 @@ struct Server::Impl {
     return fs::exists(s) ? json::parse(slurp(s)).value("cell_m", 1.0) : 1.0;
   }
 
+  // GET /api/robots: the robot models an upload may name, with their limits (the form's
+  // sliders start there).
+  void get_robots(httplib::Response& res) const {
+    json out = json::array();
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(opt.config_dir / "robots")) {
+      if (e.path().extension() == ".yaml" && plain_name(e.path().stem().string())) {
+        files.push_back(e.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      try {
+        const auto m = agent::load_robot_model(f.string());
+        out.push_back({{"name", f.stem().string()},
+                       {"max_speed_mps", m.max_speed_mps},
+                       {"max_accel_mps2", m.max_accel_mps2},
+                       {"max_turn_rate_radps", m.max_turn_rate_radps}});
+      } catch (const std::exception& e) {
+        spdlog::warn("serve: robot model {} not offered: {}", f.string(), e.what());
+      }
+    }
+    reply(res, 200, out);
+  }
+
   // --watch: the board as JSON, once or as a stream (until the page goes away).
   void watch_routes() {
     const auto run_of = [](const httplib::Request& req) -> uint64_t {
@@ -559,6 +584,7 @@ struct Server::Impl {
 
   void routes() {
     watch_routes();
+    http.Get("/api/robots", [this](const auto&, auto& res) { get_robots(res); });
     http.set_payload_max_length(opt.max_upload_bytes);
     http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
     http.Get("/api/runs", [this](const auto&, auto& res) {

@@ -303,7 +303,25 @@ function wireForm(form, url, status, problems) {
     location.search = `?run=${body.id}`;
   };
 }
+// Kinodynamic sliders: they start at the chosen model's limits (GET /api/robots); moving one
+// writes its number field, which the upload sends (empty: the model's own value).
+async function wireSliders() {
+  const models = await fetchJson('/api/robots').catch(() => []);
+  if (!models.length) return;
+  $('up-robot').innerHTML = '';
+  for (const m of models) $('up-robot').add(new Option(m.name, m.name, false, m.name === 'footbot'));
+  const field = (key) => $('upload').querySelector(`input[name=${key}]`);
+  const reset = () => {
+    const m = models.find((x) => x.name === $('up-robot').value) || models[0];
+    for (const s of document.querySelectorAll('#upload .slider')) { s.value = m[s.dataset.for]; field(s.dataset.for).value = ''; }
+  };
+  for (const s of document.querySelectorAll('#upload .slider')) s.oninput = () => { field(s.dataset.for).value = s.value; };
+  $('up-robot').onchange = reset;
+  reset();
+}
+
 function wireUpload() {
+  wireSliders();
   wireForm('upload', '/api/runs', 'upload-status', 'upload-problems');
   wireForm('replay', '/api/results', 'replay-status', 'replay-problems');
 }

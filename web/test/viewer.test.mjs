@@ -288,7 +288,14 @@ try {
   await (await page.$('#up-plan')).uploadFile(path.join(bench, 'smart-examples/scen_1_1000_paths.txt'));
   await page.select('#upload select[name=axis]', 'rowcol');
   await page.$eval('#upload input[name=agents]', (e) => { e.value = '50'; });
-  await page.type('#upload input[name=max_accel_mps2]', '0.5');  // a limit from the form
+  // A limit from the form's slider, which starts at the model's own limit.
+  const models = await page.evaluate(async () => (await fetch('/api/robots')).json());
+  const footbot = models.find((m) => m.name === 'footbot');
+  assert.ok(footbot && models.some((m) => m.name === 'jetbot'), JSON.stringify(models));
+  const slider = '#upload .slider[data-for=max_accel_mps2]';
+  assert.equal(Number(await page.$eval(slider, (e) => e.value)), footbot.max_accel_mps2);
+  await page.$eval(slider, (e) => { e.value = '0.5'; e.dispatchEvent(new Event('input')); });
+  assert.equal(await page.$eval('#upload input[name=max_accel_mps2]', (e) => e.value), '0.5');
   await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
     const status = await page.$eval('#upload', (el) => el.querySelector('#upload-status').textContent + ' ' + el.querySelector('#upload-problems').textContent).catch(() => '?');
     throw new Error(`no navigation after the upload (${e.message}); the form says: ${status}`);

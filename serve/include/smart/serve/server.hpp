@@ -14,6 +14,7 @@
 //                                and robots.csv's finish/waiting time
 //   GET  /api/runs/{id}/live     Server-Sent Events, about 4 a second until the run ended:
 //                                {"state", "t_s", "poses": [[x_m, y_m, yaw_rad], ...]}
+//   GET  /api/robots             the robot models offered, with their limits
 //   GET  /api/watch              (--watch) the runs live on the DDS domain and the newest one's
 //                                robots (fleet_watch.hpp, watch_board.hpp); ?run_id= picks one
 //   GET  /api/watch/live         the same as Server-Sent Events, about 4 a second
