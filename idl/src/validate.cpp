@@ -1,6 +1,7 @@
 #include "smart/wire/validate.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <utility>
 
@@ -28,9 +29,18 @@ std::string outside(double x, double y, const std::optional<Bounds>& b, const st
   return what + " lies outside the map";
 }
 
+// The action type as its bytes hold it: a forged value is no enumerator of smart_msg_ActionType,
+// and loading it as that type is undefined behaviour (UBSan reported it on the forged window).
+uint32_t raw_type(const smart_msg_ActionStep& s) {
+  static_assert(sizeof(s.type) == sizeof(uint32_t));
+  uint32_t v = 0;
+  std::memcpy(&v, &s.type, sizeof v);
+  return v;
+}
+
 std::string check_step(const smart_msg_ActionStep& s, const std::string& at,
                        const std::optional<Bounds>& bounds) {
-  if (s.type != smart_msg_ACTION_MOVE && s.type != smart_msg_ACTION_ROTATE) {
+  if (const auto t = raw_type(s); t != smart_msg_ACTION_MOVE && t != smart_msg_ACTION_ROTATE) {
     return "unknown action type at " + at;
   }
   auto why = first_not_finite({{"from.x_m", s.from.x_m},

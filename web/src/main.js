@@ -449,6 +449,7 @@ async function start() {
   renderer.render(scene, camera);
   viewer.robots = state.rec.robots;
   viewer.firstFrameMs = performance.now() - t0;
+  viewer.firstFrameAtMs = performance.now();  // since the navigation started
   requestAnimationFrame(loop);
   state.rec = await rest;
   findCollision();
@@ -457,6 +458,7 @@ async function start() {
   wireControls();
   showFrame(0);
   viewer.loadedMs = performance.now() - t0;
+  viewer.readyAtMs = performance.now();
   viewer.ready = true;
 }
 

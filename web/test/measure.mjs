@@ -1,5 +1,7 @@
 // Measures the viewer on a run folder (docs/performance.md, "Viewer"): recording size, time to
-// first frame and frame time while playing, in Debian's Chromium headless.
+// first frame (from the start of the navigation, read from the page's own clock) in a fresh
+// browser (cold) and on a second visit (warm), time until playback may start (the whole
+// recording loaded), and frame time while playing, in Debian's Chromium headless.
 // Usage: node web/test/measure.mjs SMART_EXE RESULTS_DIR [WEB_DIST]
 import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
@@ -18,21 +20,27 @@ const url = await new Promise((resolve) => {
 });
 const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+
+async function visit(page) {
+  await page.goto(`${url}/?run=run-000001`);
+  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 60000 });
+  return page.evaluate(() => ({ ...window.__viewer }));
+}
+
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 800 });
   const bytes = (await (await fetch(`${url}/api/runs/run-000001/recording`)).arrayBuffer()).byteLength;
-  const t0 = Date.now();
-  await page.goto(`${url}/?run=run-000001`);
-  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 60000 });
-  const loadMs = Date.now() - t0;
-  const v = await page.evaluate(() => ({ ...window.__viewer }));
+  const cold = await visit(page);
+  const warm = await visit(page);
   await page.select('#speed', '16');
   await page.click('#play');
   await new Promise((r) => setTimeout(r, 5000));
   const play = await page.evaluate(() => ({ update: window.__viewer.frameTimeMs, render: window.__viewer.renderMs }));
-  console.log(JSON.stringify({ robots: v.robots, recording_mb: bytes / 1e6, page_to_first_frame_ms: loadMs,
-    app_first_frame_ms: v.firstFrameMs, frame_update_ms: play.update, frame_render_ms: play.render }));
+  console.log(JSON.stringify({ robots: cold.robots, recording_mb: bytes / 1e6,
+    cold_first_frame_ms: cold.firstFrameAtMs, cold_ready_ms: cold.readyAtMs,
+    warm_first_frame_ms: warm.firstFrameAtMs, warm_ready_ms: warm.readyAtMs,
+    frame_update_ms: play.update, frame_render_ms: play.render }));
 } finally {
   await browser.close();
   server.kill('SIGTERM');
