@@ -255,7 +255,12 @@ struct Server::Impl {
     if (!summary.is_object() || !summary.contains("robots")) {
       return bad("summary.json is not the summary `smart run --out` writes (no \"robots\")");
     }
-    if (!fs::is_regular_file(staged / "map.map")) return bad("no map: give the run's map file");
+    if (!fs::is_regular_file(staged / "map.map")) {
+      const auto named = summary.value("files", json::object());
+      return bad("no map: give the run's map file (summary.json names " +
+                 (named.is_object() ? named.value("map", std::string("none")) : "none") +
+                 ", not found from here)");
+    }
     try {
       (void)grid::parse_map(slurp(staged / "map.map"), "the map");
       std::ofstream(staged / "recording-v2.smrc", std::ios::binary)
@@ -583,6 +588,9 @@ struct Server::Impl {
   }
 
   void routes() {
+    // Without TCP_NODELAY (cpp-httplib's default is off) Nagle's algorithm and delayed ACKs held
+    // static files back: three.js (0.7 MB) took 1.9 s over loopback, 0.1 s with it.
+    http.set_tcp_nodelay(true);
     watch_routes();
     http.Get("/api/robots", [this](const auto&, auto& res) { get_robots(res); });
     http.set_payload_max_length(opt.max_upload_bytes);

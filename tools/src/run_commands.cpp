@@ -101,11 +101,17 @@ std::function<std::string()> watch(ChildProcess& sim) {
   };
 }
 
+// Input files as absolute paths: summary.json names them for whoever reads it later, from
+// another folder (`smart serve --open` finds the map there).
+std::string absolute_path(const std::string& p) {
+  return p.empty() ? p : std::filesystem::absolute(p).lexically_normal().string();
+}
+
 monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_file) {
   monitor::RunInfo info;
-  info.map = o.sim.world.map;
-  info.scen = o.sim.world.scen;
-  info.plan = o.plan;
+  info.map = absolute_path(o.sim.world.map);
+  info.scen = absolute_path(o.sim.world.scen);
+  info.plan = absolute_path(o.plan);
   info.robot = robot_file;
   info.qos = o.sim.dds.qos;
   info.clock = enum_name(o.sim.clock, kClockNames);
