@@ -4,6 +4,7 @@
 // actions; the run gives the same numbers as without security.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <httplib.h>
 
 #include <atomic>
 #include <thread>
@@ -139,6 +140,37 @@ TEST_F(SecureFaults, AViewerReadsTheFleetButCannotPublishActions) {
   EXPECT_TRUE(r.last_json()["success"].get<bool>());
   EXPECT_GT(states.take_each([](const smart_msg_RobotState&) {}), 0u);
   EXPECT_EQ(sim.wait(30s).value_or(-1), 0);
+}
+
+// `smart serve --watch --security`: the watch's participant has the viewer identity and sees a
+// secured run in its random partition; the run is undisturbed.
+TEST_F(SecureFaults, TheWatchSeesASecuredRunAsTheViewer) {
+  const int d = kSecureWatch;
+  const auto out = temp_file("secure_watch.out");
+  const auto data = temp_file("secure_watch_data");
+  auto watch = start_smart({"serve", "--watch", "--port", "0", "--data", data.string(), "--domain",
+                            std::to_string(d), "--security", keystore_->string()},
+                           out);
+  int port = 0;
+  for (int i = 0; i < 100 && port == 0; ++i) {
+    std::this_thread::sleep_for(50ms);
+    const auto j = summary_in(slurp(out));
+    if (j.is_object()) port = std::stoi(j["listening"].get<std::string>().substr(17));
+  }
+  ASSERT_NE(port, 0) << slurp(out);
+  auto run = args("run", d, true, true);
+  run.insert(run.end(), {"--clock", "realtime", "--max-sim-time-s", "8"});
+  auto monitor = start_smart(run, temp_file("secure_watch_run.out"));
+  std::size_t seen = 0;
+  httplib::Client client("127.0.0.1", port);
+  for (int i = 0; i < 100 && seen < 20; ++i) {
+    std::this_thread::sleep_for(100ms);
+    const auto r = client.Get("/api/watch");
+    if (r && r->status == 200) seen = nlohmann::json::parse(r->body)["robots"].size();
+  }
+  EXPECT_EQ(seen, 20u) << slurp(out);
+  EXPECT_TRUE(monitor.wait(60s).has_value());
+  std::filesystem::remove_all(data);
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ enum DomainId : int {
   kWebViewer = 160,  // web/test/viewer.test.mjs (SMART_DOMAIN in tests/CMakeLists.txt)
   kServeUpload = 161,
   kServeWatch = 162,
-  kServeWatchRun = 163,
+  kSecureWatch = 163,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
