@@ -75,6 +75,7 @@ struct MonitorNode::Impl {
   wire::Rejections rejections;
   SenderGate senders;
   std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
+  uint32_t status_writers_seen = 0;  // status writers matched so far (total_count)
   const SteadyClock::time_point wall0 = SteadyClock::now();
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
@@ -136,6 +137,10 @@ struct MonitorNode::Impl {
       opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
+    if (const auto m = status.subscription_matched().total_count; m != status_writers_seen) {
+      status_writers_seen = m;
+      senders.remember_status_writers(status);
+    }
     status.take_each_from([&](const smart_msg_SimStatus& s, dds_instance_handle_t from) {
       if (!valid("sim_status", wire::check_status(s, robots), status, from)) return;
       if (!senders.sim_known()) {

@@ -96,8 +96,16 @@ class SenderGate {
   }
   // Before the sim host's first tick its status cannot be placed: keep it until then.
   bool sim_known() const { return sim_participant_.has_value(); }
-  // The sim host's final status is often read after it left: its writer's participant is
-  // remembered from earlier samples.
+  // The sim host's final status is often read after it left, and in a short run it may be its
+  // first status sample: every status writer's participant is remembered while it is matched
+  // (call when the matched count changed), and from earlier samples.
+  template <class Reader>
+  void remember_status_writers(const Reader& reader) {
+    for (const auto h : reader.matched_writers()) {
+      if (status_writers_.count(h)) continue;
+      if (auto who = reader.participant_of(h)) status_writers_[h] = *who;
+    }
+  }
   template <class Reader>
   std::string status(dds_instance_handle_t from, const Reader& reader) {
     auto who = reader.participant_of(from);

@@ -151,6 +151,19 @@ TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
   std::filesystem::remove(out);
 }
 
+// Regression: in a run short enough that the sim host's only status sample was its final one,
+// read after the host had left, the monitor could not place that sample's writer and dropped
+// it: no sim memory, no closest approach and, had there been one, no collision in the summary.
+TEST_F(Run, AShortRunsOnlySimStatusIsTakenNotDropped) {
+  auto args = example_args(kRunShortStatus, "2");
+  args.insert(args.begin(), "run");
+  const auto r = run_smart(args, 120s, "run_short_status");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = r.last_json();
+  EXPECT_TRUE(j["peak_rss_mb"]["sim"].is_number()) << j.dump();
+  EXPECT_TRUE(j["rejected_samples"].empty()) << j["rejected_samples"].dump();
+}
+
 TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {
   const auto r = run_smart({"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
                             (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",

@@ -72,6 +72,8 @@ enum DomainId : int {
   kServeUpload = 161,
   kServeWatch = 162,
   kSecureWatch = 163,
+  kRunShortStatus = 164,
+  kExperiment = 165,  // and 166 (--jobs 2)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

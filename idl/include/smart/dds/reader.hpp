@@ -166,6 +166,19 @@ class Reader {
     const auto p = publication(handle);
     return p ? std::optional<dds_guid_t>(p->participant) : std::nullopt;
   }
+  // The writers matched now (publication handles).
+  std::vector<dds_instance_handle_t> matched_writers() const {
+    std::vector<dds_instance_handle_t> handles(64);
+    for (;;) {
+      const auto n = dds_get_matched_publications(entity_.handle(), handles.data(), handles.size());
+      check(n, "matched publications of '" + topic_name_ + "'");
+      if (static_cast<std::size_t>(n) <= handles.size()) {
+        handles.resize(static_cast<std::size_t>(n));
+        return handles;
+      }
+      handles.resize(static_cast<std::size_t>(n));
+    }
+  }
   bool writer_matched(dds_instance_handle_t handle) const {
     return publication(handle).has_value();
   }
