@@ -16,6 +16,7 @@ packages=(
   openssl libddsc0debian
   libcpp-httplib-dev
   chromium
+  python3-matplotlib
 )
 # The web viewer's build and browser tests need node and npm; a machine may already have them
 # from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.

@@ -4,6 +4,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <spdlog/spdlog.h>
 
 namespace smart::tools {
 namespace {
@@ -95,12 +96,16 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
                 "network",
                 "--run",
                 "exp-1.b_2"});
+  spdlog::set_level(spdlog::level::warn);
   const auto argv = sim_argv("/bin/smart", o);
-  ASSERT_GE(argv.size(), 2u);
+  spdlog::set_level(spdlog::level::info);
+  ASSERT_GE(argv.size(), 4u);
   EXPECT_EQ(argv[0], "/bin/smart");
-  EXPECT_EQ(argv[1], "sim");
+  EXPECT_EQ(argv[1], "--log-level");  // the child logs at the parent's level
+  EXPECT_EQ(argv[2], "warning");
+  EXPECT_EQ(argv[3], "sim");
   SimCliOptions back;
-  parse_sim(back, std::vector<std::string>(argv.begin() + 2, argv.end()));
+  parse_sim(back, std::vector<std::string>(argv.begin() + 4, argv.end()));
   EXPECT_EQ(back.world.map, "maps/a b.map");
   EXPECT_EQ(back.world.agents, 17u);
   EXPECT_EQ(back.world.cell_m, 0.3);  // exactly: the text reads back as the same double

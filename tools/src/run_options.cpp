@@ -1,5 +1,7 @@
 #include "smart/tools/run_options.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "smart/dds/topics.hpp"
 
 namespace smart::tools {
@@ -131,7 +133,12 @@ std::string id_list(const std::vector<uint32_t>& ids) {
 
 std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o) {
   const auto& w = o.world;
-  std::vector<std::string> argv{exe, "sim"};
+  // The child logs at this process's level (`smart --log-level warn run` quiets both).
+  std::vector<std::string> argv{
+      exe, "--log-level",
+      std::string(spdlog::level::to_string_view(spdlog::get_level()).data(),
+                  spdlog::level::to_string_view(spdlog::get_level()).size()),
+      "sim"};
   const auto dds = dds_argv(o.dds);
   argv.insert(argv.end(), dds.begin(), dds.end());
   argv.insert(argv.end(), {"--map",

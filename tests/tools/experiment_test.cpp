@@ -1,0 +1,102 @@
+// The experiment spec, its grid and the results table: pure, no runs.
+#include "smart/tools/experiment.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace smart::tools {
+namespace {
+
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+constexpr const char* kSpec = R"(name: scaling
+maps: [w.map]
+scens: [w-1.scen, w-2.scen]
+agents: [10, 100]
+plan: {file: paths.txt, axis: rowcol}
+robots: [footbot, footbot-smart]
+qos: lan
+repeats: 2
+)";
+
+TEST(ExperimentSpec, ReadsEveryAxisAndExpandsTheirProduct) {
+  const auto s = parse_experiment_spec(kSpec, "spec.yaml");
+  EXPECT_EQ(s.name, "scaling");
+  ASSERT_EQ(s.instances.size(), 2u);  // one map for both scens
+  EXPECT_EQ(s.instances[1], (std::pair<std::string, std::string>{"w.map", "w-2.scen"}));
+  EXPECT_EQ(s.plan_source, PlanSource::kFile);
+  EXPECT_EQ(s.axis, "rowcol");
+  EXPECT_EQ(s.qos, std::vector<std::string>{"lan"});
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 2u * 2 * 2 * 1 * 2);
+  EXPECT_EQ(cells[0].key, "0-w-1-n10-footbot-lan-r0");
+  EXPECT_EQ(cells.back().key, "1-w-2-n100-footbot-smart-lan-r1");
+  std::set<std::string> keys;
+  for (const auto& c : cells) keys.insert(c.key);
+  EXPECT_EQ(keys.size(), cells.size());  // a folder per cell
+}
+
+TEST(ExperimentSpec, PlannerAndCommandPlans) {
+  auto s = parse_experiment_spec(
+      "name: a\nmaps: [m]\nscens: [s]\nagents: 5\nplan: {planner: builtin}\n", "x.yaml");
+  EXPECT_EQ(s.plan_source, PlanSource::kBuiltin);
+  EXPECT_EQ(s.agents, std::vector<std::size_t>{5});
+  s = parse_experiment_spec(
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {command: \"p {map} {plan}\"}\n", "x");
+  EXPECT_EQ(s.plan_source, PlanSource::kCommand);
+  EXPECT_EQ(s.plan, "p {map} {plan}");
+}
+
+TEST(ExperimentSpec, MistakesNameTheFileLineAndField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"name: a b\n", "spec.yaml:1: name"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [10, ten]\nplan: {file: p}\n",
+       "spec.yaml:4: agents: 'ten' is not a whole number"},
+      {"name: a\nmaps: [m, n]\nscens: [s, t, u]\nagents: [1]\nplan: {file: p}\n",
+       "spec.yaml:2: maps"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {file: p, planner: builtin}\n",
+       "plan: give exactly one"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {command: lns2}\n",
+       "plan.command: must write {plan}"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {file: p}\nrepeat: 3\n",
+       "spec.yaml:6: repeat: unknown field"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [0]\nplan: {file: p}\n", "agents: fleet sizes"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {file: p}\nclock: fast\n",
+       "spec.yaml:6: clock: lockstep or realtime"},
+      {"name: [a\n", "spec.yaml:"},
+  };
+  for (const auto& [yaml, expected] : cases) {
+    try {
+      (void)parse_experiment_spec(yaml, "spec.yaml");
+      ADD_FAILURE() << "accepted: " << yaml;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+    }
+  }
+}
+
+TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
+  const auto s = parse_experiment_spec(kSpec, "spec.yaml");
+  const auto cells = expand(s);
+  const auto summary = json::parse(
+      R"({"success": true, "aet_s": 12.5, "adg": {"type2": 7}, "robots_off_goal": [3, 4],
+          "machine": "x, y"})");
+  const auto row = result_row(s, cells[1], summary);
+  EXPECT_EQ(row["robot"], "footbot");
+  EXPECT_EQ(row["repeat"], 1);
+  EXPECT_EQ(row["agents"], 10);
+  EXPECT_EQ(row["adg.type2"], 7);
+  EXPECT_EQ(row["robots_off_goal"], "[3,4]");
+  auto other = row;
+  other.erase("aet_s");
+  other["extra"] = "q\"uote";
+  const auto csv = results_csv({row, other});
+  EXPECT_THAT(csv, ::testing::StartsWith("cell,map,scen,agents,robot,qos,repeat,plan,axis,clock,"
+                                         "adg.type2,aet_s,extra,machine,"));
+  EXPECT_THAT(csv, HasSubstr(",7,12.5,,\"x, y\","));           // row 1: no extra
+  EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));  // row 2: no AET
+}
+
+}  // namespace
+}  // namespace smart::tools

@@ -1,0 +1,65 @@
+// Contract: `smart experiment`'s pure core: a spec (YAML) read into a grid of runs, each run's
+// folder name and `smart run` arguments, and the tidy results table (a row per run with every
+// parameter and every summary.json field). No I/O, no processes: the command
+// (experiment_command.cpp) resolves files, runs the cells and writes what this core makes.
+//
+// Spec (every list is one axis of the grid; the cells are their product):
+//   name: warehouse-scaling           # 1-64 of A-Z a-z 0-9 . _ -
+//   maps: [a.map]                     # one map for every scen, or one map per scen (paired)
+//   scens: [a-random-1.scen]
+//   agents: [10, 100]                 # first N robots
+//   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin}, or
+//         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
+//   robots: [footbot, footbot-smart]  # default [footbot]
+//   qos: [lan, lossy-wifi]            # default [lan]
+//   clock: lockstep                   # or realtime
+//   repeats: 3                        # repeat r of every cell; default 1
+// Errors name the spec file, the line and the field, and say what to write instead.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smart::tools {
+
+enum class PlanSource { kFile, kBuiltin, kCommand };
+
+struct ExperimentSpec {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> instances;  // (map, scen) as written
+  std::vector<std::size_t> agents;
+  PlanSource plan_source = PlanSource::kFile;
+  std::string plan;  // the file, or the command template
+  std::string axis = "xy";
+  std::vector<std::string> robots{"footbot"};
+  std::vector<std::string> qos{"lan"};
+  std::string clock = "lockstep";
+  std::size_t repeats = 1;
+};
+
+// Throws std::invalid_argument "<source>:<line>: <field>: what is wrong; what to write".
+ExperimentSpec parse_experiment_spec(std::string_view yaml_text, const std::string& source);
+
+struct ExperimentCell {
+  std::size_t instance = 0;  // index into spec.instances
+  std::size_t agents = 0;
+  std::string robot, qos;
+  std::size_t repeat = 0;
+  std::string key;  // folder name, unique within the experiment, stable across runs
+};
+
+// The grid, in a fixed order (instance, agents, robot, qos, repeat).
+std::vector<ExperimentCell> expand(const ExperimentSpec& spec);
+
+// One results row: the cell's parameters, then every summary.json field, nested objects
+// flattened with dots ("adg.type2"), arrays as JSON text.
+nlohmann::json result_row(const ExperimentSpec& spec, const ExperimentCell& cell,
+                          const nlohmann::json& summary);
+// The rows as CSV: the union of their columns, parameters first, then summary fields sorted;
+// fields quoted when they hold a comma, a quote or a newline.
+std::string results_csv(const std::vector<nlohmann::json>& rows);
+
+}  // namespace smart::tools

@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""Figures of a `smart experiment` (results.csv): PNG and SVG, with Debian's python3-matplotlib.
+
+Usage: experiment_plot.py RESULTS_DIR OUT_DIR
+
+Figures (each only when the results vary along its axis):
+  sim_speed.{png,svg}      sim speed vs robots, a line per map / robot model / QoS profile
+  aet_makespan.{png,svg}   AET and makespan vs robots, mean +- sd over repeats (replicability)
+  memory.{png,svg}         peak memory of monitor and sim vs robots
+  success.{png,svg}        success rate vs robots, per robot model / QoS profile
+Prints one JSON line naming the files written.
+"""
+import csv
+import json
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")  # no display: files only
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def number(text):
+    try:
+        v = float(text)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+def read_rows(results_dir):
+    with open(os.path.join(results_dir, "results.csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def series_key(row, keys):
+    return " / ".join(row[k] for k in keys if row.get(k))
+
+
+def varying(rows, keys):
+    """The grouping columns that take more than one value (they name the lines)."""
+    return [k for k in keys if len({r.get(k) for r in rows}) > 1]
+
+
+def grouped(rows, field, line_keys):
+    """line -> robots -> [values of field] (None skipped)."""
+    out = defaultdict(lambda: defaultdict(list))
+    for r in rows:
+        v = number(r.get(field))
+        n = number(r.get("agents"))
+        if v is not None and n is not None:
+            out[series_key(r, line_keys) or "all"][int(n)].append(v)
+    return out
+
+
+def mean_sd(values):
+    m = sum(values) / len(values)
+    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else 0.0
+    return m, sd
+
+
+def draw(ax, series, label_suffix=""):
+    for line, by_n in sorted(series.items()):
+        ns = sorted(by_n)
+        stats = [mean_sd(by_n[n]) for n in ns]
+        ax.errorbar(ns, [m for m, _ in stats], yerr=[s for _, s in stats], marker="o", capsize=3,
+                    label=line + label_suffix)
+
+
+def save(fig, out_dir, name, written):
+    for ext in ("png", "svg"):
+        path = os.path.join(out_dir, f"{name}.{ext}")
+        fig.savefig(path, dpi=120, bbox_inches="tight")
+        written.append(path)
+    plt.close(fig)
+
+
+def figure(out_dir, name, title, ylabel, panels, written, logx=True):
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4), squeeze=False)
+    for ax, (series, sub, suffix) in zip(axes[0], panels):
+        draw(ax, series, suffix)
+        ax.set_xlabel("robots")
+        ax.set_ylabel(ylabel if not sub else sub)
+        if logx:
+            ax.set_xscale("log")
+        ax.grid(True, alpha=0.3)
+        if series:
+            ax.legend(fontsize=8)
+    fig.suptitle(title)
+    save(fig, out_dir, name, written)
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    results_dir, out_dir = sys.argv[1], sys.argv[2]
+    rows = read_rows(results_dir)
+    if not rows:
+        sys.exit(f"{results_dir}/results.csv has no runs")
+    os.makedirs(out_dir, exist_ok=True)
+    lines = varying(rows, ["map", "robot", "qos", "clock"])
+    logx = len({r["agents"] for r in rows}) > 2
+    written = []
+    figure(out_dir, "sim_speed", "Sim speed (sim s per wall s)", "sim speed (x real time)",
+           [(grouped(rows, "sim_speed", lines), None, "")], written, logx)
+    figure(out_dir, "aet_makespan", "AET and makespan, mean \u00b1 sd over repeats", "s",
+           [(grouped(rows, "aet_s", lines), "AET (s)", ""),
+            (grouped(rows, "makespan_s", lines), "makespan (s)", "")], written, logx)
+    figure(out_dir, "memory", "Peak memory", "MB",
+           [(grouped(rows, "peak_rss_mb.monitor", lines), "monitor peak RSS (MB)", ""),
+            (grouped(rows, "peak_rss_mb.sim", lines), "sim peak RSS (MB)", "")], written, logx)
+    success = [dict(r, success_rate="1" if r.get("success") == "true" else "0") for r in rows]
+    figure(out_dir, "success", "Success rate", "success rate",
+           [(grouped(success, "success_rate", lines), None, "")], written, logx)
+    print(json.dumps({"figures": written, "runs": len(rows)}))
+
+
+if __name__ == "__main__":
+    main()

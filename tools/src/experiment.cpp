@@ -1,0 +1,243 @@
+#include "smart/tools/experiment.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+namespace smart::tools {
+
+namespace {
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& source, const YAML::Node& at, const std::string& field,
+                       const std::string& what) {
+  const int line = at.Mark().line >= 0 ? at.Mark().line + 1 : 0;
+  throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + field + ": " + what);
+}
+
+bool plain_name(const std::string& s) {
+  return !s.empty() && s.size() <= 64 &&
+         s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
+             std::string::npos;
+}
+
+// A list of strings (a single string is a list of one); `fallback` when the key is absent.
+std::vector<std::string> strings(const YAML::Node& root, const char* key, const std::string& src,
+                                 std::vector<std::string> fallback) {
+  const auto n = root[key];
+  if (!n) {
+    if (fallback.empty()) fail(src, root, key, "missing; give a list, e.g. [a, b]");
+    return fallback;
+  }
+  std::vector<std::string> out;
+  try {
+    if (n.IsScalar()) return {n.as<std::string>()};
+    for (const auto& v : n) out.push_back(v.as<std::string>());
+  } catch (const YAML::Exception&) {
+    fail(src, n, key, "expected a list of names, e.g. [a, b]");
+  }
+  if (out.empty()) fail(src, n, key, "is empty; give at least one");
+  return out;
+}
+
+std::vector<std::size_t> counts(const YAML::Node& root, const std::string& src) {
+  const auto n = root["agents"];
+  if (!n) fail(src, root, "agents", "missing; give fleet sizes, e.g. [10, 100]");
+  std::vector<std::size_t> out;
+  YAML::Node list(YAML::NodeType::Sequence);
+  if (n.IsSequence()) {
+    list = n;
+  } else {
+    list.push_back(n);
+  }
+  for (const auto& v : list) {
+    long long k = 0;
+    try {
+      k = v.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(src, v, "agents", "'" + v.as<std::string>("?") + "' is not a whole number");
+    }
+    if (k < 1 || k > 100000) fail(src, v, "agents", "fleet sizes run from 1 to 100000");
+    out.push_back(static_cast<std::size_t>(k));
+  }
+  if (out.empty()) fail(src, n, "agents", "is empty; give at least one fleet size");
+  return out;
+}
+
+void read_plan(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+  const auto p = root["plan"];
+  if (!p || !p.IsMap()) {
+    fail(src, p ? p : root, "plan",
+         "give {file: paths.txt, axis: xy}, {planner: builtin} or {command: \"... {plan}\"}");
+  }
+  const int given = (p["file"] ? 1 : 0) + (p["planner"] ? 1 : 0) + (p["command"] ? 1 : 0);
+  if (given != 1) fail(src, p, "plan", "give exactly one of file, planner and command");
+  if (p["file"]) {
+    s.plan_source = PlanSource::kFile, s.plan = p["file"].as<std::string>();
+  } else if (p["planner"]) {
+    if (p["planner"].as<std::string>() != "builtin") {
+      fail(src, p["planner"], "plan.planner", "the only planner inside is 'builtin'");
+    }
+    s.plan_source = PlanSource::kBuiltin;
+  } else {
+    s.plan_source = PlanSource::kCommand, s.plan = p["command"].as<std::string>();
+    if (s.plan.find("{plan}") == std::string::npos) {
+      fail(src, p["command"], "plan.command", "must write {plan} (the file it is given)");
+    }
+  }
+  s.axis = p["axis"] ? p["axis"].as<std::string>() : "xy";
+  if (s.axis != "xy" && s.axis != "rowcol") fail(src, p["axis"], "plan.axis", "xy or rowcol");
+}
+
+void read_instances(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+  const auto maps = strings(root, "maps", src, {});
+  const auto scens = strings(root, "scens", src, {});
+  if (maps.size() != 1 && maps.size() != scens.size()) {
+    fail(src, root["maps"], "maps",
+         "give one map for every scen, or one map per scen (as many maps as scens)");
+  }
+  for (std::size_t i = 0; i < scens.size(); ++i) {
+    s.instances.emplace_back(maps.size() == 1 ? maps[0] : maps[i], scens[i]);
+  }
+}
+
+void read_options(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+  s.robots = strings(root, "robots", src, {"footbot"});
+  s.qos = strings(root, "qos", src, {"lan"});
+  if (root["clock"]) s.clock = root["clock"].as<std::string>();
+  if (s.clock != "lockstep" && s.clock != "realtime") {
+    fail(src, root["clock"], "clock", "lockstep or realtime");
+  }
+  if (const auto r = root["repeats"]) {
+    long long k = 0;
+    try {
+      k = r.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(src, r, "repeats", "expected a whole number");
+    }
+    if (k < 1 || k > 1000) fail(src, r, "repeats", "from 1 to 1000");
+    s.repeats = static_cast<std::size_t>(k);
+  }
+  for (const auto& kv : root) {
+    static const std::set<std::string> known{"name",   "maps", "scens", "agents", "plan",
+                                             "robots", "qos",  "clock", "repeats"};
+    const auto key = kv.first.as<std::string>();
+    if (!known.count(key)) {
+      fail(src, kv.first, key,
+           "unknown field; the fields are name, maps, scens, agents, plan, robots, qos, clock, "
+           "repeats");
+    }
+  }
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+void flatten(const json& j, const std::string& prefix, json& row) {
+  for (const auto& [k, v] : j.items()) {
+    const auto name = prefix.empty() ? k : prefix + "." + k;
+    if (v.is_object()) {
+      flatten(v, name, row);
+    } else {
+      row[name] = v.is_array() ? json(v.dump()) : v;
+    }
+  }
+}
+
+std::string csv_field(const json& v) {
+  std::string s = v.is_string() ? v.get<std::string>() : v.is_null() ? "" : v.dump();
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+const std::vector<std::string> kParams{"cell", "map",    "scen", "agents", "robot",
+                                       "qos",  "repeat", "plan", "axis",   "clock"};
+}  // namespace
+
+ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& src) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(src + ":" + std::to_string(e.mark.line + 1) +
+                                ": not YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw std::invalid_argument(src + ": expected a YAML mapping (name: ...)");
+  ExperimentSpec s;
+  s.name = root["name"] ? root["name"].as<std::string>() : "";
+  if (!plain_name(s.name)) {
+    fail(src, root["name"] ? root["name"] : root, "name", "1-64 of A-Z a-z 0-9 . _ -");
+  }
+  read_instances(root, src, s);
+  s.agents = counts(root, src);
+  read_plan(root, src, s);
+  read_options(root, src, s);
+  return s;
+}
+
+std::vector<ExperimentCell> expand(const ExperimentSpec& s) {
+  std::vector<ExperimentCell> cells;
+  for (std::size_t i = 0; i < s.instances.size(); ++i) {
+    for (const auto n : s.agents) {
+      for (const auto& robot : s.robots) {
+        for (const auto& qos : s.qos) {
+          for (std::size_t r = 0; r < s.repeats; ++r) {
+            const auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
+                             std::to_string(n) + "-" + stem(robot) + "-" + stem(qos) + "-r" +
+                             std::to_string(r);
+            cells.push_back({i, n, robot, qos, r, key});
+          }
+        }
+      }
+    }
+  }
+  return cells;
+}
+
+json result_row(const ExperimentSpec& s, const ExperimentCell& c, const json& summary) {
+  json row = {{"cell", c.key},
+              {"map", stem(s.instances[c.instance].first)},
+              {"scen", stem(s.instances[c.instance].second)},
+              {"agents", c.agents},
+              {"robot", stem(c.robot)},
+              {"qos", stem(c.qos)},
+              {"repeat", c.repeat},
+              {"plan", s.plan_source == PlanSource::kFile      ? stem(s.plan)
+                       : s.plan_source == PlanSource::kBuiltin ? "builtin"
+                                                               : "command"},
+              {"axis", s.axis},
+              {"clock", s.clock}};
+  json fields = json::object();
+  flatten(summary, "", fields);
+  for (const auto& [k, v] : fields.items()) {
+    if (!row.contains(k)) row[k] = v;
+  }
+  return row;
+}
+
+std::string results_csv(const std::vector<json>& rows) {
+  std::vector<std::string> columns = kParams;
+  std::set<std::string> rest;
+  for (const auto& r : rows) {
+    for (const auto& [k, v] : r.items()) {
+      if (std::find(kParams.begin(), kParams.end(), k) == kParams.end()) rest.insert(k);
+    }
+  }
+  columns.insert(columns.end(), rest.begin(), rest.end());
+  std::string out;
+  for (std::size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + columns[i];
+  out += "\n";
+  for (const auto& r : rows) {
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      out += (i ? "," : "") + (r.contains(columns[i]) ? csv_field(r[columns[i]]) : "");
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace smart::tools
