@@ -57,6 +57,39 @@ std::ofstream open_out(const std::filesystem::path& p) {
   return out;
 }
 
+// Finish time over the motion lower bound, per robot that moves and finished: {median, max}, and
+// the bound's AET and makespan.
+nlohmann::json motion_bound_json(const MonitorResult& r, const std::vector<double>& bound) {
+  std::vector<double> ratio;
+  double sum = 0, makespan = 0;
+  for (std::size_t i = 0; i < bound.size(); ++i) {
+    sum += bound[i];
+    makespan = std::max(makespan, bound[i]);
+    const double f = i < r.robots.size() ? r.robots[i].finish_time_s : std::nan("");
+    if (bound[i] > 0 && !std::isnan(f) && f > 0) ratio.push_back(f / bound[i]);
+  }
+  std::sort(ratio.begin(), ratio.end());
+  const auto n = std::max<double>(1.0, static_cast<double>(bound.size()));
+  return {
+      {"aet_s", sum / n},
+      {"makespan_s", makespan},
+      {"finish_over_bound_median",
+       ratio.empty() ? nlohmann::json() : nlohmann::json(ratio[ratio.size() / 2])},
+      {"finish_over_bound_max", ratio.empty() ? nlohmann::json() : nlohmann::json(ratio.back())}};
+}
+
+std::vector<double> bounds_of(const Instance& in, const RunInfo& info) {
+  return info.limits ? motion_lower_bounds_s(in.actions, info.cell_m, *info.limits)
+                     : std::vector<double>();
+}
+
+// A robot that has actions and did not finish its last has no finish time.
+bool finished(const Instance& in, const MonitorResult& r, uint32_t robot) {
+  const uint32_t n = in.actions.count(robot);
+  if (n == 0 || r.action_finish_s.empty()) return true;
+  return !std::isnan(r.action_finish_s[in.actions.offset[robot] + n - 1]);
+}
+
 void create_out_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -147,6 +180,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   };
   j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
   if (!info.machine.empty()) j["machine"] = info.machine;
+  if (info.limits) j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
   if (r.resumed) {
     j["resumed"] = {{"at_s", r.resumed_at_s},
                     {"finished_before", r.finished_before_resume},
@@ -217,11 +251,15 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
   }
   {
     auto out = open_out(dir / "robots.csv");
-    out << "robot,finish_time_s,waiting_time_s,stops,actions\n";
-    for (std::size_t i = 0; i < r.robots.size(); ++i) {
+    out << "robot,finish_time_s,waiting_time_s,stops,actions,lower_bound_s\n";
+    const auto bound = bounds_of(in, info);
+    for (uint32_t i = 0; i < r.robots.size(); ++i) {
       const auto& m = r.robots[i];
-      out << i << "," << m.finish_time_s << "," << m.waiting_time_s << "," << m.stops << ","
-          << m.actions << "\n";
+      out << i << ",";
+      if (!std::isnan(m.finish_time_s) && finished(in, r, i)) out << m.finish_time_s;
+      out << "," << m.waiting_time_s << "," << m.stops << "," << m.actions << ",";
+      if (i < bound.size()) out << bound[i];
+      out << "\n";
     }
   }
   write_actions_csv(dir, in, r);

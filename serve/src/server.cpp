@@ -490,18 +490,25 @@ struct Server::Impl {
     }
   }
 
-  // robots.csv's row of `robot` as JSON (finish and waiting time, stops), if the run wrote one.
+  // robots.csv's row of `robot` as JSON (finish and waiting time, stops, lower bound), if the
+  // run wrote one; an empty field (not finished, bound unknown) is null.
   json robot_results(const std::string& id, uint32_t robot) const {
     std::ifstream in(dir(id) / "results" / "robots.csv");
     std::string line;
+    const auto number = [](const std::string& text) {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      return ec == std::errc() && end == text.data() + text.size() ? json(v) : json();
+    };
     for (std::getline(in, line); std::getline(in, line);) {
       std::istringstream row(line);
-      std::string cell[5];
+      std::string cell[6];
       for (auto& c : cell) std::getline(row, c, ',');
       if (cell[0] == std::to_string(robot)) {
-        return {{"finish_time_s", std::stod(cell[1])},
-                {"waiting_time_s", std::stod(cell[2])},
-                {"stops", std::stoul(cell[3])}};
+        return {{"finish_time_s", number(cell[1])},
+                {"waiting_time_s", number(cell[2])},
+                {"stops", number(cell[3])},
+                {"lower_bound_s", number(cell[5])}};
       }
     }
     return json::object();

@@ -89,7 +89,8 @@ TEST(Results, WritesSummaryStatsAndRobotFiles) {
   EXPECT_THAT(stats, HasSubstr("steps finish sim,sum of steps finish sim"));
   EXPECT_THAT(stats, HasSubstr("\n125,205,12.5,20.5,"));
   EXPECT_EQ(slurp(dir / "nested" / "robots.csv"),
-            "robot,finish_time_s,waiting_time_s,stops,actions\n0,8,0,0,2\n1,12.5,3,1,3\n");
+            "robot,finish_time_s,waiting_time_s,stops,actions,lower_bound_s\n0,8,0,0,2,\n"
+            "1,12.5,3,1,3,\n");
   std::filesystem::remove_all(dir);
 }
 
@@ -103,6 +104,26 @@ TEST(Results, ActionsCsvHasEveryActionAndItsFinishTimeEmptyWhenNotFinished) {
   EXPECT_EQ(slurp(dir / "actions.csv"),
             "robot,action,type,finish_time_s\n0,0,move,1\n0,1,move,2\n0,2,move,3\n0,3,move,8\n"
             "1,0,rotate,2.5\n1,1,move,4\n1,2,move,5\n1,3,move,7.25\n1,4,move,\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Results, MotionBoundPerRobotAndItsRatiosWhenTheLimitsAreKnown) {
+  const auto in = tiny_instance();
+  auto r = finished_run(in);
+  RunInfo info;
+  info.limits = MotionLimits{1.0, 0.5, 0.5, 1.0, 10.0};
+  const auto bound = motion_lower_bounds_s(in.actions, info.cell_m, *info.limits);
+  const auto j = summary_json(in, r, info)["motion_bound"];
+  EXPECT_DOUBLE_EQ(j["aet_s"].get<double>(), (bound[0] + bound[1]) / 2);
+  EXPECT_DOUBLE_EQ(j["finish_over_bound_max"].get<double>(),
+                   std::max(8.0 / bound[0], 12.5 / bound[1]));
+  // Robot 1's last action never finished: no finish time in robots.csv, its bound still there.
+  r.action_finish_s = {1, 2, 3, 8, 2.5, 4, 5, 7.25, std::nan("")};
+  const auto dir = temp_dir("bound");
+  write_results(dir, in, r, info);
+  const auto csv = slurp(dir / "robots.csv");
+  EXPECT_THAT(csv, HasSubstr("\n1,,3,1,3," + nlohmann::json(bound[1]).dump().substr(0, 8)));
+  EXPECT_THAT(csv, HasSubstr("\n0,8,0,0,2,"));
   std::filesystem::remove_all(dir);
 }
 

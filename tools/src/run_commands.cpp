@@ -113,6 +113,9 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.scen = absolute_path(o.sim.world.scen);
   info.plan = absolute_path(o.plan);
   info.robot = robot_file;
+  const auto m = agent::load_robot_model(robot_file);
+  info.limits = monitor::MotionLimits{m.max_speed_mps, m.max_accel_mps2, m.max_decel_mps2,
+                                      m.max_turn_rate_radps, m.max_angular_accel_radps2};
   info.qos = o.sim.dds.qos;
   info.clock = enum_name(o.sim.clock, kClockNames);
   info.run = o.sim.dds.run;

@@ -150,8 +150,12 @@ function showRobot(id, f) {
         row('waits-now', `waits now for: ${robotList(s.waitsNow)}`) +
         row('waited-now', `waited for now by: ${robotList(s.waitedByNow)}`);
     }
-    if (d.results.finish_time_s !== undefined) {
-      html += row('finish', `finished at ${d.results.finish_time_s.toFixed(1)} s, waited ${d.results.waiting_time_s.toFixed(1)} s`);
+    const res = d.results;
+    if (typeof res.finish_time_s === 'number') {
+      html += row('finish', `finished at ${res.finish_time_s.toFixed(1)} s, waited ${res.waiting_time_s.toFixed(1)} s`);
+      if (typeof res.lower_bound_s === 'number') html += row('bound', `alone it needs at least ${res.lower_bound_s.toFixed(1)} s`);
+    } else if (res.finish_time_s === null) {
+      html += row('finish', 'did not finish');
     }
     const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
     html += row('waits', `in the run waits for: ${list(d.waits_for)}`) + row('waited', `in the run waited by: ${list(d.waited_by)}`);

@@ -4,7 +4,8 @@
 //   surfaces; negative = overlap), adg, plan, per-run flags and versions;
 // - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats), times
 //   on the sim clock;
-// - robots.csv: per robot finish time, waiting time, stops, actions;
+// - robots.csv: per robot finish time (empty: not finished, or before a resume), waiting time,
+//   stops, actions, motion lower bound (empty: limits unknown);
 // - actions.csv: per action (ADG order) robot, seq, type and the sim time it finished;
 // - states.csv: t, robot, x, y, yaw, v, ω, left/right wheel speed, queue length, written row by
 //   row while the run goes (StatesCsvWriter), so memory does not grow with the run.
@@ -17,6 +18,7 @@
 #include <string>
 
 #include "smart/monitor/instance.hpp"
+#include "smart/monitor/motion_bound.hpp"
 #include "smart/monitor/run_supervisor.hpp"
 
 namespace smart::monitor {
@@ -32,6 +34,10 @@ struct RunInfo {
   // measured on.
   std::optional<double> monitor_peak_rss_mb;
   std::string machine;
+  // The robot model's limits, when known: each robot's motion lower bound (motion_bound.hpp)
+  // goes into robots.csv and their AET / makespan and the finish-over-bound ratios into
+  // summary.json ("motion_bound").
+  std::optional<MotionLimits> limits;
 };
 
 // The "adg" and "plan" objects shared by summary.json and `smart check-plan`.
