@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #ifndef SMART_VERSION
@@ -81,6 +82,35 @@ nlohmann::json motion_bound_json(const MonitorResult& r, const std::vector<doubl
 std::vector<double> bounds_of(const Instance& in, const RunInfo& info) {
   return info.limits ? motion_lower_bounds_s(in.actions, info.cell_m, *info.limits)
                      : std::vector<double>();
+}
+
+// SMART's stats columns (server/src/ADG_server.cpp saveStats), in SMART's order. SMART writes
+// wall-clock seconds under "time finish sim" and "sum finish time"; these are sim seconds, so
+// they are named for what they hold.
+constexpr const char* kStatsHeader =
+    "steps finish sim,sum of steps finish sim,makespan sim s,sum of finish times sim s,"
+    "original plan cost,#type-2 edges,#type-1 edges,#Nodes,#Move,#Rotate,"
+    "#Consecutive Move,#Agent pair,instance name,number of agent\n";
+
+std::string stats_row(const Instance& in, const MonitorResult& r, const RunInfo& info) {
+  double max_t = 0, sum_t = 0;
+  long long max_steps = 0, sum_steps = 0;
+  for (const auto& m : r.robots) {
+    if (std::isnan(m.finish_time_s)) continue;  // done before a resume: unknown
+    const auto steps = std::llround(m.finish_time_s / info.control_period_s);
+    max_t = std::max(max_t, m.finish_time_s);
+    sum_t += m.finish_time_s;
+    max_steps = std::max(max_steps, steps);
+    sum_steps += steps;
+  }
+  const auto& a = in.adg.stats;
+  std::ostringstream out;
+  out.precision(10);
+  out << max_steps << "," << sum_steps << "," << max_t << "," << sum_t << "," << in.stats.soc << ","
+      << a.type2 << "," << a.type1 << "," << a.nodes << "," << a.moves << "," << a.rotations << ","
+      << straight_runs(in.actions) << "," << robot_pairs(in.actions, in.adg) << "," << info.plan
+      << "," << r.robots.size() << "\n";
+  return out.str();
 }
 
 // A robot that has actions and did not finish its last has no finish time.
@@ -221,6 +251,20 @@ void write_actions_csv(const std::filesystem::path& dir, const Instance& in,
 }
 }  // namespace
 
+void append_stats(const std::filesystem::path& file, const Instance& in, const MonitorResult& r,
+                  const RunInfo& info) {
+  std::error_code ec;
+  const bool fresh =
+      !std::filesystem::exists(file, ec) || std::filesystem::file_size(file, ec) == 0;
+  std::ofstream out(file, std::ios::app);
+  if (!out) {
+    throw std::runtime_error("cannot append to the stats file " + file.string() +
+                             "; check the folder exists and is writable");
+  }
+  if (fresh) out << kStatsHeader;
+  out << stats_row(in, r, info);
+}
+
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
                    const RunInfo& info) {
   create_out_dir(dir);
@@ -230,24 +274,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
   }
   {
     auto out = open_out(dir / "stats.csv");
-    out << "steps finish sim,sum of steps finish sim,time finish sim,sum finish time,"
-           "original plan cost,#type-2 edges,#type-1 edges,#Nodes,#Move,#Rotate,"
-           "#Consecutive Move,#Agent pair,instance name,number of agent\n";
-    double max_t = 0, sum_t = 0;
-    long long max_steps = 0, sum_steps = 0;
-    for (const auto& m : r.robots) {
-      if (std::isnan(m.finish_time_s)) continue;  // done before a resume: unknown
-      const auto steps = std::llround(m.finish_time_s / info.control_period_s);
-      max_t = std::max(max_t, m.finish_time_s);
-      sum_t += m.finish_time_s;
-      max_steps = std::max(max_steps, steps);
-      sum_steps += steps;
-    }
-    const auto& a = in.adg.stats;
-    out << max_steps << "," << sum_steps << "," << max_t << "," << sum_t << "," << in.stats.soc
-        << "," << a.type2 << "," << a.type1 << "," << a.nodes << "," << a.moves << ","
-        << a.rotations << "," << straight_runs(in.actions) << "," << robot_pairs(in.actions, in.adg)
-        << "," << info.plan << "," << r.robots.size() << "\n";
+    out << kStatsHeader << stats_row(in, r, info);
   }
   {
     auto out = open_out(dir / "robots.csv");

@@ -59,8 +59,13 @@ struct SimHost::Impl {
       if (!fleet.external(i)) node.host(fleet.agent(i));
     }
     ros_view.publish_map(grid, o.sim.cell_m);
-    state_every = std::max<uint64_t>(
-        1, static_cast<uint64_t>(1.0 / (o.state_rate_hz * o.sim.control_period_s) + 0.5));
+    // 0 Hz: no periodic states (states.csv stays empty); the final states still go out, so the
+    // monitor can verify every robot at its goal.
+    state_every =
+        o.state_rate_hz <= 0
+            ? 0
+            : std::max<uint64_t>(
+                  1, static_cast<uint64_t>(1.0 / (o.state_rate_hz * o.sim.control_period_s) + 0.5));
   }
 
   double wall_s() const {
@@ -105,7 +110,7 @@ struct SimHost::Impl {
     fleet.step();
     ++tick;
     finished_total += node.publish_progress();
-    if (tick % state_every == 0) publish_states();
+    if (state_every > 0 && tick % state_every == 0) publish_states();
     publish_status(false);
     publish_clock();
   }

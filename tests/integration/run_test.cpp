@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <fstream>
 #include <thread>
 
@@ -162,6 +163,34 @@ TEST_F(Run, AShortRunsOnlySimStatusIsTakenNotDropped) {
   const auto j = r.last_json();
   EXPECT_TRUE(j["peak_rss_mb"]["sim"].is_number()) << j.dump();
   EXPECT_TRUE(j["rejected_samples"].empty()) << j["rejected_samples"].dump();
+}
+
+// --state-rate-hz 0: no periodic states, yet every robot's final state verifies it at its goal;
+// --stats FILE gains a row per run under one header.
+TEST_F(Run, NoStatesButTheFinalOnesAndStatsAppendedPerRun) {
+  const auto out = temp_file("run_no_states");
+  const auto stats = temp_file("run_stats.csv");
+  std::filesystem::remove_all(out);
+  std::filesystem::remove(stats);
+  for (int i = 0; i < 2; ++i) {
+    auto args = example_args(kRunNoStates, "3");
+    args.insert(args.begin(), "run");
+    args.insert(args.end(),
+                {"--state-rate-hz", "0", "--out", out.string(), "--stats", stats.string()});
+    const auto r = run_smart(args, 120s, "run_no_states");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(r.last_json()["robots_goal_unverified"].empty()) << r.out;
+  }
+  std::ifstream states(out / "states.csv");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(states, line);) ++rows;
+  EXPECT_LE(rows, 1u + 3 * 2) << "header and the final state of each robot";
+  const auto table = slurp(stats);
+  EXPECT_EQ(table.find("steps finish sim,"), 0u);
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 3) << table;
+  EXPECT_NE(table.find("makespan sim s"), std::string::npos);
+  std::filesystem::remove_all(out);
+  std::filesystem::remove(stats);
 }
 
 TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {

@@ -74,6 +74,7 @@ enum DomainId : int {
   kSecureWatch = 163,
   kRunShortStatus = 164,
   kExperiment = 165,  // and 166 (--jobs 2)
+  kRunNoStates = 167,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

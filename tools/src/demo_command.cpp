@@ -21,10 +21,12 @@ void register_demo_command(CLI::App& app, int& exit_code) {
                                   "Generate a warehouse, plan ~100 robots, execute the "
                                   "plan on the simulated fleet, print the summary");
   demo->add_option("--domain", o->domain, "DDS domain id")->capture_default_str();
-  demo->add_option("--robots", o->robots)->capture_default_str();
+  demo->add_option("--robots", o->robots, "robots in the generated scenario")
+      ->capture_default_str();
   demo->add_option("--out", o->out, "folder for the generated files and results")
       ->capture_default_str();
-  demo->add_option("--seed", o->seed)->capture_default_str();
+  demo->add_option("--seed", o->seed, "seed of the scenario and the planner (printed)")
+      ->capture_default_str();
   demo->callback([&exit_code, o] {
     install_stop_handlers();
     std::filesystem::create_directories(o->out);
@@ -36,7 +38,8 @@ void register_demo_command(CLI::App& app, int& exit_code) {
         << "demo: 1/4 generating a warehouse map (the MovingAI warehouse-10-20-10-2-1 layout)\n";
     GenMapOptionsPublic gm;
     if ((exit_code = generate_map(MapKind::kWarehouse, map, gm)) != 0) return;
-    std::cerr << "demo: 2/4 generating a scenario with " << o->robots << " robots\n";
+    std::cerr << "demo: 2/4 generating a scenario with " << o->robots << " robots (seed " << o->seed
+              << ")\n";
     if ((exit_code = generate_scen(map, o->robots, o->seed, scen)) != 0) return;
     std::cerr << "demo: 3/4 planning with the built-in prioritized planner\n";
     if ((exit_code = plan_instance(map, scen, o->robots, o->seed, 120, plan)) != 0) return;

@@ -115,28 +115,44 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   auto* gm = app.add_subcommand("gen-map", "Generate a MovingAI map (seeded)");
   add_enum_option(gm, "kind", *kind, kMapKindNames, "the kind of map")->required();
   gm->add_option("--out", *out, "the .map file to write")->required();
-  gm->add_option("--width", o->width)->check(CLI::Range(1, 4096))->capture_default_str();
-  gm->add_option("--height", o->height)->check(CLI::Range(1, 4096))->capture_default_str();
+  gm->add_option("--width", o->width, "map width in cells (columns)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  gm->add_option("--height", o->height, "map height in cells (rows)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
   gm->add_option("--obstacles", o->obstacles, "random: obstacle probability")
       ->check(finite_in(0.0, 0.9))
       ->capture_default_str();
   gm->add_option("--corridor", o->corridor, "maze: corridor width")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  gm->add_option("--seed", o->seed)->capture_default_str();
-  gm->add_option("--shelf-rows", o->warehouse.shelf_rows)->capture_default_str();
-  gm->add_option("--shelf-cols", o->warehouse.shelf_cols)->capture_default_str();
-  gm->add_option("--shelf-length", o->warehouse.shelf_length)->capture_default_str();
-  gm->add_option("--shelf-height", o->warehouse.shelf_height)->capture_default_str();
-  gm->add_option("--aisle", o->warehouse.aisle)->capture_default_str();
-  gm->add_option("--margin", o->warehouse.margin)->capture_default_str();
+  gm->add_option("--seed", o->seed, "random seed: the same seed makes the same map")
+      ->capture_default_str();
+  gm->add_option("--shelf-rows", o->warehouse.shelf_rows, "warehouse: rows of shelf blocks")
+      ->capture_default_str();
+  gm->add_option("--shelf-cols", o->warehouse.shelf_cols, "warehouse: columns of shelf blocks")
+      ->capture_default_str();
+  gm->add_option("--shelf-length", o->warehouse.shelf_length,
+                 "warehouse: cells per shelf block, along a row")
+      ->capture_default_str();
+  gm->add_option("--shelf-height", o->warehouse.shelf_height,
+                 "warehouse: cells per shelf block, across rows")
+      ->capture_default_str();
+  gm->add_option("--aisle", o->warehouse.aisle, "warehouse: aisle width in cells between blocks")
+      ->capture_default_str();
+  gm->add_option("--margin", o->warehouse.margin, "warehouse: free cells around the shelf area")
+      ->capture_default_str();
   gm->callback([&exit_code, o, kind, out] { exit_code = generate_map(*kind, *out, *o); });
 
   auto so = std::make_shared<PlanOptions>();
   auto* gs = app.add_subcommand("gen-scen", "Generate a MovingAI scenario for a map (seeded)");
-  gs->add_option("--map", so->map)->required();
-  gs->add_option("--agents", so->agents)->required()->check(CLI::Range(1ul, 1000000ul));
-  gs->add_option("--seed", so->seed)->capture_default_str();
+  gs->add_option("--map", so->map, "the MovingAI .map the agents stand on")->required();
+  gs->add_option("--agents", so->agents, "number of agents (distinct starts and goals)")
+      ->required()
+      ->check(CLI::Range(1ul, 1000000ul));
+  gs->add_option("--seed", so->seed, "random seed: the same seed makes the same scenario")
+      ->capture_default_str();
   gs->add_option("--out", so->out, "the .scen file to write")->required();
   gs->callback(
       [&exit_code, so] { exit_code = generate_scen(so->map, so->agents, so->seed, so->out); });
@@ -146,13 +162,13 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
       "plan",
       "Plan conflict-free paths (prioritized planning, space-time A*); writes a SMART "
       "timed plan (axis xy) that passes `smart check-plan`");
-  pl->add_option("--map", po->map)->required();
-  pl->add_option("--scen", po->scen)->required();
+  pl->add_option("--map", po->map, "MovingAI .map file")->required();
+  pl->add_option("--scen", po->scen, "MovingAI .scen file (starts and goals)")->required();
   pl->add_option("--agents", po->agents, "first N agents (default: all)")
       ->check(CLI::PositiveNumber);
   pl->add_option("--seed", po->seed, "seed for priority orders after a failure")
       ->capture_default_str();
-  pl->add_option("--time-limit-s", po->time_limit_s)
+  pl->add_option("--time-limit-s", po->time_limit_s, "give up after this many wall seconds")
       ->check(finite_in(0.001, 1e6))
       ->capture_default_str();
   pl->add_option("--out", po->out, "the plan file to write")->required();

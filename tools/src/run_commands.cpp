@@ -154,6 +154,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   if (sim && !sim->wait(std::chrono::seconds(5))) sim->terminate();
   const auto info = run_info(o, robot_file);
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
+  if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
   return result.success() ? kExitSuccess : kExitRunFailed;

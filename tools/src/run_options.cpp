@@ -47,8 +47,9 @@ void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
   add_world_options(cmd, o.world);
   add_enum_option(cmd, "--clock", o.clock, kClockNames,
                   "lockstep (bit-identical; default) or realtime");
-  cmd->add_option("--state-rate-hz", o.state_rate_hz, "robot state samples per sim second")
-      ->check(finite_in(0.001, 1000.0))
+  cmd->add_option("--state-rate-hz", o.state_rate_hz,
+                  "robot state samples per sim second (0: none but each robot's final state)")
+      ->check(finite_in(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the other side before failing")
       ->check(finite_in(0.1, 1e6))
@@ -71,7 +72,11 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
 void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
   add_common_run_options(cmd, o.sim);
   add_plan_options(cmd, o.plan, o.axis, o.format);
-  cmd->add_option("--out", o.out, "folder for summary.json, stats.csv, states.csv, robots.csv");
+  cmd->add_option("--out", o.out,
+                  "folder for summary.json, stats.csv, robots.csv, actions.csv, states.csv");
+  cmd->add_option("--stats", o.stats,
+                  "append this run's stats.csv row to FILE (its header when new): one table for "
+                  "a batch of runs");
   cmd->add_option("--window-cap", o.window_cap, "most actions sent to a robot at once")
       ->check(CLI::Range(1u, dds::kMaxWindowActions))
       ->capture_default_str();

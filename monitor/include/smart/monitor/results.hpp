@@ -2,8 +2,9 @@
 // - summary.json: success, robots, aet_s, makespan_s, sim_time_s, wall_time_s, sim_speed,
 //   collisions (robot-robot), wall_contacts, min_separation_m (closest approach between robot
 //   surfaces; negative = overlap), adg, plan, per-run flags and versions;
-// - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats), times
-//   on the sim clock;
+// - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats); its
+//   two wall-clock columns hold sim time here and are named so ("makespan sim s", "sum of
+//   finish times sim s");
 // - robots.csv: per robot finish time (empty: not finished, or before a resume), waiting time,
 //   stops, actions, motion lower bound (empty: limits unknown);
 // - actions.csv: per action (ADG order) robot, seq, type and the sim time it finished;
@@ -58,6 +59,11 @@ class StatesCsvWriter {
   std::ofstream out_;
   std::size_t rows_ = 0;
 };
+
+// Appends the run's stats.csv row to `file` (with the header when the file is new or empty): a
+// batch of runs in one table, as SMART users keep it. Throws std::runtime_error naming the file.
+void append_stats(const std::filesystem::path& file, const Instance& instance,
+                  const MonitorResult& result, const RunInfo& info);
 
 // Writes summary.json, stats.csv, robots.csv and actions.csv into `dir` (created if missing).
 // Throws std::runtime_error naming the file when it cannot be written.

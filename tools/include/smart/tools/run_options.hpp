@@ -48,6 +48,7 @@ struct SimCliOptions {
 struct MonitorCliOptions {
   SimCliOptions sim;  // `smart run` passes these on to its sim child
   std::string plan, out;
+  std::string stats;  // --stats FILE: a stats.csv row appended per run
   std::optional<grid::AxisOrder> axis;
   grid::PlanFormat format = grid::PlanFormat::kAuto;
   uint32_t window_cap = 32;
