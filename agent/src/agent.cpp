@@ -2,13 +2,23 @@
 
 #include <cmath>
 
+#include "smart/agent/uncertainty.hpp"
+
 namespace smart::agent {
+
+namespace {
+// The model this robot drives with: its top speed scaled by its speed factor.
+RobotModel with_speed_factor(RobotModel m, uint32_t robot) {
+  m.max_speed_mps *= speed_factor(m.uncertainty, robot);
+  return m;
+}
+}  // namespace
 
 Agent::Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose)
     : config_(std::move(config)),
       drive_(drive),
       pose_(pose),
-      controller_(config_.model, config_.period_s) {}
+      controller_(with_speed_factor(config_.model, config_.robot_id), config_.period_s) {}
 
 void Agent::configure() {
   if (state_ != LifecycleState::kUnconfigured) return;
@@ -41,6 +51,7 @@ void Agent::write(Twist t) {
 
 void Agent::step(double now_s) {
   if (state_ != LifecycleState::kActive) return;
+  now_s_ = now_s;
   pose_sample_ = pose_.read();
   const bool stale = !pose_sample_.valid || now_s - pose_sample_.stamp_s > config_.pose_timeout_s;
   if (stale) {
@@ -56,10 +67,27 @@ void Agent::step(double now_s) {
   write(update());
 }
 
+void Agent::maybe_stall() {
+  const auto seq = static_cast<int64_t>(queue_.front().seq);
+  if (seq == stall_checked_seq_) return;
+  const bool at_rest = command_.left_mps == 0 && command_.right_mps == 0;
+  stall_checked_seq_ = seq;
+  if (at_rest &&
+      stalls_before(config_.model.uncertainty, config_.robot_id, static_cast<uint32_t>(seq))) {
+    stall_until_s_ = now_s_ + config_.model.uncertainty.stall_s;
+    ++stalls_;
+  }
+}
+
 Twist Agent::update() {
   // A few actions may end within one period (a rotation already aligned, a passed half-move).
   for (int guard = 0; guard < 64; ++guard) {
     if (queue_.empty()) {
+      bool stopped = false;
+      return controller_.brake(&stopped);
+    }
+    maybe_stall();
+    if (stalled()) {
       bool stopped = false;
       return controller_.brake(&stopped);
     }

@@ -19,6 +19,25 @@ struct Field {
 
 }  // namespace
 
+namespace {
+// The `uncertainty:` section: every key optional, each within its range.
+void read_uncertainty(const std::string& source, const YAML::Node& u, Uncertainty& out) {
+  config::require_map(source, u, "uncertainty");
+  config::reject_unknown(source, u, "uncertainty",
+                         {"stall_probability", "stall_s", "speed_sigma", "slip_sigma", "seed"});
+  const auto read = [&](const char* key, double lo, double hi, double& v) {
+    if (u[key]) v = config::number(source, u[key], std::string("uncertainty.") + key, lo, hi);
+  };
+  read("stall_probability", 0.0, 1.0, out.stall_probability);
+  read("stall_s", 0.0, 3600.0, out.stall_s);
+  read("speed_sigma", 0.0, 1.0, out.speed_sigma);
+  read("slip_sigma", 0.0, 0.5, out.slip_sigma);
+  double seed = 0;
+  read("seed", 0.0, 9007199254740991.0, seed);
+  out.seed = static_cast<uint64_t>(seed);
+}
+}  // namespace
+
 RobotModel parse_robot_model(const std::string& text, const std::string& source) {
   const auto root = config::load(text, source);
   if (!root.IsMap()) throw ConfigError(source + ": a robot model must be a YAML mapping");
@@ -44,7 +63,7 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
       {"min_wheel_speed_mps", {0.0, 1.0, [](RobotModel& m) -> double& { return m.gains.min_wheel_speed_mps; }, false}},
   };
   // clang-format on
-  std::vector<std::string> known{"name", "description", "controller", "hardware"};
+  std::vector<std::string> known{"name", "description", "controller", "hardware", "uncertainty"};
   for (const auto& [k, _] : fields) known.push_back(k);
   config::reject_unknown(source, root, "(top level)", known);
 
@@ -67,6 +86,7 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
       if (c[key]) f.ref(m) = config::number(source, c[key], "controller." + key, f.min, f.max);
     }
   }
+  if (const auto u = root["uncertainty"]) read_uncertainty(source, u, m.uncertainty);
   return m;
 }
 

@@ -20,7 +20,8 @@ Fleet::Fleet(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
              const std::vector<agent::Pose2D>& starts, double pose_timeout_s)
     : world_(grid, model, config, starts) {
   for (uint32_t i = 0; i < starts.size(); ++i) {
-    backends_.push_back(std::make_unique<SimRobot>(world_, i));
+    backends_.push_back(
+        std::make_unique<SimRobot>(world_, i, model.uncertainty, config.control_period_s));
     agents_.push_back(std::make_unique<agent::Agent>(
         agent::AgentConfig{i, model, config.control_period_s, pose_timeout_s}, *backends_[i],
         *backends_[i]));

@@ -63,6 +63,46 @@ TEST(Agent, MergedRunReportsEveryHalfMoveInOrderWithoutStopping) {
   EXPECT_EQ(r.agent.executing_seq(), -1);
 }
 
+// Execution uncertainty: a certain stall holds a robot at rest for stall_s before its action;
+// a speed factor below 1 makes it slower; both are the same for the same seed.
+TEST(Agent, AStallHoldsTheRobotAtRestForStallSecondsThenItDrives) {
+  auto m = footbot();
+  m.uncertainty.stall_probability = 1.0;
+  m.uncertainty.stall_s = 2.0;
+  Drive r(m);
+  r.agent.activate();
+  ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 1)), ActionQueue::Result::kAccepted);
+  r.steps(19);  // 1.9 s: still stalled
+  EXPECT_TRUE(r.agent.stalled());
+  EXPECT_NEAR(r.robot.pose().x_m, 0.0, 1e-9);
+  r.steps(200);
+  EXPECT_EQ(r.agent.finished_seq(), 1);
+  EXPECT_EQ(r.agent.stalls(), 1u) << "a stall only from rest: the merged run does not stall";
+}
+
+TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
+  auto m = footbot();
+  m.max_speed_mps = 0.5;
+  m.max_accel_mps2 = 5.0;
+  m.max_decel_mps2 = 5.0;
+  const auto top = [&](uint64_t seed) {
+    auto mm = m;
+    mm.uncertainty.speed_sigma = 0.3;
+    mm.uncertainty.seed = seed;
+    Drive r(mm);
+    r.agent.activate();
+    (void)r.agent.on_window(1, east_half_moves(0, 9));
+    r.steps(40);
+    double v = 0;
+    for (double s : r.speed) v = std::max(v, s);
+    return v;
+  };
+  const double factor = speed_factor({0, 0, 0.3, 0, 3}, 7);
+  ASSERT_LT(factor, 0.999) << "seed 3 gives robot 7 a factor below 1";
+  EXPECT_NEAR(top(3), 0.5 * factor, 0.01);
+  EXPECT_DOUBLE_EQ(top(3), top(3));
+}
+
 TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
   Drive r(footbot());
   r.agent.activate();

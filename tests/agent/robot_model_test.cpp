@@ -47,5 +47,18 @@ TEST(RobotModelErrors, MissingUnknownAndOutOfRange) {
   EXPECT_THROW(load_robot_model("/nonexistent/robot.yaml"), config::ConfigError);
 }
 
+TEST(RobotModel, AnUncertaintySectionIsReadAndCheckedLikeTheRest) {
+  const auto m = parse_robot_model(
+      kValid + "uncertainty:\n  stall_probability: 0.05\n  stall_s: 2\n  seed: 7\n", "r.yaml");
+  EXPECT_DOUBLE_EQ(m.uncertainty.stall_probability, 0.05);
+  EXPECT_DOUBLE_EQ(m.uncertainty.stall_s, 2.0);
+  EXPECT_EQ(m.uncertainty.seed, 7u);
+  EXPECT_EQ(m.uncertainty.speed_sigma, 0.0);
+  EXPECT_FALSE(parse_robot_model(kValid, "r.yaml").uncertainty.any());
+  EXPECT_THAT(error_of(kValid + "uncertainty:\n  stall_probability: 2\n"),
+              HasSubstr("'uncertainty.stall_probability' is 2 but must be from 0"));
+  EXPECT_THAT(error_of(kValid + "uncertainty:\n  stalls: 1\n"), HasSubstr("unknown key 'stalls'"));
+}
+
 }  // namespace
 }  // namespace smart::agent

@@ -193,6 +193,29 @@ TEST_F(Run, NoStatesButTheFinalOnesAndStatsAppendedPerRun) {
   std::filesystem::remove(stats);
 }
 
+// Execution uncertainty in lock-step: the same seed gives the same summary, another seed another
+// AET, the run stays collision-free, and the summary records the model and its seed.
+TEST_F(Run, StallsAreSeededAndTheAdgKeepsTheRunCollisionFree) {
+  auto run = [&](const std::string& seed) {
+    auto args = example_args(kRunStalls, "20");
+    args.insert(args.begin(), "run");
+    args.insert(args.end(), {"--stall-probability", "0.3", "--stall-s", "4", "--speed-sigma", "0.1",
+                             "--seed", seed});
+    const auto r = run_smart(args, 120s, "run_stalls");
+    EXPECT_EQ(r.code, 0) << r.out;
+    return r.last_json();
+  };
+  const auto a = run("1"), b = run("1"), c = run("2");
+  EXPECT_TRUE(a["success"].get<bool>());
+  EXPECT_EQ(a["collisions"], 0);
+  EXPECT_EQ(c["collisions"], 0);
+  EXPECT_EQ(a["aet_s"], b["aet_s"]);
+  EXPECT_EQ(a["makespan_s"], b["makespan_s"]);
+  EXPECT_NE(a["aet_s"], c["aet_s"]);
+  EXPECT_EQ(a["uncertainty"]["seed"], 1);
+  EXPECT_DOUBLE_EQ(a["uncertainty"]["stall_probability"].get<double>(), 0.3);
+}
+
 TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {
   const auto r = run_smart({"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
                             (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",

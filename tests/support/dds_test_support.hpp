@@ -75,6 +75,7 @@ enum DomainId : int {
   kRunShortStatus = 164,
   kExperiment = 165,  // and 166 (--jobs 2)
   kRunNoStates = 167,
+  kRunStalls = 168,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

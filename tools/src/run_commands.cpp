@@ -44,7 +44,7 @@ int run_sim(const SimCliOptions& o) {
   const auto grid = grid::parse_map(grid::read_text_file(w.map, "map"), w.map);
   const auto scen = grid::parse_scen(grid::read_text_file(w.scen, "scenario"), w.scen, w.agents);
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
-  const auto model = agent::load_robot_model(find_config_file("robots", w.robot));
+  const auto model = run_robot_model(o);
   const auto profile = dds::find_qos_profile(o.dds.qos);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
   dds::Participant participant(domain, o.dds.run);
@@ -113,7 +113,9 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.scen = absolute_path(o.sim.world.scen);
   info.plan = absolute_path(o.plan);
   info.robot = robot_file;
-  const auto m = agent::load_robot_model(robot_file);
+  const auto m = run_robot_model(o.sim);
+  info.uncertainty = agent::to_json(m.uncertainty);
+  info.seed = m.uncertainty.seed;
   info.limits = monitor::MotionLimits{m.max_speed_mps, m.max_accel_mps2, m.max_decel_mps2,
                                       m.max_turn_rate_radps, m.max_angular_accel_radps2};
   info.qos = o.sim.dds.qos;

@@ -42,6 +42,35 @@ void add_plan_options(CLI::App* cmd, std::string& plan, std::optional<grid::Axis
   add_enum_option(cmd, "--format", format, kFormatNames, "plan format (default auto)");
 }
 
+namespace {
+// Execution uncertainty (agent/uncertainty.hpp), overriding the robot model's section.
+void add_uncertainty_options(CLI::App* cmd, SimCliOptions& o) {
+  cmd->add_option("--stall-probability", o.stall_probability,
+                  "chance that a robot at rest stalls before an action")
+      ->check(finite_in(0.0, 1.0));
+  cmd->add_option("--stall-s", o.stall_s, "how long a stall lasts (sim seconds)")
+      ->check(finite_in(0.0, 3600.0));
+  cmd->add_option("--speed-sigma", o.speed_sigma,
+                  "per-robot top-speed factor ~ N(1, sigma), clipped to [0.3, 1]")
+      ->check(finite_in(0.0, 1.0));
+  cmd->add_option("--slip-sigma", o.slip_sigma,
+                  "sim wheel slip: each wheel's speed times 1 + N(0, sigma) per control period")
+      ->check(finite_in(0.0, 0.5));
+  cmd->add_option("--seed", o.seed, "seed of the execution uncertainty (same seed, same run)");
+}
+}  // namespace
+
+agent::RobotModel run_robot_model(const SimCliOptions& o) {
+  auto m = agent::load_robot_model(find_config_file("robots", o.world.robot));
+  auto& u = m.uncertainty;
+  if (o.stall_probability) u.stall_probability = *o.stall_probability;
+  if (o.stall_s) u.stall_s = *o.stall_s;
+  if (o.speed_sigma) u.speed_sigma = *o.speed_sigma;
+  if (o.slip_sigma) u.slip_sigma = *o.slip_sigma;
+  if (o.seed) u.seed = *o.seed;
+  return m;
+}
+
 void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
   add_dds_options(cmd, o.dds);
   add_world_options(cmd, o.world);
@@ -51,6 +80,7 @@ void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
                   "robot state samples per sim second (0: none but each robot's final state)")
       ->check(finite_in(0.0, 1000.0))
       ->capture_default_str();
+  add_uncertainty_options(cmd, o);
   cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the other side before failing")
       ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
@@ -171,6 +201,13 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
   if (!o.ros_pose_robots.empty())
     argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
   if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});
+  for (const auto& [flag, v] : {std::pair{"--stall-probability", o.stall_probability},
+                                {"--stall-s", o.stall_s},
+                                {"--speed-sigma", o.speed_sigma},
+                                {"--slip-sigma", o.slip_sigma}}) {
+    if (v) argv.insert(argv.end(), {flag, exact(*v)});
+  }
+  if (o.seed) argv.insert(argv.end(), {"--seed", std::to_string(*o.seed)});
   return argv;
 }
 

@@ -7,6 +7,9 @@
 //   advance the queue and write wheel speeds. Consecutive moves along one heading are merged
 //   into one run driven without stopping, and each half-move is reported finished as the
 //   robot passes its end (the last one of the run when the robot has stopped on it).
+// - Execution uncertainty (model.uncertainty, uncertainty.hpp): the robot's top speed is scaled
+//   by its speed factor; an action that a robot at rest is about to start may first be held for
+//   stall_s (stalled() says so).
 // - progress: finished_seq() is cumulative (every seq <= it is done); executing_seq() is the
 //   action at the front of the queue, -1 when idle.
 #pragma once
@@ -53,6 +56,8 @@ class Agent {
   WheelSpeeds last_command() const { return command_; }
   bool pose_stale() const { return stale_; }
   uint64_t watchdog_stops() const { return watchdog_stops_; }
+  bool stalled() const { return stall_until_s_ > now_s_; }
+  uint64_t stalls() const { return stalls_; }
   // True when nothing is queued and the wheels are at rest: the backend may let it sleep.
   bool idle() const { return queue_.empty() && command_.left_mps == 0 && command_.right_mps == 0; }
 
@@ -60,6 +65,8 @@ class Agent {
   void write(Twist t);
   // Runs the front actions; returns the command for this period.
   Twist update();
+  // A new front action, from rest: maybe a stall (uncertainty.hpp).
+  void maybe_stall();
 
   AgentConfig config_;
   DriveBackend& drive_;
@@ -71,6 +78,10 @@ class Agent {
   WheelSpeeds command_;
   bool stale_ = false;
   uint64_t watchdog_stops_ = 0;
+  double now_s_ = 0;
+  double stall_until_s_ = -1;
+  int64_t stall_checked_seq_ = -1;  // the last action a stall was drawn for
+  uint64_t stalls_ = 0;
 };
 
 }  // namespace smart::agent

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "smart/agent/uncertainty.hpp"
+
 namespace smart::agent {
 
 struct ControllerGains {
@@ -32,6 +34,7 @@ struct RobotModel {
   double max_turn_rate_radps = 0.5236;  // 30°/s
   double max_angular_accel_radps2 = 2.0;
   ControllerGains gains;
+  Uncertainty uncertainty;  // optional `uncertainty:` section (uncertainty.hpp); none by default
   bool operator==(const RobotModel&) const = default;
 };
 

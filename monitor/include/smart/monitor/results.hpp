@@ -39,6 +39,8 @@ struct RunInfo {
   // goes into robots.csv and their AET / makespan and the finish-over-bound ratios into
   // summary.json ("motion_bound").
   std::optional<MotionLimits> limits;
+  // The execution uncertainty the run had (agent/uncertainty.hpp to_json); null: none given.
+  nlohmann::json uncertainty;
 };
 
 // The "adg" and "plan" objects shared by summary.json and `smart check-plan`.

@@ -43,7 +43,13 @@ struct SimCliOptions {
   int threads = 2;
   std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
   std::vector<uint32_t> ros_pose_robots;
+  // Execution uncertainty overrides of the robot model's `uncertainty:` section.
+  std::optional<double> stall_probability, stall_s, speed_sigma, slip_sigma;
+  std::optional<uint64_t> seed;
 };
+
+// The robot model named by --robot with the command line's uncertainty overrides applied.
+agent::RobotModel run_robot_model(const SimCliOptions& o);
 
 struct MonitorCliOptions {
   SimCliOptions sim;  // `smart run` passes these on to its sim child

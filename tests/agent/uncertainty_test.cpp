@@ -1,0 +1,53 @@
+// The seeded draws of execution uncertainty: deterministic, at the asked rates, within bounds.
+#include "smart/agent/uncertainty.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace smart::agent {
+namespace {
+
+TEST(Uncertainty, DrawsAreAFunctionOfTheirCoordinatesOnly) {
+  EXPECT_EQ(uniform01(5, 3, 1, 9), uniform01(5, 3, 1, 9));
+  EXPECT_NE(uniform01(5, 3, 1, 9), uniform01(6, 3, 1, 9));
+  EXPECT_NE(uniform01(5, 3, 1, 9), uniform01(5, 4, 1, 9));
+  EXPECT_NE(uniform01(5, 3, 1, 9), uniform01(5, 3, 1, 10));
+}
+
+TEST(Uncertainty, StallsHappenAtTheirProbabilityAndNormalsHaveUnitVariance) {
+  const Uncertainty u{0.05, 2.0, 0, 0, 11};
+  int stalls = 0;
+  double sum = 0, sq = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    stalls += stalls_before(u, static_cast<uint32_t>(i % 100), static_cast<uint32_t>(i / 100));
+    const double z = standard_normal(11, 1, 9, static_cast<uint64_t>(i));
+    sum += z, sq += z * z;
+  }
+  EXPECT_NEAR(double(stalls) / n, 0.05, 0.003);
+  EXPECT_NEAR(sum / n, 0.0, 0.01);
+  EXPECT_NEAR(sq / n, 1.0, 0.02);
+  EXPECT_FALSE(stalls_before({0.5, 0.0, 0, 0, 1}, 0, 0)) << "no stall without a duration";
+}
+
+TEST(Uncertainty, FactorsStayWithinTheirBoundsAndAreOneWithoutNoise) {
+  const Uncertainty none;
+  EXPECT_FALSE(none.any());
+  EXPECT_EQ(speed_factor(none, 4), 1.0);
+  EXPECT_EQ(slip_factor(none, 4, 100, 0), 1.0);
+  const Uncertainty wild{0, 0, 1.0, 0.5, 2};
+  EXPECT_TRUE(wild.any());
+  for (uint32_t r = 0; r < 1000; ++r) {
+    const double f = speed_factor(wild, r);
+    EXPECT_GE(f, 0.3);
+    EXPECT_LE(f, 1.0);
+    const double s = slip_factor(wild, r, r * 7, 1);
+    EXPECT_GE(s, 0.5);
+    EXPECT_LE(s, 1.5);
+  }
+  EXPECT_EQ(to_json({0.1, 2, 0, 0, 9})["seed"], 9);
+}
+
+}  // namespace
+}  // namespace smart::agent
