@@ -68,11 +68,17 @@ void Agent::step(double now_s) {
 }
 
 void Agent::maybe_stall() {
-  const auto seq = static_cast<int64_t>(queue_.front().seq);
+  const AgentAction& a = queue_.front();
+  const auto seq = static_cast<int64_t>(a.seq);
   if (seq == stall_checked_seq_) return;
-  const bool at_rest = command_.left_mps == 0 && command_.right_mps == 0;
+  // An action starts from rest unless it continues a run of moves along one heading (those are
+  // driven without stopping).
+  const bool continues_run = a.kind == ActionKind::kMove && last_front_move_ &&
+                             std::abs(last_front_heading_rad_ - a.heading_rad) < 1e-9;
   stall_checked_seq_ = seq;
-  if (at_rest &&
+  last_front_move_ = a.kind == ActionKind::kMove;
+  last_front_heading_rad_ = a.heading_rad;
+  if (!continues_run &&
       stalls_before(config_.model.uncertainty, config_.robot_id, static_cast<uint32_t>(seq))) {
     stall_until_s_ = now_s_ + config_.model.uncertainty.stall_s;
     ++stalls_;

@@ -60,10 +60,10 @@ TEST_F(Experiment, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
   EXPECT_EQ(r.last_json()["skipped"], 0);
   const auto rows = lines_of(dir_ / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 5u);
-  EXPECT_THAT(rows[0], ::testing::StartsWith("cell,map,scen,agents,robot,qos,repeat,"));
+  EXPECT_THAT(rows[0], ::testing::StartsWith("cell,map,scen,agents,robot,qos,uncertainty,repeat,"));
   EXPECT_THAT(rows[0], HasSubstr("aet_s"));
   EXPECT_THAT(rows[1], ::testing::StartsWith("0-random-32-32-20-random-1-n1-footbot-lan-r0,"));
-  EXPECT_THAT(rows[4], HasSubstr(",2,footbot,lan,1,"));
+  EXPECT_THAT(rows[4], HasSubstr(",2,footbot,lan,{},1,"));
   for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_THAT(rows[i], HasSubstr(",true,")) << i;
   EXPECT_EQ(lines_of(dir_ / "out" / "results.jsonl").size(), 4u);
   // Resume: a removed result is made again, the others are not touched.

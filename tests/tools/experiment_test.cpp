@@ -76,6 +76,34 @@ TEST(ExperimentSpec, MistakesNameTheFileLineAndField) {
   }
 }
 
+TEST(ExperimentSpec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
+  const auto s = parse_experiment_spec(
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\nrepeats: 2\n"
+      "uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]\n",
+      "u.yaml");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[3].key, "0-s-n5-footbot-lan-u1-r1");
+  EXPECT_EQ(uncertainty_flags(s, cells[0]), (std::vector<std::string>{"--seed", "0"}));
+  EXPECT_EQ(
+      uncertainty_flags(s, cells[3]),
+      (std::vector<std::string>{"--stall-probability", "0.05", "--stall-s", "2.0", "--seed", "1"}));
+  for (const auto& [yaml, expected] :
+       {std::pair{"uncertainty: [{stalls: 1}]\n", "u.yaml:6: uncertainty.stalls: unknown"},
+        {"uncertainty: [{stall_probability: 3}]\n", "uncertainty.stall_probability: a number"},
+        {"uncertainty: {}\n", "uncertainty: a list"}}) {
+    try {
+      (void)parse_experiment_spec(
+          std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n") +
+              yaml,
+          "u.yaml");
+      ADD_FAILURE() << yaml;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+    }
+  }
+}
+
 TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
   const auto s = parse_experiment_spec(kSpec, "spec.yaml");
   const auto cells = expand(s);
@@ -92,7 +120,8 @@ TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
   other.erase("aet_s");
   other["extra"] = "q\"uote";
   const auto csv = results_csv({row, other});
-  EXPECT_THAT(csv, ::testing::StartsWith("cell,map,scen,agents,robot,qos,repeat,plan,axis,clock,"
+  EXPECT_THAT(csv, ::testing::StartsWith("cell,map,scen,agents,robot,qos,uncertainty,repeat,plan,"
+                                         "axis,clock,"
                                          "adg.type2,aet_s,extra,machine,"));
   EXPECT_THAT(csv, HasSubstr(",7,12.5,,\"x, y\","));           // row 1: no extra
   EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));  // row 2: no AET

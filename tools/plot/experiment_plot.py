@@ -8,6 +8,8 @@ Figures (each only when the results vary along its axis):
   aet_makespan.{png,svg}   AET and makespan vs robots, mean +- sd over repeats (replicability)
   memory.{png,svg}         peak memory of monitor and sim vs robots
   success.{png,svg}        success rate vs robots, per robot model / QoS profile
+  stalls.{png,svg}         AET and success rate vs stall probability (when it varies), a line
+                           per fleet size / robot model
 Prints one JSON line naming the files written.
 """
 import csv
@@ -45,14 +47,14 @@ def varying(rows, keys):
     return [k for k in keys if len({r.get(k) for r in rows}) > 1]
 
 
-def grouped(rows, field, line_keys):
-    """line -> robots -> [values of field] (None skipped)."""
+def grouped(rows, field, line_keys, x_field="agents"):
+    """line -> x (robots by default) -> [values of field] (None skipped)."""
     out = defaultdict(lambda: defaultdict(list))
     for r in rows:
         v = number(r.get(field))
-        n = number(r.get("agents"))
-        if v is not None and n is not None:
-            out[series_key(r, line_keys) or "all"][int(n)].append(v)
+        x = number(r.get(x_field))
+        if v is not None and x is not None:
+            out[series_key(r, line_keys) or "all"][x].append(v)
     return out
 
 
@@ -62,10 +64,17 @@ def mean_sd(values):
     return m, sd
 
 
+def natural(text):
+    """Sort key: numbers by value ("5 / a" before "10 / a")."""
+    return [(0, float(p), "") if number(p) is not None else (1, 0.0, p)
+            for p in text.split(" / ")]
+
+
 def draw(ax, series, label_suffix=""):
-    for line, by_n in sorted(series.items()):
+    for line, by_n in sorted(series.items(), key=lambda kv: natural(kv[0])):
         ns = sorted(by_n)
         stats = [mean_sd(by_n[n]) for n in ns]
+        label = line
         ax.errorbar(ns, [m for m, _ in stats], yerr=[s for _, s in stats], marker="o", capsize=3,
                     label=line + label_suffix)
 
@@ -78,11 +87,11 @@ def save(fig, out_dir, name, written):
     plt.close(fig)
 
 
-def figure(out_dir, name, title, ylabel, panels, written, logx=True):
+def figure(out_dir, name, title, ylabel, panels, written, logx=True, xlabel="robots"):
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4), squeeze=False)
     for ax, (series, sub, suffix) in zip(axes[0], panels):
         draw(ax, series, suffix)
-        ax.set_xlabel("robots")
+        ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel if not sub else sub)
         if logx:
             ax.set_xscale("log")
@@ -115,6 +124,13 @@ def main():
     success = [dict(r, success_rate="1" if r.get("success") == "true" else "0") for r in rows]
     figure(out_dir, "success", "Success rate", "success rate",
            [(grouped(success, "success_rate", lines), None, "")], written, logx)
+    stall = "uncertainty.stall_probability"
+    if len({r.get(stall) for r in rows}) > 1:
+        by = ["agents"] + varying(rows, ["map", "robot", "qos"])
+        figure(out_dir, "stalls", "Execution uncertainty: stalls at action start", "",
+               [(grouped(rows, "aet_s", by, stall), "AET (s)", ""),
+                (grouped(success, "success_rate", by, stall), "success rate", "")],
+               written, False, "stall probability")
     print(json.dumps({"figures": written, "runs": len(rows)}))
 
 

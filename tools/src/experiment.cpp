@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 namespace smart::tools {
 
@@ -104,6 +105,47 @@ void read_instances(const YAML::Node& root, const std::string& src, ExperimentSp
   }
 }
 
+// Uncertainty keys and their ranges (agent/robot_model.cpp reads the same in robot YAML).
+const std::vector<std::tuple<std::string, double, double>> kUncertaintyKeys{
+    {"stall_probability", 0.0, 1.0},
+    {"stall_s", 0.0, 3600.0},
+    {"speed_sigma", 0.0, 1.0},
+    {"slip_sigma", 0.0, 0.5}};
+
+void read_uncertainty(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+  const auto list = root["uncertainty"];
+  if (!list) return;
+  if (!list.IsSequence() || list.size() == 0) {
+    fail(src, list, "uncertainty", "a list of settings, e.g. [{}, {stall_probability: 0.05}]");
+  }
+  s.uncertainty.clear();
+  for (const auto& entry : list) {
+    if (!entry.IsMap()) fail(src, entry, "uncertainty", "each entry is a mapping, e.g. {}");
+    json u = json::object();
+    for (const auto& kv : entry) {
+      const auto key = kv.first.as<std::string>();
+      const auto it = std::find_if(kUncertaintyKeys.begin(), kUncertaintyKeys.end(),
+                                   [&](const auto& k) { return std::get<0>(k) == key; });
+      if (it == kUncertaintyKeys.end()) {
+        fail(src, kv.first, "uncertainty." + key,
+             "unknown; use stall_probability, stall_s, speed_sigma, slip_sigma");
+      }
+      double v = -1;
+      try {
+        v = kv.second.as<double>();
+      } catch (const YAML::Exception&) {
+      }
+      if (!(v >= std::get<1>(*it) && v <= std::get<2>(*it))) {
+        fail(src, kv.second, "uncertainty." + key,
+             "a number from " + json(std::get<1>(*it)).dump() + " to " +
+                 json(std::get<2>(*it)).dump());
+      }
+      u[key] = v;
+    }
+    s.uncertainty.push_back(u);
+  }
+}
+
 void read_options(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
   s.robots = strings(root, "robots", src, {"footbot"});
   s.qos = strings(root, "qos", src, {"lan"});
@@ -122,13 +164,13 @@ void read_options(const YAML::Node& root, const std::string& src, ExperimentSpec
     s.repeats = static_cast<std::size_t>(k);
   }
   for (const auto& kv : root) {
-    static const std::set<std::string> known{"name",   "maps", "scens", "agents", "plan",
-                                             "robots", "qos",  "clock", "repeats"};
+    static const std::set<std::string> known{"name",   "maps", "scens", "agents",  "plan",
+                                             "robots", "qos",  "clock", "repeats", "uncertainty"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan, robots, qos, clock, "
-           "repeats");
+           "uncertainty, repeats");
     }
   }
 }
@@ -154,8 +196,8 @@ std::string csv_field(const json& v) {
   return q + "\"";
 }
 
-const std::vector<std::string> kParams{"cell", "map",    "scen", "agents", "robot",
-                                       "qos",  "repeat", "plan", "axis",   "clock"};
+const std::vector<std::string> kParams{"cell",        "map",    "scen", "agents", "robot", "qos",
+                                       "uncertainty", "repeat", "plan", "axis",   "clock"};
 }  // namespace
 
 ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& src) {
@@ -176,6 +218,7 @@ ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& s
   s.agents = counts(root, src);
   read_plan(root, src, s);
   read_options(root, src, s);
+  read_uncertainty(root, src, s);
   return s;
 }
 
@@ -185,17 +228,31 @@ std::vector<ExperimentCell> expand(const ExperimentSpec& s) {
     for (const auto n : s.agents) {
       for (const auto& robot : s.robots) {
         for (const auto& qos : s.qos) {
-          for (std::size_t r = 0; r < s.repeats; ++r) {
-            const auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
-                             std::to_string(n) + "-" + stem(robot) + "-" + stem(qos) + "-r" +
-                             std::to_string(r);
-            cells.push_back({i, n, robot, qos, r, key});
+          for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
+            for (std::size_t r = 0; r < s.repeats; ++r) {
+              auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
+                         std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+              if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+              key += "-r" + std::to_string(r);
+              cells.push_back({i, n, robot, qos, u, r, key});
+            }
           }
         }
       }
     }
   }
   return cells;
+}
+
+std::vector<std::string> uncertainty_flags(const ExperimentSpec& s, const ExperimentCell& c) {
+  std::vector<std::string> flags;
+  for (const auto& [key, v] : s.uncertainty.at(c.uncertainty).items()) {
+    std::string flag = "--" + key;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    flags.insert(flags.end(), {flag, v.dump()});
+  }
+  flags.insert(flags.end(), {"--seed", std::to_string(c.repeat)});
+  return flags;
 }
 
 json result_row(const ExperimentSpec& s, const ExperimentCell& c, const json& summary) {
@@ -205,6 +262,7 @@ json result_row(const ExperimentSpec& s, const ExperimentCell& c, const json& su
               {"agents", c.agents},
               {"robot", stem(c.robot)},
               {"qos", stem(c.qos)},
+              {"uncertainty", s.uncertainty.at(c.uncertainty).dump()},
               {"repeat", c.repeat},
               {"plan", s.plan_source == PlanSource::kFile      ? stem(s.plan)
                        : s.plan_source == PlanSource::kBuiltin ? "builtin"

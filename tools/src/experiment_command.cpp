@@ -115,31 +115,34 @@ fs::path make_plan(Experiment& e, std::size_t instance, std::size_t agents) {
 
 std::vector<std::string> run_argv(Experiment& e, const ExperimentCell& c, int domain) {
   const auto& [map, scen] = e.files[c.instance];
-  return {self_executable().string(),
-          "--log-level",
-          "error",
-          "run",
-          "--map",
-          map.string(),
-          "--scen",
-          scen.string(),
-          "--plan",
-          make_plan(e, c.instance, c.agents).string(),
-          "--axis",
-          e.spec.axis,
-          "--agents",
-          std::to_string(c.agents),
-          "--robot",
-          c.robot,
-          "--qos",
-          c.qos,
-          "--clock",
-          e.spec.clock,
-          "--domain",
-          std::to_string(domain),
-          "--out",
-          e.cell_dir(c).string(),
-          "--no-progress"};
+  std::vector<std::string> argv{self_executable().string(),
+                                "--log-level",
+                                "error",
+                                "run",
+                                "--map",
+                                map.string(),
+                                "--scen",
+                                scen.string(),
+                                "--plan",
+                                make_plan(e, c.instance, c.agents).string(),
+                                "--axis",
+                                e.spec.axis,
+                                "--agents",
+                                std::to_string(c.agents),
+                                "--robot",
+                                c.robot,
+                                "--qos",
+                                c.qos,
+                                "--clock",
+                                e.spec.clock,
+                                "--domain",
+                                std::to_string(domain),
+                                "--out",
+                                e.cell_dir(c).string(),
+                                "--no-progress"};
+  const auto flags = uncertainty_flags(e.spec, c);
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  return argv;
 }
 
 std::string eta_text(double s) {

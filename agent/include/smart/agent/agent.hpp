@@ -8,8 +8,8 @@
 //   into one run driven without stopping, and each half-move is reported finished as the
 //   robot passes its end (the last one of the run when the robot has stopped on it).
 // - Execution uncertainty (model.uncertainty, uncertainty.hpp): the robot's top speed is scaled
-//   by its speed factor; an action that a robot at rest is about to start may first be held for
-//   stall_s (stalled() says so).
+//   by its speed factor; an action that starts from rest (a rotation, or a move that does not
+//   continue a run of moves along its heading) may first be held for stall_s (stalled()).
 // - progress: finished_seq() is cumulative (every seq <= it is done); executing_seq() is the
 //   action at the front of the queue, -1 when idle.
 #pragma once
@@ -81,6 +81,8 @@ class Agent {
   double now_s_ = 0;
   double stall_until_s_ = -1;
   int64_t stall_checked_seq_ = -1;  // the last action a stall was drawn for
+  bool last_front_move_ = false;    // that action's kind and heading
+  double last_front_heading_rad_ = 0;
   uint64_t stalls_ = 0;
 };
 

@@ -2,8 +2,9 @@
 // uncertainty"), seeded and pure: every draw is a hash of (seed, robot, what, index), so a run
 // is the same for the same seed whatever order robots are stepped in or which process hosts
 // them, and changes with the seed.
-// - stall_probability / stall_s: when a robot at rest is about to start an action, with this
-//   probability it first stands still for stall_s (a blocked sensor, a human in the aisle).
+// - stall_probability / stall_s: when a robot is about to start an action from rest (a rotation,
+//   or a move that does not continue a run of moves), with this probability it first stands
+//   still for stall_s (a blocked sensor, a human in the aisle).
 // - speed_sigma: each robot's top speed is the model's times a factor drawn once per robot from
 //   N(1, speed_sigma), clipped to [0.3, 1] (robots are never faster than their limits).
 // - slip_sigma: in the sim, each wheel's commanded speed is scaled every control period by

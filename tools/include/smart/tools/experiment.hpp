@@ -13,7 +13,8 @@
 //   robots: [footbot, footbot-smart]  # default [footbot]
 //   qos: [lan, lossy-wifi]            # default [lan]
 //   clock: lockstep                   # or realtime
-//   repeats: 3                        # repeat r of every cell; default 1
+//   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
+//   repeats: 3                        # repeat r of every cell, seed r; default 1
 // Errors name the spec file, the line and the field, and say what to write instead.
 #pragma once
 
@@ -37,6 +38,9 @@ struct ExperimentSpec {
   std::vector<std::string> robots{"footbot"};
   std::vector<std::string> qos{"lan"};
   std::string clock = "lockstep";
+  // Execution uncertainty settings, each an object of stall_probability, stall_s, speed_sigma,
+  // slip_sigma (default: one empty object, the robot model's own).
+  std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
   std::size_t repeats = 1;
 };
 
@@ -47,12 +51,16 @@ struct ExperimentCell {
   std::size_t instance = 0;  // index into spec.instances
   std::size_t agents = 0;
   std::string robot, qos;
-  std::size_t repeat = 0;
-  std::string key;  // folder name, unique within the experiment, stable across runs
+  std::size_t uncertainty = 0;  // index into spec.uncertainty
+  std::size_t repeat = 0;       // also the uncertainty seed
+  std::string key;              // folder name, unique within the experiment, stable across runs
 };
 
-// The grid, in a fixed order (instance, agents, robot, qos, repeat).
+// The grid, in a fixed order (instance, agents, robot, qos, uncertainty, repeat).
 std::vector<ExperimentCell> expand(const ExperimentSpec& spec);
+
+// The `smart run` flags of a cell's uncertainty and seed.
+std::vector<std::string> uncertainty_flags(const ExperimentSpec& spec, const ExperimentCell& cell);
 
 // One results row: the cell's parameters, then every summary.json field, nested objects
 // flattened with dots ("adg.type2"), arrays as JSON text.
