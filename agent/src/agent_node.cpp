@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "smart/wire/convert.hpp"
@@ -41,7 +42,34 @@ bool AgentNode::from_monitor(const char* topic, dds_instance_handle_t from, bool
   return false;
 }
 
-std::size_t AgentNode::take_windows(const Accept& accept) {
+void AgentNode::set_link(const wire::LinkModel& link) {
+  to_host_.reset();
+  to_monitor_.reset();
+  if (link.to_host.active()) to_host_.emplace(link.to_host, link.seed, 0);
+  if (link.to_monitor.active()) to_monitor_.emplace(link.to_monitor, link.seed, 1);
+}
+
+namespace {
+// Keeps `v` in arrival order (a stable insert: equal times keep their sending order).
+template <class Delayed>
+void insert_by_arrival(std::vector<Delayed>& v, Delayed d) {
+  const auto at = std::upper_bound(v.begin(), v.end(), d.at_s,
+                                   [](double t, const Delayed& x) { return t < x.at_s; });
+  v.insert(at, std::move(d));
+}
+}  // namespace
+
+void AgentNode::deliver_windows(double now_s) {
+  std::size_t n = 0;
+  for (; n < windows_in_flight_.size() && windows_in_flight_[n].at_s <= now_s; ++n) {
+    auto& d = windows_in_flight_[n];
+    if (Hosted* h = hosted(d.robot)) h->agent->on_window(d.run_id, d.actions);
+  }
+  windows_in_flight_.erase(windows_in_flight_.begin(), windows_in_flight_.begin() + long(n));
+}
+
+std::size_t AgentNode::take_windows(const Accept& accept, double now_s) {
+  deliver_windows(now_s);
   return actions_.take_each_from([&](const smart_msg_ActionWindow& m, dds_instance_handle_t from) {
     if (!from_monitor("action", from, true)) return;
     if (auto why = wire::check_window(m, robots_, bounds_); !why.empty()) {
@@ -54,11 +82,55 @@ std::size_t AgentNode::take_windows(const Accept& accept) {
     const WindowInfo info{m.robot_id, m.run_id, m.total_actions,
                           n == 0 ? 0 : m.actions._buffer[n - 1].seq + 1, n == 0};
     if (accept && !accept(info)) return;
-    if (Hosted* h = hosted(m.robot_id)) h->agent->on_window(m.run_id, wire::actions_from_wire(m));
+    Hosted* h = hosted(m.robot_id);
+    if (h == nullptr) return;
+    if (!to_host_) {
+      h->agent->on_window(m.run_id, wire::actions_from_wire(m));
+      return;
+    }
+    insert_by_arrival(windows_in_flight_,
+                      Delayed{to_host_->arrival_s(m.robot_id, now_s), m.robot_id, m.run_id,
+                              wire::actions_from_wire(m)});
+    deliver_windows(now_s);  // a zero delay arrives now
   });
 }
 
-uint64_t AgentNode::publish_progress() {
+// Progress whose arrival time has come is written; returns the actions newly reported.
+uint64_t AgentNode::write_progress(double now_s) {
+  uint64_t newly_finished = 0;
+  std::size_t n = 0;
+  for (; n < progress_in_flight_.size() && progress_in_flight_[n].at_s <= now_s; ++n) {
+    const auto& d = progress_in_flight_[n];
+    Hosted& h = hosted_[d.robot];
+    if (d.finished > h.reported_finished) {
+      newly_finished += static_cast<uint64_t>(d.finished - h.reported_finished);
+      h.reported_finished = d.finished;  // progress is cumulative: an older one changes nothing
+    }
+    h.reported_executing = d.executing;
+    progress_.write(wire::progress(d.robot, d.run_id, d.finished, d.executing));
+  }
+  progress_in_flight_.erase(progress_in_flight_.begin(), progress_in_flight_.begin() + long(n));
+  return newly_finished;
+}
+
+uint64_t AgentNode::publish_progress(double now_s) {
+  if (to_monitor_) {
+    queued_.resize(hosted_.size(), {-1, -1});
+    for (uint32_t robot = 0; robot < hosted_.size(); ++robot) {
+      const Hosted& h = hosted_[robot];
+      if (h.agent == nullptr || h.agent->run_id() == 0) continue;
+      const std::pair now{h.agent->finished_seq(), h.agent->executing_seq()};
+      if (now == queued_[robot]) continue;
+      queued_[robot] = now;
+      insert_by_arrival(progress_in_flight_, Delayed{to_monitor_->arrival_s(robot, now_s),
+                                                     robot,
+                                                     h.agent->run_id(),
+                                                     {},
+                                                     now.first,
+                                                     now.second});
+    }
+    return write_progress(now_s);
+  }
   uint64_t newly_finished = 0;
   for (uint32_t robot = 0; robot < hosted_.size(); ++robot) {
     Hosted& h = hosted_[robot];

@@ -103,6 +103,42 @@ void parse_transport(const std::string& source, const YAML::Node& node, Transpor
   }
 }
 
+void parse_link_direction(const std::string& source, const YAML::Node& node,
+                          const std::string& path, wire::LinkDirection& d) {
+  const auto number = [&](const char* key, double hi, double& v) {
+    if (!node[key]) return;
+    v = scalar<double>(source, node[key], path + "." + key, "a number");
+    if (!(v >= 0 && v <= hi)) {
+      fail(source, node[key], "'" + path + "." + key + "' must be from 0 to " + std::to_string(hi));
+    }
+  };
+  number("delay_ms", 60000, d.delay_ms);
+  number("jitter_ms", 60000, d.jitter_ms);
+  number("loss_per_mille", 1000, d.loss_per_mille);
+  number("retransmit_ms", 60000, d.retransmit_ms);
+  if (node["reorder"])
+    d.reorder = scalar<bool>(source, node["reorder"], path + ".reorder", "true or false");
+}
+
+// link: {seed, delay_ms, jitter_ms, loss_per_mille, retransmit_ms, reorder (both directions),
+// to_host: {...}, to_monitor: {...} (either direction's own, over the shared ones)}.
+void parse_link(const std::string& source, const YAML::Node& node, wire::LinkModel& l) {
+  require_map(source, node, "link");
+  reject_unknown(source, node, "link",
+                 {"seed", "delay_ms", "jitter_ms", "loss_per_mille", "retransmit_ms", "reorder",
+                  "to_host", "to_monitor"});
+  if (node["seed"]) l.seed = scalar<uint64_t>(source, node["seed"], "link.seed", "a whole number");
+  parse_link_direction(source, node, "link", l.to_host);
+  l.to_monitor = l.to_host;
+  for (const auto& [key, d] : {std::pair{"to_host", &l.to_host}, {"to_monitor", &l.to_monitor}}) {
+    if (!node[key]) continue;
+    require_map(source, node[key], std::string("link.") + key);
+    reject_unknown(source, node[key], std::string("link.") + key,
+                   {"delay_ms", "jitter_ms", "loss_per_mille", "retransmit_ms", "reorder"});
+    parse_link_direction(source, node[key], std::string("link.") + key, *d);
+  }
+}
+
 }  // namespace
 
 const TopicQos& QosProfile::topic(TopicRole role) const {
@@ -158,7 +194,8 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
                       "transport, topics");
   }
   QosProfile p = default_qos_profile();
-  reject_unknown(source, root, "(top level)", {"name", "description", "transport", "topics"});
+  reject_unknown(source, root, "(top level)",
+                 {"name", "description", "transport", "topics", "link"});
   if (!root["name"]) {
     throw ConfigError(source + ": missing key 'name'; add e.g. 'name: lan' at the top");
   }
@@ -167,6 +204,7 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
     p.description = scalar<std::string>(source, root["description"], "description", "text");
   }
   if (root["transport"]) parse_transport(source, root["transport"], p.transport);
+  if (root["link"]) parse_link(source, root["link"], p.link);
   if (root["topics"]) {
     const auto topics = root["topics"];
     require_map(source, topics, "topics");

@@ -212,6 +212,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   if (!info.machine.empty()) j["machine"] = info.machine;
   if (info.limits) j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
+  if (!info.link.is_null()) j["link"] = info.link;
   if (r.resumed) {
     j["resumed"] = {{"at_s", r.resumed_at_s},
                     {"finished_before", r.finished_before_resume},

@@ -54,6 +54,7 @@ struct SimHost::Impl {
         states_in(p, qos),
         handshake(o.timeout_s, dds::kClockReannounceS),
         windows(starts.size()) {
+    node.set_link(qos.link);  // windows and progress travel over the modelled link
     for (const uint32_t e : o.external_robots) fleet.set_external(e);
     for (uint32_t i = 0; i < fleet.robots(); ++i) {
       if (!fleet.external(i)) node.host(fleet.agent(i));
@@ -89,7 +90,8 @@ struct SimHost::Impl {
   }
 
   void read_windows() {
-    node.take_windows([this](const agent::WindowInfo& w) { return accept_window(w); });
+    node.take_windows([this](const agent::WindowInfo& w) { return accept_window(w); },
+                      fleet.world().time_s());
   }
 
   void track_external_robots() {
@@ -109,7 +111,7 @@ struct SimHost::Impl {
     track_external_robots();
     fleet.step();
     ++tick;
-    finished_total += node.publish_progress();
+    finished_total += node.publish_progress(fleet.world().time_s());
     if (state_every > 0 && tick % state_every == 0) publish_states();
     publish_status(false);
     publish_clock();

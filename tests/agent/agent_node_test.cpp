@@ -118,6 +118,43 @@ TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
   EXPECT_EQ(got[0].executing_seq, -1);
 }
 
+// The link model: a window delayed d reaches its agent d later on the caller's clock (accept
+// sees it on receipt); progress delayed d is written, and counted, d later.
+TEST(AgentNode, OverAModelledLinkWindowsAndProgressArriveTheDelayLater) {
+  Rig rig(test::kAgentNodeLink);
+  wire::LinkModel link;
+  link.to_host.delay_ms = 500;
+  link.to_monitor.delay_ms = 300;
+  rig.node.set_link(link);
+  test::FakeRobot body(0.3);
+  Agent a({1, footbot(), 0.1, 0.5}, body, body);
+  a.activate();
+  rig.node.host(a);
+  rig.send(1, 9, {rotate_step(0, 0.0)});
+  std::size_t seen = 0;
+  ASSERT_TRUE(eventually([&] {
+    rig.node.take_windows([&](const WindowInfo&) { return ++seen > 0; }, 10.0);  // sent at 10 s
+    return seen > 0;
+  }));
+  EXPECT_EQ(a.run_id(), 0u) << "in flight";
+  rig.node.take_windows({}, 10.49);
+  EXPECT_EQ(a.run_id(), 0u) << "still in flight at 10.49 s";
+  rig.node.take_windows({}, 10.5);
+  ASSERT_EQ(a.run_id(), 9u) << "arrived at 10.5 s";
+  body.freeze_stamp_at(10.5);  // a fresh pose at 10.5 s
+  a.step(10.5);                // facing 0 already: done
+  ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
+  EXPECT_EQ(rig.node.publish_progress(10.5), 0u) << "progress in flight";
+  EXPECT_EQ(rig.node.publish_progress(10.79), 0u);
+  EXPECT_EQ(rig.node.publish_progress(10.801), 1u) << "written and counted at 10.8 s";
+  std::vector<smart_msg_Progress> got;
+  ASSERT_TRUE(eventually([&] {
+    rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
+    return !got.empty();
+  }));
+  EXPECT_EQ(got[0].finished_seq, 0);
+}
+
 TEST(AgentNode, RepublishRepeatsTheLastReportedProgressForARestartedAgentsSake) {
   Rig rig(test::kAgentNodeRepublish);
   test::FakeRobot body(0.3);

@@ -40,6 +40,25 @@ TEST(QosProfile, ShippedProfilesLoadWithTheirDocumentedSettings) {
   EXPECT_EQ(lossy.topic(TopicRole::kState).reliability, Reliability::kBestEffort);
 }
 
+TEST(QosProfile, TheLinkSectionSetsBothDirectionsAndEachItsOwn) {
+  const auto p = parse_qos_profile(
+      "name: l\nlink:\n  seed: 3\n  delay_ms: 40\n  jitter_ms: 10\n"
+      "  to_monitor:\n    delay_ms: 80\n    reorder: true\n",
+      "l.yaml");
+  EXPECT_EQ(p.link.seed, 3u);
+  EXPECT_DOUBLE_EQ(p.link.to_host.delay_ms, 40);
+  EXPECT_DOUBLE_EQ(p.link.to_monitor.delay_ms, 80);
+  EXPECT_DOUBLE_EQ(p.link.to_monitor.jitter_ms, 10);  // shared, not overridden
+  EXPECT_TRUE(p.link.to_monitor.reorder);
+  EXPECT_FALSE(p.link.to_host.reorder);
+  EXPECT_FALSE(find_qos_profile("lan").link.active());
+  EXPECT_TRUE(find_qos_profile("wifi").link.active());
+  EXPECT_DOUBLE_EQ(find_qos_profile("lossy-wifi").link.to_host.loss_per_mille, 200);
+  EXPECT_THAT(error_of("name: l\nlink:\n  delay_ms: -5\n"),
+              HasSubstr("'link.delay_ms' must be from 0"));
+  EXPECT_THAT(error_of("name: l\nlink:\n  to_host:\n    lag_ms: 5\n"), HasSubstr("lag_ms"));
+}
+
 TEST(QosProfile, SimStatusHasARoleOfItsOwn) {
   for (const char* name : {"lan", "wifi", "lossy-wifi"}) {
     const auto p = find_qos_profile(name);

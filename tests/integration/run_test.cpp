@@ -216,6 +216,29 @@ TEST_F(Run, StallsAreSeededAndTheAdgKeepsTheRunCollisionFree) {
   EXPECT_DOUBLE_EQ(a["uncertainty"]["stall_probability"].get<double>(), 0.3);
 }
 
+// The link model in lock-step: 500 ms +- 200 ms each way; the same seed gives the same summary,
+// another seed another AET, no collision, and the summary records the link.
+TEST_F(Run, ADelayedLinkIsSeededAndTheRunStaysCollisionFree) {
+  auto run = [&](const std::string& seed) {
+    auto args = example_args(kRunLink, "20");
+    args.insert(args.begin(), "run");
+    args.insert(args.end(),
+                {"--link-delay-ms", "500", "--link-jitter-ms", "200", "--link-seed", seed});
+    const auto r = run_smart(args, 120s, "run_link");
+    EXPECT_EQ(r.code, 0) << r.out;
+    return r.last_json();
+  };
+  const auto a = run("1"), b = run("1"), c = run("2");
+  EXPECT_TRUE(a["success"].get<bool>());
+  EXPECT_EQ(a["collisions"], 0);
+  EXPECT_EQ(c["collisions"], 0);
+  EXPECT_EQ(a["aet_s"], b["aet_s"]);
+  EXPECT_EQ(a["makespan_s"], b["makespan_s"]);
+  EXPECT_NE(a["aet_s"], c["aet_s"]);
+  EXPECT_DOUBLE_EQ(a["link"]["to_host"]["delay_ms"].get<double>(), 500);
+  EXPECT_EQ(a["link"]["seed"], 1);
+}
+
 TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {
   const auto r = run_smart({"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
                             (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",

@@ -76,6 +76,8 @@ enum DomainId : int {
   kExperiment = 165,  // and 166 (--jobs 2)
   kRunNoStates = 167,
   kRunStalls = 168,
+  kAgentNodeLink = 169,
+  kRunLink = 170,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

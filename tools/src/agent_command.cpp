@@ -57,13 +57,13 @@ bool control_loop(agent::Agent& robot, agent::AgentNode& node, double period_s) 
   auto next = std::chrono::steady_clock::now();
   double repeated_s = steady_s();
   while (!g_stop_requested.load()) {
-    node.take_windows();
+    node.take_windows({}, steady_s());
     if (auto c = node.take_monitor_clock(); c && c->stop && c->run_id == robot.run_id()) {
       return true;
     }
     const double now = steady_s();
     robot.step(now);
-    node.publish_progress();
+    node.publish_progress(now);
     if (now - repeated_s >= 1.0) {
       node.republish_progress();
       repeated_s = now;
@@ -139,7 +139,7 @@ int run_agent(const AgentOptions& o) {
   const auto model = agent::load_robot_model(path);
   auto hwc = hw::parse_jetbot_config(config::read_file(path, "robot"), path);
   if (!o.i2c.empty()) hwc.i2c_device = o.i2c;
-  const auto profile = dds::find_qos_profile(o.dds.qos);
+  const auto profile = run_qos_profile(o.dds);
   dds::Domain domain(o.dds.domain,
                      domain_config(o.dds, profile, "agent-" + std::to_string(o.robot_id)));
   dds::Participant participant(domain, o.dds.run);
@@ -151,6 +151,7 @@ int run_agent(const AgentOptions& o) {
   hw::SignalStop signal_stop(*bus, hwc.address, &g_stop_requested);
   agent::Agent robot({o.robot_id, model, o.period_s, 0.5}, drive, *pose.source);
   agent::AgentNode node(participant, profile);
+  node.set_link(profile.link);
   node.host(robot);
   robot.configure();
   robot.activate();

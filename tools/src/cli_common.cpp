@@ -55,6 +55,15 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   cmd->add_option("--identity", o.identity,
                   "identity in the --security keystore (default: this command's role: monitor, "
                   "sim, agent-<robot id>)");
+  cmd->add_option("--link-delay-ms", o.link_delay_ms,
+                  "link model: delay of windows and progress, each way (over the profile's)")
+      ->check(finite_in(0, 60000));
+  cmd->add_option("--link-jitter-ms", o.link_jitter_ms, "link model: +- uniform jitter")
+      ->check(finite_in(0, 60000));
+  cmd->add_option("--link-loss-per-mille", o.link_loss_per_mille,
+                  "link model: lost samples per 1000, each repaired by a retransmission later")
+      ->check(finite_in(0, 1000));
+  cmd->add_option("--link-seed", o.link_seed, "link model seed (same seed, same run)");
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
@@ -79,7 +88,24 @@ std::vector<std::string> dds_argv(const DdsOptions& o) {
                                 "--network", enum_name(o.network, kNetworkNames),
                                 "--run",     o.run};
   if (!o.security.empty()) argv.insert(argv.end(), {"--security", o.security});
+  for (const auto& [flag, v] : {std::pair{"--link-delay-ms", o.link_delay_ms},
+                                {"--link-jitter-ms", o.link_jitter_ms},
+                                {"--link-loss-per-mille", o.link_loss_per_mille}}) {
+    if (v) argv.insert(argv.end(), {flag, exact(*v)});
+  }
+  if (o.link_seed) argv.insert(argv.end(), {"--link-seed", std::to_string(*o.link_seed)});
   return argv;
+}
+
+dds::QosProfile run_qos_profile(const DdsOptions& o) {
+  auto p = dds::find_qos_profile(o.qos);
+  for (auto* d : {&p.link.to_host, &p.link.to_monitor}) {
+    if (o.link_delay_ms) d->delay_ms = *o.link_delay_ms;
+    if (o.link_jitter_ms) d->jitter_ms = *o.link_jitter_ms;
+    if (o.link_loss_per_mille) d->loss_per_mille = *o.link_loss_per_mille;
+  }
+  if (o.link_seed) p.link.seed = *o.link_seed;
+  return p;
 }
 
 std::string fresh_run_name() {

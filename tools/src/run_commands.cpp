@@ -45,7 +45,7 @@ int run_sim(const SimCliOptions& o) {
   const auto scen = grid::parse_scen(grid::read_text_file(w.scen, "scenario"), w.scen, w.agents);
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
   const auto model = run_robot_model(o);
-  const auto profile = dds::find_qos_profile(o.dds.qos);
+  const auto profile = run_qos_profile(o.dds);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
   dds::Participant participant(domain, o.dds.run);
   std::vector<grid::Cell> starts;
@@ -115,6 +115,7 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.robot = robot_file;
   const auto m = run_robot_model(o.sim);
   info.uncertainty = agent::to_json(m.uncertainty);
+  info.link = wire::to_json(run_qos_profile(o.sim.dds).link);
   info.seed = m.uncertainty.seed;
   info.limits = monitor::MotionLimits{m.max_speed_mps, m.max_accel_mps2, m.max_decel_mps2,
                                       m.max_turn_rate_radps, m.max_angular_accel_radps2};
@@ -135,7 +136,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   check_ros_pose_robots(o.sim.ros_pose_robots, in.plan.paths.size());
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
   (void)agent::load_robot_model(robot_file);  // fail early on a bad model
-  const auto profile = dds::find_qos_profile(o.sim.dds.qos);
+  const auto profile = run_qos_profile(o.sim.dds);
   std::optional<ChildProcess> sim;
   if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));

@@ -14,6 +14,11 @@
 //   monitor's writer"); DDS exclusive ownership delivers the strongest monitor's windows, and
 //   clock answers count only from the participant whose windows were taken last (or, before any
 //   window, the first monitor heard).
+// - The link model (set_link, wire/link.hpp): a received window reaches its agent only at its
+//   arrival time, and progress is written only at its arrival time; `now_s` is the caller's
+//   clock (the sim host's sim time, an agent's wall time). Windows still count for `accept` on
+//   receipt, and publish_progress() counts actions when their progress is written, so the
+//   lock-step handshake sees exactly what travelled.
 // Edge code: the agent core never sees DDS types (wire/convert.hpp converts).
 #pragma once
 
@@ -26,6 +31,7 @@
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/wire.hpp"
+#include "smart/wire/link.hpp"
 #include "smart/wire/lockstep.hpp"
 #include "smart/wire/validate.hpp"
 
@@ -49,9 +55,12 @@ class AgentNode {
   // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node.
   void host(Agent& agent);
 
+  // Turns the link model on (off by default: everything passes at once).
+  void set_link(const wire::LinkModel& link);
+
   using Accept = std::function<bool(const WindowInfo&)>;
-  std::size_t take_windows(const Accept& accept = {});
-  uint64_t publish_progress();
+  std::size_t take_windows(const Accept& accept = {}, double now_s = 0);
+  uint64_t publish_progress(double now_s = 0);
   // Real time: writes every hosted robot's last reported progress again. Progress is cumulative,
   // so a repeat is harmless, and it reaches a monitor that dropped the first copy (a restarted
   // agent's writer owns its robot's instance only once the dead one's lease ran out).
@@ -73,9 +82,22 @@ class AgentNode {
   Hosted* hosted(uint32_t robot);
 
   bool from_monitor(const char* topic, dds_instance_handle_t from, bool window);
+  void deliver_windows(double now_s);
+  uint64_t write_progress(double now_s);
 
-  std::vector<Hosted> hosted_;         // by robot id; agent == nullptr: not hosted here
-  std::optional<dds_guid_t> monitor_;  // participant of the last accepted window
+  struct Delayed {
+    double at_s;
+    uint32_t robot;
+    uint64_t run_id;
+    std::vector<AgentAction> actions;       // a window
+    int64_t finished = -1, executing = -1;  // progress
+  };
+
+  std::vector<Hosted> hosted_;  // by robot id; agent == nullptr: not hosted here
+  std::optional<wire::LinkChannel> to_host_, to_monitor_;
+  std::vector<Delayed> windows_in_flight_, progress_in_flight_;  // in arrival order
+  std::vector<std::pair<int64_t, int64_t>> queued_;  // per robot: last progress sent on the link
+  std::optional<dds_guid_t> monitor_;                // participant of the last accepted window
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;

@@ -11,6 +11,7 @@
 
 #include "smart/dds/domain.hpp"
 #include "smart/dds/qos.hpp"
+#include "smart/wire/link.hpp"
 
 namespace smart::dds {
 
@@ -26,6 +27,9 @@ struct QosProfile {
   TopicQos state;
   TopicQos clock;
   TopicQos status;  // SimStatus: the latest status of the sim host
+  // `link:` section: delay, jitter and loss of windows and progress (smart/wire/link.hpp),
+  // applied by the hosts' AgentNode; none by default.
+  wire::LinkModel link;
 
   const TopicQos& topic(TopicRole role) const;
   // A DomainConfig (loopback by default) carrying this profile's transport settings.

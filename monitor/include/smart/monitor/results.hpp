@@ -41,6 +41,7 @@ struct RunInfo {
   std::optional<MotionLimits> limits;
   // The execution uncertainty the run had (agent/uncertainty.hpp to_json); null: none given.
   nlohmann::json uncertainty;
+  nlohmann::json link;  // the link model (smart/wire/link.hpp to_json); null: not known
 };
 
 // The "adg" and "plan" objects shared by summary.json and `smart check-plan`.

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,7 +35,13 @@ struct DdsOptions {
   bool run_given = false;                   // --run / SMART_RUN was set
   std::string security;  // keystore of `smart security init` (empty: no DDS Security)
   std::string identity;  // identity in the keystore (empty: the command's own role)
+  // Link model overrides (smart/wire/link.hpp), both directions, over the profile's `link:`.
+  std::optional<double> link_delay_ms, link_jitter_ms, link_loss_per_mille;
+  std::optional<uint64_t> link_seed;
 };
+
+// The --qos profile with the command line's link overrides applied.
+dds::QosProfile run_qos_profile(const DdsOptions& options);
 
 // A named value of an enum option, as shown in --help and accepted on the command line.
 template <class E>
