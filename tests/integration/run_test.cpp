@@ -77,7 +77,7 @@ TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
   const auto disk = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_EQ(disk["aet_s"], j["aet_s"]);
   const auto stats = slurp(out / "stats.csv");
-  EXPECT_THAT(stats, HasSubstr("steps finish sim,sum of steps finish sim,time finish sim"));
+  EXPECT_THAT(stats, HasSubstr("steps finish sim,sum of steps finish sim,makespan sim s"));
   EXPECT_THAT(stats, HasSubstr(",50\n"));
   const auto states = slurp(out / "states.csv");
   EXPECT_THAT(states, HasSubstr("t_s,robot,x_m,y_m,yaw_rad"));

@@ -40,13 +40,14 @@ TEST(RunOptions, AnUnknownEnumNameIsAParseErrorListingTheNames) {
 }
 
 // Regressions from fuzzing the flags: `--cell-m nan` passed CLI::Range and crashed Simbody
-// later; NaN and negative timeouts and rates were accepted; `--agents -5` wrapped.
+// later; NaN and negative timeouts and rates were accepted; `--agents -5` wrapped. (A state
+// rate of 0 is allowed since issue 13: only the final states.)
 TEST(RunOptions, NonFiniteNegativeAndZeroValuesAreParseErrors) {
   for (const std::vector<std::string>& bad : {std::vector<std::string>{"--cell-m", "nan"},
                                               {"--cell-m", "inf"},
                                               {"--timeout-s", "-1"},
                                               {"--timeout-s", "nan"},
-                                              {"--state-rate-hz", "0"},
+                                              {"--state-rate-hz", "-1"},
                                               {"--agents", "-5"},
                                               {"--agents", "0"}}) {
     SimCliOptions o;

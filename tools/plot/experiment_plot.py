@@ -10,6 +10,8 @@ Figures (each only when the results vary along its axis):
   success.{png,svg}        success rate vs robots, per robot model / QoS profile
   stalls.{png,svg}         AET and success rate vs stall probability (when it varies), a line
                            per fleet size / robot model
+  link.{png,svg}           AET and success rate vs the link's delay to the hosts (when it
+                           varies: QoS profiles with different link sections)
 Prints one JSON line naming the files written.
 """
 import csv
@@ -131,6 +133,13 @@ def main():
                [(grouped(rows, "aet_s", by, stall), "AET (s)", ""),
                 (grouped(success, "success_rate", by, stall), "success rate", "")],
                written, False, "stall probability")
+    delay = "link.to_host.delay_ms"
+    if len({r.get(delay) for r in rows}) > 1:
+        by = ["agents"] + varying(rows, ["map", "robot"])
+        figure(out_dir, "link", "Link delay (monitor to hosts)", "",
+               [(grouped(rows, "aet_s", by, delay), "AET (s)", ""),
+                (grouped(success, "success_rate", by, delay), "success rate", "")],
+               written, False, "link delay (ms)")
     print(json.dumps({"figures": written, "runs": len(rows)}))
 
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "smart/agent/agent.hpp"
@@ -35,7 +36,7 @@ struct AgentOptions {
   std::string i2c;  // default: the robot file's hardware.i2c_device
   PoseKind pose = PoseKind::kVicon;
   std::string vicon_bind = "0.0.0.0";
-  uint16_t vicon_port = 51001;
+  std::optional<uint16_t> vicon_port;  // default: 51001, or any free port with --i2c emulated
   std::string vicon_object;  // default: jetbot<id>
   std::string ros_topic;
   double pose_max_age_s = 0.1;
@@ -95,7 +96,10 @@ Pose open_pose(const AgentOptions& o, const dds::Participant& participant) {
   transform.x_offset_m = o.pose_offset_m.at(0);
   transform.y_offset_m = o.pose_offset_m.at(1);
   if (o.pose == PoseKind::kVicon) {
-    p.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, transform,
+    // An emulated JetBot streams to this process's own receiver: any free port, so several
+    // emulated agents on one host never fight over the Vicon port.
+    const uint16_t port = o.vicon_port.value_or(o.i2c == "emulated" ? 0 : 51001);
+    p.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, port, transform,
                                                   std::vector<std::string>{p.object}, steady_s);
     p.source =
         std::make_unique<hw::ViconPoseSource>(*p.vicon, p.object, o.pose_max_age_s, steady_s);
@@ -190,8 +194,9 @@ void register_agent_command(CLI::App& app, int& exit_code) {
   add_enum_option(cmd, "--pose", o->pose, kPoseNames,
                   "vicon (Tracker UDP stream; default) or ros (PoseStamped topic)");
   cmd->add_option("--vicon-bind", o->vicon_bind)->capture_default_str();
-  cmd->add_option("--vicon-port", o->vicon_port, "UDP port (0: any free port)")
-      ->capture_default_str();
+  cmd->add_option("--vicon-port", o->vicon_port,
+                  "UDP port of the Vicon stream (default 51001; with --i2c emulated any free "
+                  "port; 0: any free port)");
   cmd->add_option("--vicon-object", o->vicon_object, "Vicon object name (default jetbot<id>)");
   cmd->add_option("--ros-topic", o->ros_topic, "ROS 2 PoseStamped topic for --pose ros");
   cmd->add_option("--pose-scale", o->pose_scale,
