@@ -134,7 +134,10 @@ struct MonitorNode::Impl {
       if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
       if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s()) || !opt.on_state)
         return;
-      opt.on_state({s.sim_time_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
+      // One time base for states.csv: the sim clock in lock-step; in real time the monitor's
+      // run clock (hosts' clocks differ: a JetBot stamps host uptime, a sim host its own start).
+      const double t_s = config.lockstep ? s.sim_time_s : now_s();
+      opt.on_state({t_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
     if (const auto m = status.subscription_matched().total_count; m != status_writers_seen) {

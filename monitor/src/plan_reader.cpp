@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -175,7 +176,7 @@ void parse_smart(std::string_view text, Plan& plan, AxisOrder axis,
   for (std::size_t li = 0; li < lines.size(); ++li) {
     const int ln = static_cast<int>(li) + 1;
     Cursor c{lines[li]};
-    if (c.at_end()) continue;
+    if (c.at_end() || trim(lines[li]).starts_with("#")) continue;  // a comment (`# axis: xy`)
     if (!c.eat("Agent")) {
       problems.push_back({plan.source, ln, -1,
                           "expected 'Agent <i>:(...)->...', found '" + excerpt(lines[li]) + "'"});
@@ -390,6 +391,19 @@ PlanFormat parse_plan_format(const std::string& s) {
   throw std::invalid_argument("unknown plan format '" + s + "'; use auto, smart, lacam or yaml");
 }
 
+// The axis a SMART-format file declares in a leading comment "# axis: xy" or "# axis: rowcol"
+// (`smart plan` writes one), if any.
+std::optional<AxisOrder> declared_axis(std::string_view text) {
+  for (const auto raw : split_lines(text)) {
+    const auto line = trim(raw);
+    if (line.empty()) continue;
+    if (!line.starts_with("#")) return std::nullopt;
+    if (line == "# axis: xy") return AxisOrder::kXY;
+    if (line == "# axis: rowcol") return AxisOrder::kRowCol;
+  }
+  return std::nullopt;
+}
+
 PlanFormat detect_plan_format(std::string_view text) {
   for (const auto raw : split_lines(text)) {
     const auto line = trim(raw);
@@ -420,8 +434,15 @@ Plan parse_plan(std::string_view text, const std::string& source, const PlanRead
                               "'; pass --format smart, lacam or yaml"});
       break;
     }
-    case PlanFormat::kSmart:
-      if (!opt.axis) {
+    case PlanFormat::kSmart: {
+      const auto declared = declared_axis(text);
+      if (declared && opt.axis && *declared != *opt.axis) {
+        problems.push_back({source, 1, -1,
+                            "the file declares '# axis: " + to_string(*declared) + "' but --axis " +
+                                to_string(*opt.axis) + " was given; drop --axis or fix the file"});
+        break;
+      }
+      if (!opt.axis && !declared) {
         problems.push_back(
             {source, 0, -1,
              "SMART/MAPF-LNS2 path files do not say whether '(a,b)' is (x,y) or (row,col); pass "
@@ -429,9 +450,10 @@ Plan parse_plan(std::string_view text, const std::string& source, const PlanRead
              "--outputPaths and scen_1_*_paths.txt are rowcol)"});
         break;
       }
-      plan.axis = *opt.axis;
+      plan.axis = opt.axis ? *opt.axis : *declared;
       parse_smart(text, plan, plan.axis, problems);
       break;
+    }
     case PlanFormat::kLacam:
       plan.axis = opt.axis.value_or(AxisOrder::kXY);
       parse_lacam(text, plan, plan.axis, problems);

@@ -186,6 +186,7 @@ PlannerResult plan_prioritized(const grid::Grid& g, const grid::Scenario& scen,
 
 std::string to_smart_plan_text(const grid::Plan& plan) {
   std::ostringstream s;
+  s << "# axis: xy\n";  // read back without --axis (monitor/plan_reader.hpp)
   for (const auto& p : plan.paths) {
     s << "Agent " << p.robot << ":";
     for (const auto& st : p.steps)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -46,7 +47,10 @@ TEST_F(MixedRun, EmulatedJetbotAgentAndSimulatedRobotsCompleteAPlanTogether) {
   const auto agent_out = temp_file("mixed_agent.out");
   auto sim = start_sim(kMixedRun);
   auto agent = start_agent(kMixedRun, 4 * kCellM, (6 - 1 - 0) * kCellM, 0.0, agent_out);
-  const auto r = run_smart(monitor_args(kMixedRun), 90s, "mixed_monitor");
+  const auto out = temp_file("mixed_out");
+  auto args = monitor_args(kMixedRun);
+  args.insert(args.end(), {"--out", out.string()});
+  const auto r = run_smart(args, 90s, "mixed_monitor");
   ASSERT_EQ(r.code, 0) << r.out;
   // Both hosts stop when the monitor says the run is over.
   ASSERT_EQ(agent.wait(10s).value_or(-1), 0);
@@ -55,7 +59,24 @@ TEST_F(MixedRun, EmulatedJetbotAgentAndSimulatedRobotsCompleteAPlanTogether) {
   expect_complete(r.last_json(), agent_out, &a);
   EXPECT_GT(a["vicon"]["datagrams"].get<int>(), 100);
   EXPECT_EQ(a["vicon"]["malformed"], 0);
+  // states.csv has one time base (the monitor's run clock), JetBot rows and simulated alike:
+  // the JetBot stamps its host's uptime, which must not leak into the file.
+  std::ifstream states(out / "states.csv");
+  std::string line;
+  std::getline(states, line);
+  double jetbot_max = -1, sim_max = -1;
+  const double end_s = r.last_json()["sim_time_s"].get<double>();
+  while (std::getline(states, line)) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    const int robot = std::stoi(line.substr(line.find(',') + 1));
+    EXPECT_GE(t, 0.0) << line;
+    EXPECT_LE(t, end_s + 1.0) << line;
+    (robot == 2 ? jetbot_max : sim_max) = std::max(robot == 2 ? jetbot_max : sim_max, t);
+  }
+  EXPECT_GT(jetbot_max, 0.5 * end_s) << "JetBot rows along the whole run";
+  EXPECT_GT(sim_max, 0.5 * end_s);
   std::filesystem::remove(agent_out);
+  std::filesystem::remove_all(out);
 }
 
 // Robot 2's agent process is killed mid-run (SIGKILL, as in a crash) and started again where its

@@ -85,6 +85,17 @@ TEST(PlanReaderErrors, SmartNeedsAnExplicitAxis) {
   EXPECT_THAT(error_of("Agent 0:(1,1)->", {}), HasSubstr("pass --axis xy or --axis rowcol"));
 }
 
+// `smart plan` writes "# axis: xy" first: its plans read back without --axis; a contradicting
+// --axis is an error, not a silent choice.
+TEST(PlanReader, ADeclaredAxisIsReadWithoutAxisAndAContradictionIsAnError) {
+  const auto p = parse_plan("# axis: rowcol\nAgent 0:(1,2)->(1,3)->\n", "p.txt", {});
+  EXPECT_EQ(p.axis, AxisOrder::kRowCol);
+  EXPECT_EQ(p.paths[0].steps[0].cell, (Cell{2, 1}));  // (row 1, col 2): x = 2, y = 1
+  EXPECT_THAT(error_of("# axis: rowcol\nAgent 0:(1,2)->\n", xy()),
+              HasSubstr("p.txt:1: the file declares '# axis: rowcol' but --axis xy was given"));
+  EXPECT_EQ(error_of("# a note\nAgent 0:(1,1)->\n# another\n"), "(no error)");
+}
+
 TEST(PlanReaderErrors, TruncatedLinesAndBadNumbers) {
   EXPECT_THAT(error_of("Agent 0:(1,1,0)->(1,2,"),
               HasSubstr("p.txt:1: robot 0: step 1: missing ')'; the line may be truncated"));

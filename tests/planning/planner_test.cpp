@@ -26,7 +26,7 @@ void expect_valid_plan(const Grid& g, std::size_t robots, uint64_t seed, const c
   ASSERT_TRUE(problems.empty()) << what << ": " << problems[0].to_string();
   // The text form reads back as the same plan and builds an acyclic ADG.
   const auto back =
-      parse_plan(to_smart_plan_text(r.plan), what, {PlanFormat::kAuto, AxisOrder::kXY});
+      parse_plan(to_smart_plan_text(r.plan), what, {PlanFormat::kAuto, std::nullopt});  // declared
   EXPECT_TRUE(validate_plan(back, g, &scen).empty());
   const auto actions = build_actions(back);
   std::vector<Problem> adg_problems;

@@ -55,8 +55,8 @@ int run_check_plan(const CheckPlanOptions& o) {
     std::cout << report.dump(2) << std::endl;
     return kExitSuccess;
   } catch (const grid::InputError& e) {
-    for (const auto& p : e.problems()) std::cerr << p.to_string() << "\n";
-    std::cerr << e.problems().size() << " problem(s) found\n";
+    // The first 50 (a wrong --axis hint first), then a count; the JSON has them all.
+    std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
     std::cout << nlohmann::json{{"valid", false},
                                 {"problem_count", e.problems().size()},
                                 {"problems", problems_json(e.problems())}}

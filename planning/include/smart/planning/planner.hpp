@@ -35,7 +35,8 @@ struct PlannerResult {
 PlannerResult plan_prioritized(const grid::Grid& grid, const grid::Scenario& scen,
                                const PlannerOptions& o);
 
-// SMART timed plan text: "Agent i:(x,y,t)->...", x = column (read it back with axis xy).
+// SMART timed plan text: "# axis: xy", then "Agent i:(x,y,t)->...", x = column (the reader takes
+// the axis from that line; a reader that wants only Agent lines may need it removed).
 std::string to_smart_plan_text(const grid::Plan& plan);
 
 }  // namespace smart::planning
