@@ -78,6 +78,7 @@ enum DomainId : int {
   kRunStalls = 168,
   kAgentNodeLink = 169,
   kRunLink = 170,
+  kExperimentCommand = 171,  // and 172 (--jobs 2)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

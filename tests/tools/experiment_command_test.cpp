@@ -35,10 +35,10 @@ class Experiment : public ::testing::Test {
                         << extra;
     return spec;
   }
-  SmartRun run(const fs::path& spec) const {
+  SmartRun run(const fs::path& spec, int domain = kExperiment) const {
     return run_smart(
         {"--log-level", "warning", "experiment", spec.string(), "--out", (dir_ / "out").string(),
-         "--jobs", "2", "--domain", std::to_string(kExperiment)},
+         "--jobs", "2", "--domain", std::to_string(domain)},
         300s, "experiment");
   }
   fs::path b_, dir_;
@@ -86,6 +86,23 @@ TEST_F(Experiment, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
     EXPECT_EQ(png.substr(1, 3), "PNG") << name;
     EXPECT_THAT(slurp(dir_ / "out" / "figures" / (std::string(name) + ".svg")), HasSubstr("<svg"));
   }
+}
+
+// Any planner as a command: {map} {scen} {agents} {plan} are filled in (quoted), the plan is
+// made once into <out>/plans/ and then executed.
+TEST_F(Experiment, APlannerCommandMakesThePlanThatIsRun) {
+  const auto spec = dir_ / "command.yaml";
+  std::ofstream(spec) << "name: cmd\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
+                      << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
+                      << "]\nagents: [2]\nplan: {command: \"test -f {map} && test -f {scen} && "
+                      << "test {agents} = 2 && cp "
+                      << (b_ / "smart-examples/example_paths_xy.txt").string()
+                      << " {plan}\", axis: xy}\n";
+  const auto r = run(spec, kExperimentCommand);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.last_json()["with_results"], 1);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "plans" / "0-n2.txt"));
+  EXPECT_THAT(lines_of(dir_ / "out" / "results.csv").at(1), HasSubstr(",command,xy,"));
 }
 
 TEST_F(Experiment, ABadSpecIsBadInputNamingTheLine) {
