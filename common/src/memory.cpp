@@ -1,5 +1,7 @@
 #include "smart/common/memory.hpp"
 
+#include <sys/resource.h>
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -17,5 +19,17 @@ double peak_rss_mb() {
   }
   return 0;
 }
+
+namespace {
+double cpu_seconds(int who) {
+  rusage u{};
+  if (getrusage(who, &u) != 0) return 0;
+  const auto s = [](const timeval& t) { return double(t.tv_sec) + double(t.tv_usec) * 1e-6; };
+  return s(u.ru_utime) + s(u.ru_stime);
+}
+}  // namespace
+
+double cpu_seconds_self() { return cpu_seconds(RUSAGE_SELF); }
+double cpu_seconds_children() { return cpu_seconds(RUSAGE_CHILDREN); }
 
 }  // namespace smart::common

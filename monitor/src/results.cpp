@@ -210,6 +210,10 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   };
   j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
   if (!info.machine.empty()) j["machine"] = info.machine;
+  j["cpu_s"] = {{"monitor", mb(info.monitor_cpu_s)}, {"sim", mb(info.sim_cpu_s)}};
+  if (info.monitor_cpu_s && info.sim_cpu_s && r.sim_time_s > 0) {
+    j["cpu_s_per_sim_s"] = (*info.monitor_cpu_s + *info.sim_cpu_s) / r.sim_time_s;
+  }
   if (info.limits) j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
   if (!info.link.is_null()) j["link"] = info.link;

@@ -73,6 +73,10 @@ TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
   // Both processes' peak memory: the monitor's own, the sim child's from wait4.
   EXPECT_GT(j["peak_rss_mb"]["monitor"].get<double>(), 5.0);
   EXPECT_GT(j["peak_rss_mb"]["sim"].get<double>(), 5.0);
+  // CPU of both processes (the sim host is `smart run`'s child), for experiment figures.
+  EXPECT_GT(j["cpu_s"]["monitor"].get<double>(), 0.0);
+  EXPECT_GT(j["cpu_s"]["sim"].get<double>(), 0.0);
+  EXPECT_GT(j["cpu_s_per_sim_s"].get<double>(), 0.0);
   // Files: the summary on disk equals the one printed; a SMART stats row; robot states.
   const auto disk = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_EQ(disk["aet_s"], j["aet_s"]);

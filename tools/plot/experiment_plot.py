@@ -6,7 +6,8 @@ Usage: experiment_plot.py RESULTS_DIR OUT_DIR
 Figures (each only when the results vary along its axis):
   sim_speed.{png,svg}      sim speed vs robots, a line per map / robot model / QoS profile
   aet_makespan.{png,svg}   AET and makespan vs robots, mean +- sd over repeats (replicability)
-  memory.{png,svg}         peak memory of monitor and sim vs robots
+  memory.{png,svg}         peak memory of monitor and sim, and CPU seconds per sim second, vs
+                           robots
   success.{png,svg}        success rate vs robots, per robot model / QoS profile
   stalls.{png,svg}         AET and success rate vs stall probability (when it varies), a line
                            per fleet size / robot model
@@ -120,9 +121,11 @@ def main():
     figure(out_dir, "aet_makespan", "AET and makespan, mean \u00b1 sd over repeats", "s",
            [(grouped(rows, "aet_s", lines), "AET (s)", ""),
             (grouped(rows, "makespan_s", lines), "makespan (s)", "")], written, logx)
-    figure(out_dir, "memory", "Peak memory", "MB",
+    figure(out_dir, "memory", "Memory and CPU", "MB",
            [(grouped(rows, "peak_rss_mb.monitor", lines), "monitor peak RSS (MB)", ""),
-            (grouped(rows, "peak_rss_mb.sim", lines), "sim peak RSS (MB)", "")], written, logx)
+            (grouped(rows, "peak_rss_mb.sim", lines), "sim peak RSS (MB)", ""),
+            (grouped(rows, "cpu_s_per_sim_s", lines), "CPU s per sim s (monitor + sim)", "")],
+           written, logx)
     success = [dict(r, success_rate="1" if r.get("success") == "true" else "0") for r in rows]
     figure(out_dir, "success", "Success rate", "success rate",
            [(grouped(success, "success_rate", lines), None, "")], written, logx)

@@ -155,7 +155,9 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto result = node.run(g_stop_requested, cb);
   if (tty) print_progress(result, result.success() ? result.robots.size() : 0, true);
   if (sim && !sim->wait(std::chrono::seconds(5))) sim->terminate();
-  const auto info = run_info(o, robot_file);
+  auto info = run_info(o, robot_file);
+  info.monitor_cpu_s = common::cpu_seconds_self();
+  if (sim) info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim host
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);

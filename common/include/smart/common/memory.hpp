@@ -1,4 +1,4 @@
-// Contract: this process's peak resident memory, for benchmarks and run summaries.
+// Contract: this process's peak resident memory and CPU time, for benchmarks and run summaries.
 #pragma once
 
 namespace smart::common {
@@ -7,5 +7,9 @@ namespace smart::common {
 // own address space. Not getrusage's ru_maxrss, which after posix_spawn (vfork + exec) also
 // counts the parent's memory at the time of the spawn. 0 where /proc is not available.
 double peak_rss_mb();
+
+// User + system CPU seconds (getrusage): of this process, or of its waited-for children.
+double cpu_seconds_self();
+double cpu_seconds_children();
 
 }  // namespace smart::common

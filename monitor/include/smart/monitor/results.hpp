@@ -34,6 +34,8 @@ struct RunInfo {
   // comes with its status, MonitorResult::host_peak_rss_mb) and the machine the run was
   // measured on.
   std::optional<double> monitor_peak_rss_mb;
+  // CPU seconds (user + system) of the monitor and, when `smart run` started it, the sim host.
+  std::optional<double> monitor_cpu_s, sim_cpu_s;
   std::string machine;
   // The robot model's limits, when known: each robot's motion lower bound (motion_bound.hpp)
   // goes into robots.csv and their AET / makespan and the finish-over-bound ratios into
