@@ -86,6 +86,11 @@ TEST_F(Experiment, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
     EXPECT_EQ(png.substr(1, 3), "PNG") << name;
     EXPECT_THAT(slurp(dir_ / "out" / "figures" / (std::string(name) + ".svg")), HasSubstr("<svg"));
   }
+  // The table: one row per fleet size, its two repeats folded into one (identical in lock-step).
+  const auto table = lines_of(dir_ / "out" / "figures" / "table.md");
+  ASSERT_EQ(table.size(), 4u);
+  EXPECT_THAT(table[2], HasSubstr("| 1 | footbot | lan |"));
+  EXPECT_THAT(table[2], HasSubstr("| 2 | 2/2 |"));
 }
 
 // Any planner as a command: {map} {scen} {agents} {plan} are filled in (quoted), the plan is

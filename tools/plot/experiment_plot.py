@@ -13,6 +13,8 @@ Figures (each only when the results vary along its axis):
                            per fleet size / robot model
   link.{png,svg}           AET and success rate vs the link's delay to the hosts (when it
                            varies: QoS profiles with different link sections)
+  table.md                 one row per cell of the grid (every parameter but the repeat): runs,
+                           success rate, AET and makespan mean +- sd, sim speed, collisions
 Prints one JSON line naming the files written.
 """
 import csv
@@ -105,6 +107,36 @@ def figure(out_dir, name, title, ylabel, panels, written, logx=True, xlabel="rob
     save(fig, out_dir, name, written)
 
 
+def write_table(rows, out_dir, written):
+    """The paper-style table: repeats folded into mean +- sd."""
+    keys = ["map", "scen", "agents", "robot", "qos", "uncertainty", "plan", "clock"]
+    groups = defaultdict(list)
+    for r in rows:
+        groups[tuple(r.get(k, "") for k in keys)].append(r)
+
+    def stat(rs, field, fmt="{:.1f}"):
+        vs = [number(r.get(field)) for r in rs]
+        vs = [v for v in vs if v is not None]
+        if not vs:
+            return "-"
+        m, sd = mean_sd(vs)
+        return (fmt + " \u00b1 " + fmt).format(m, sd) if len(vs) > 1 else fmt.format(m)
+
+    lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
+             "collisions |", "|" + "---|" * (len(keys) + 6)]
+    for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
+        rs = groups[key]
+        ok = sum(1 for r in rs if r.get("success") == "true")
+        lines.append("| " + " | ".join(str(k) for k in key) + f" | {len(rs)} | {ok}/{len(rs)} | "
+                     + " | ".join([stat(rs, "aet_s"), stat(rs, "makespan_s"),
+                                   stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}")])
+                     + " |")
+    path = os.path.join(out_dir, "table.md")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    written.append(path)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -143,6 +175,7 @@ def main():
                [(grouped(rows, "aet_s", by, delay), "AET (s)", ""),
                 (grouped(success, "success_rate", by, delay), "success rate", "")],
                written, False, "link delay (ms)")
+    write_table(rows, out_dir, written)
     print(json.dumps({"figures": written, "runs": len(rows)}))
 
 
