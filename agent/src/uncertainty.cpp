@@ -4,24 +4,17 @@
 #include <cmath>
 #include <numbers>
 
+#include "smart/common/seeded.hpp"
+
 namespace smart::agent {
 
 namespace {
-// SplitMix64 (Steele, Lea, Flood: "Fast splittable pseudorandom number generators", OOPSLA
-// 2014): a well-mixed 64-bit hash of the draw's coordinates.
-uint64_t mix(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 constexpr uint32_t kStall = 1, kSpeed = 2, kSlip = 3;
 }  // namespace
 
 double uniform01(uint64_t seed, uint32_t robot, uint32_t stream, uint64_t index) {
-  const uint64_t h = mix(mix(mix(seed) ^ (uint64_t{robot} << 8 | stream)) ^ index);
-  return static_cast<double>(h >> 11) * 0x1.0p-53;
+  using common::mix64;
+  return common::unit_interval(mix64(mix64(mix64(seed) ^ (uint64_t{robot} << 8 | stream)) ^ index));
 }
 
 double standard_normal(uint64_t seed, uint32_t robot, uint32_t stream, uint64_t index) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "smart/common/seeded.hpp"
+
 namespace smart::wire {
 
 namespace {

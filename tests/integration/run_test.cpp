@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <thread>
 
 #include "support/monitor_fixtures.hpp"
@@ -43,6 +44,16 @@ class Run : public ::testing::Test {
             "--agents",     "100",
             "--domain",     std::to_string(domain),
             "--no-progress"};
+  }
+  // 20 robots of the example with extra flags; the summary.
+  nlohmann::json seeded_run(int domain, const std::vector<std::string>& flags,
+                            const std::string& tag) {
+    auto args = example_args(domain, "20");
+    args.insert(args.begin(), "run");
+    args.insert(args.end(), flags.begin(), flags.end());
+    const auto r = run_smart(args, 120s, tag);
+    EXPECT_EQ(r.code, 0) << r.out;
+    return r.last_json();
   }
   std::filesystem::path b_;
 };
@@ -197,18 +208,11 @@ TEST_F(Run, NoStatesButTheFinalOnesAndStatsAppendedPerRun) {
   std::filesystem::remove(stats);
 }
 
-// Execution uncertainty in lock-step: the same seed gives the same summary, another seed another
-// AET, the run stays collision-free, and the summary records the model and its seed.
-TEST_F(Run, StallsAreSeededAndTheAdgKeepsTheRunCollisionFree) {
-  auto run = [&](const std::string& seed) {
-    auto args = example_args(kRunStalls, "20");
-    args.insert(args.begin(), "run");
-    args.insert(args.end(), {"--stall-probability", "0.3", "--stall-s", "4", "--speed-sigma", "0.1",
-                             "--seed", seed});
-    const auto r = run_smart(args, 120s, "run_stalls");
-    EXPECT_EQ(r.code, 0) << r.out;
-    return r.last_json();
-  };
+// Seeded randomness in lock-step (execution uncertainty, the link model): `run` with seed 1
+// twice and seed 2 gives the same summary for the same seed, another AET for another seed, and
+// no collision (the ADG orders who passes where, not when). Returns the first run's summary.
+nlohmann::json expect_seeded_and_collision_free(
+    const std::function<nlohmann::json(const std::string&)>& run) {
   const auto a = run("1"), b = run("1"), c = run("2");
   EXPECT_TRUE(a["success"].get<bool>());
   EXPECT_EQ(a["collisions"], 0);
@@ -216,29 +220,28 @@ TEST_F(Run, StallsAreSeededAndTheAdgKeepsTheRunCollisionFree) {
   EXPECT_EQ(a["aet_s"], b["aet_s"]);
   EXPECT_EQ(a["makespan_s"], b["makespan_s"]);
   EXPECT_NE(a["aet_s"], c["aet_s"]);
+  return a;
+}
+
+TEST_F(Run, StallsAreSeededAndTheAdgKeepsTheRunCollisionFree) {
+  const auto flags = [](const std::string& seed) {
+    return std::vector<std::string>{"--stall-probability", "0.3", "--stall-s", "4",
+                                    "--speed-sigma",       "0.1", "--seed",    seed};
+  };
+  const auto a = expect_seeded_and_collision_free(
+      [&](const std::string& seed) { return seeded_run(kRunStalls, flags(seed), "run_stalls"); });
   EXPECT_EQ(a["uncertainty"]["seed"], 1);
   EXPECT_DOUBLE_EQ(a["uncertainty"]["stall_probability"].get<double>(), 0.3);
 }
 
-// The link model in lock-step: 500 ms +- 200 ms each way; the same seed gives the same summary,
-// another seed another AET, no collision, and the summary records the link.
+// The link model: 500 ms +- 200 ms each way.
 TEST_F(Run, ADelayedLinkIsSeededAndTheRunStaysCollisionFree) {
-  auto run = [&](const std::string& seed) {
-    auto args = example_args(kRunLink, "20");
-    args.insert(args.begin(), "run");
-    args.insert(args.end(),
-                {"--link-delay-ms", "500", "--link-jitter-ms", "200", "--link-seed", seed});
-    const auto r = run_smart(args, 120s, "run_link");
-    EXPECT_EQ(r.code, 0) << r.out;
-    return r.last_json();
+  const auto flags = [](const std::string& seed) {
+    return std::vector<std::string>{"--link-delay-ms", "500", "--link-jitter-ms", "200",
+                                    "--link-seed",     seed};
   };
-  const auto a = run("1"), b = run("1"), c = run("2");
-  EXPECT_TRUE(a["success"].get<bool>());
-  EXPECT_EQ(a["collisions"], 0);
-  EXPECT_EQ(c["collisions"], 0);
-  EXPECT_EQ(a["aet_s"], b["aet_s"]);
-  EXPECT_EQ(a["makespan_s"], b["makespan_s"]);
-  EXPECT_NE(a["aet_s"], c["aet_s"]);
+  const auto a = expect_seeded_and_collision_free(
+      [&](const std::string& seed) { return seeded_run(kRunLink, flags(seed), "run_link"); });
   EXPECT_DOUBLE_EQ(a["link"]["to_host"]["delay_ms"].get<double>(), 500);
   EXPECT_EQ(a["link"]["seed"], 1);
 }

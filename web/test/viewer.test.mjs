@@ -50,24 +50,25 @@ function startServer(results) {
   });
 }
 
-async function robotPixels(page) {
-  // Robot colours (main.js COLORS) counted in the canvas.
-  return page.evaluate(() => {
+// Pixels of the canvas in robot colours (main.js COLORS): 'robots' counts moving (blue), done
+// (green) and waiting (orange); 'collided' the collided magenta.
+async function robotPixels(page, kind = 'robots') {
+  return page.evaluate((kind) => {
     const src = document.querySelector('#view canvas');
     const c = document.createElement('canvas');
     c.width = src.width; c.height = src.height;
     const g = c.getContext('2d');
     g.drawImage(src, 0, 0);
     const d = g.getImageData(0, 0, c.width, c.height).data;
+    const is = {
+      robots: (r, gg, b) => (b > 150 && r < 120 && gg > 80 && gg < 180) || (gg > 120 && r < 110 && b < 140 && gg - b > 30) ||
+        (r > 180 && gg > 110 && gg < 200 && b < 90),
+      collided: (r, gg, b) => r > 140 && gg < 90 && b > 80 && b < 200,
+    }[kind];
     let n = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      const [r, gg, b] = [d[i], d[i + 1], d[i + 2]];
-      const blue = b > 150 && r < 120 && gg > 80 && gg < 180, green = gg > 120 && r < 110 && b < 140 && gg - b > 30;
-      const orange = r > 180 && gg > 110 && gg < 200 && b < 90;
-      if (blue || green || orange) n++;
-    }
+    for (let i = 0; i < d.length; i += 4) if (is(d[i], d[i + 1], d[i + 2])) n++;
     return n;
-  });
+  }, kind);
 }
 
 // actions.csv and states.csv of the run, read here (not through the server): robot -> finish
@@ -174,17 +175,7 @@ async function checkResultsUpload(page, out, summary) {
   assert.deepEqual(v.collided, [0, 1]);
   await page.evaluate(() => window.__viewer.seek(1e9));
   await page.screenshot({ path: path.join(artifacts, 'viewer-collided.png') });
-  const magenta = await page.evaluate(() => {
-    const src = document.querySelector('#view canvas');
-    const c = document.createElement('canvas');
-    c.width = src.width; c.height = src.height;
-    const g = c.getContext('2d');
-    g.drawImage(src, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    let n = 0;
-    for (let i = 0; i < d.length; i += 4) if (d[i] > 140 && d[i + 1] < 90 && d[i + 2] > 80 && d[i + 2] < 200) n++;
-    return n;
-  });
+  const magenta = await robotPixels(page, 'collided');
   assert.ok(magenta > 20, `collided robots not drawn in their colour (${magenta} pixels)`);
 }
 
