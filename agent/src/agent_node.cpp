@@ -59,6 +59,17 @@ void insert_by_arrival(std::vector<Delayed>& v, Delayed d) {
 }
 }  // namespace
 
+// Windows of one robot received at the same time travel together: one draw for all of them.
+// DDS keeps the last window per robot, so how many samples of one instant a reader sees depends
+// on timing; the draws (and so a lock-step run) must not.
+double AgentNode::window_arrival_s(uint32_t robot, double now_s) {
+  auto [it, fresh] = window_draws_.try_emplace(robot, now_s, 0.0);
+  if (fresh || it->second.first != now_s) {
+    it->second = {now_s, to_host_->arrival_s(robot, now_s)};
+  }
+  return it->second.second;
+}
+
 void AgentNode::deliver_windows(double now_s) {
   std::size_t n = 0;
   for (; n < windows_in_flight_.size() && windows_in_flight_[n].at_s <= now_s; ++n) {
@@ -88,9 +99,8 @@ std::size_t AgentNode::take_windows(const Accept& accept, double now_s) {
       h->agent->on_window(m.run_id, wire::actions_from_wire(m));
       return;
     }
-    insert_by_arrival(windows_in_flight_,
-                      Delayed{to_host_->arrival_s(m.robot_id, now_s), m.robot_id, m.run_id,
-                              wire::actions_from_wire(m)});
+    insert_by_arrival(windows_in_flight_, Delayed{window_arrival_s(m.robot_id, now_s), m.robot_id,
+                                                  m.run_id, wire::actions_from_wire(m)});
     deliver_windows(now_s);  // a zero delay arrives now
   });
 }

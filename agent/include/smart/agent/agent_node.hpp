@@ -18,12 +18,14 @@
 //   arrival time, and progress is written only at its arrival time; `now_s` is the caller's
 //   clock (the sim host's sim time, an agent's wall time). Windows still count for `accept` on
 //   receipt, and publish_progress() counts actions when their progress is written, so the
-//   lock-step handshake sees exactly what travelled.
+//   lock-step handshake sees exactly what travelled. Windows of one robot received at the same
+//   time share one draw (how many of them a keep-last reader sees depends on timing).
 // Edge code: the agent core never sees DDS types (wire/convert.hpp converts).
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -83,6 +85,7 @@ class AgentNode {
 
   bool from_monitor(const char* topic, dds_instance_handle_t from, bool window);
   void deliver_windows(double now_s);
+  double window_arrival_s(uint32_t robot, double now_s);
   uint64_t write_progress(double now_s);
 
   struct Delayed {
@@ -97,7 +100,8 @@ class AgentNode {
   std::optional<wire::LinkChannel> to_host_, to_monitor_;
   std::vector<Delayed> windows_in_flight_, progress_in_flight_;  // in arrival order
   std::vector<std::pair<int64_t, int64_t>> queued_;  // per robot: last progress sent on the link
-  std::optional<dds_guid_t> monitor_;                // participant of the last accepted window
+  std::map<uint32_t, std::pair<double, double>> window_draws_;  // robot: receipt time, arrival
+  std::optional<dds_guid_t> monitor_;  // participant of the last accepted window
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;
