@@ -153,6 +153,24 @@ struct Server::Impl {
 
   fs::path dir(const std::string& id) const { return opt.data_dir / id; }
 
+  // A fresh folder under --data for an upload being checked (renamed to the run's when taken).
+  fs::path scratch_dir() {
+    std::lock_guard lock(m);
+    return opt.data_dir / ("upload-" + std::to_string(++uploads));
+  }
+
+  // The instance in a folder of the run's files (map.map, scen.scen, plan.txt).
+  static monitor::Instance load_files(const fs::path& d, std::size_t agents,
+                                      const std::string& axis) {
+    monitor::InstanceOptions io;
+    io.map = d / "map.map";
+    io.scen = d / "scen.scen";
+    io.plan = d / "plan.txt";
+    io.agents = agents;
+    io.read.axis = axis == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
+    return monitor::load_instance(io);
+  }
+
   std::vector<std::string> run_argv(const std::string& id, const RunRequest& r) const {
     const auto d = dir(id);
     return {opt.smart_exe.string(),
@@ -198,18 +216,11 @@ struct Server::Impl {
   std::optional<json> check_upload(const httplib::Request& req, const fs::path& scratch,
                                    const RunRequest& r) {
     fs::create_directories(scratch);
-    for (const auto& [field, name] :
-         {std::pair{"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}}) {
+    for (const auto& [field, name] : kRunFiles) {
       std::ofstream(scratch / name, std::ios::binary) << req.get_file_value(field).content;
     }
-    monitor::InstanceOptions io;
-    io.map = scratch / "map.map";
-    io.scen = scratch / "scen.scen";
-    io.plan = scratch / "plan.txt";
-    io.agents = r.agents;
-    io.read.axis = r.axis == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
     try {
-      (void)monitor::load_instance(io);
+      (void)load_files(scratch, r.agents, r.axis);
       return std::nullopt;
     } catch (const grid::InputError& e) {
       return json{{"error", "the upload has problems"},
@@ -222,11 +233,7 @@ struct Server::Impl {
   void post_run(const httplib::Request& req, httplib::Response& res) {
     const RunRequest r = read_fields(req, opt.config_dir / "robots");
     if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
-    fs::path scratch;
-    {
-      std::lock_guard lock(m);
-      scratch = opt.data_dir / ("upload-" + std::to_string(++uploads));
-    }
+    const fs::path scratch = scratch_dir();
     auto bad = check_upload(req, scratch, r);
     if (!bad) bad = write_robot(scratch, r);
     if (bad) {
@@ -311,11 +318,7 @@ struct Server::Impl {
   // POST /api/results: a results folder (fields "files", many) with the run's map (and scen and
   // plan for the robot panel), replayed like --open.
   void post_results(const httplib::Request& req, httplib::Response& res) {
-    fs::path scratch;
-    {
-      std::lock_guard lock(m);
-      scratch = opt.data_dir / ("upload-" + std::to_string(++uploads));
-    }
+    const fs::path scratch = scratch_dir();
     fs::create_directories(scratch / "results");
     const auto [first, last] = req.files.equal_range("files");
     for (auto it = first; it != last; ++it) {
@@ -359,11 +362,7 @@ struct Server::Impl {
   }
 
   void get_run(const std::string& id, httplib::Response& res) {
-    std::optional<RunEntry> e;
-    {
-      std::lock_guard lock(m);
-      if (is_run_id(id)) e = registry.get(id);
-    }
+    const auto e = entry(id);
     if (!e) return reply(res, 404, {{"error", "no run " + id}});
     json j = entry_json(*e);
     const auto summary = dir(id) / "results" / "summary.json";
@@ -378,11 +377,7 @@ struct Server::Impl {
   }
 
   void get_recording(const std::string& id, httplib::Response& res) {
-    std::optional<RunEntry> e;
-    {
-      std::lock_guard lock(m);
-      if (is_run_id(id)) e = registry.get(id);
-    }
+    const auto e = entry(id);
     const auto states = dir(id) / "results" / "states.csv";
     if (!e || e->state != RunState::kDone || !fs::exists(states)) {
       return reply(res, 404, {{"error", "no recording of " + id + " (yet)"}});
@@ -437,14 +432,8 @@ struct Server::Impl {
   // The instance in a run's folder: its files read as request.json says.
   static monitor::Instance load(const fs::path& d) {
     const auto request = json::parse(slurp(d / "request.json"));
-    monitor::InstanceOptions io;
-    io.map = d / "map.map";
-    io.scen = d / "scen.scen";
-    io.plan = d / "plan.txt";
-    io.agents = request.value("agents", std::size_t{0});
-    io.read.axis =
-        request.value("axis", "xy") == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
-    return monitor::load_instance(io);
+    return load_files(d, request.value("agents", std::size_t{0}),
+                      request.value("axis", std::string("xy")));
   }
 
   // The run's instance (plan, actions, ADG), loaded once from its files and request.json.
@@ -667,11 +656,7 @@ Server::~Server() = default;
 
 std::string Server::open_results(const fs::path& results) {
   auto& I = *impl_;
-  fs::path scratch;
-  {
-    std::lock_guard lock(I.m);
-    scratch = I.opt.data_dir / ("upload-" + std::to_string(++I.uploads));
-  }
+  const fs::path scratch = I.scratch_dir();
   fs::create_directories(scratch / "results");
   for (const char* f : kResultFiles) {
     if (fs::is_regular_file(results / f)) fs::copy_file(results / f, scratch / "results" / f);
