@@ -73,6 +73,9 @@ json problems_json(const std::vector<grid::Problem>& problems, const httplib::Re
   return problems_json(problems, names);
 }
 
+// The most robots a replayed results folder may have (the largest fleets measured are 10 000).
+constexpr uint64_t kMaxReplayRobots = 100000;
+
 bool result_file(const std::string& name) {
   return std::any_of(std::begin(kResultFiles), std::end(kResultFiles),
                      [&](const char* f) { return name == f; });
@@ -259,8 +262,12 @@ struct Server::Impl {
       if (!fs::is_regular_file(r / f)) return bad(std::string("no ") + f + " in the results");
     }
     const auto summary = json::parse(slurp(r / "summary.json"), nullptr, false);
-    if (!summary.is_object() || !summary.contains("robots")) {
-      return bad("summary.json is not the summary `smart run --out` writes (no \"robots\")");
+    if (!summary.is_object() || !summary["robots"].is_number_unsigned() ||
+        summary["robots"].get<uint64_t>() > kMaxReplayRobots) {
+      return bad(
+          "summary.json is not the summary `smart run --out` writes (\"robots\" must be "
+          "a whole number up to " +
+          std::to_string(kMaxReplayRobots) + ")");
     }
     if (!fs::is_regular_file(staged / "map.map")) {
       const auto named = summary.value("files", json::object());
@@ -270,8 +277,17 @@ struct Server::Impl {
     }
     try {
       (void)grid::parse_map(slurp(staged / "map.map"), "the map");
-      std::ofstream(staged / "recording-v2.smrc", std::ios::binary)
-          << encode_recording(parse_states_csv(slurp(r / "states.csv")));
+      const auto rows = parse_states_csv(slurp(r / "states.csv"));
+      // The recording holds every robot in every frame: a forged robot id would size it.
+      const auto robots = summary["robots"].get<uint64_t>();
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].robot >= robots) {
+          return bad("states.csv row " + std::to_string(i + 2) + " names robot " +
+                     std::to_string(rows[i].robot) + " but summary.json has " +
+                     std::to_string(robots) + " robots; give the files of one run");
+        }
+      }
+      std::ofstream(staged / "recording-v2.smrc", std::ios::binary) << encode_recording(rows);
       if (fs::is_regular_file(staged / "scen.scen") && fs::is_regular_file(staged / "plan.txt")) {
         write_request(staged, summary);
         const auto in = load(staged);

@@ -234,6 +234,11 @@ TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {
   auto got = client().Post("/api/results", bad);
   ASSERT_EQ(got->status, 400);
   EXPECT_THAT(got->body, HasSubstr("states.csv line"));
+  // A forged robot id would make the recording (every robot in every frame) huge.
+  auto forged = items(slurp(results / "states.csv") + "1.5,9999999,1,1,0,0,0,0,0,0\n");
+  got = client().Post("/api/results", forged);
+  ASSERT_EQ(got->status, 400);
+  EXPECT_THAT(got->body, HasSubstr("names robot 9999999 but summary.json has 5 robots"));
   bad.pop_back();  // no map
   got = client().Post("/api/results", bad);
   EXPECT_THAT(got->body, HasSubstr("no map"));
