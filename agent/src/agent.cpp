@@ -56,7 +56,8 @@ void Agent::step(double now_s) {
   const bool stale = !pose_sample_.valid || now_s - pose_sample_.stamp_s > config_.pose_timeout_s;
   if (stale) {
     // Watchdog: without a fresh pose the robot is driving blind; stop now, not gradually.
-    if (!stale_) ++watchdog_stops_;
+    // Waiting for a source's first pose (start-up) is not a stop: nothing was lost.
+    if (!stale_ && had_pose_) ++watchdog_stops_;
     stale_ = true;
     drive_.stop();
     controller_.reset();
@@ -64,6 +65,7 @@ void Agent::step(double now_s) {
     return;
   }
   stale_ = false;
+  had_pose_ = true;
   write(update());
 }
 

@@ -100,8 +100,9 @@ std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<Vicon
   return d;
 }
 
-ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port, ViconTransform t,
-                             std::vector<std::string> objects, std::function<double()> now_s)
+ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port,
+                             geometry::FrameTransform t, std::vector<std::string> objects,
+                             std::function<double()> now_s)
     : transform_(t), now_s_(std::move(now_s)) {
   for (auto& o : objects) latest_[o] = std::nullopt;
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
@@ -159,11 +160,10 @@ void ViconReceiver::handle(const uint8_t* data, std::size_t size) {
       ++stats_.unknown_names;
       continue;
     }
-    const double c = std::cos(transform_.yaw_offset_rad), s = std::sin(transform_.yaw_offset_rad);
-    const double X = o.position_mm[0] * transform_.scale, Y = o.position_mm[1] * transform_.scale;
+    // Tracker's Euler XYZ: the third angle is the heading for a robot on a level floor.
+    const Eigen::Vector2d xy = transform_.apply({o.position_mm[0], o.position_mm[1]});
     agent::PoseSample p;
-    p.pose = {c * X - s * Y + transform_.x_offset_m, s * X + c * Y + transform_.y_offset_m,
-              agent::wrap_angle(o.rotation_rad[2] + transform_.yaw_offset_rad)};
+    p.pose = {xy.x(), xy.y(), transform_.apply_yaw(o.rotation_rad[2])};
     p.stamp_s = now;
     p.valid = true;
     if (it->second && now > it->second->stamp_s) {

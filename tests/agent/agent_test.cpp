@@ -165,6 +165,25 @@ TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
   EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
 }
 
+// Regression: every `smart agent --backend ros2` robot reported one watchdog stop, counted while
+// its odometry had not arrived yet.
+TEST(Agent, WaitingForTheFirstPoseIsNotAWatchdogStop) {
+  Drive r(footbot());
+  r.agent.activate();
+  r.robot.valid = false;
+  r.agent.step(0.0);
+  EXPECT_TRUE(r.agent.pose_stale());
+  EXPECT_EQ(r.agent.watchdog_stops(), 0u);
+  EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
+  r.robot.valid = true;
+  r.agent.on_window(1, east_half_moves(0, 1));
+  r.steps(5);
+  EXPECT_FALSE(r.agent.pose_stale());
+  r.robot.valid = false;  // lost after it had been seen: a stop
+  r.agent.step(r.robot.time());
+  EXPECT_EQ(r.agent.watchdog_stops(), 1u);
+}
+
 TEST(Agent, LifecycleOnlyActiveAgentsMoveAndDeactivateStops) {
   Drive r(footbot());
   r.agent.on_window(1, east_half_moves(0, 1));

@@ -35,7 +35,7 @@ TEST(EmulatedJetbot, StreamsItsPoseAsViconDatagrams) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
         .count();
   };
-  ViconReceiver rx("127.0.0.1", 0, {}, {"jb"}, now);
+  ViconReceiver rx("127.0.0.1", 0, vicon_millimetres(), {"jb"}, now);
   JetbotConfig c;
   EmulatedJetbot bot(c, 0.1025, {1.0, 2.0, 0.5}, "jb", rx.port());
   std::optional<agent::PoseSample> p;

@@ -80,9 +80,9 @@ void send_udp(uint16_t port, const std::vector<uint8_t>& d) {
 }
 
 TEST(ViconReceiver, LoopbackUdpPosesAreTransformedCountedAndGoStale) {
-  ViconTransform t;
-  t.yaw_offset_rad = M_PI / 2;
-  t.x_offset_m = 1.0;
+  geometry::FrameTransform t = vicon_millimetres();
+  t.yaw_rad = M_PI / 2;
+  t.translation_m = {1.0, 0.0};
   ViconReceiver rx("127.0.0.1", 0, t, {"jetbot1"}, now_s);
   ASSERT_GT(rx.port(), 0);
   ViconPoseSource src(rx, "jetbot1", 0.2, now_s);

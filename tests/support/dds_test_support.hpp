@@ -79,6 +79,10 @@ enum DomainId : int {
   kAgentNodeLink = 169,
   kRunLink = 170,
   kExperimentCommand = 171,  // and 172 (--jobs 2)
+  kRos2Fleet = 173,
+  kRos2OdomAtStart = 174,
+  kRosOdom = 175,
+  kRosTwist = 176,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

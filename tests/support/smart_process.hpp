@@ -40,10 +40,14 @@ inline tools::ChildProcess start_smart(const std::vector<std::string>& args,
   return tools::ChildProcess(argv, out);
 }
 
+// Runs `smart args...` to the end; with_stderr: its error messages are in `out` too.
 inline SmartRun run_smart(const std::vector<std::string>& args, std::chrono::seconds timeout,
-                          const std::string& tag) {
+                          const std::string& tag, bool with_stderr = false) {
   const auto out = temp_file(tag + ".out");
-  auto p = start_smart(args, out);
+  std::vector<std::string> argv{smart_exe().string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  if (with_stderr) argv.insert(argv.begin(), {"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>&1"});
+  tools::ChildProcess p(argv, out);
   SmartRun r;
   if (auto rc = p.wait(timeout)) {
     r.code = *rc;

@@ -6,9 +6,11 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "smart/config/yaml_checks.hpp"
@@ -125,6 +127,42 @@ dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& prof
 }
 
 std::string exact(double value) { return fmt::format("{}", value); }
+
+namespace {
+uint32_t parse_id(const std::string& word, const std::string& text) {
+  std::size_t used = 0;
+  unsigned long v = 0;
+  try {
+    v = std::stoul(word, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (word.empty() || used != word.size() || !std::isdigit(static_cast<unsigned char>(word[0])) ||
+      v > 1000000) {
+    throw std::invalid_argument("robot list '" + text + "': '" + word +
+                                "' is not a robot index (0..1000000); write e.g. 0-9,12");
+  }
+  return static_cast<uint32_t>(v);
+}
+}  // namespace
+
+std::vector<uint32_t> parse_id_ranges(const std::string& text) {
+  std::vector<uint32_t> ids;
+  std::stringstream parts(text);
+  std::string part;
+  while (std::getline(parts, part, ',')) {
+    const auto dash = part.find('-');
+    const uint32_t first = parse_id(part.substr(0, dash), text);
+    const uint32_t last = dash == std::string::npos ? first : parse_id(part.substr(dash + 1), text);
+    if (last < first || (!ids.empty() && first <= ids.back())) {
+      throw std::invalid_argument("robot list '" + text + "': '" + part +
+                                  "' is not ascending or repeats a robot");
+    }
+    for (uint32_t id = first; id <= last; ++id) ids.push_back(id);
+  }
+  if (ids.empty()) throw std::invalid_argument("robot list is empty; write e.g. 0-9,12");
+  return ids;
+}
 
 std::string find_config_file(const std::string& kind, const std::string& name) {
   if (name.find('/') != std::string::npos || name.ends_with(".yaml")) return name;

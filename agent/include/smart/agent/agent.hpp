@@ -77,6 +77,7 @@ class Agent {
   PoseSample pose_sample_;
   WheelSpeeds command_;
   bool stale_ = false;
+  bool had_pose_ = false;  // a fresh pose was seen once
   uint64_t watchdog_stops_ = 0;
   double now_s_ = 0;
   double stall_until_s_ = -1;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "smart/agent/interfaces.hpp"
+#include "smart/geometry/frame_transform.hpp"
 
 namespace smart::hw {
 
@@ -39,13 +40,11 @@ std::optional<ViconFrame> parse_vicon_datagram(const uint8_t* data, std::size_t 
 // Builds a datagram (padded to 256/512/1024 bytes like Tracker does), for emulators and tests.
 std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<ViconObject>& objects);
 
-// Vicon frame (mm, rad) -> world frame (m, rad): scale, rotate by yaw_offset, translate.
-struct ViconTransform {
-  double scale = 0.001;
-  double yaw_offset_rad = 0;
-  double x_offset_m = 0;
-  double y_offset_m = 0;
-};
+// Vicon frame (mm, rad) -> world frame (m, rad): a transform file (`smart calibrate`), or by
+// default the millimetre scale alone.
+inline geometry::FrameTransform vicon_millimetres() {
+  return {0.001, 0.0, Eigen::Vector2d::Zero()};
+}
 
 struct ViconStats {
   uint64_t datagrams = 0;
@@ -57,7 +56,7 @@ struct ViconStats {
 class ViconReceiver {
  public:
   // Listens on `bind_address`:`port` (UDP). Throws std::runtime_error when it cannot bind.
-  ViconReceiver(const std::string& bind_address, uint16_t port, ViconTransform transform,
+  ViconReceiver(const std::string& bind_address, uint16_t port, geometry::FrameTransform transform,
                 std::vector<std::string> objects, std::function<double()> now_s);
   ~ViconReceiver();
   uint16_t port() const { return port_; }
@@ -71,7 +70,7 @@ class ViconReceiver {
   void loop();
   int fd_ = -1;
   uint16_t port_ = 0;
-  ViconTransform transform_;
+  geometry::FrameTransform transform_;
   std::map<std::string, std::optional<agent::PoseSample>> latest_;
   std::function<double()> now_s_;
   mutable std::mutex mutex_;

@@ -68,6 +68,9 @@ SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseStamped_)
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__PoseArray_)
 SMART_DDS_TOPIC_TYPE(tf2_msgs_msg_dds__TFMessage_)
 SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__OccupancyGrid_)
+SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__Twist_)
+SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__Odometry_)
+SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__Path_)
 
 namespace smart::dds {
 // The fleet as ROS 2 sees it (idl/smart.idl, "The ROS 2 view").
@@ -87,4 +90,17 @@ inline std::string ros_topic(const std::string& ros_name) {
   return smart_msg_ROS_TOPIC_PREFIX +
          (ros_name.empty() || ros_name[0] != '/' ? "/" + ros_name : ros_name);
 }
+
+// A ROS 2 diff-drive base (idl/smart.idl, "Driving a ROS 2 diff-drive base"): its namespace
+// from a pattern in which "{id}" stands for the robot's index, and the QoS of its topics.
+inline constexpr std::string_view kRosNamespacePattern = smart_msg_ROS_NAMESPACE_PATTERN;
+std::string ros_namespace(const std::string& pattern, uint32_t robot);
+inline std::string ros_cmd_vel_topic(const std::string& ns) {
+  return ns + "/" + smart_msg_ROS_CMD_VEL;
+}
+inline std::string ros_odom_topic(const std::string& ns) { return ns + "/" + smart_msg_ROS_ODOM; }
+// Sensor data (odometry, mocap poses): best effort, latest only.
+TopicQos ros_sensor_qos();
+// Commands (cmd_vel): reliable, volatile, keep last (rclcpp's default profile, depth 10).
+TopicQos ros_command_qos();
 }  // namespace smart::dds

@@ -98,6 +98,10 @@ dds::DomainConfig domain_config(const DdsOptions& options, const dds::QosProfile
 // (anything with '/' or ending in .yaml). Throws config::ConfigError listing where it looked.
 std::string find_config_file(const std::string& kind, const std::string& name_or_path);
 
+// Robot indices from "0-9,12" (ranges inclusive, ascending, no repeats); throws
+// std::invalid_argument naming the bad part.
+std::vector<uint32_t> parse_id_ranges(const std::string& text);
+
 // Shortest text that reads back as the same double (child argv, messages).
 std::string exact(double value);
 
