@@ -63,7 +63,8 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
       {"min_wheel_speed_mps", {0.0, 1.0, [](RobotModel& m) -> double& { return m.gains.min_wheel_speed_mps; }, false}},
   };
   // clang-format on
-  std::vector<std::string> known{"name", "description", "controller", "hardware", "uncertainty"};
+  std::vector<std::string> known{"name",     "description", "controller",
+                                 "hardware", "uncertainty", "trim"};
   for (const auto& [k, _] : fields) known.push_back(k);
   config::reject_unknown(source, root, "(top level)", known);
 
@@ -87,6 +88,12 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
     }
   }
   if (const auto u = root["uncertainty"]) read_uncertainty(source, u, m.uncertainty);
+  if (const auto t = root["trim"]) {
+    config::require_map(source, t, "trim");
+    config::reject_unknown(source, t, "trim", {"left", "right"});
+    if (t["left"]) m.trim.left = config::number(source, t["left"], "trim.left", 0.5, 1.0);
+    if (t["right"]) m.trim.right = config::number(source, t["right"], "trim.right", 0.5, 1.0);
+  }
   return m;
 }
 

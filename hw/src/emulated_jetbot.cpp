@@ -14,10 +14,12 @@
 namespace smart::hw {
 
 EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
-                               std::string object, uint16_t port, double accel)
+                               std::string object, uint16_t port, double accel, EmulatedFlaws flaws)
     : cfg_(config),
       wheel_base_m_(wheel_base_m),
       accel_(accel),
+      flaws_(flaws),
+      mocap_from_grid_(flaws.mounting.inverse()),
       object_(std::move(object)),
       port_(port),
       pose_(start) {
@@ -111,13 +113,15 @@ void EmulatedJetbot::advance(double dt) {
     const double dv = accel_ * dt;
     wheels_.left_mps += std::clamp(tl - wheels_.left_mps, -dv, dv);
     wheels_.right_mps += std::clamp(tr - wheels_.right_mps, -dv, dv);
-    const double v = (wheels_.left_mps + wheels_.right_mps) / 2;
-    const double w = (wheels_.right_mps - wheels_.left_mps) / wheel_base_m_;
+    const double left = wheels_.left_mps * flaws_.wheel_gain.left;
+    const double right = wheels_.right_mps * flaws_.wheel_gain.right;
+    const double v = (left + right) / 2, w = (right - left) / wheel_base_m_;
     pose_.x_m += v * std::cos(pose_.yaw_rad) * dt;
     pose_.y_m += v * std::sin(pose_.yaw_rad) * dt;
     pose_.yaw_rad = std::remainder(pose_.yaw_rad + w * dt, 2 * M_PI);
     if (fd_ >= 0) {
-      ViconObject o{object_, {pose_.x_m * 1000, pose_.y_m * 1000, 0}, {0, 0, pose_.yaw_rad}};
+      const Eigen::Vector2d p = mocap_from_grid_.apply({pose_.x_m, pose_.y_m});
+      ViconObject o{object_, {p.x(), p.y(), 0}, {0, 0, mocap_from_grid_.apply_yaw(pose_.yaw_rad)}};
       datagram = make_vicon_datagram(++frame_, {o});
     }
   }

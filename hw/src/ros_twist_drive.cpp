@@ -7,8 +7,9 @@
 namespace smart::hw {
 
 RosTwistDrive::RosTwistDrive(const dds::Participant& participant, const std::string& ns,
-                             double wheel_base_m)
+                             double wheel_base_m, agent::WheelFactors trim)
     : wheel_base_m_(wheel_base_m),
+      trim_(trim),
       ros_topic_(dds::ros_cmd_vel_topic(ns)),
       topic_(participant, dds::ros_topic(ros_topic_)),
       writer_(participant, topic_, dds::ros_command_qos().to_dds()) {}
@@ -22,6 +23,8 @@ RosTwistDrive::~RosTwistDrive() {
 }
 
 void RosTwistDrive::set_wheel_speeds(agent::WheelSpeeds speeds) {
+  speeds.left_mps *= trim_.left;
+  speeds.right_mps *= trim_.right;
   const agent::Twist t = agent::to_twist(speeds, wheel_base_m_);
   geometry_msgs_msg_dds__Twist_ m{};
   m.linear.x = t.linear_mps;

@@ -10,7 +10,9 @@
 //
 // Usage: fastdds_diffdrive DOMAIN TIMEOUT_S MAX_V MAX_W MAX_ACC MAX_ALPHA ODOM NS:X,Y,YAW...
 //   ODOM = world: odometry in the grid's frame (like a simulator's ground truth);
-//   ODOM = start: odometry starts at (0, 0, 0) where the robot starts (like a real base).
+//   ODOM = start: odometry starts at (0, 0, 0) where the robot starts (like a real base);
+//   ODOM = frame:S,YAW,TX,TY: poses in a frame that p_world = S R(YAW) p + (TX, TY) maps onto
+//   the grid (like a mocap system mounted at an angle), for frame calibration.
 //   LEFT/RIGHT wheel gains: NS:X,Y,YAW,GL,GR (default 1,1) model a mismatched wheel.
 // Runs TIMEOUT_S seconds (or until SIGTERM), then prints per robot
 // "robot NS x y yaw cmds N last V W" (world frame; the last command received) and exits 0; 2 on
@@ -166,17 +168,29 @@ void step(Robot& r, const Limits& lim, double now_s, double dt, double wheel_bas
   r.yaw = std::remainder(r.yaw + w * dt, 2 * M_PI);
 }
 
-Odometry odometry(const Robot& r, bool odom_at_start, double now_s) {
+// The odometry frame: where the published poses are expressed.
+struct OdomFrame {
+  bool at_start = false;                      // relative to each robot's start pose
+  double scale = 1, yaw = 0, tx = 0, ty = 0;  // else: p_world = scale R(yaw) p + t
+};
+
+bool parse_odom_frame(const std::string& s, OdomFrame* f) {
+  if (s == "world") return true;
+  if (s == "start") return f->at_start = true;
+  return std::sscanf(s.c_str(), "frame:%lf,%lf,%lf,%lf", &f->scale, &f->yaw, &f->tx, &f->ty) == 4 &&
+         f->scale > 0;
+}
+
+Odometry odometry(const Robot& r, const OdomFrame& f, double now_s) {
   Odometry m;
   m.sec = static_cast<int32_t>(now_s);
   m.nanosec = static_cast<uint32_t>((now_s - m.sec) * 1e9);
-  double x = r.x, y = r.y, yaw = r.yaw;
-  if (odom_at_start) {  // the pose relative to where the robot started
-    const double dx = r.x - r.x0, dy = r.y - r.y0, c = std::cos(r.yaw0), s = std::sin(r.yaw0);
-    x = c * dx + s * dy;
-    y = -s * dx + c * dy;
-    yaw = std::remainder(r.yaw - r.yaw0, 2 * M_PI);
-  }
+  // p = R(-yaw0) (p_world - p0) / scale, with the origin and heading of the frame.
+  const double ox = f.at_start ? r.x0 : f.tx, oy = f.at_start ? r.y0 : f.ty;
+  const double oyaw = f.at_start ? r.yaw0 : f.yaw, scale = f.at_start ? 1.0 : f.scale;
+  const double dx = r.x - ox, dy = r.y - oy, c = std::cos(oyaw), s = std::sin(oyaw);
+  const double x = (c * dx + s * dy) / scale, y = (-s * dx + c * dy) / scale;
+  const double yaw = std::remainder(r.yaw - oyaw, 2 * M_PI);
   m.pose = {x, y, 0, 0, 0, std::sin(yaw / 2), std::cos(yaw / 2)};
   m.twist.linear[0] = r.v;
   m.twist.angular[2] = r.w;
@@ -239,13 +253,18 @@ int main(int argc, char** argv) {
   if (argc < 9) {
     std::fprintf(stderr,
                  "usage: fastdds_diffdrive DOMAIN TIMEOUT_S MAX_V MAX_W MAX_ACC MAX_ALPHA "
-                 "world|start NS:X,Y,YAW[,GL,GR]...\n");
+                 "world|start|frame:S,YAW,TX,TY NS:X,Y,YAW[,GL,GR]...\n");
     return 2;
   }
   const int domain = std::atoi(argv[1]);
   const double timeout_s = std::atof(argv[2]);
   const Limits lim{std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]), std::atof(argv[6])};
-  const bool odom_at_start = std::string(argv[7]) == "start";
+  OdomFrame frame;
+  if (!parse_odom_frame(argv[7], &frame)) {
+    std::fprintf(stderr, "fastdds_diffdrive: bad ODOM '%s' (world, start, frame:S,YAW,TX,TY)\n",
+                 argv[7]);
+    return 2;
+  }
   std::vector<Robot> robots(static_cast<std::size_t>(argc - 8));
   for (int i = 8; i < argc; ++i) {
     if (!parse_robot(argv[i], &robots[static_cast<std::size_t>(i - 8)])) {
@@ -283,7 +302,7 @@ int main(int argc, char** argv) {
       }
       step(r, lim, now_s, kDt, kWheelBase);
       if (tick % 2 == 0) {
-        Odometry o = odometry(r, odom_at_start, now_s);
+        Odometry o = odometry(r, frame, now_s);
         r.writer->write(&o);
       }
     }

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "smart/geometry/frame_transform.hpp"
 #include "support/smart_process.hpp"
 
 namespace smart::test {
@@ -111,7 +112,7 @@ TEST(Ros2Backend, OneAgentProcessDrivesTwoRos2RobotsThroughCmdVelAndOdom) {
   ASSERT_EQ(agent.wait(10s).value_or(-1), 0) << "the agent stops when the monitor's run ends";
   robots.terminate();
   const auto s = r.last_json();
-  EXPECT_TRUE(s["success"].get<bool>());
+  EXPECT_TRUE(s["success"].get<bool>()) << r.out << slurp(robots_out);
   EXPECT_EQ(s["collisions"], 0);
   EXPECT_EQ(s["finished_actions"], s["total_actions"]);
   const auto report = summary_in(slurp(agent_out));
@@ -159,7 +160,7 @@ TEST(Ros2Backend, OdometryFromWhereEachRobotStartedIsPutOnTheGridByItsTransformF
   ASSERT_EQ(r.code, 0) << r.out;
   ASSERT_EQ(agent.wait(10s).value_or(-1), 0);
   robots.terminate();
-  EXPECT_TRUE(r.last_json()["success"].get<bool>());
+  EXPECT_TRUE(r.last_json()["success"].get<bool>()) << r.out << slurp(robots_out);
   EXPECT_EQ(r.last_json()["collisions"], 0);
   const auto poses = final_poses(slurp(robots_out));
   ASSERT_EQ(poses.size(), 2u) << slurp(robots_out);
@@ -168,6 +169,75 @@ TEST(Ros2Backend, OdometryFromWhereEachRobotStartedIsPutOnTheGridByItsTransformF
   for (const auto& f : {robots_out, agent_out}) std::filesystem::remove(f);
   std::filesystem::remove_all(out);
   std::filesystem::remove_all(dir);
+}
+
+// The JSON report of `smart calibrate` (last line; stderr is merged in).
+nlohmann::json report_in(const std::string& out) {
+  const auto at = out.rfind("\n{");
+  return nlohmann::json::parse(at == std::string::npos ? out : out.substr(at + 1));
+}
+
+// `smart calibrate frame --pose odom`: three ROS 2 robots report poses in a frame rotated and
+// shifted against the grid (as from a mocap relay); the fit finds that frame.
+TEST(Ros2Calibrate, FrameFitFromThreeRobotsOdometry) {
+  Ros2Fleet fleet;
+  const auto robots_out = temp_file("ros2_frame_robots.out"), out = temp_file("ros2_frame.yaml");
+  auto robots = start_robots(kRos2Calibrate, "frame:1,0.5,2.0,-1.0",
+                             {start_pose("/robot_0", 0, 3, 0.0), start_pose("/robot_1", 3, 3, 1.0),
+                              start_pose("/robot_2", 1, 0, 2.0)},
+                             robots_out);
+  const auto r =
+      run_smart({"calibrate", "frame",  "--map",      fleet.map,  "--cell-m",
+                 "0.3",       "--pose", "odom",       "--point",  "0:0,3",
+                 "--point",   "1:3,3",  "--point",    "2:1,0",    "--record-s",
+                 "0.3",       "--out",  out.string(), "--domain", std::to_string(kRos2Calibrate)},
+                30s, "ros2_frame", true);
+  robots.terminate();
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto t = geometry::load_frame_transform(out.string());
+  EXPECT_NEAR(t.scale, 1.0, 1e-6);
+  EXPECT_NEAR(t.yaw_rad, 0.5, 1e-4);
+  EXPECT_NEAR(t.translation_m.x(), 2.0, 1e-4);
+  EXPECT_NEAR(t.translation_m.y(), -1.0, 1e-4);
+  for (const auto& f : {robots_out, out}) std::filesystem::remove(f);
+}
+
+// `smart calibrate trim --backend ros2`: a base whose right wheel delivers 85 %; the proposed
+// `trim:` in the robot file makes it drive straight.
+TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
+  const auto robots_out = temp_file("ros2_trim_robots.out");
+  auto robots = start_robots(kRos2Calibrate, "world", {"/robot_0:0.5,0.5,0,1.0,0.85"}, robots_out);
+  auto trial = [&](const std::vector<std::string>& extra, const std::string& tag) {
+    std::vector<std::string> args{"calibrate",
+                                  "trim",
+                                  "--backend",
+                                  "ros2",
+                                  "--robot-id",
+                                  "0",
+                                  "--yes",
+                                  "--seconds",
+                                  "3",
+                                  "--domain",
+                                  std::to_string(kRos2Calibrate)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_smart(args, 30s, tag, true);
+    EXPECT_EQ(r.code, 0) << r.out;
+    return report_in(r.out);
+  };
+  const auto t = trial({}, "ros2_trim");
+  const double left = t["proposed"]["trim.left"].get<double>();
+  EXPECT_NEAR(left, 0.85, 0.02);
+  EXPECT_DOUBLE_EQ(t["proposed"]["trim.right"].get<double>(), 1.0);
+  const auto file = temp_file("trimmed-burger.yaml");
+  std::ifstream in(std::string(SMART_SOURCE_DIR) + "/config/robots/turtlebot3-burger.yaml");
+  std::stringstream text;
+  text << in.rdbuf() << "trim: {left: " << left << "}\n";
+  std::ofstream(file) << text.str();
+  const auto after = trial({"--config", file.string()}, "ros2_trim_after");
+  EXPECT_LT(std::abs(after["turn_rate_radps"].get<double>()),
+            0.2 * std::abs(t["turn_rate_radps"].get<double>()));
+  robots.terminate();
+  for (const auto& f : {robots_out, file}) std::filesystem::remove(f);
 }
 
 TEST(Ros2Backend, BadRobotListsAndMissingTransformFilesAreNamed) {

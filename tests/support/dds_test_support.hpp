@@ -83,6 +83,8 @@ enum DomainId : int {
   kRos2OdomAtStart = 174,
   kRosOdom = 175,
   kRosTwist = 176,
+  kCalibrate = 177,
+  kRos2Calibrate = 178,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

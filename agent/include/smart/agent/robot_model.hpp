@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "smart/agent/types.hpp"
 #include "smart/agent/uncertainty.hpp"
 
 namespace smart::agent {
@@ -35,6 +36,10 @@ struct RobotModel {
   double max_angular_accel_radps2 = 2.0;
   ControllerGains gains;
   Uncertainty uncertainty;  // optional `uncertainty:` section (uncertainty.hpp); none by default
+  // Optional `trim: {left, right}` (0.5..1): factors on each wheel's commanded speed for a base
+  // with a mismatched wheel, proposed by `smart calibrate trim`; applied by drives that take a
+  // twist (ROS 2). A JetBot trims at its board instead (hardware: left/right alpha).
+  WheelFactors trim;
   bool operator==(const RobotModel&) const = default;
 };
 

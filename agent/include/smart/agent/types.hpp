@@ -26,6 +26,13 @@ struct WheelSpeeds {
   double right_mps = 0;
 };
 
+// A dimensionless factor per wheel (measured gains, trims), 1 = as commanded.
+struct WheelFactors {
+  double left = 1.0;
+  double right = 1.0;
+  bool operator==(const WheelFactors&) const = default;
+};
+
 struct Twist {
   double linear_mps = 0;
   double angular_radps = 0;

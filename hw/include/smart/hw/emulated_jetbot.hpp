@@ -5,6 +5,9 @@
 // wiring sign, with an acceleration limit; outputs are dead while MODE1 SLEEP is set or the
 // ALL_LED_OFF full-off bit is set. A thread integrates the pose at 100 Hz and streams it as
 // Vicon Tracker UDP datagrams (mm, rad) to 127.0.0.1:port, exactly what a real Tracker sends.
+// Imperfections a lab meets, for calibration tests (EmulatedFlaws): a mismatched wheel (each
+// wheel's ground speed scaled by its gain) and the mocap system's mounting (the datagrams are in
+// a mocap frame that `mounting` maps onto the grid; by default millimetres in the grid's frame).
 #pragma once
 
 #include <array>
@@ -17,13 +20,20 @@
 #include "smart/agent/types.hpp"
 #include "smart/hw/i2c_bus.hpp"
 #include "smart/hw/jetbot_drive.hpp"
+#include "smart/hw/vicon.hpp"
 
 namespace smart::hw {
+
+struct EmulatedFlaws {
+  agent::WheelFactors wheel_gain;  // ground speed per commanded speed, per wheel
+  geometry::FrameTransform mounting = vicon_millimetres();  // mocap frame -> grid frame
+};
 
 class EmulatedJetbot : public I2cBus {
  public:
   EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
-                 std::string vicon_object, uint16_t vicon_port, double accel_mps2 = 2.0);
+                 std::string vicon_object, uint16_t vicon_port, double accel_mps2 = 2.0,
+                 EmulatedFlaws flaws = {});
   ~EmulatedJetbot() override;
 
   void write(uint8_t address, const std::vector<uint8_t>& bytes) override;
@@ -45,6 +55,8 @@ class EmulatedJetbot : public I2cBus {
   JetbotConfig cfg_;
   double wheel_base_m_;
   double accel_;
+  EmulatedFlaws flaws_;
+  geometry::FrameTransform mocap_from_grid_;
   std::string object_;
   uint16_t port_;
   mutable std::mutex mutex_;

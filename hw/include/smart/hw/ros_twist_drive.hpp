@@ -1,7 +1,7 @@
 // Contract: a DriveBackend for any ROS 2 diff-drive base (TurtleBot3, Gazebo's diff drive
 // plugin, a ros2_control diff_drive_controller) over plain Cyclone DDS: the agent's wheel ground
 // speeds become one geometry_msgs/Twist on rt/<ns>/cmd_vel (agent::to_twist: linear.x =
-// (left + right) / 2, angular.z = (right - left) / wheel_base), reliable
+// (left + right) / 2, angular.z = (right - left) / wheel_base, after the robot's trim), reliable
 // (dds::ros_command_qos(), what nav2 and teleop write with). stop(), deactivate() and the
 // destructor write a zero twist, so the base halts at once rather than at its own cmd_vel
 // timeout. The base's own limits still apply; the robot YAML should not exceed them.
@@ -20,7 +20,9 @@ namespace smart::hw {
 class RosTwistDrive : public agent::DriveBackend {
  public:
   // ns: the robot's ROS 2 namespace ("/robot_3"; dds::ros_namespace()).
-  RosTwistDrive(const dds::Participant& participant, const std::string& ns, double wheel_base_m);
+  // trim: factors on each wheel's speed before the twist (RobotModel::trim).
+  RosTwistDrive(const dds::Participant& participant, const std::string& ns, double wheel_base_m,
+                agent::WheelFactors trim = {});
   ~RosTwistDrive() override;
   RosTwistDrive(const RosTwistDrive&) = delete;
   RosTwistDrive& operator=(const RosTwistDrive&) = delete;
@@ -30,6 +32,7 @@ class RosTwistDrive : public agent::DriveBackend {
 
  private:
   double wheel_base_m_;
+  agent::WheelFactors trim_;
   std::string ros_topic_;
   dds::Topic<geometry_msgs_msg_dds__Twist_> topic_;
   dds::Writer<geometry_msgs_msg_dds__Twist_> writer_;
