@@ -1,3 +1,4 @@
+#include <cmath>
 #include <stdexcept>
 
 #include "smart/dds/topics.hpp"
@@ -14,10 +15,33 @@ std::string ros_namespace(const std::string& pattern, uint32_t robot) {
   return ns == "/" ? "" : ns;
 }
 
+builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s) {
+  const double sec = std::floor(t_s);
+  auto nanosec = static_cast<uint32_t>(std::llround((t_s - sec) * 1e9));
+  auto whole = static_cast<int32_t>(sec);
+  if (nanosec >= 1000000000u) {  // rounding up to the next second
+    nanosec -= 1000000000u;
+    ++whole;
+  }
+  return {whole, nanosec};
+}
+
+geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad) {
+  return {0.0, 0.0, std::sin(yaw_rad / 2), std::cos(yaw_rad / 2)};
+}
+
 TopicQos ros_sensor_qos() {
   TopicQos q;
   q.reliability = Reliability::kBestEffort;
   q.durability = Durability::kVolatile;
+  q.depth = 1;
+  return q;
+}
+
+TopicQos ros_latched_qos() {
+  TopicQos q;
+  q.reliability = Reliability::kReliable;
+  q.durability = Durability::kTransientLocal;
   q.depth = 1;
   return q;
 }

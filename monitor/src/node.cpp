@@ -9,6 +9,7 @@
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
+#include "smart/monitor/ros_plan_view.hpp"
 #include "smart/wire/convert.hpp"
 #include "smart/wire/validate.hpp"
 
@@ -60,6 +61,7 @@ SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
 
 struct MonitorNode::Impl {
   const dds::Participant& participant;
+  const Instance& in;
   MonitorOptions opt;
   SupervisorConfig config;
   MonitorAnnouncer announcer;  // before the writers: they take its ownership strength
@@ -77,10 +79,14 @@ struct MonitorNode::Impl {
   std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
   uint32_t status_writers_seen = 0;  // status writers matched so far (total_count)
   const SteadyClock::time_point wall0 = SteadyClock::now();
+  std::optional<RosPlanView> plan_view;             // --ros-plan-hz
+  std::vector<std::optional<agent::Pose2D>> poses;  // last reported, for the plan view
+  double plan_view_s = -1e9;
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
        const MonitorOptions& o)
       : participant(p),
+        in(in),
         opt(o),
         config(with_run_id(o.run, p.domain_id(), o.cell_m)),
         announcer(p, qos, config.run_id, o.resume),
@@ -132,8 +138,9 @@ struct MonitorNode::Impl {
   void read_observations() {
     states.take_each_from([&](const smart_msg_RobotState& s, dds_instance_handle_t from) {
       if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
-      if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s()) || !opt.on_state)
-        return;
+      if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s())) return;
+      if (plan_view) poses[s.robot_id] = agent::Pose2D{s.pose.x_m, s.pose.y_m, s.pose.yaw_rad};
+      if (!opt.on_state) return;
       // One time base for states.csv: the sim clock in lock-step; in real time the monitor's
       // run clock (hosts' clocks differ: a JetBot stamps host uptime, a sim host its own start).
       const double t_s = config.lockstep ? s.sim_time_s : now_s();
@@ -220,6 +227,19 @@ struct MonitorNode::Impl {
     log_notes();
   }
 
+  void start_plan_view() {
+    if (opt.ros_plan_hz <= 0) return;
+    plan_view.emplace(participant, in, opt.cell_m, opt.robot_radius_m);
+    poses.assign(robots, std::nullopt);
+    plan_view->publish_paths();
+  }
+
+  void publish_plan_view(bool now) {
+    if (!plan_view || (!now && now_s() - plan_view_s < 1.0 / opt.ros_plan_hz)) return;
+    plan_view_s = now_s();
+    plan_view->publish(snapshot(in.actions, in.adg, sup.tracker()), poses, plan_view_s);
+  }
+
   // Tell every host the run is over, make sure it was delivered, and take the sim's final
   // states and status, which follow its stop; then the verdict.
   MonitorResult finish() {
@@ -231,6 +251,7 @@ struct MonitorNode::Impl {
       read_observations();
     }
     sup.conclude();
+    publish_plan_view(true);
     MonitorResult r = sup.result();
     r.wall_time_s = now_s();
     r.rejected_samples = rejections.counts();
@@ -271,6 +292,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   }
   if (I.opt.resume && !I.resume()) return I.sup.result();
   I.sup.start(I.now_s());
+  I.start_plan_view();
   spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim", I.sup.result().run_id,
                I.sup.result().robots.size(), I.sup.tracker().total());
   double last_check_s = 0;
@@ -283,6 +305,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     I.pump();
     if (I.now_s() - last_check_s < 0.1) continue;
     last_check_s = I.now_s();
+    I.publish_plan_view(false);
     if (I.opt.host_check) {
       if (auto problem = I.opt.host_check(); !problem.empty()) I.sup.on_host_failure(problem);
     }

@@ -5,21 +5,6 @@
 
 namespace smart::sim {
 
-builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s) {
-  const double sec = std::floor(t_s);
-  auto nanosec = static_cast<uint32_t>(std::llround((t_s - sec) * 1e9));
-  auto whole = static_cast<int32_t>(sec);
-  if (nanosec >= 1000000000u) {  // rounding up to the next second
-    nanosec -= 1000000000u;
-    ++whole;
-  }
-  return {whole, nanosec};
-}
-
-geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad) {
-  return {0.0, 0.0, std::sin(yaw_rad / 2), std::cos(yaw_rad / 2)};
-}
-
 std::vector<int8_t> occupancy_cells(const grid::Grid& grid) {
   std::vector<int8_t> cells;
   cells.reserve(static_cast<std::size_t>(grid.width()) * grid.height());

@@ -84,6 +84,7 @@ enum DomainId : int {
   kRosOdom = 175,
   kRosTwist = 176,
   kCalibrate = 177,
+  kRosPlanView = 179,
   kRos2Calibrate = 178,
 };
 

@@ -135,13 +135,14 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto in = monitor::load_instance(instance_options(o.sim.world, o.plan, o.axis, o.format));
   check_ros_pose_robots(o.sim.ros_pose_robots, in.plan.paths.size());
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
-  (void)agent::load_robot_model(robot_file);  // fail early on a bad model
+  const auto model = agent::load_robot_model(robot_file);  // fail early on a bad model
   const auto profile = run_qos_profile(o.sim.dds);
   std::optional<ChildProcess> sim;
   if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
+  mo.robot_radius_m = model.radius_m;
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);

@@ -117,6 +117,11 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
   cmd->add_option("--max-sim-time-s", o.max_sim_time_s, "fail past this sim time (0: no limit)")
       ->check(finite_in(0.0, 1e9));
   cmd->add_flag("!--no-progress", o.progress, "no progress bar");
+  cmd->add_option("--ros-plan-hz", o.ros_plan_hz,
+                  "publish the plan for rviz2 (paths on /robot_<id>/plan, robots, goals and "
+                  "waits on /smart/markers; config/rviz/smart.rviz) at this rate; 0: off")
+      ->check(finite_in(0.0, 50.0))
+      ->capture_default_str();
 }
 
 monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
@@ -155,6 +160,7 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   mo.run.max_sim_time_s = o.max_sim_time_s;
   mo.cell_m = o.sim.world.cell_m;
   mo.resume = o.resume;
+  mo.ros_plan_hz = o.ros_plan_hz;
   return mo;
 }
 

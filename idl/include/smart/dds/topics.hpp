@@ -71,6 +71,7 @@ SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__OccupancyGrid_)
 SMART_DDS_TOPIC_TYPE(geometry_msgs_msg_dds__Twist_)
 SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__Odometry_)
 SMART_DDS_TOPIC_TYPE(nav_msgs_msg_dds__Path_)
+SMART_DDS_TOPIC_TYPE(visualization_msgs_msg_dds__MarkerArray_)
 
 namespace smart::dds {
 // The fleet as ROS 2 sees it (idl/smart.idl, "The ROS 2 view").
@@ -99,6 +100,18 @@ inline std::string ros_cmd_vel_topic(const std::string& ns) {
   return ns + "/" + smart_msg_ROS_CMD_VEL;
 }
 inline std::string ros_odom_topic(const std::string& ns) { return ns + "/" + smart_msg_ROS_ODOM; }
+// ROS time from seconds (floor to whole seconds + nanoseconds).
+builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s);
+// Rotation by yaw about +z as a unit quaternion (x, y, z, w).
+geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad);
+
+// The plan view (idl/smart.idl, "The plan as rviz2 sees it").
+inline constexpr std::string_view kRosMarkersTopic = smart_msg_ROS_MARKERS_TOPIC;
+inline std::string ros_robot_plan_topic(uint32_t robot) {
+  return "/" + ros_robot_frame(robot) + "/" + smart_msg_ROS_PLAN_SUFFIX;
+}
+// Written once, kept for late joiners (rviz2 started after the run): reliable, transient local.
+TopicQos ros_latched_qos();
 // Sensor data (odometry, mocap poses): best effort, latest only.
 TopicQos ros_sensor_qos();
 // Commands (cmd_vel): reliable, volatile, keep last (rclcpp's default profile, depth 10).

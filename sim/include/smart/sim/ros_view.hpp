@@ -22,10 +22,9 @@
 
 namespace smart::sim {
 
-// ROS time from seconds (floor to whole seconds + nanoseconds).
-builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s);
-// Rotation by yaw about +z as a unit quaternion (x, y, z, w).
-geometry_msgs_msg_dds__Quaternion_ yaw_quaternion(double yaw_rad);
+// ROS time and heading quaternions: shared with the monitor's plan view (smart/dds/topics.hpp).
+using dds::ros_stamp;
+using dds::yaw_quaternion;
 // OccupancyGrid cells of a MovingAI grid: row-major from the bottom row (world y grows upwards),
 // 100 = blocked, 0 = free. The grid's origin is the outer corner of cell (0, height-1).
 std::vector<int8_t> occupancy_cells(const grid::Grid& grid);

@@ -61,6 +61,7 @@ struct MonitorCliOptions {
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
   bool progress = true;
+  double ros_plan_hz = 0;  // the rviz2 plan view; 0: off
 };
 
 // --map --scen --agents --initial-heading (--cell-m and --robot with `fleet`).
