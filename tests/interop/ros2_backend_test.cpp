@@ -240,6 +240,31 @@ TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
   for (const auto& f : {robots_out, file}) std::filesystem::remove(f);
 }
 
+// `smart doctor --backend ros2` over two bases, robot 1's left wheel wired backwards.
+TEST(Ros2Calibrate, DoctorChecksEachBasesOdometryAndWheels) {
+  const auto robots_out = temp_file("ros2_doctor_robots.out");
+  auto robots = start_robots(kRos2Calibrate, "world",
+                             {"/robot_0:0.5,0.5,0", "/robot_1:2.5,0.5,0,-1,1"}, robots_out);
+  const auto r = run_smart({"doctor", "--backend", "ros2", "--robot-ids", "0-1", "--wheels",
+                            "--yes", "--seconds", "1", "--domain", std::to_string(kRos2Calibrate)},
+                           60s, "ros2_doctor", true);
+  robots.terminate();
+  EXPECT_EQ(r.code, 1) << r.out;
+  std::map<std::string, std::string> level;  // "robot/check" -> level
+  const auto report = report_in(r.out);
+  for (const auto& row : report["rows"]) {
+    level[row["robot"].get<std::string>() + "/" + row["check"].get<std::string>()] =
+        row["level"].get<std::string>();
+  }
+  for (const char* key : {"0/motor board", "0/pose stream", "0/left wheel", "0/right wheel",
+                          "1/pose stream", "1/right wheel"}) {
+    EXPECT_EQ(level[key], "OK") << key << "\n" << r.out;
+  }
+  EXPECT_EQ(level["1/left wheel"], "FAIL") << r.out;
+  EXPECT_NE(r.out.find("fix the base's driver"), std::string::npos) << r.out;
+  std::filesystem::remove(robots_out);
+}
+
 TEST(Ros2Backend, BadRobotListsAndMissingTransformFilesAreNamed) {
   const auto bad = run_smart({"agent", "--backend", "ros2", "--robot-ids", "3-1", "--domain",
                               std::to_string(kRos2OdomAtStart)},

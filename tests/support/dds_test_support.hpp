@@ -85,6 +85,7 @@ enum DomainId : int {
   kRosTwist = 176,
   kCalibrate = 177,
   kRosPlanView = 179,
+  kDoctor = 180,
   kRos2Calibrate = 178,
 };
 

@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   smart::tools::register_serve_command(app, exit_code);
   smart::tools::register_experiment_command(app, exit_code);
   smart::tools::register_calibrate_command(app, exit_code);
+  smart::tools::register_doctor_command(app, exit_code);
   app.parse_complete_callback([&] { smart::tools::init_logging(log_level); });
   try {
     app.parse(argc, argv);

@@ -156,10 +156,10 @@ void add_backend_options(CLI::App* cmd, BackendOptions& o) {
       ->expected(3);
   cmd->add_option("--emulate-wheel-gains", o.emulate_wheel_gains,
                   "an emulated JetBot's wheel ground speed per command, LEFT,RIGHT (a mismatched "
-                  "wheel; default 1,1)")
+                  "wheel; negative: wired backwards; default 1,1)")
       ->delimiter(',')
       ->expected(2)
-      ->check(finite_in(0.1, 2.0));
+      ->check(finite_in(-2.0, 2.0));
   cmd->add_option("--emulate-mounting", o.emulate_mounting,
                   "transform file: how the emulated Vicon's frame (mm) lies on the grid "
                   "(default: millimetres in the grid's frame)");

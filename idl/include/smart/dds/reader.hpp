@@ -188,6 +188,13 @@ class Reader {
     return p && p->strength >= strength;
   }
 
+  // Writers found whose QoS does not satisfy this reader's (a different QoS profile).
+  dds_requested_incompatible_qos_status_t requested_incompatible_qos() const {
+    dds_requested_incompatible_qos_status_t s{};
+    check(dds_get_requested_incompatible_qos_status(entity_.handle(), &s),
+          "incompatible QoS status");
+    return s;
+  }
   dds_subscription_matched_status_t subscription_matched() const {
     dds_subscription_matched_status_t s{};
     check(dds_get_subscription_matched_status(entity_.handle(), &s), "subscription matched");

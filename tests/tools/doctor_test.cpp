@@ -1,0 +1,47 @@
+#include "smart/tools/doctor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace smart::tools {
+namespace {
+
+std::vector<agent::PoseSample> stream(double hz, double seconds, double gap_at = -1,
+                                      double gap_s = 0) {
+  std::vector<agent::PoseSample> out;
+  for (double t = 0; t < seconds; t += 1.0 / hz) {
+    if (gap_at >= 0 && t > gap_at && t < gap_at + gap_s) continue;
+    out.push_back({{0, 0, 0}, 0, 0, t, true});
+  }
+  return out;
+}
+
+TEST(Doctor, PoseStreamRateAndGapsAreJudged) {
+  const auto ok = pose_stream_check("1", stream(100, 2), 2, 20, 0.1);
+  EXPECT_EQ(ok.level, Level::kOk) << ok.measured;
+  EXPECT_NE(ok.measured.find("100 Hz"), std::string::npos) << ok.measured;
+  EXPECT_EQ(pose_stream_check("1", stream(10, 2), 2, 20, 0.5).level, Level::kWarn);
+  const auto gap = pose_stream_check("1", stream(100, 2, 1.0, 0.3), 2, 20, 0.1);
+  EXPECT_EQ(gap.level, Level::kWarn);
+  EXPECT_NE(gap.fix.find("--pose-max-age-s"), std::string::npos);
+  const auto none = pose_stream_check("1", {}, 2, 20, 0.1);
+  EXPECT_EQ(none.level, Level::kFail);
+  EXPECT_NE(none.fix.find("--vicon-object"), std::string::npos);
+}
+
+TEST(Doctor, AWheelAloneMustTurnTheRobotAwayFromIt) {
+  const agent::Pose2D start{1, 1, M_PI / 2};  // facing +y
+  // Left wheel forward: clockwise, ahead along +y.
+  EXPECT_EQ(wheel_check("0", Wheel::kLeft, start, {1.02, 1.04, M_PI / 2 - 0.8}).level, Level::kOk);
+  const auto backwards = wheel_check("0", Wheel::kLeft, start, {1.02, 0.96, M_PI / 2 + 0.8});
+  EXPECT_EQ(backwards.level, Level::kFail);
+  EXPECT_NE(backwards.fix.find("hardware.left.sign"), std::string::npos);
+  EXPECT_EQ(wheel_check("0", Wheel::kRight, start, {0.98, 1.04, M_PI / 2 + 0.8}).level, Level::kOk);
+  const auto still = wheel_check("0", Wheel::kRight, start, start);
+  EXPECT_EQ(still.level, Level::kFail);
+  EXPECT_NE(still.fix.find("did not move"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace smart::tools

@@ -1,0 +1,39 @@
+// Contract: the verdicts of `smart doctor` (pure): each check becomes a row with a level (OK,
+// WARN, FAIL), what was measured and, unless OK, how to fix it.
+// - pose_stream_check(): a pose stream recorded for `seconds`: its rate, jitter (standard
+//   deviation of the gaps) and largest gap; FAIL without poses, WARN below min_rate_hz or with a
+//   gap longer than max_age_s (the agent would stop the robot then).
+// - wheel_check(): one wheel driven forward alone from `before` to `after`: a left wheel alone
+//   turns the robot clockwise (right), a right wheel counter-clockwise, and both move it forward;
+//   FAIL names the sign to flip in the robot file, or a wheel that did not move.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "smart/agent/types.hpp"
+
+namespace smart::tools {
+
+enum class Level { kOk, kWarn, kFail };
+
+struct CheckRow {
+  std::string robot;  // "3", or "" for host-wide checks
+  std::string check;
+  Level level = Level::kOk;
+  std::string measured;
+  std::string fix;  // empty when OK
+};
+
+CheckRow pose_stream_check(const std::string& robot, const std::vector<agent::PoseSample>& samples,
+                           double seconds, double min_rate_hz, double max_age_s);
+
+enum class Wheel { kLeft, kRight };
+// board: the robot's wheels are driven by this project (a JetBot: the fix is in its robot file),
+// not by a ROS 2 base's own driver.
+CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D& before,
+                     const agent::Pose2D& after, bool board = true);
+
+const char* level_name(Level level);
+
+}  // namespace smart::tools

@@ -1,0 +1,88 @@
+#include "smart/tools/doctor.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace smart::tools {
+
+const char* level_name(Level level) {
+  switch (level) {
+    case Level::kOk:
+      return "OK";
+    case Level::kWarn:
+      return "WARN";
+    case Level::kFail:
+      break;
+  }
+  return "FAIL";
+}
+
+CheckRow pose_stream_check(const std::string& robot, const std::vector<agent::PoseSample>& samples,
+                           double seconds, double min_rate_hz, double max_age_s) {
+  CheckRow row{robot, "pose stream", Level::kOk, "", ""};
+  if (samples.size() < 2) {
+    row.level = Level::kFail;
+    row.measured = std::to_string(samples.size()) + " poses in " + std::to_string(seconds) + " s";
+    row.fix =
+        "no pose stream: check the mocap object name and port (--vicon-object, "
+        "--vicon-port), the ROS topic or namespace, and that the robot is tracked";
+    return row;
+  }
+  double sum = 0, sum_sq = 0, max_gap = 0;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const double gap = samples[i].stamp_s - samples[i - 1].stamp_s;
+    sum += gap;
+    sum_sq += gap * gap;
+    max_gap = std::max(max_gap, gap);
+  }
+  const double n = static_cast<double>(samples.size() - 1), mean = sum / n;
+  const double rate = samples.size() / seconds;
+  const double jitter = std::sqrt(std::max(0.0, sum_sq / n - mean * mean));
+  std::ostringstream m;
+  m.precision(3);
+  m << rate << " Hz, jitter " << jitter * 1000 << " ms, largest gap " << max_gap * 1000 << " ms";
+  row.measured = m.str();
+  if (rate < min_rate_hz) {
+    row.level = Level::kWarn;
+    row.fix = "the pose rate is below " + std::to_string(static_cast<int>(min_rate_hz)) +
+              " Hz: check the mocap frame rate and the network";
+  } else if (max_gap > max_age_s) {
+    row.level = Level::kWarn;
+    row.fix =
+        "gaps longer than --pose-max-age-s stop the robot: check for lost tracking or "
+        "packets";
+  }
+  return row;
+}
+
+CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D& before,
+                     const agent::Pose2D& after, bool board) {
+  const char* name = wheel == Wheel::kLeft ? "left" : "right";
+  CheckRow row{robot, std::string(name) + " wheel", Level::kOk, "", ""};
+  const double turn = std::remainder(after.yaw_rad - before.yaw_rad, 2 * std::numbers::pi);
+  const double ahead = std::cos(before.yaw_rad) * (after.x_m - before.x_m) +
+                       std::sin(before.yaw_rad) * (after.y_m - before.y_m);
+  std::ostringstream m;
+  m.precision(3);
+  m << "turned " << turn * 180 / std::numbers::pi << " deg, moved " << ahead * 1000 << " mm ahead";
+  row.measured = m.str();
+  if (std::abs(turn) < 0.05 && std::abs(ahead) < 0.005) {
+    row.level = Level::kFail;
+    row.fix = std::string("the ") + name +
+              " wheel did not move: check its motor wiring and "
+              "the board's channel map (hardware.board)";
+    return row;
+  }
+  // Forward on one wheel: the robot pivots about the other one, turning away from it.
+  const bool forward = wheel == Wheel::kLeft ? turn < 0 : turn > 0;
+  if (!forward) {
+    row.level = Level::kFail;
+    row.fix = std::string("the ") + name + " wheel turns backwards: " +
+              (board ? std::string("flip hardware.") + name + ".sign in the robot file"
+                     : std::string("fix the base's driver (its wheel direction or joint axis)"));
+  }
+  return row;
+}
+
+}  // namespace smart::tools
