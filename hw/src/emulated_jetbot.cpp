@@ -22,7 +22,8 @@ EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, 
       mocap_from_grid_(flaws.mounting.inverse()),
       object_(std::move(object)),
       port_(port),
-      pose_(start) {
+      pose_(start),
+      noise_(flaws.seed) {
   regs_[pca9685::kMode1] = pca9685::kSleep | pca9685::kAllCall;  // power-on default: asleep
   if (port_ != 0) fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   thread_ = std::thread([this] {
@@ -97,7 +98,9 @@ double EmulatedJetbot::wheel_target(bool left) const {
     dir = da > 0 && db == 0 ? 1 : (db > 0 && da == 0 ? -1 : 0);
   }
   // The wiring's sign undoes the driver's polarity setting: forward means forward.
-  return w.sign * dir * (d / 4080.0) * cfg_.max_wheel_speed_mps;
+  const double fraction = d / 4080.0, db = flaws_.dead_band;
+  const double effective = fraction <= db ? 0.0 : (fraction - db) / (1.0 - db);
+  return w.sign * dir * effective * cfg_.max_wheel_speed_mps;
 }
 
 agent::WheelSpeeds EmulatedJetbot::commanded() const {
@@ -105,33 +108,71 @@ agent::WheelSpeeds EmulatedJetbot::commanded() const {
   return {wheel_target(true), wheel_target(false)};
 }
 
+EmulatedFlaws realistic_flaws(uint64_t seed) {
+  EmulatedFlaws f;
+  f.dead_band = 60.0 / 255.0;
+  f.lag_s = 0.1;
+  f.vicon_rate_hz = 100.0;
+  f.vicon_latency_s = 0.010;
+  f.vicon_noise_m = 0.0005;
+  f.vicon_noise_rad = 0.2 * M_PI / 180.0;
+  f.seed = seed;
+  return f;
+}
+
+// Wheels follow their targets (first-order lag, then the acceleration limit); the pose follows
+// the wheels (each scaled by its gain).
+void EmulatedJetbot::step_wheels(double dt) {
+  const double tl = wheel_target(true), tr = wheel_target(false);
+  const double k = flaws_.lag_s > 0 ? 1.0 - std::exp(-dt / flaws_.lag_s) : 1.0;
+  const double dv = accel_ * dt;
+  wheels_.left_mps += std::clamp(k * (tl - wheels_.left_mps), -dv, dv);
+  wheels_.right_mps += std::clamp(k * (tr - wheels_.right_mps), -dv, dv);
+  const double left = wheels_.left_mps * flaws_.wheel_gain.left;
+  const double right = wheels_.right_mps * flaws_.wheel_gain.right;
+  const double v = (left + right) / 2, w = (right - left) / wheel_base_m_;
+  pose_.x_m += v * std::cos(pose_.yaw_rad) * dt;
+  pose_.y_m += v * std::sin(pose_.yaw_rad) * dt;
+  pose_.yaw_rad = std::remainder(pose_.yaw_rad + w * dt, 2 * M_PI);
+}
+
+// The pose as Vicon reports it: in the mocap frame, with measurement noise.
+std::vector<uint8_t> EmulatedJetbot::vicon_frame() {
+  std::normal_distribution<double> position(0.0, flaws_.vicon_noise_m),
+      heading(0.0, flaws_.vicon_noise_rad);
+  const double nx = flaws_.vicon_noise_m > 0 ? position(noise_) : 0.0;
+  const double ny = flaws_.vicon_noise_m > 0 ? position(noise_) : 0.0;
+  const double nyaw = flaws_.vicon_noise_rad > 0 ? heading(noise_) : 0.0;
+  const Eigen::Vector2d p = mocap_from_grid_.apply({pose_.x_m + nx, pose_.y_m + ny});
+  ViconObject o{
+      object_, {p.x(), p.y(), 0}, {0, 0, mocap_from_grid_.apply_yaw(pose_.yaw_rad + nyaw)}};
+  return make_vicon_datagram(++frame_, {o});
+}
+
 void EmulatedJetbot::advance(double dt) {
-  std::vector<uint8_t> datagram;
+  std::vector<std::vector<uint8_t>> due;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const double tl = wheel_target(true), tr = wheel_target(false);
-    const double dv = accel_ * dt;
-    wheels_.left_mps += std::clamp(tl - wheels_.left_mps, -dv, dv);
-    wheels_.right_mps += std::clamp(tr - wheels_.right_mps, -dv, dv);
-    const double left = wheels_.left_mps * flaws_.wheel_gain.left;
-    const double right = wheels_.right_mps * flaws_.wheel_gain.right;
-    const double v = (left + right) / 2, w = (right - left) / wheel_base_m_;
-    pose_.x_m += v * std::cos(pose_.yaw_rad) * dt;
-    pose_.y_m += v * std::sin(pose_.yaw_rad) * dt;
-    pose_.yaw_rad = std::remainder(pose_.yaw_rad + w * dt, 2 * M_PI);
-    if (fd_ >= 0) {
-      const Eigen::Vector2d p = mocap_from_grid_.apply({pose_.x_m, pose_.y_m});
-      ViconObject o{object_, {p.x(), p.y(), 0}, {0, 0, mocap_from_grid_.apply_yaw(pose_.yaw_rad)}};
-      datagram = make_vicon_datagram(++frame_, {o});
+    step_wheels(dt);
+    time_s_ += dt;
+    if (fd_ >= 0 && time_s_ + 1e-9 >= next_frame_s_) {
+      next_frame_s_ += 1.0 / flaws_.vicon_rate_hz;
+      in_flight_.emplace_back(time_s_ + flaws_.vicon_latency_s, vicon_frame());
+    }
+    while (!in_flight_.empty() && in_flight_.front().first <= time_s_ + 1e-9) {
+      due.push_back(std::move(in_flight_.front().second));
+      in_flight_.pop_front();
     }
   }
-  if (!datagram.empty()) {
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_port = htons(port_);
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  }
+  for (const auto& d : due) send(d);
+}
+
+void EmulatedJetbot::send(const std::vector<uint8_t>& datagram) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port_);
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::sendto(fd_, datagram.data(), datagram.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
 }
 
 agent::Pose2D EmulatedJetbot::pose() const {

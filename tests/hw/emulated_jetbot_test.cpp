@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include "smart/hw/vicon.hpp"
@@ -47,6 +48,62 @@ TEST(EmulatedJetbot, StreamsItsPoseAsViconDatagrams) {
   EXPECT_NEAR(p->pose.x_m, 1.0, 1e-9);
   EXPECT_NEAR(p->pose.y_m, 2.0, 1e-9);
   EXPECT_NEAR(p->pose.yaw_rad, 0.5, 1e-9);
+}
+
+// A lab JetBot's flaws (realistic_flaws): below the dead band the wheel does not turn, and the
+// JetBot's own compensation (beta = the dead band, alpha = 1 - beta: jetbot-lab.yaml) restores
+// a linear response; the motor lags; Vicon poses are noisy.
+TEST(EmulatedJetbot, RealisticFlawsDeadBandLagAndNoise) {
+  JetbotConfig plain;
+  EmulatedFlaws flaws = realistic_flaws(7);
+  EmulatedJetbot bot(plain, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
+  JetbotDrive drive(bot, plain, [](double) {});
+  drive.configure();
+  drive.activate();
+  drive.set_wheel_speeds({0.1, 0.1});  // 16 % duty: inside the dead band
+  EXPECT_EQ(bot.commanded().left_mps, 0.0);
+  JetbotConfig compensated;
+  compensated.left.alpha = compensated.right.alpha = 1.0 - 60.0 / 255.0;
+  compensated.left.beta = compensated.right.beta = 60.0 / 255.0;
+  EmulatedJetbot lab(compensated, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
+  JetbotDrive lab_drive(lab, compensated, [](double) {});
+  lab_drive.configure();
+  lab_drive.activate();
+  lab_drive.set_wheel_speeds({0.1, 0.3});
+  EXPECT_NEAR(lab.commanded().left_mps, 0.1, 0.005);
+  EXPECT_NEAR(lab.commanded().right_mps, 0.3, 0.005);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  // A 0.1 s time constant: still rising (without it, one 10 ms step would reach 0.3 m/s).
+  EXPECT_LT(lab.wheel_speeds().right_mps, 0.95 * 0.3);
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  EXPECT_NEAR(lab.wheel_speeds().right_mps, 0.3, 0.01);
+}
+
+TEST(EmulatedJetbot, RealisticViconIsNoisyAroundTheTruePose) {
+  auto now = [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  };
+  ViconReceiver rx("127.0.0.1", 0, vicon_millimetres(), {"jb"}, now);
+  EmulatedJetbot bot(JetbotConfig{}, 0.1025, {1.0, 2.0, 0.5}, "jb", rx.port(), 2.0,
+                     realistic_flaws(3));
+  std::vector<double> xs;
+  double last = -1;
+  for (int i = 0; i < 400 && xs.size() < 60; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const auto p = rx.latest("jb");
+    if (p && p->stamp_s != last) {
+      xs.push_back(p->pose.x_m);
+      last = p->stamp_s;
+    }
+  }
+  ASSERT_GE(xs.size(), 30u);
+  double mean = 0, sq = 0;
+  for (const double x : xs) mean += x / xs.size();
+  for (const double x : xs) sq += (x - mean) * (x - mean) / xs.size();
+  EXPECT_NEAR(mean, 1.0, 0.0005);
+  EXPECT_GT(std::sqrt(sq), 0.0002);  // 0.5 mm noise, measured
+  EXPECT_LT(std::sqrt(sq), 0.001);
 }
 
 }  // namespace

@@ -86,6 +86,7 @@ enum DomainId : int {
   kCalibrate = 177,
   kRosPlanView = 179,
   kDoctor = 180,
+  kLabExample = 181,
   kRos2Calibrate = 178,
 };
 

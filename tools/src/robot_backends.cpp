@@ -41,7 +41,8 @@ void open_ros_pose(const BackendOptions& o, uint32_t id, PoseKind kind,
 }
 
 hw::EmulatedFlaws emulated_flaws(const BackendOptions& o) {
-  hw::EmulatedFlaws f;
+  hw::EmulatedFlaws f =
+      o.emulate_realistic ? hw::realistic_flaws(o.emulate_seed) : hw::EmulatedFlaws{};
   if (o.emulate_wheel_gains.size() == 2)
     f.wheel_gain = {o.emulate_wheel_gains[0], o.emulate_wheel_gains[1]};
   if (!o.emulate_mounting.empty()) f.mounting = geometry::load_frame_transform(o.emulate_mounting);
@@ -160,6 +161,11 @@ void add_backend_options(CLI::App* cmd, BackendOptions& o) {
       ->delimiter(',')
       ->expected(2)
       ->check(finite_in(-2.0, 2.0));
+  cmd->add_flag("--emulate-realistic", o.emulate_realistic,
+                "an emulated JetBot with a real one's flaws: motor dead band and lag, Vicon "
+                "latency and noise (hw/emulated_jetbot.hpp cites the values)");
+  cmd->add_option("--emulate-seed", o.emulate_seed, "seed of the emulated Vicon's noise")
+      ->capture_default_str();
   cmd->add_option("--emulate-mounting", o.emulate_mounting,
                   "transform file: how the emulated Vicon's frame (mm) lies on the grid "
                   "(default: millimetres in the grid's frame)");

@@ -143,6 +143,15 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
   mo.robot_radius_m = model.radius_m;
+  if (4 * model.radius_m > o.sim.world.cell_m) {
+    // The ADG orders cells and edge midpoints as separate locations (monitor/adg.hpp): a robot
+    // on an edge midpoint is half a cell from a robot on the next cell's centre.
+    spdlog::warn(
+        "robots of radius {} m ({}) are wider than a quarter of a {} m cell: a robot "
+        "crossing into a cell may touch one still on its centre; use --cell-m {} or "
+        "more",
+        model.radius_m, model.name, o.sim.world.cell_m, 4 * model.radius_m);
+  }
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);

@@ -12,7 +12,9 @@
 
 #include <array>
 #include <atomic>
+#include <deque>
 #include <mutex>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,7 +29,27 @@ namespace smart::hw {
 struct EmulatedFlaws {
   agent::WheelFactors wheel_gain;  // ground speed per commanded speed, per wheel
   geometry::FrameTransform mounting = vicon_millimetres();  // mocap frame -> grid frame
+  // Motor: duty below dead_band (fraction of full) does not turn the wheel; above it the speed
+  // grows linearly to full (a DC motor's static friction); lag_s: first-order response.
+  double dead_band = 0.0;
+  double lag_s = 0.0;
+  // Vicon: frames at vicon_rate_hz (at most 100, the emulator's step), each delayed by
+  // vicon_latency_s, with Gaussian noise (seeded) on position and heading.
+  double vicon_rate_hz = 100.0;
+  double vicon_latency_s = 0.0;
+  double vicon_noise_m = 0.0;
+  double vicon_noise_rad = 0.0;
+  uint64_t seed = 0;
 };
+
+// The flaws of a real lab JetBot, for experiments (examples/lab-7-jetbots): dead band 60/255
+// of full duty, what Duckietown's driver for the same class of TT gear motors on a Jetson motor
+// HAT uses as minimum PWM (duckietown/dt-duckiebot-interface, wheels_driver,
+// dagu_wheels_driver.py, *_MOTOR_MIN_PWM = 60); a 0.1 s motor time constant (order of magnitude of
+// small brushed gear motors; an assumption); Vicon at 100 Hz with 10 ms latency and 0.5 mm /
+// 0.2 deg noise (sub-millimetre static precision: Merriaux et al., "A Study of Vicon System
+// Positioning Performance", Sensors 17(7):1591, 2017; latency: Vicon Tracker's stated < 10 ms).
+EmulatedFlaws realistic_flaws(uint64_t seed);
 
 class EmulatedJetbot : public I2cBus {
  public:
@@ -49,6 +71,9 @@ class EmulatedJetbot : public I2cBus {
 
  private:
   double wheel_target(bool left) const;
+  void step_wheels(double dt);
+  std::vector<uint8_t> vicon_frame();
+  void send(const std::vector<uint8_t>& datagram);
   bool pin_high(int channel) const;
   int duty(int channel) const;
 
@@ -64,6 +89,9 @@ class EmulatedJetbot : public I2cBus {
   agent::Pose2D pose_;
   agent::WheelSpeeds wheels_;
   uint64_t writes_ = 0;
+  double time_s_ = 0, next_frame_s_ = 0;
+  std::mt19937_64 noise_;
+  std::deque<std::pair<double, std::vector<uint8_t>>> in_flight_;  // due time, datagram
   int fd_ = -1;
   uint32_t frame_ = 0;
   std::atomic<bool> stop_{false};

@@ -44,6 +44,8 @@ struct BackendOptions {
   std::vector<double> emulate_pose;  // x, y, yaw for --i2c emulated
   std::vector<double> emulate_wheel_gains;  // left, right: a mismatched wheel
   std::string emulate_mounting;             // transform file: the emulated mocap's mounting
+  bool emulate_realistic = false;           // hw::realistic_flaws(): dead band, lag, Vicon
+  uint64_t emulate_seed = 0;                // its Vicon noise
 };
 
 void add_backend_options(CLI::App* cmd, BackendOptions& o);
