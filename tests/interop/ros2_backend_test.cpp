@@ -206,7 +206,8 @@ TEST(Ros2Calibrate, FrameFitFromThreeRobotsOdometry) {
 // `trim:` in the robot file makes it drive straight.
 TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
   const auto robots_out = temp_file("ros2_trim_robots.out");
-  auto robots = start_robots(kRos2Calibrate, "world", {"/robot_0:0.5,0.5,0,1.0,0.85"}, robots_out);
+  auto robots =
+      start_robots(kRos2CalibrateTrim, "world", {"/robot_0:0.5,0.5,0,1.0,0.85"}, robots_out);
   auto trial = [&](const std::vector<std::string>& extra, const std::string& tag) {
     std::vector<std::string> args{"calibrate",
                                   "trim",
@@ -218,7 +219,7 @@ TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
                                   "--seconds",
                                   "3",
                                   "--domain",
-                                  std::to_string(kRos2Calibrate)};
+                                  std::to_string(kRos2CalibrateTrim)};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = run_smart(args, 30s, tag, true);
     EXPECT_EQ(r.code, 0) << r.out;
@@ -243,10 +244,10 @@ TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
 // `smart doctor --backend ros2` over two bases, robot 1's left wheel wired backwards.
 TEST(Ros2Calibrate, DoctorChecksEachBasesOdometryAndWheels) {
   const auto robots_out = temp_file("ros2_doctor_robots.out");
-  auto robots = start_robots(kRos2Calibrate, "world",
+  auto robots = start_robots(kRos2Doctor, "world",
                              {"/robot_0:0.5,0.5,0", "/robot_1:2.5,0.5,0,-1,1"}, robots_out);
   const auto r = run_smart({"doctor", "--backend", "ros2", "--robot-ids", "0-1", "--wheels",
-                            "--yes", "--seconds", "1", "--domain", std::to_string(kRos2Calibrate)},
+                            "--yes", "--seconds", "1", "--domain", std::to_string(kRos2Doctor)},
                            60s, "ros2_doctor", true);
   robots.terminate();
   EXPECT_EQ(r.code, 1) << r.out;

@@ -87,6 +87,9 @@ enum DomainId : int {
   kRosPlanView = 179,
   kDoctor = 180,
   kLabExample = 181,
+  kRos2CalibrateTrim = 182,
+  kRos2Doctor = 183,
+  kDoctorHosts = 184,
   kRos2Calibrate = 178,
 };
 

@@ -13,8 +13,8 @@ using namespace std::chrono_literals;
 
 // The report (last line) and the table of `smart doctor args...`.
 nlohmann::json doctor(const std::vector<std::string>& args, int expected_code,
-                      const std::string& tag, const char* seconds = "0.5") {
-  std::vector<std::string> all{"doctor", "--domain", std::to_string(kDoctor), "--seconds", seconds};
+                      const std::string& tag, const char* seconds = "0.5", int domain = kDoctor) {
+  std::vector<std::string> all{"doctor", "--domain", std::to_string(domain), "--seconds", seconds};
   all.insert(all.end(), args.begin(), args.end());
   const auto r = run_smart(all, 30s, tag);
   EXPECT_EQ(r.code, expected_code) << r.out;
@@ -49,6 +49,25 @@ TEST(DoctorCommand, ABackwardsWheelAndAMissingBusFailWithTheirFix) {
   rows = by_check(doctor({"--robot-id", "0", "--i2c", "/dev/i2c-99"}, 1, "doctor_nobus"));
   EXPECT_EQ(rows.at("open")["level"], "FAIL");
   EXPECT_NE(rows.at("open")["measured"].get<std::string>().find("/dev/i2c-99"), std::string::npos);
+}
+
+// Every host on the domain is heard through its robots' states: an emulated JetBot's agent
+// (robot 2) shows up with its robot and a clock offset (same machine: within tolerance).
+TEST(DoctorCommand, HearsEveryHostOnTheDomainAndItsClockOffset) {
+  auto agent = start_smart({"agent", "--robot-id", "2", "--i2c", "emulated", "--emulate-pose",
+                            "0.5,0.5,0", "--domain", std::to_string(kDoctorHosts)},
+                           "/dev/null");
+  const auto report = doctor({}, 0, "doctor_hosts", "2", kDoctorHosts);
+  agent.terminate();
+  int hosts = 0;
+  for (const auto& r : report["rows"]) {
+    if (r["check"].get<std::string>().rfind("host ", 0) != 0) continue;
+    ++hosts;
+    EXPECT_EQ(r["level"], "OK") << r;
+    EXPECT_NE(r["measured"].get<std::string>().find("robots 2;"), std::string::npos) << r;
+    EXPECT_NE(r["measured"].get<std::string>().find("clock offset + delay"), std::string::npos);
+  }
+  EXPECT_EQ(hosts, 1) << report;
 }
 
 TEST(DoctorCommand, FindsTheMonitorOnTheDomainAndItsQosMatches) {

@@ -30,6 +30,15 @@ TEST(Doctor, PoseStreamRateAndGapsAreJudged) {
   EXPECT_NE(none.fix.find("--vicon-object"), std::string::npos);
 }
 
+TEST(Doctor, AHostsClockFarOffIsAWarning) {
+  const auto ok = clock_check("a1b2", {0, 1, 2}, 0.002, 40, 0.02);
+  EXPECT_EQ(ok.level, Level::kOk);
+  EXPECT_NE(ok.measured.find("robots 0,1,2;"), std::string::npos) << ok.measured;
+  const auto off = clock_check("a1b2", {3}, -0.25, 40, 0.02);
+  EXPECT_EQ(off.level, Level::kWarn);
+  EXPECT_NE(off.fix.find("chrony"), std::string::npos);
+}
+
 TEST(Doctor, AWheelAloneMustTurnTheRobotAwayFromIt) {
   const agent::Pose2D start{1, 1, M_PI / 2};  // facing +y
   // Left wheel forward: clockwise, ahead along +y.

@@ -56,6 +56,24 @@ CheckRow pose_stream_check(const std::string& robot, const std::vector<agent::Po
   return row;
 }
 
+CheckRow clock_check(const std::string& host, const std::vector<uint32_t>& robots,
+                     double min_offset_s, std::size_t samples, double tolerance_s) {
+  std::ostringstream m;
+  m.precision(3);
+  m << "robots";
+  for (std::size_t i = 0; i < robots.size() && i < 8; ++i) m << (i ? "," : " ") << robots[i];
+  if (robots.size() > 8) m << ",... (" << robots.size() << ")";
+  m << "; clock offset + delay " << min_offset_s * 1000 << " ms over " << samples << " states";
+  CheckRow row{"", "host " + host, Level::kOk, m.str(), ""};
+  if (std::abs(min_offset_s) > tolerance_s) {
+    row.level = Level::kWarn;
+    row.fix =
+        "this host's clock and that one's differ: synchronise them (chrony or PTP; "
+        "`chronyc tracking` shows the offset), or logs and pose latencies will not line up";
+  }
+  return row;
+}
+
 CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D& before,
                      const agent::Pose2D& after, bool board) {
   const char* name = wheel == Wheel::kLeft ? "left" : "right";

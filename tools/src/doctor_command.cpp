@@ -9,7 +9,10 @@
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 #include <thread>
 
 #include "smart/dds/wire.hpp"
@@ -37,20 +40,58 @@ double steady_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// Hosts heard through their robots' states: per writing participant, its robots and the
+// smallest receive - source timestamp (clock offset + delay).
+struct HeardHost {
+  std::set<uint32_t> robots;
+  double min_offset_s = 1e18;
+  std::size_t samples = 0;
+};
+
+std::string short_guid(const dds_guid_t& g) {
+  std::ostringstream s;
+  for (int i = 0; i < 6; ++i) s << std::hex << std::setw(2) << std::setfill('0') << int{g.v[i]};
+  return s.str();
+}
+
+void hear_states(dds::WireReader<smart_msg_RobotState>& states,
+                 std::map<std::string, HeardHost>& hosts) {
+  states.take_each_info([&](const smart_msg_RobotState& s, const dds_sample_info_t& info) {
+    const auto who = states.participant_of(info.publication_handle);
+    if (!who) return;
+    auto& h = hosts[short_guid(*who)];
+    h.robots.insert(s.robot_id);
+    h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
+    ++h.samples;
+  });
+}
+
+std::vector<CheckRow> host_rows(const std::map<std::string, HeardHost>& hosts) {
+  std::vector<CheckRow> rows;
+  for (const auto& [name, h] : hosts) {
+    rows.push_back(
+        clock_check(name, {h.robots.begin(), h.robots.end()}, h.min_offset_s, h.samples, 0.02));
+  }
+  return rows;
+}
+
 std::vector<CheckRow> dds_checks(const DoctorOptions& o, const dds::QosProfile& profile,
                                  const dds::Participant& participant) {
   dds::WireReader<smart_msg_MonitorInfo> monitors(participant, profile);
   dds::WireReader<smart_msg_ActionWindow> actions(participant, profile);
+  dds::WireReader<smart_msg_RobotState> states(participant, profile);
+  std::map<std::string, HeardHost> hosts;
   std::optional<smart_msg_MonitorInfo> seen;
   std::string host;
-  for (const double end = steady_s() + o.seconds; steady_s() < end && !seen;) {
+  for (const double end = steady_s() + o.seconds; steady_s() < end;) {
     monitors.take_each([&](const smart_msg_MonitorInfo& m) {
       seen = m;
       host = m.host;
     });
+    hear_states(states, hosts);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  std::vector<CheckRow> rows;
+  std::vector<CheckRow> rows = host_rows(hosts);
   const std::string where = "domain " + std::to_string(o.dds.domain) + ", run " + o.dds.run;
   if (!seen) {
     rows.push_back({"", "monitor", Level::kWarn, "none seen in " + where,

@@ -139,13 +139,21 @@ class Reader {
   // handle of the writer that wrote the sample (sample info, DDS spec 2.2.2.5.5).
   template <class Fn>
   std::size_t take_each_from(Fn&& fn) {
+    return take_each_info(
+        [&](const T& data, const dds_sample_info_t& info) { fn(data, info.publication_handle); });
+  }
+
+  // Like take_each, with the whole sample info: fn(const T&, const dds_sample_info_t&) (its
+  // writer, source timestamp, ...).
+  template <class Fn>
+  std::size_t take_each_info(Fn&& fn) {
     std::size_t n = 0;
     for (;;) {
       auto samples = take();
       if (samples.empty()) return n;
       for (auto s : samples) {
         if (s.valid()) {
-          fn(s.data(), s.info().publication_handle);
+          fn(s.data(), s.info());
           ++n;
         }
       }

@@ -34,6 +34,12 @@ enum class Wheel { kLeft, kRight };
 CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D& before,
                      const agent::Pose2D& after, bool board = true);
 
+// A host heard on the domain through its robots' states: the smallest (receive time - the
+// sample's source timestamp) over `samples` is its clock's offset from this host's plus the
+// one-way delay, an upper bound on the offset when positive. Above tolerance_s: WARN.
+CheckRow clock_check(const std::string& host, const std::vector<uint32_t>& robots,
+                     double min_offset_s, std::size_t samples, double tolerance_s);
+
 const char* level_name(Level level);
 
 }  // namespace smart::tools
