@@ -4,12 +4,14 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <thread>
 
 #include "smart/geometry/frame_transform.hpp"
 #include "smart/hw/emulated_jetbot.hpp"
@@ -161,6 +163,22 @@ TEST(CalibrateTrim, AsksBeforeMovingAndDoesNotMoveWithoutAYes) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("Type yes to go"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("not confirmed"), std::string::npos) << r.out;
+}
+
+// Ctrl-C during a trial: the robot stops at once and the command says so (exit 3), instead of
+// driving on for --seconds.
+TEST(CalibrateTrim, ASignalStopsTheTrialAndTheWheels) {
+  const auto out = temp_file("calibrate_trim_signal.out");
+  tools::ChildProcess p(
+      {"/bin/sh", "-c", "exec \"$0\" \"$@\" </dev/null 2>&1", smart_exe().string(), "calibrate",
+       "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0,0,0", "--seconds", "30",
+       "--yes", "--domain", std::to_string(kCalibrate)},
+      out);
+  std::this_thread::sleep_for(1500ms);
+  p.signal(SIGINT);
+  EXPECT_EQ(p.wait(5s).value_or(-1), 3) << slurp(out);
+  EXPECT_NE(slurp(out).find("stopped by signal"), std::string::npos) << slurp(out);
+  std::filesystem::remove(out);
 }
 
 }  // namespace

@@ -236,7 +236,7 @@ std::vector<agent::PoseSample> drive_straight(const TrimOptions& o, RobotIo& io)
   io.drive->activate();
   double last_stamp = -1;
   const double start_s = steady_s(), first_pose_deadline_s = start_s + 5.0;
-  for (double now = start_s; now < start_s + o.seconds; now = steady_s()) {
+  for (double now = start_s; now < start_s + o.seconds && !g_stop_requested; now = steady_s()) {
     const auto p = io.pose->read();
     if (p.valid && p.stamp_s != last_stamp) {
       samples.push_back(p);
@@ -248,6 +248,7 @@ std::vector<agent::PoseSample> drive_straight(const TrimOptions& o, RobotIo& io)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   io.drive->deactivate();
+  if (g_stop_requested) throw std::runtime_error("stopped by signal; the wheels are off");
   if (samples.empty()) {
     throw std::runtime_error("robot " + std::to_string(o.robot_id) + ": no pose from " +
                              io.pose_name + " in 5 s; check the pose stream");
@@ -288,6 +289,7 @@ int run_trim(const TrimOptions& o) {
                      domain_config(o.dds, profile, "agent-" + std::to_string(o.robot_id)));
   dds::Participant participant(domain, o.dds.run);
   auto io = open_robot(o.io, o.robot_id, model, file, participant);
+  const auto signal_stop = stop_outputs_on_signal(io);
   if (!confirmed(o)) {
     spdlog::error("not confirmed: the robot did not move (answer yes, or pass --yes)");
     return kExitRunFailed;
@@ -352,7 +354,10 @@ void add_trim_command(CLI::App* parent, int& exit_code) {
       ->check(finite_in(0.0, 10.0))
       ->capture_default_str();
   cmd->add_flag("--yes", o->yes, "do not ask before moving");
-  cmd->callback([&exit_code, o] { exit_code = run_trim(*o); });
+  cmd->callback([&exit_code, o] {
+    install_stop_handlers();
+    exit_code = run_trim(*o);
+  });
 }
 
 }  // namespace

@@ -148,7 +148,7 @@ CheckRow drive_one_wheel(const DoctorOptions& o, const std::string& id, RobotIo&
   const auto before = io.pose->read().pose;
   const agent::WheelSpeeds speeds = w == Wheel::kLeft ? agent::WheelSpeeds{o.wheel_speed_mps, 0.0}
                                                       : agent::WheelSpeeds{0.0, o.wheel_speed_mps};
-  for (const double end = steady_s() + o.wheel_s; steady_s() < end;) {
+  for (const double end = steady_s() + o.wheel_s; steady_s() < end && !g_stop_requested;) {
     io.drive->set_wheel_speeds(speeds);  // repeated: the JetBot's command watchdog stays fed
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -179,6 +179,7 @@ std::vector<CheckRow> robot_checks(const DoctorOptions& o, uint32_t robot,
                     "fix the device, pose source or robot file named in the message"});
     return rows;
   }
+  const auto signal_stop = stop_outputs_on_signal(io);
   rows.push_back(board_check(id, io));
   rows.push_back(
       pose_stream_check(id, record(*io.pose, o.seconds), o.seconds, 20.0, o.io.pose_max_age_s));
@@ -251,7 +252,10 @@ void register_doctor_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_flag("--wheels", o->wheels, "drive each wheel alone to check its direction");
   cmd->add_flag("--yes", o->yes, "do not ask before moving");
-  cmd->callback([&exit_code, o] { exit_code = run_doctor(*o); });
+  cmd->callback([&exit_code, o] {
+    install_stop_handlers();
+    exit_code = run_doctor(*o);
+  });
 }
 
 }  // namespace smart::tools

@@ -126,6 +126,11 @@ RobotIo open_robot(const BackendOptions& o, uint32_t id, const agent::RobotModel
   return io;
 }
 
+std::unique_ptr<hw::SignalStop> stop_outputs_on_signal(const RobotIo& io) {
+  if (io.jetbot == nullptr) return nullptr;
+  return std::make_unique<hw::SignalStop>(*io.bus, io.hardware.address, &g_stop_requested);
+}
+
 void add_backend_options(CLI::App* cmd, BackendOptions& o) {
   add_enum_option(cmd, "--backend", o.backend, kBackendNames,
                   "jetbot (PCA9685 motor board; default) or ros2 (cmd_vel/odom of a ROS 2 base)");

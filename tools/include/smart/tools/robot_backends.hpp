@@ -73,4 +73,9 @@ struct RobotIo {
 RobotIo open_robot(const BackendOptions& o, uint32_t id, const agent::RobotModel& model,
                    const std::string& robot_file, const dds::Participant& participant);
 
+// For a JetBot, SIGINT/SIGTERM turn its outputs off at once from the handler (hw::SignalStop)
+// and set g_stop_requested; nullptr for other robots (their loops watch g_stop_requested, and
+// their drive's destructor stops them).
+std::unique_ptr<hw::SignalStop> stop_outputs_on_signal(const RobotIo& io);
+
 }  // namespace smart::tools
