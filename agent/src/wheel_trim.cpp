@@ -9,6 +9,8 @@ namespace smart::agent {
 
 namespace {
 
+constexpr double kMovedM = 0.002;  // beyond pose noise (Vicon: sub-millimetre)
+
 // Least-squares slope of y over t.
 double slope(const std::vector<double>& t, const std::vector<double>& y) {
   double mt = 0, my = 0;
@@ -33,11 +35,16 @@ WheelTrial measure_wheel_trial(const std::vector<PoseSample>& samples, double co
   std::vector<double> t, yaw;
   double path_m = 0;
   const PoseSample* prev = nullptr;
-  double first_s = NAN;
+  const PoseSample* first = nullptr;
+  double moving_s = NAN;  // when the robot first moved: commands may take a while to arrive
   for (const auto& s : samples) {
     if (!s.valid) continue;
-    if (std::isnan(first_s)) first_s = s.stamp_s;
-    if (s.stamp_s < first_s + settle_s) continue;
+    if (first == nullptr) first = &s;
+    if (std::isnan(moving_s) &&
+        std::hypot(s.pose.x_m - first->pose.x_m, s.pose.y_m - first->pose.y_m) > kMovedM) {
+      moving_s = s.stamp_s;
+    }
+    if (std::isnan(moving_s) || s.stamp_s < moving_s + settle_s) continue;
     double y = s.pose.yaw_rad;
     if (prev != nullptr) {  // unwrap
       y = yaw.back() + std::remainder(s.pose.yaw_rad - prev->pose.yaw_rad, 2 * std::numbers::pi);

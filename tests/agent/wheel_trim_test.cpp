@@ -38,6 +38,20 @@ TEST(WheelTrial, FindsTheWeakWheelAndProposesATrimThatSlowsTheOther) {
   EXPECT_NEAR(straight.turn_rate_radps, 0.0, 0.01);
 }
 
+// Regression: a ROS 2 base heard its first cmd_vel late (discovery under load), and the
+// standing start skewed the fit; the settle time now counts from the first motion.
+TEST(WheelTrial, AStandingStartBeforeTheFirstCommandArrivesIsIgnored) {
+  auto samples = trial(1.0, 0.85, 0.15, 0.16, 4.0);
+  std::vector<PoseSample> late;
+  for (int k = 0; k < 150; ++k) {  // 1.5 s standing still first
+    late.push_back({samples.front().pose, 0, 0, 98.5 + 0.01 * k, true});
+  }
+  late.insert(late.end(), samples.begin(), samples.end());
+  const auto t = measure_wheel_trial(late, 0.15, 0.16, 0.5);
+  EXPECT_NEAR(t.trim.left, 0.85, 0.01);
+  EXPECT_NEAR(t.speed_mps, 0.15 * (1.0 + 0.85) / 2, 0.003);
+}
+
 TEST(WheelTrial, RefusesTrialsThatShowNothing) {
   EXPECT_THROW(measure_wheel_trial(trial(1, 1, 0.2, 0.1, 0.3), 0.2, 0.1, 0.5),
                std::invalid_argument);  // too short

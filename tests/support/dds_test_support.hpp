@@ -90,6 +90,7 @@ enum DomainId : int {
   kRos2CalibrateTrim = 182,
   kRos2Doctor = 183,
   kDoctorHosts = 184,
+  kDoctorMonitor = 185,
   kRos2Calibrate = 178,
 };
 

@@ -78,9 +78,9 @@ TEST(DoctorCommand, FindsTheMonitorOnTheDomainAndItsQosMatches) {
   std::ofstream(plan) << "Agent 0:(0,0)->(1,0)->(2,0)->\n";
   auto monitor = start_smart({"monitor", "--map", map.string(), "--scen", scen.string(), "--plan",
                               plan.string(), "--axis", "xy", "--clock", "realtime", "--domain",
-                              std::to_string(kDoctor), "--timeout-s", "20", "--no-progress"},
+                              std::to_string(kDoctorMonitor), "--timeout-s", "20", "--no-progress"},
                              "/dev/null");
-  const auto rows = by_check(doctor({}, 0, "doctor_monitor", "3"));
+  const auto rows = by_check(doctor({}, 0, "doctor_monitor", "3", kDoctorMonitor));
   monitor.terminate();
   EXPECT_EQ(rows.at("monitor")["level"], "OK") << rows.at("monitor");
   EXPECT_EQ(rows.at("qos")["level"], "OK") << rows.at("qos");
