@@ -44,6 +44,8 @@
 #include <thread>
 #include <vector>
 
+#include "fastdds_support.hpp"
+
 namespace {
 
 using namespace eprosima::fastdds::dds;
@@ -212,24 +214,6 @@ bool parse_robot(const char* arg, Robot* r) {
   return true;
 }
 
-DomainParticipant* make_participant(int domain) {
-  DomainParticipantQos pqos;
-  pqos.name("fastdds_diffdrive");
-  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.push_back("127.0.0.1");
-  pqos.transport().user_transports.push_back(udp);
-  pqos.transport().use_builtin_transports = false;  // no shared memory: Cyclone cannot use it
-  for (uint32_t index = 0; index < 10; ++index) {
-    eprosima::fastrtps::rtps::Locator_t peer;
-    eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, 127, 0, 0, 1);
-    // RTPS well-known metatraffic unicast port of participant `index` (PB 7400, DG 250, PG 2,
-    // d1 10), the rule Cyclone follows too.
-    peer.port = 7400 + 250 * static_cast<uint32_t>(domain) + 10 + 2 * index;
-    pqos.wire_protocol().builtin.initialPeersList.push_back(peer);
-  }
-  return DomainParticipantFactory::get_instance()->create_participant(domain, pqos);
-}
-
 void open_endpoints(DomainParticipant* p, Subscriber* sub, Publisher* pub, Robot& r) {
   Topic* cmd = p->create_topic("rt" + r.ns + "/cmd_vel", "geometry_msgs::msg::dds_::Twist_",
                                TOPIC_QOS_DEFAULT);
@@ -274,7 +258,8 @@ int main(int argc, char** argv) {
   }
   signal(SIGTERM, on_signal);
   signal(SIGINT, on_signal);
-  DomainParticipant* participant = make_participant(domain);
+  DomainParticipant* participant =
+      smart::interop::make_loopback_participant(domain, "fastdds_diffdrive");
   if (participant == nullptr) return 2;
   TypeSupport twist(new Type<Twist>("geometry_msgs::msg::dds_::Twist_"));
   TypeSupport odom(new Type<Odometry>("nav_msgs::msg::dds_::Odometry_"));

@@ -28,6 +28,8 @@
 #include <thread>
 #include <vector>
 
+#include "fastdds_support.hpp"
+
 namespace {
 
 using namespace eprosima::fastdds::dds;
@@ -144,22 +146,6 @@ class Type : public TopicDataType {
   bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t*, bool) override { return false; }
 };
 
-DomainParticipant* make_participant(int domain) {
-  DomainParticipantQos pqos;
-  pqos.name("fastdds_plan_listener");
-  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.push_back("127.0.0.1");
-  pqos.transport().user_transports.push_back(udp);
-  pqos.transport().use_builtin_transports = false;
-  for (uint32_t index = 0; index < 10; ++index) {
-    eprosima::fastrtps::rtps::Locator_t peer;
-    eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, 127, 0, 0, 1);
-    peer.port = 7400 + 250 * static_cast<uint32_t>(domain) + 10 + 2 * index;
-    pqos.wire_protocol().builtin.initialPeersList.push_back(peer);
-  }
-  return DomainParticipantFactory::get_instance()->create_participant(domain, pqos);
-}
-
 // "markers ..." line; true when every robot marker is grey (done).
 bool print_markers(const MarkerArray& m) {
   int moving = 0, waiting = 0, done = 0, goals = 0, arrows = 0, deleteall = 0;
@@ -187,7 +173,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: fastdds_plan_listener DOMAIN TIMEOUT_S\n");
     return 2;
   }
-  DomainParticipant* p = make_participant(std::atoi(argv[1]));
+  DomainParticipant* p =
+      smart::interop::make_loopback_participant(std::atoi(argv[1]), "fastdds_plan_listener");
   if (p == nullptr) return 2;
   TypeSupport path_type(new Type<Path>("nav_msgs::msg::dds_::Path_"));
   TypeSupport marker_type(new Type<MarkerArray>("visualization_msgs::msg::dds_::MarkerArray_"));

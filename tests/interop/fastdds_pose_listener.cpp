@@ -30,6 +30,8 @@
 #include <thread>
 #include <vector>
 
+#include "fastdds_support.hpp"
+
 namespace {
 
 using namespace eprosima::fastdds::dds;
@@ -107,22 +109,9 @@ int main(int argc, char** argv) {
   const int wanted = std::atoi(argv[2]);
   const double timeout_s = std::atof(argv[3]);
 
-  DomainParticipantQos pqos;
-  pqos.name("fastdds_pose_listener");
-  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.push_back("127.0.0.1");
-  pqos.transport().user_transports.push_back(udp);
-  pqos.transport().use_builtin_transports = false;  // no shared memory: Cyclone cannot use it
-  for (uint32_t index = 0; index < 10; ++index) {
-    eprosima::fastrtps::rtps::Locator_t peer;
-    eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, 127, 0, 0, 1);
-    // RTPS 2.x well-known port of participant `index`'s metatraffic unicast (PB 7400, DG 250,
-    // PG 2, d1 10), the same rule Cyclone follows.
-    peer.port = 7400 + 250 * static_cast<uint32_t>(domain) + 10 + 2 * index;
-    pqos.wire_protocol().builtin.initialPeersList.push_back(peer);
-  }
   auto* factory = DomainParticipantFactory::get_instance();
-  DomainParticipant* participant = factory->create_participant(domain, pqos);
+  DomainParticipant* participant =
+      smart::interop::make_loopback_participant(domain, "fastdds_pose_listener");
   if (participant == nullptr) {
     std::fprintf(stderr, "fastdds_pose_listener: cannot create a participant\n");
     return 2;

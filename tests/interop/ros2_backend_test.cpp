@@ -171,12 +171,6 @@ TEST(Ros2Backend, OdometryFromWhereEachRobotStartedIsPutOnTheGridByItsTransformF
   std::filesystem::remove_all(dir);
 }
 
-// The JSON report of `smart calibrate` (last line; stderr is merged in).
-nlohmann::json report_in(const std::string& out) {
-  const auto at = out.rfind("\n{");
-  return nlohmann::json::parse(at == std::string::npos ? out : out.substr(at + 1));
-}
-
 // `smart calibrate frame --pose odom`: three ROS 2 robots report poses in a frame rotated and
 // shifted against the grid (as from a mocap relay); the fit finds that frame.
 TEST(Ros2Calibrate, FrameFitFromThreeRobotsOdometry) {
@@ -223,7 +217,7 @@ TEST(Ros2Calibrate, TrimFindsTheWeakWheelOfARos2Base) {
     args.insert(args.end(), extra.begin(), extra.end());
     const auto r = run_smart(args, 30s, tag, true);
     EXPECT_EQ(r.code, 0) << r.out;
-    return report_in(r.out);
+    return last_json_line(r.out);
   };
   const auto t = trial({}, "ros2_trim");
   const double left = t["proposed"]["trim.left"].get<double>();
@@ -252,7 +246,7 @@ TEST(Ros2Calibrate, DoctorChecksEachBasesOdometryAndWheels) {
   robots.terminate();
   EXPECT_EQ(r.code, 1) << r.out;
   std::map<std::string, std::string> level;  // "robot/check" -> level
-  const auto report = report_in(r.out);
+  const auto report = last_json_line(r.out);
   for (const auto& row : report["rows"]) {
     level[row["robot"].get<std::string>() + "/" + row["check"].get<std::string>()] =
         row["level"].get<std::string>();

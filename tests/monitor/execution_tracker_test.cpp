@@ -2,22 +2,14 @@
 
 #include <gtest/gtest.h>
 
-#include "support/monitor_fixtures.hpp"
+#include "support/following_fixture.hpp"
 
 namespace smart::monitor {
 namespace {
 
 using R = ExecutionTracker::Result;
 
-struct Following {
-  // Robot 0: actions 0..3, no Type-2 predecessors. Robot 1 (nodes 4..7): action 1 waits for
-  // robot 0's action 0, action 2 for 1, action 3 for 2.
-  Grid grid = test::grid_of({".....", "....."});
-  ActionPlan actions =
-      build_actions(test::plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
-  std::vector<Problem> problems;
-  Adg adg = build_adg(actions, grid, "p", problems);
-};
+using test::Following;
 
 TEST(ExecutionTracker, InitialEnqueueFollowsThePaperRule) {
   Following f;

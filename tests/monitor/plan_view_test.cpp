@@ -2,20 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include "support/monitor_fixtures.hpp"
+#include "support/following_fixture.hpp"
 
 namespace smart::monitor {
 namespace {
 
-// Robot 0 drives (1,0) -> (3,0); robot 1 follows it from (0,0) to (2,0): robot 1's second
-// half-move waits for robot 0's first (Type-2), and so on.
-struct Following {
-  Grid grid = test::grid_of({".....", "....."});
-  ActionPlan actions =
-      build_actions(test::plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
-  std::vector<Problem> problems;
-  Adg adg = build_adg(actions, grid, "p", problems);
-};
+using test::Following;
 
 TEST(PlanView, PlannedPathIsTheStartAndEveryMovesEndInTheWorldFrame) {
   Following f;

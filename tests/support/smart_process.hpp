@@ -19,6 +19,13 @@ inline nlohmann::json summary_in(const std::string& out) {
   return start == std::string::npos ? nlohmann::json() : nlohmann::json::parse(out.substr(start));
 }
 
+// The last line of `out` that opens a JSON object: a command's report when its stderr (which may
+// hold YAML or other braces) is merged into `out`.
+inline nlohmann::json last_json_line(const std::string& out) {
+  const auto at = out.rfind("\n{");
+  return nlohmann::json::parse(at == std::string::npos ? out : out.substr(at + 1));
+}
+
 struct SmartRun {
   int code = -1;  // -1: timed out (the process was killed)
   std::string out;

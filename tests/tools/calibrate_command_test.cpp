@@ -50,12 +50,6 @@ SmartRun smart_no_stdin(const std::vector<std::string>& args, const std::string&
   return r;
 }
 
-// The JSON report: the last line that opens an object (stderr, merged in, has YAML too).
-nlohmann::json report_in(const std::string& out) {
-  const auto at = out.rfind("\n{");
-  return nlohmann::json::parse(at == std::string::npos ? out : out.substr(at + 1));
-}
-
 struct Lab {
   std::string map = temp_file("calibrate.map").string();
   Lab() { std::ofstream(map) << "type octile\nheight 4\nwidth 4\nmap\n....\n....\n....\n....\n"; }
@@ -102,7 +96,7 @@ TEST(CalibrateFrame, FindsTheViconMountingFromJetbotsOnThreeCells) {
   EXPECT_NEAR(t.yaw_rad, 0.4, 1e-4);
   EXPECT_NEAR(t.translation_m.x(), 1.2, 1e-3);
   EXPECT_NEAR(t.translation_m.y(), -0.5, 1e-3);
-  EXPECT_LT(report_in(r.out)["max_m"].get<double>(), 1e-3);
+  EXPECT_LT(last_json_line(r.out)["max_m"].get<double>(), 1e-3);
   std::filesystem::remove(out);
   // A point on the wrong cell: refused, with that point named, and no file.
   args[11] = "2:2,0";
@@ -133,7 +127,7 @@ nlohmann::json trim(const std::vector<std::string>& extra, const std::string& ta
   args.insert(args.end(), extra.begin(), extra.end());
   const auto r = smart_no_stdin(args, tag);
   EXPECT_EQ(r.code, 0) << r.out;
-  return report_in(r.out);
+  return last_json_line(r.out);
 }
 
 TEST(CalibrateTrim, FindsAJetbotsWeakWheelAndItsProposalDrivesStraight) {

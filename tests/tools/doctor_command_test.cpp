@@ -18,8 +18,7 @@ nlohmann::json doctor(const std::vector<std::string>& args, int expected_code,
   all.insert(all.end(), args.begin(), args.end());
   const auto r = run_smart(all, 30s, tag);
   EXPECT_EQ(r.code, expected_code) << r.out;
-  const auto at = r.out.rfind("\n{");
-  return nlohmann::json::parse(at == std::string::npos ? r.out : r.out.substr(at + 1));
+  return last_json_line(r.out);
 }
 
 std::map<std::string, nlohmann::json> by_check(const nlohmann::json& report) {

@@ -33,10 +33,6 @@ struct AgentOptions {
   double period_s = 0.1;
 };
 
-double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // One robot this process drives: its hardware and its agent.
 struct Robot {
   RobotIo io;

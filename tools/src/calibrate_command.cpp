@@ -31,10 +31,6 @@ namespace smart::tools {
 
 namespace {
 
-double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 struct Point {
   std::string id;  // robot index or object name, substituted for {id}
   int col = 0, row = 0;
@@ -70,12 +66,6 @@ Point parse_point(const std::string& text) {
   return p;
 }
 
-std::string substitute(std::string pattern, const std::string& id) {
-  const auto at = pattern.find("{id}");
-  if (at != std::string::npos) pattern.replace(at, 4, id);
-  return pattern;
-}
-
 // Pose sources in the source's own units and frame (identity transform): what is fitted.
 struct RawSources {
   std::unique_ptr<hw::ViconReceiver> vicon;
@@ -88,7 +78,7 @@ RawSources open_raw_sources(const FrameOptions& o, const std::vector<Point>& poi
   const geometry::FrameTransform identity;
   if (o.pose == PoseKind::kVicon) {
     std::vector<std::string> objects;
-    for (const auto& p : points) objects.push_back(substitute(o.vicon_object, p.id));
+    for (const auto& p : points) objects.push_back(with_id(o.vicon_object, p.id));
     r.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, identity, objects,
                                                   steady_s);
     for (const auto& name : objects) {
@@ -101,8 +91,8 @@ RawSources open_raw_sources(const FrameOptions& o, const std::vector<Point>& poi
     if (!odom && o.ros_topic.empty()) {
       throw std::invalid_argument("--pose ros needs --ros-topic ({id} is the point's ID)");
     }
-    const auto topic = odom ? dds::ros_odom_topic(substitute(o.ros_namespace, p.id))
-                            : substitute(o.ros_topic, p.id);
+    const auto topic =
+        odom ? dds::ros_odom_topic(with_id(o.ros_namespace, p.id)) : with_id(o.ros_topic, p.id);
     r.sources.push_back(std::make_unique<hw::RosPoseSource>(
         participant, topic, identity, 1.0, steady_s,
         odom ? hw::RosPoseSource::Message::kOdometry : hw::RosPoseSource::Message::kPoseStamped));

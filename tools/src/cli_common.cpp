@@ -128,6 +128,10 @@ dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& prof
 
 std::string exact(double value) { return fmt::format("{}", value); }
 
+double steady_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 namespace {
 uint32_t parse_id(const std::string& word, const std::string& text) {
   std::size_t used = 0;

@@ -36,10 +36,6 @@ struct DoctorOptions {
   double wheel_speed_mps = 0.15, wheel_s = 0.6;
 };
 
-double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // Hosts heard through their robots' states: per writing participant, its robots and the
 // smallest receive - source timestamp (clock offset + delay).
 struct HeardHost {

@@ -15,10 +15,6 @@ const EnumNames<Backend> kBackendNames{{"jetbot", Backend::kJetbot}, {"ros2", Ba
 const EnumNames<PoseKind> kPoseNames{
     {"vicon", PoseKind::kVicon}, {"ros", PoseKind::kRos}, {"odom", PoseKind::kOdom}};
 
-double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // Robot `id`'s transform file (odometry starts where each robot stood: one file per robot).
 geometry::FrameTransform pose_transform(const BackendOptions& o, PoseKind kind, uint32_t id) {
   if (!o.pose_transform.empty()) {
@@ -92,9 +88,9 @@ void open_jetbot(const BackendOptions& o, uint32_t id, const agent::RobotModel& 
 
 }  // namespace
 
-std::string with_id(std::string pattern, uint32_t robot) {
+std::string with_id(std::string pattern, const std::string& id) {
   const auto at = pattern.find("{id}");
-  if (at != std::string::npos) pattern.replace(at, 4, std::to_string(robot));
+  if (at != std::string::npos) pattern.replace(at, 4, id);
   return pattern;
 }
 

@@ -102,6 +102,9 @@ std::string find_config_file(const std::string& kind, const std::string& name_or
 // std::invalid_argument naming the bad part.
 std::vector<uint32_t> parse_id_ranges(const std::string& text);
 
+// Seconds on the monotonic clock (robots' control loops, pose stamps, trials).
+double steady_s();
+
 // Shortest text that reads back as the same double (child argv, messages).
 std::string exact(double value);
 

@@ -53,8 +53,11 @@ void add_backend_options(CLI::App* cmd, BackendOptions& o);
 // The robot model file: --config, or the backend's default model.
 std::string robot_file(const BackendOptions& o);
 
-// "{id}" in a topic or file pattern is the robot's index.
-std::string with_id(std::string pattern, uint32_t robot);
+// "{id}" in a topic, namespace or file pattern is the robot's index (or a point's ID).
+std::string with_id(std::string pattern, const std::string& id);
+inline std::string with_id(const std::string& pattern, uint32_t robot) {
+  return with_id(pattern, std::to_string(robot));
+}
 
 // One robot's hardware. Members are destroyed in reverse order: the pose source and drive
 // before the receiver and the bus they use.
