@@ -1,6 +1,7 @@
 #include "smart/monitor/adg.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <sstream>
 
@@ -41,8 +42,8 @@ void build_csr(std::size_t n, const std::vector<std::pair<uint32_t, uint32_t>>& 
   for (const auto& [u, v] : edges) list[fill[by_src ? u : v]++] = by_src ? v : u;
 }
 
-// Every stay of every robot at a location, robot by robot.
-std::vector<Occupancy> occupancies(const ActionPlan& ap, const Grid& grid) {
+// Every stay of every robot at a location (cell or edge midpoint), robot by robot.
+std::vector<Occupancy> half_cell_occupancies(const ActionPlan& ap, const Grid& grid) {
   std::vector<Occupancy> occ;
   occ.reserve(ap.moves + ap.robots());
   for (uint32_t r = 0; r < ap.robots(); ++r) {
@@ -55,6 +56,54 @@ std::vector<Occupancy> occupancies(const ActionPlan& ap, const Grid& grid) {
       cur = {static_cast<uint32_t>(grid.half_index(a.to)), a.end_time, r, node, kNone};
     }
     occ.push_back(cur);
+  }
+  return occ;
+}
+
+// The cells a robot standing at `h` holds (Footprint::kCells), as half-cell indices: the cell
+// itself, or both cells of an edge midpoint; `n` says how many.
+std::array<uint32_t, 2> held_cells(const Grid& grid, HalfCell h, std::size_t& n) {
+  auto at = [&grid](int32_t x2, int32_t y2) {
+    return static_cast<uint32_t>(grid.half_index({x2, y2}));
+  };
+  n = h.is_cell() ? 1 : 2;
+  if (h.is_cell()) return {at(h.x2, h.y2), kNone};
+  if (h.x2 % 2 != 0) return {at(h.x2 - 1, h.y2), at(h.x2 + 1, h.y2)};
+  return {at(h.x2, h.y2 - 1), at(h.x2, h.y2 + 1)};
+}
+
+// Every stay of every robot in a cell it holds (Footprint::kCells): a move that reaches an edge
+// midpoint enters the next cell, the move that leaves the midpoint leaves the previous one.
+std::vector<Occupancy> cell_occupancies(const ActionPlan& ap, const Grid& grid) {
+  std::vector<Occupancy> occ;
+  occ.reserve(ap.moves + ap.robots());
+  for (uint32_t r = 0; r < ap.robots(); ++r) {
+    std::vector<Occupancy> open{
+        {static_cast<uint32_t>(grid.half_index(ap.start[r])), -1.0, r, kNone, kNone}};
+    for (uint32_t node = ap.offset[r]; node < ap.offset[r + 1]; ++node) {
+      const Action& a = ap.actions[node];
+      if (a.type != ActionType::kMove) continue;
+      std::size_t n = 0;
+      const auto held = held_cells(grid, a.to, n);
+      const auto holds = [&](uint32_t cell) {
+        return held[0] == cell || (n == 2 && held[1] == cell);
+      };
+      for (auto it = open.begin(); it != open.end();) {
+        if (holds(it->location)) {
+          ++it;
+          continue;
+        }
+        it->leave = node;
+        occ.push_back(*it);
+        it = open.erase(it);
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool is_open = std::any_of(open.begin(), open.end(),
+                                         [&](const Occupancy& o) { return o.location == held[i]; });
+        if (!is_open) open.push_back({held[i], a.end_time, r, node, kNone});
+      }
+    }
+    occ.insert(occ.end(), open.begin(), open.end());
   }
   return occ;
 }
@@ -74,15 +123,26 @@ std::vector<Occupancy> by_location(std::vector<Occupancy> occ, std::size_t locat
 
 }  // namespace
 
+std::optional<Footprint> footprint_for(double radius_m, double cell_m) {
+  if (4 * radius_m <= cell_m) return Footprint::kHalfCells;
+  if (2 * radius_m < cell_m) return Footprint::kCells;
+  return std::nullopt;
+}
+
+std::string to_string(Footprint f) { return f == Footprint::kCells ? "cells" : "half cells"; }
+
 Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
-              std::vector<Problem>& problems) {
+              std::vector<Problem>& problems, Footprint footprint) {
   Adg adg;
+  adg.footprint = footprint;
   const std::size_t n = ap.actions.size();
   const std::size_t robots = ap.robots();
 
   const std::size_t locations = grid.half_cell_count();
   std::vector<uint32_t> start;
-  std::vector<Occupancy> sorted = by_location(occupancies(ap, grid), locations, start);
+  std::vector<Occupancy> sorted = by_location(
+      footprint == Footprint::kCells ? cell_occupancies(ap, grid) : half_cell_occupancies(ap, grid),
+      locations, start);
 
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(ap.moves);
@@ -194,7 +254,12 @@ std::vector<Problem> check_acyclic(const Adg& adg, const ActionPlan& ap,
   }
   return {{source, 0, -1,
            "the action dependency graph has a cycle, so execution would deadlock: " + desc +
-               "; the plan's passing order at these locations is contradictory"}};
+               "; the plan's passing order at these locations is contradictory" +
+               (adg.footprint == Footprint::kCells
+                    ? " for robots this wide: a robot crossing an edge holds both its cells, so "
+                      "robots cannot follow each other round a loop (use smaller robots, larger "
+                      "cells with --cell-m, or a plan without such loops)"
+                    : "")}};
 }
 
 }  // namespace smart::monitor

@@ -44,7 +44,7 @@ Instance load_instance(const InstanceOptions& o) {
 
   t0 = Clock::now();
   std::vector<Problem> adg_problems;
-  in.adg = build_adg(in.actions, in.grid, in.plan.source, adg_problems);
+  in.adg = build_adg(in.actions, in.grid, in.plan.source, adg_problems, o.footprint);
   throw_if_any(std::move(adg_problems));
   in.timings.adg_ms = ms_since(t0);
 

@@ -255,5 +255,30 @@ TEST_F(Run, BadPlanIsRejectedBeforeAnythingStarts) {
   EXPECT_EQ(r.code, 2);
 }
 
+// Regression: JetBots (radius 0.09 m) on the SMART paper's 0.3 m lab grid collided 5 times in
+// the lab plan: on half-cell locations a follower on an edge midpoint is 0.15 m from the robot
+// ahead still on the next cell's centre. Robots wider than a quarter cell now hold both cells
+// of an edge they cross (monitor/adg.hpp, Footprint::kCells).
+TEST(RunWideRobots, JetbotsOnTheLabsPointThreeMetreCellsDoNotCollide) {
+  const std::string lab = std::string(SMART_SOURCE_DIR) + "/examples/lab-7-jetbots/";
+  const auto plan = temp_file("wide_robots.plan");
+  ASSERT_EQ(run_smart({"plan", "--map", lab + "lab.map", "--scen", lab + "lab.scen", "--out",
+                       plan.string()},
+                      30s, "wide_plan")
+                .code,
+            0);
+  const auto r = run_smart({"run", "--map", lab + "lab.map", "--scen", lab + "lab.scen", "--plan",
+                            plan.string(), "--robot", lab + "jetbot-lab.yaml", "--cell-m", "0.3",
+                            "--domain", std::to_string(kRunWideRobots), "--no-progress"},
+                           60s, "wide_run", true);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("a robot crossing an edge holds both cells"));
+  const auto s = last_json_line(r.out);
+  EXPECT_TRUE(s["success"].get<bool>());
+  EXPECT_EQ(s["collisions"], 0);
+  EXPECT_EQ(s["finished_actions"], s["total_actions"]);
+  std::filesystem::remove(plan);
+}
+
 }  // namespace
 }  // namespace smart::test

@@ -30,10 +30,10 @@ struct Built {
   std::vector<Problem> problems;
 };
 
-Built build(const Grid& grid, const Plan& plan) {
+Built build(const Grid& grid, const Plan& plan, Footprint footprint = Footprint::kHalfCells) {
   Built b;
   b.actions = build_actions(plan, Heading::kEast);
-  b.adg = build_adg(b.actions, grid, plan.source, b.problems);
+  b.adg = build_adg(b.actions, grid, plan.source, b.problems, footprint);
   return b;
 }
 
@@ -114,6 +114,58 @@ TEST(Adg, RobotsThatNeverMoveAddNoEdges) {
   EXPECT_TRUE(b.problems.empty());
   EXPECT_EQ(b.adg.nodes(), 0u);
   EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
+}
+
+TEST(Adg, FootprintFollowsTheRobotsWidthAgainstTheCell) {
+  EXPECT_EQ(footprint_for(0.09, 0.4), Footprint::kHalfCells);
+  EXPECT_EQ(footprint_for(0.075, 0.3), Footprint::kHalfCells);  // exactly a quarter cell
+  EXPECT_EQ(footprint_for(0.09, 0.3), Footprint::kCells);       // JetBots on the paper's lab grid
+  EXPECT_EQ(footprint_for(0.149, 0.3), Footprint::kCells);
+  EXPECT_EQ(footprint_for(0.15, 0.3), std::nullopt);  // neighbours would touch
+}
+
+// Regression: JetBots (radius 0.09 m) on 0.3 m cells collided, as a follower on an edge
+// midpoint was half a cell (0.15 m) from the robot ahead still on the next cell's centre.
+TEST(Adg, WideFollowerCrossesAnEdgeOnlyOnceTheRobotAheadReachedTheNextCell) {
+  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}),
+                       Footprint::kCells);
+  ASSERT_TRUE(b.problems.empty());
+  // Robot 0 = nodes 0..3 ((1,0)->mid, mid->(2,0), (2,0)->mid, mid->(3,0)), robot 1 = 4..7.
+  // Robot 1 moves onto the edge into (1,0) (node 4) once robot 0 is on (2,0)'s centre (node 1),
+  // and onto the edge into (2,0) (node 6) once robot 0 is on (3,0) (node 3).
+  EXPECT_EQ(type2_edges(b.adg), (std::set<Edge>{{1, 4}, {3, 6}}));
+  EXPECT_EQ(b.adg.footprint, Footprint::kCells);
+  EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
+}
+
+TEST(Adg, WideRobotCrossingWaitsUntilTheFirstHasLeftTheCellsEdge) {
+  const auto b = build(kGrid, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}),
+                       Footprint::kCells);
+  ASSERT_TRUE(b.problems.empty());
+  // Robot 0 leaves the edge (1,1)-(2,1) with its action 3; robot 1 (rotation = node 4) then
+  // steps onto the edge (1,0)-(1,1) (node 5).
+  EXPECT_EQ(type2_edges(b.adg), (std::set<Edge>{{3, 5}}));
+}
+
+TEST(Adg, WideRobotsCannotFollowEachOtherRoundALoop) {
+  const Cell c[4] = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
+  const auto b = build(kGrid, plan_of({{c[0], c[1]}, {c[1], c[2]}, {c[2], c[3]}, {c[3], c[0]}}),
+                       Footprint::kCells);
+  ASSERT_TRUE(b.problems.empty());
+  const auto cycle = check_acyclic(b.adg, b.actions, "p");
+  ASSERT_EQ(cycle.size(), 1u);
+  EXPECT_THAT(cycle[0].message, HasSubstr("cannot follow each other round a loop"));
+  EXPECT_THAT(cycle[0].message, HasSubstr("--cell-m"));
+}
+
+TEST(Adg, WideRobotsParkedForGoodAndSharedStartsAreStillReported) {
+  const auto parked =
+      build(kGrid, plan_of({{{2, 0}}, {{0, 0}, {1, 0}, {2, 0}}}), Footprint::kCells);
+  ASSERT_EQ(parked.problems.size(), 1u);
+  EXPECT_THAT(parked.problems[0].message, HasSubstr("parked there for good"));
+  const auto shared = build(kGrid, plan_of({{{1, 1}, {2, 1}}, {{1, 1}}}), Footprint::kCells);
+  ASSERT_EQ(shared.problems.size(), 1u);
+  EXPECT_THAT(shared.problems[0].message, HasSubstr("also starts"));
 }
 
 }  // namespace

@@ -91,6 +91,7 @@ enum DomainId : int {
   kRos2Doctor = 183,
   kDoctorHosts = 184,
   kDoctorMonitor = 185,
+  kRunWideRobots = 186,
   kRos2Calibrate = 178,
 };
 

@@ -6,9 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "smart/tools/child_process.hpp"
-#include "support/dds_test_support.hpp"
 #include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
 
 namespace smart::tools {
 namespace {
@@ -16,22 +15,10 @@ namespace {
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
-struct Run {
-  int code;
-  std::string out;
-};
-
-Run run(const std::vector<std::string>& args) {
-  const auto out = test::temp_file("check_plan.json");
-  std::vector<std::string> argv{test::smart_exe().string(), "check-plan"};
-  argv.insert(argv.end(), args.begin(), args.end());
-  ChildProcess p(argv, out);
-  const int code = p.wait(60s).value_or(-1);
-  std::ifstream in(out);
-  std::stringstream s;
-  s << in.rdbuf();
-  std::filesystem::remove(out);
-  return {code, s.str()};
+// `smart check-plan args...`: exit code and stdout (with its error messages: with_stderr).
+test::SmartRun run(std::vector<std::string> args, bool with_stderr = false) {
+  args.insert(args.begin(), "check-plan");
+  return test::run_smart(args, 60s, "check_plan", with_stderr);
 }
 
 std::string write_temp(const std::string& name, const std::string& text) {
@@ -88,6 +75,35 @@ TEST(CheckPlanCommand, MissingAxisAndBadArgumentsAreRejected) {
   EXPECT_THAT(r.out, HasSubstr("pass --axis xy or --axis rowcol"));
   EXPECT_NE(run({"--map", map, "--scen", scen, "--plan", plan, "--axis", "diagonal"}).code, 0);
   EXPECT_EQ(run({"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"}).code, 0);
+  for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
+}
+
+// Four robots turning round a 2x2 block together: fine for footbots on 1 m cells (half-cell
+// locations), a deadlock for JetBots on 0.3 m cells (a robot crossing an edge holds both cells),
+// refused outright on cells less than two radii wide.
+TEST(CheckPlanCommand, TheFootprintDecidesWhetherARotationLoopCanBeExecuted) {
+  const auto map = write_temp("loop.map", "type octile\nheight 2\nwidth 2\nmap\n..\n..\n");
+  const auto scen = write_temp("loop.scen",
+                               "version 1\n0\tm.map\t2\t2\t0\t0\t1\t0\t1\n"
+                               "0\tm.map\t2\t2\t1\t0\t1\t1\t1\n"
+                               "0\tm.map\t2\t2\t1\t1\t0\t1\t1\n"
+                               "0\tm.map\t2\t2\t0\t1\t0\t0\t1\n");
+  const auto plan = write_temp("loop.txt",
+                               "Agent 0:(0,0)->(1,0)->\nAgent 1:(1,0)->(1,1)->\n"
+                               "Agent 2:(1,1)->(0,1)->\nAgent 3:(0,1)->(0,0)->\n");
+  const std::vector<std::string> args{"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"};
+  EXPECT_EQ(run(args).code, 0);
+  auto jetbots = args;
+  jetbots.insert(jetbots.end(), {"--robot", "jetbot", "--cell-m", "0.3"});
+  const auto loop = run(jetbots);
+  EXPECT_EQ(loop.code, 1) << loop.out;
+  EXPECT_THAT(loop.out, HasSubstr("cannot follow each other round a loop"));
+  auto too_wide = args;
+  too_wide.insert(too_wide.end(), {"--robot", "jetbot", "--cell-m", "0.18"});
+  const auto refused = run(too_wide, true);
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_THAT(refused.out, HasSubstr("half a --cell-m 0.18 m cell wide"));
+  EXPECT_THAT(refused.out, HasSubstr("use --cell-m 0.225"));
   for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
 }
 

@@ -74,7 +74,7 @@ void register_check_plan_command(CLI::App& app, int& exit_code) {
       app.add_subcommand("check-plan",
                          "Validate a MAPF plan against its map and scenario; print plan and ADG "
                          "statistics as JSON (exit 0) or every problem found (exit 1)");
-  add_world_options(cmd, o->world, false);
+  add_world_options(cmd, o->world);  // --robot, --cell-m: the ADG depends on the footprint
   add_plan_options(cmd, o->plan, o->axis, o->format);
   cmd->callback([&exit_code, o] { exit_code = run_check_plan(*o); });
 }

@@ -19,14 +19,13 @@ const EnumNames<grid::PlanFormat> kFormatNames{{"auto", grid::PlanFormat::kAuto}
                                                {"lacam", grid::PlanFormat::kLacam},
                                                {"yaml", grid::PlanFormat::kYaml}};
 
-void add_world_options(CLI::App* cmd, WorldCliOptions& o, bool fleet) {
+void add_world_options(CLI::App* cmd, WorldCliOptions& o) {
   cmd->add_option("--map", o.map, "MovingAI .map file")->required();
   cmd->add_option("--scen", o.scen, "MovingAI .scen file (robot starts)")->required();
   cmd->add_option("--agents", o.agents, "number of robots (first N of the scenario / plan)")
       ->check(CLI::PositiveNumber);
   add_enum_option(cmd, "--initial-heading", o.heading, kHeadingNames,
                   "heading every robot starts with (default east)");
-  if (!fleet) return;
   cmd->add_option("--cell-m", o.cell_m, "grid cell size in metres")
       ->check(finite_in(0.05, 100.0))
       ->capture_default_str();
@@ -124,6 +123,18 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
 }
 
+monitor::Footprint robot_footprint(const WorldCliOptions& world) {
+  const auto model = agent::load_robot_model(find_config_file("robots", world.robot));
+  const auto f = monitor::footprint_for(model.radius_m, world.cell_m);
+  if (!f) {
+    throw std::invalid_argument(fmt::format(
+        "--robot {} (radius {} m) is half a --cell-m {} m cell wide or more: robots on "
+        "neighbouring cells would touch; use --cell-m {:.3g} or more, or a smaller robot",
+        world.robot, model.radius_m, world.cell_m, 2.5 * model.radius_m));
+  }
+  return *f;
+}
+
 monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
                                           std::optional<grid::AxisOrder> axis,
                                           grid::PlanFormat format) {
@@ -135,6 +146,7 @@ monitor::InstanceOptions instance_options(const WorldCliOptions& world, const st
   io.read.format = format;
   io.read.axis = axis;
   io.initial_heading = world.heading;
+  io.footprint = robot_footprint(world);
   return io;
 }
 

@@ -1,23 +1,41 @@
 // Contract: the Action Dependency Graph (Hönig et al. 2019; SMART §IV-B).
 // Nodes are the actions of an ActionPlan (node id = offset[robot] + seq).
 // - Type-1 edges: each robot's action k -> k+1 (implicit, not stored).
-// - Type-2 edges: at each location L (cell or edge midpoint), the robots' occupancy intervals
+// - Type-2 edges: at each location L, the robots' occupancy intervals
 //   sorted by plan arrival time; for consecutive intervals of different robots i then j, the
 //   action by which i leaves L -> the action by which j enters L. This is the transitive
 //   reduction of the all-pairs rule (every earlier visitor -> every later one) and costs
 //   O(A log A) instead of O(A^2); stats.type2_all_pairs counts what the full rule would add.
+// What a location is depends on the robots' footprint against the cell (Footprint below).
 // build_adg() reports, as Problems, a later visitor at a location where a robot is parked for
 // good and two robots starting at one location (invalid plans). check_acyclic() runs Kahn's
 // algorithm iteratively and on a cycle names the robots and locations on it.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
+
+// Which positions of two robots exclude each other:
+// - kHalfCells (SMART §IV-B): cell centres and edge midpoints are separate locations. A robot on
+//   an edge midpoint may be half a cell from one on the next cell's centre, so this is safe only
+//   for robots no wider than a quarter cell (4·radius <= cell); followers keep half a cell apart.
+// - kCells: the locations are cells; a robot on an edge midpoint (or moving to or from one) holds
+//   both cells the edge joins. Positions of robots holding disjoint cells are at least one cell
+//   apart, so this is safe for robots narrower than half a cell (2·radius < cell), such as
+//   JetBots (radius 0.09 m) on the SMART paper's 0.3 m lab grid (§V-B). Followers keep a whole
+//   cell apart, and robots that follow each other round a loop deadlock (check_acyclic names it).
+enum class Footprint : uint8_t { kHalfCells, kCells };
+
+// The least restrictive footprint that is safe for robots of `radius_m` on cells of `cell_m`;
+// nothing when a robot is half a cell wide or more (neighbouring robots would touch).
+std::optional<Footprint> footprint_for(double radius_m, double cell_m);
+std::string to_string(Footprint f);  // "half cells" or "cells"
 
 struct AdgStats {
   std::size_t nodes = 0;
@@ -36,13 +54,14 @@ struct Adg {
   std::vector<uint32_t> in_begin;  // nodes + 1
   std::vector<uint32_t> in;
   AdgStats stats;
+  Footprint footprint = Footprint::kHalfCells;
 
   std::size_t nodes() const { return out_begin.empty() ? 0 : out_begin.size() - 1; }
 };
 
 // `source` names the plan in Problems. Problems found are appended to `problems`.
 Adg build_adg(const ActionPlan& actions, const Grid& grid, const std::string& source,
-              std::vector<Problem>& problems);
+              std::vector<Problem>& problems, Footprint footprint = Footprint::kHalfCells);
 
 std::vector<Problem> check_acyclic(const Adg& adg, const ActionPlan& actions,
                                    const std::string& source);

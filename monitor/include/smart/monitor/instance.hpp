@@ -1,8 +1,8 @@
 // Contract: loads and checks a whole MAPF instance: map + scenario + plan files -> validated plan,
 // actions and ADG. This is the monitor's file edge (it reads files); everything it calls is
 // pure. `agents` = 0 takes as many robots as the plan has; N > 0 takes the first N robots of the
-// plan and the first N agents of the scenario. Any problem, in any file, throws InputError
-// listing every problem found at that stage.
+// plan and the first N agents of the scenario. `footprint` is the robots' (monitor/adg.hpp). Any
+// problem, in any file, throws InputError listing every problem found at that stage.
 #pragma once
 
 #include <filesystem>
@@ -21,6 +21,7 @@ struct InstanceOptions {
   std::size_t agents = 0;
   PlanReadOptions read;
   Heading initial_heading = Heading::kEast;
+  Footprint footprint = Footprint::kHalfCells;  // footprint_for() the robots and cells
 };
 
 struct InstanceTimings {

@@ -64,8 +64,8 @@ struct MonitorCliOptions {
   double ros_plan_hz = 0;  // the rviz2 plan view; 0: off
 };
 
-// --map --scen --agents --initial-heading (--cell-m and --robot with `fleet`).
-void add_world_options(CLI::App* cmd, WorldCliOptions& o, bool fleet = true);
+// --map --scen --agents --initial-heading --cell-m --robot.
+void add_world_options(CLI::App* cmd, WorldCliOptions& o);
 void add_plan_options(CLI::App* cmd, std::string& plan, std::optional<grid::AxisOrder>& axis,
                       grid::PlanFormat& format);
 // DDS, world, --clock, --state-rate-hz, --timeout-s: shared by sim, monitor and run.
@@ -75,6 +75,10 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o);
 // The monitor's options: plan, results, run policy, progress bar.
 void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o);
 
+// How the ADG orders robots of the world's robot model on its cells (monitor/adg.hpp); throws
+// std::invalid_argument when the robots are too wide for the cells.
+monitor::Footprint robot_footprint(const WorldCliOptions& world);
+// The instance of the world and plan, with robot_footprint(world).
 monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
                                           std::optional<grid::AxisOrder> axis,
                                           grid::PlanFormat format);
