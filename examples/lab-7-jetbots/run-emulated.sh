@@ -9,12 +9,12 @@ SMART=${SMART:-$HERE/../../build/bin/smart}
 TRIALS=${1:-10}
 OUT=${2:-lab-results}
 DOMAIN=${3:-40}
-CELL=0.4
+CELL=0.3
 mkdir -p "$OUT"
 "$SMART" plan --map "$HERE/lab.map" --scen "$HERE/lab.scen" --out "$OUT/lab.plan" > /dev/null
-echo "trial,aet_s,makespan_s,success,finished_actions,total_actions" > "$OUT/trials.csv"
+echo "trial,aet_s,makespan_s,success,finished_actions,total_actions,pose_contacts,pose_min_separation_m" > "$OUT/trials.csv"
 summary() {  # FILE -> the csv fields of a run summary
-  python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(",".join(str(d[k]) for k in ("aet_s","makespan_s","success","finished_actions","total_actions")))' "$1"
+  python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(",".join(str(d[k]) for k in ("aet_s","makespan_s","success","finished_actions","total_actions","pose_contacts","pose_min_separation_m")))' "$1"
 }
 trial=1
 while [ "$trial" -le "$TRIALS" ]; do
@@ -43,10 +43,12 @@ aet = [float(r["aet_s"]) for r in rows]
 mk = [float(r["makespan_s"]) for r in rows]
 sim = json.load(open(f"{out}/sim.json"))
 ok = sum(r["success"] == "True" for r in rows)
+contacts = sum(int(r["pose_contacts"]) for r in rows)
+closest = min(float(r["pose_min_separation_m"]) for r in rows)
 sd = lambda v: statistics.stdev(v) if len(v) > 1 else 0.0
 with open(f"{out}/table.md", "w") as f:
-    f.write("| execution | runs | AET (mean ± sd) | max execution time (mean ± sd) |\n|---|---:|---:|---:|\n")
-    f.write(f"| 7 emulated JetBots, real time | {len(rows)} ({ok} succeeded) | {statistics.mean(aet):.2f} ± {sd(aet):.2f} s | {statistics.mean(mk):.2f} ± {sd(mk):.2f} s |\n")
-    f.write(f"| Simbody sim, lock-step | 1 | {sim['aet_s']:.2f} s | {sim['makespan_s']:.2f} s |\n")
+    f.write("| execution | runs | AET (mean ± sd) | max execution time (mean ± sd) | contacts | closest approach |\n|---|---:|---:|---:|---:|---:|\n")
+    f.write(f"| 7 emulated JetBots, real time | {len(rows)} ({ok} succeeded) | {statistics.mean(aet):.2f} ± {sd(aet):.2f} s | {statistics.mean(mk):.2f} ± {sd(mk):.2f} s | {contacts} (poses) | {closest * 100:.1f} cm |\n")
+    f.write(f"| Simbody sim, lock-step | 1 | {sim['aet_s']:.2f} s | {sim['makespan_s']:.2f} s | {sim['collisions']} (physics) | {sim['min_separation_m'] * 100:.1f} cm |\n")
 print(open(f"{out}/table.md").read())
 PY

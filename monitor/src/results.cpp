@@ -129,6 +129,21 @@ void create_out_dir(const std::filesystem::path& dir) {
   }
 }
 
+// What the robots' reported poses showed (real time): contacts, closest approach, the first
+// contact (or null).
+nlohmann::json pose_contacts_json(const MonitorResult& r) {
+  const auto opt = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
+  nlohmann::json first = nullptr;
+  if (const auto& c = r.first_pose_contact) {
+    first = {{"robots", {c->a, c->b}}, {"wall_time_s", c->t_s}, {"gap_m", c->gap_m}};
+  }
+  return {{"pose_contacts", r.pose_contacts},
+          {"pose_min_separation_m", opt(r.pose_min_gap_m)},
+          {"first_pose_contact", first}};
+}
+
 }  // namespace
 
 nlohmann::json adg_json(const AdgStats& a) {
@@ -197,6 +212,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"adg", adg_json(in.adg.stats)},
       {"versions", {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };
+  j.update(pose_contacts_json(r));
   double waiting = 0;
   uint64_t stops = 0;
   for (const auto& m : r.robots) {

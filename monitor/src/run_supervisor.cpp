@@ -55,6 +55,7 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
   res_.run_id = config.run_id;
   res_.total_actions = instance.actions.actions.size();
   res_.action_finish_s.assign(res_.total_actions, std::nan(""));
+  if (!config.lockstep && config.robot_radius_m > 0) separation_.emplace(n, config.robot_radius_m);
 }
 
 void RunSupervisor::end(Outcome outcome, std::string error) {
@@ -185,6 +186,12 @@ bool RunSupervisor::on_state(const StateEvent& s, double now_s) {
   if (s.run_id != res_.run_id) return false;
   last_pose_[s.robot] = {s.x_m, s.y_m};
   if (tracker_.robot_done(s.robot)) seen_done_[s.robot] = 1;
+  if (separation_) {
+    separation_->on_pose(s.robot, s.x_m, s.y_m, now_s);
+    res_.pose_contacts = separation_->contacts();
+    res_.pose_min_gap_m = separation_->min_gap_m();
+    res_.first_pose_contact = separation_->first_contact();
+  }
   return true;
 }
 

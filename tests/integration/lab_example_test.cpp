@@ -1,7 +1,7 @@
 // examples/lab-7-jetbots end to end, as a lab would run it without robots: its script plans the
 // lab, runs one real-time trial with 7 `smart agent --i2c emulated --emulate-realistic`
 // processes at 40 Hz (motor dead band and lag, Vicon latency and noise) and the same plan in the
-// Simbody sim, and writes the results table. Real processes, own domain.
+// Simbody sim on 0.3 m cells, and writes the results table. Real processes, own domain.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -29,10 +29,14 @@ TEST(LabExample, SevenEmulatedJetbotsCompleteTheLabPlanAndTheTableIsWritten) {
   std::vector<std::string> f;
   std::stringstream cells(row);
   for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
-  ASSERT_EQ(f.size(), 6u) << row;
+  ASSERT_EQ(f.size(), 8u) << row;
   EXPECT_EQ(f[3], "True") << row;
   EXPECT_EQ(f[4], f[5]) << "every action finished: " << row;
   EXPECT_EQ(f[5], "108");
+  // On the paper's 0.3 m cells the emulated robots' reported poses never overlap (regression:
+  // with half-cell locations the sim saw 5 contacts; run_test.cpp RunWideRobots).
+  EXPECT_EQ(f[6], "0") << row;
+  EXPECT_GT(std::stod(f[7]), 0.0) << row;
   const auto sim = summary_in(slurp(out / "sim.json"));
   EXPECT_TRUE(sim["success"].get<bool>());
   EXPECT_EQ(sim["collisions"], 0);

@@ -76,6 +76,17 @@ TEST(Results, SummaryHasTheKeysUsersReadAndTheRightAverages) {
   for (const char* key : {"collisions", "min_separation_m", "adg", "plan", "versions"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
+  EXPECT_EQ(j["pose_contacts"], 0);
+  EXPECT_TRUE(j["pose_min_separation_m"].is_null());  // no poses compared: null, not 0
+  EXPECT_TRUE(j["first_pose_contact"].is_null());
+  reported.pose_contacts = 2;
+  reported.pose_min_gap_m = -0.02;
+  reported.first_pose_contact = PoseContact{1, 3, 12.5, -0.01};
+  const auto c = summary_json(in, reported, info);
+  EXPECT_EQ(c["pose_contacts"], 2);
+  EXPECT_DOUBLE_EQ(c["pose_min_separation_m"].get<double>(), -0.02);
+  EXPECT_EQ(c["first_pose_contact"]["robots"], nlohmann::json::array({1, 3}));
+  EXPECT_DOUBLE_EQ(c["first_pose_contact"]["gap_m"].get<double>(), -0.01);
 }
 
 TEST(Results, WritesSummaryStatsAndRobotFiles) {

@@ -288,6 +288,30 @@ TEST(RunSupervisor, RealTimeTakesProgressAtWallTimeAndTracksEachRobotsHost) {
   EXPECT_THAT(r.sup.result().error, HasSubstr("robot 1: nothing heard from its host"));
 }
 
+TEST(RunSupervisor, RealTimePosesOfThisRunAreWatchedForContactsWithoutFailingTheRun) {
+  auto c = lockstep_config();
+  c.lockstep = false;
+  c.robot_radius_m = 0.09;
+  Scripted r(c);
+  r.sup.start(0);
+  r.sup.on_state({0, kRun, 1.0, 0.0}, 1.0);
+  r.sup.on_state({1, kRun + 1, 1.1, 0.0}, 1.0);  // another run's robot: not compared
+  EXPECT_FALSE(r.sup.result().pose_min_gap_m);
+  r.sup.on_state({1, kRun, 1.25, 0.0}, 1.02);
+  EXPECT_NEAR(*r.sup.result().pose_min_gap_m, 0.07, 1e-12);
+  r.sup.on_state({1, kRun, 1.1, 0.0}, 1.04);
+  EXPECT_EQ(r.sup.result().pose_contacts, 1u);
+  ASSERT_TRUE(r.sup.result().first_pose_contact);
+  EXPECT_DOUBLE_EQ(r.sup.result().first_pose_contact->t_s, 1.04);
+  EXPECT_FALSE(r.sup.over());
+  // Lock-step runs leave contacts to the sim host's physics.
+  Scripted lockstep;
+  lockstep.sup.on_state({0, kRun, 1.0, 0.0}, 1.0);
+  lockstep.sup.on_state({1, kRun, 1.0, 0.0}, 1.0);
+  EXPECT_EQ(lockstep.sup.result().pose_contacts, 0u);
+  EXPECT_FALSE(lockstep.sup.result().pose_min_gap_m);
+}
+
 TEST(RunSupervisor, SimStatusOfThisRunOrRunZeroIsTaken) {
   Scripted r;
   r.sup.on_sim_status({kRun + 1, 5, 5, 0.1, 10});

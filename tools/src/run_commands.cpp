@@ -143,14 +143,14 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
   mo.robot_radius_m = model.radius_m;
-  if (4 * model.radius_m > o.sim.world.cell_m) {
-    // The ADG orders cells and edge midpoints as separate locations (monitor/adg.hpp): a robot
-    // on an edge midpoint is half a cell from a robot on the next cell's centre.
-    spdlog::warn(
-        "robots of radius {} m ({}) are wider than a quarter of a {} m cell: a robot "
-        "crossing into a cell may touch one still on its centre; use --cell-m {} or "
-        "more",
-        model.radius_m, model.name, o.sim.world.cell_m, 4 * model.radius_m);
+  mo.run.robot_radius_m = model.radius_m;  // real time: reported poses watched for contacts
+  if (in.adg.footprint == monitor::Footprint::kCells) {
+    // monitor/adg.hpp: half-cell locations would let a robot on an edge midpoint come within
+    // half a cell of one on the next cell's centre.
+    spdlog::info(
+        "robots of radius {} m ({}) are wider than a quarter of a {} m cell: a robot crossing "
+        "an edge holds both cells, so following robots keep a cell apart",
+        model.radius_m, model.name, o.sim.world.cell_m);
   }
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
@@ -171,6 +171,12 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
+  if (const auto& c = result.first_pose_contact) {
+    spdlog::warn(
+        "the robots' reported poses show {} contact(s), first robots {} and {} at {:.1f} s "
+        "({:.3f} m overlap): check the robots' sizes, pose calibration and the plan's spacing",
+        result.pose_contacts, c->a, c->b, c->t_s, -c->gap_m);
+  }
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
   return result.success() ? kExitSuccess : kExitRunFailed;
 }

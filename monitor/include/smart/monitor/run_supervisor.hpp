@@ -24,6 +24,9 @@
 //   after its last action finished lies within goal_tolerance_m of its goal; otherwise the
 //   outcome is collision or not-at-goal and the error names the robots. A robot whose pose was
 //   not seen after it finished (a lost sample) is listed as unverified, not failed.
+// - Real time with robot_radius_m: the robots' reported poses are watched for contacts
+//   (separation_watch.hpp); counted in the result (pose_contacts), not a failure: sampled poses
+//   with their noise and latency are evidence, a sim host's physics is proof.
 // - Progress of another run is ignored; progress the tracker rejects (out of range, never
 //   enqueued) is counted and described in notes(); stale (duplicate, older) progress is harmless.
 // - resume(): rebuild the tracker from the hosts' last progress (a fixpoint: what robot A
@@ -40,6 +43,7 @@
 
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/instance.hpp"
+#include "smart/monitor/separation_watch.hpp"
 #include "smart/wire/lockstep.hpp"
 
 namespace smart::monitor {
@@ -90,6 +94,10 @@ struct MonitorResult {
   uint64_t robot_contacts = 0;
   uint64_t wall_contacts = 0;
   std::optional<double> min_gap_m;
+  // Real time: what the robots' reported poses show (separation_watch.hpp), sampled.
+  uint64_t pose_contacts = 0;
+  std::optional<double> pose_min_gap_m;
+  std::optional<PoseContact> first_pose_contact;
   std::optional<double> host_peak_rss_mb;  // largest peak memory a sim host reported
   // Resumed runs: finish and waiting times before the resume are unknown (finish_time_s NaN
   // for robots already done; AET and makespan then unknown).
@@ -121,6 +129,8 @@ struct SupervisorConfig {
   // How far from its goal cell's centre a finished robot may stand; 0: a quarter cell, well
   // beyond a controller's stop tolerance (centimetres) and well short of a neighbouring cell.
   double goal_tolerance_m = 0;
+  // Real time: the robots' radius, to watch their reported poses for contacts; 0: not watched.
+  double robot_radius_m = 0;
 };
 
 // Samples as the supervisor sees them (the edge converts the wire types).
@@ -218,6 +228,7 @@ class RunSupervisor {
   double last_sim_sign_s_ = 0;
   uint32_t max_matched_ = 0;
   bool sim_seen_ = false;
+  std::optional<SeparationWatch> separation_;  // real time with robot_radius_m
 };
 
 }  // namespace smart::monitor
