@@ -17,6 +17,7 @@ packages=(
   libcpp-httplib-dev
   chromium
   python3-matplotlib
+  iproute2 nftables
 )
 # The web viewer's build and browser tests need node and npm; a machine may already have them
 # from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.

@@ -92,6 +92,11 @@ enum DomainId : int {
   kDoctorHosts = 184,
   kDoctorMonitor = 185,
   kRunWideRobots = 186,
+  kMultihostLockstep = 187,  // and 188: its one-host reference
+  kMultihostMixed = 189,
+  kMultihostLoss = 190,
+  kMultihostCut = 191,
+  kMultihostSecure = 192,
   kRos2Calibrate = 178,
 };
 

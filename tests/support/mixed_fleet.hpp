@@ -40,24 +40,56 @@ struct MixedFleet {
   MixedFleet(const MixedFleet&) = delete;
   MixedFleet& operator=(const MixedFleet&) = delete;
 
+  std::vector<std::string> sim_args(int domain) const {
+    return {"sim",
+            "--map",
+            map,
+            "--scen",
+            scen,
+            "--agents",
+            "3",
+            "--clock",
+            "realtime",
+            "--cell-m",
+            "0.4",
+            "--robot",
+            "jetbot",
+            "--external-robots",
+            "2",
+            "--domain",
+            std::to_string(domain)};
+  }
   tools::ChildProcess start_sim(int domain) const {
-    return start_smart(
-        {"sim", "--map", map, "--scen", scen, "--agents", "3", "--clock", "realtime", "--cell-m",
-         "0.4", "--robot", "jetbot", "--external-robots", "2", "--domain", std::to_string(domain)},
-        "/dev/null");
+    return start_smart(sim_args(domain), "/dev/null");
   }
   // Robot 2's agent, its emulated JetBot starting at (x, y, yaw).
+  static std::vector<std::string> agent_args(int domain, double x, double y, double yaw) {
+    return {"agent",
+            "--robot-id",
+            "2",
+            "--backend",
+            "jetbot",
+            "--config",
+            "jetbot",
+            "--i2c",
+            "emulated",
+            "--emulate-pose",
+            std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(yaw),
+            "--vicon-port",
+            "0",
+            "--domain",
+            std::to_string(domain)};
+  }
   static tools::ChildProcess start_agent(int domain, double x, double y, double yaw,
                                          const std::filesystem::path& out) {
-    return start_smart({"agent", "--robot-id", "2", "--backend", "jetbot", "--config", "jetbot",
-                        "--i2c", "emulated", "--emulate-pose",
-                        std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(yaw),
-                        "--vicon-port", "0", "--domain", std::to_string(domain)},
-                       out);
+    return start_smart(agent_args(domain, x, y, yaw), out);
   }
   // Robot 2 at its start cell (4, 0), facing east.
+  static std::vector<std::string> agent_at_start_args(int domain) {
+    return agent_args(domain, 4 * kCellM, (6 - 1 - 0) * kCellM, 0.0);
+  }
   static tools::ChildProcess start_agent_at_start(int domain, const std::filesystem::path& out) {
-    return start_agent(domain, 4 * kCellM, (6 - 1 - 0) * kCellM, 0.0, out);
+    return start_smart(agent_at_start_args(domain), out);
   }
   std::vector<std::string> monitor_args(int domain) const {
     return {"monitor",
