@@ -1,6 +1,7 @@
 // The monitor's side of run ownership (idl/smart.idl, "Ownership"), at the DDS edge:
 // - MonitorAnnouncer: announces this monitor on the run's MonitorInfo topic (kept while it
-//   lives) and watches the others; poll() returns why this monitor must give way, naming the
+//   lives; again each second from poll(), for other hosts' clock checks) and watches the
+//   others; poll() returns why this monitor must give way, naming the
 //   monitor that owns the run (wire/ownership.hpp decides), or nothing.
 // - SenderGate: who may report what: progress for a robot only from the writer that first
 //   reported it (until that writer leaves: a restarted host takes over, and its newest refused
@@ -10,6 +11,7 @@
 
 #include <dds/dds.h>
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -46,6 +48,8 @@ class MonitorAnnouncer {
   dds::WireReader<smart_msg_MonitorInfo> in_;
   std::map<uint64_t, wire::MonitorClaim> others_;  // alive, by monitor_id
   std::set<uint64_t> warned_;
+  smart_msg_MonitorInfo announcement_{};
+  std::chrono::steady_clock::time_point announced_;
 };
 
 class SenderGate {

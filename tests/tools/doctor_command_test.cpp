@@ -31,10 +31,30 @@ TEST(DoctorCommand, AHealthyEmulatedJetbotPassesEveryRobotCheck) {
   const auto rows = by_check(doctor(
       {"--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0.5,0.5,0", "--wheels", "--yes"},
       0, "doctor_ok"));
-  for (const char* check : {"motor board", "pose stream", "left wheel", "right wheel"}) {
+  for (const char* check :
+       {"motor board", "pose stream", "left wheel", "right wheel", "response"}) {
     EXPECT_EQ(rows.at(check)["level"], "OK") << rows.at(check);
   }
   EXPECT_EQ(rows.at("monitor")["level"], "WARN");  // none running
+}
+
+// The response row measures what the robot has: an ideal emulated JetBot moves within a few
+// control periods; one whose motors answer with a 1 s time constant (first order: they start
+// at once, slowly) takes about three times as long to move 5 mm.
+TEST(DoctorCommand, TheResponseRowMeasuresTheMotorLag) {
+  auto response = [](const std::vector<std::string>& flaws) {
+    std::vector<std::string> args{"--robot-id",     "0",         "--i2c",    "emulated",
+                                  "--emulate-pose", "0.5,0.5,0", "--wheels", "--yes"};
+    args.insert(args.end(), flaws.begin(), flaws.end());
+    return by_check(doctor(args, 0, "doctor_response")).at("response");
+  };
+  auto ms = [](const nlohmann::json& row) {
+    return std::stod(row["measured"].get<std::string>().substr(std::string("pose moved ").size()));
+  };
+  const auto ideal = response({});
+  EXPECT_EQ(ideal["level"], "OK") << ideal;
+  const auto slow = response({"--emulate-motor-lag-s", "1.0"});
+  EXPECT_GT(ms(slow), 2 * ms(ideal)) << slow << ideal;
 }
 
 TEST(DoctorCommand, ABackwardsWheelAndAMissingBusFailWithTheirFix) {
@@ -79,9 +99,20 @@ TEST(DoctorCommand, FindsTheMonitorOnTheDomainAndItsQosMatches) {
                               plan.string(), "--axis", "xy", "--clock", "realtime", "--domain",
                               std::to_string(kDoctorMonitor), "--timeout-s", "20", "--no-progress"},
                              "/dev/null");
-  const auto rows = by_check(doctor({}, 0, "doctor_monitor", "3", kDoctorMonitor));
+  const auto report = doctor({}, 0, "doctor_monitor", "3", kDoctorMonitor);
   monitor.terminate();
+  const auto rows = by_check(report);
   EXPECT_EQ(rows.at("monitor")["level"], "OK") << rows.at("monitor");
+  // The monitor's host is in the clock table too, through its announcements (one a second).
+  int monitor_hosts = 0;
+  for (const auto& r : report["rows"]) {
+    const auto measured = r["measured"].get<std::string>();
+    if (measured.rfind("the monitor;", 0) != 0) continue;
+    ++monitor_hosts;
+    EXPECT_EQ(r["level"], "OK") << r;
+    EXPECT_EQ(measured.find("over 1 samples"), std::string::npos) << "announced again: " << r;
+  }
+  EXPECT_EQ(monitor_hosts, 1) << report;
   EXPECT_EQ(rows.at("qos")["level"], "OK") << rows.at("qos");
   for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
 }

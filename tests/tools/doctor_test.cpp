@@ -34,6 +34,8 @@ TEST(Doctor, AHostsClockFarOffIsAWarning) {
   const auto ok = clock_check("a1b2", {0, 1, 2}, 0.002, 40, 0.02);
   EXPECT_EQ(ok.level, Level::kOk);
   EXPECT_NE(ok.measured.find("robots 0,1,2;"), std::string::npos) << ok.measured;
+  const auto monitor = clock_check("c3d4", {}, 0.001, 5, 0.02);
+  EXPECT_NE(monitor.measured.find("the monitor;"), std::string::npos) << monitor.measured;
   const auto off = clock_check("a1b2", {3}, -0.25, 40, 0.02);
   EXPECT_EQ(off.level, Level::kWarn);
   EXPECT_NE(off.fix.find("chrony"), std::string::npos);
@@ -50,6 +52,17 @@ TEST(Doctor, AWheelAloneMustTurnTheRobotAwayFromIt) {
   const auto still = wheel_check("0", Wheel::kRight, start, start);
   EXPECT_EQ(still.level, Level::kFail);
   EXPECT_NE(still.fix.find("did not move"), std::string::npos);
+  EXPECT_NE(still.fix.find("hardware.right.beta"), std::string::npos) << "a dead band is named";
+}
+
+TEST(Doctor, ASlowResponseToTheFirstCommandIsAWarningAndNoneAFailure) {
+  const auto ok = response_check("2", 0.12);
+  EXPECT_EQ(ok.level, Level::kOk);
+  EXPECT_NE(ok.measured.find("120 ms"), std::string::npos) << ok.measured;
+  const auto slow = response_check("2", 0.6);
+  EXPECT_EQ(slow.level, Level::kWarn);
+  EXPECT_NE(slow.fix.find("overshoot"), std::string::npos);
+  EXPECT_EQ(response_check("2", std::nullopt).level, Level::kFail);
 }
 
 }  // namespace

@@ -60,16 +60,39 @@ CheckRow clock_check(const std::string& host, const std::vector<uint32_t>& robot
                      double min_offset_s, std::size_t samples, double tolerance_s) {
   std::ostringstream m;
   m.precision(3);
-  m << "robots";
+  m << (robots.empty() ? "the monitor" : "robots");
   for (std::size_t i = 0; i < robots.size() && i < 8; ++i) m << (i ? "," : " ") << robots[i];
   if (robots.size() > 8) m << ",... (" << robots.size() << ")";
-  m << "; clock offset + delay " << min_offset_s * 1000 << " ms over " << samples << " states";
+  m << "; clock offset + delay " << min_offset_s * 1000 << " ms over " << samples << " samples";
   CheckRow row{"", "host " + host, Level::kOk, m.str(), ""};
   if (std::abs(min_offset_s) > tolerance_s) {
     row.level = Level::kWarn;
     row.fix =
         "this host's clock and that one's differ: synchronise them (chrony or PTP; "
         "`chronyc tracking` shows the offset), or logs and pose latencies will not line up";
+  }
+  return row;
+}
+
+CheckRow response_check(const std::string& robot, std::optional<double> latency_s,
+                        double tolerance_s) {
+  CheckRow row{robot, "response", Level::kOk, "", ""};
+  if (!latency_s) {
+    row.level = Level::kFail;
+    row.measured = "the pose never showed the commanded motion";
+    row.fix = "see the wheel rows: a wheel that does not turn, or a pose stream of another robot";
+    return row;
+  }
+  std::ostringstream m;
+  m.precision(3);
+  m << "pose moved " << *latency_s * 1000 << " ms after the first command (5 mm or 1.5 deg)";
+  row.measured = m.str();
+  if (*latency_s > tolerance_s) {
+    row.level = Level::kWarn;
+    row.fix =
+        "the controller will overshoot: find the delay in the pose stream (mocap processing, "
+        "odometry rate, network) or the motor driver (its ramp), or lower the robot file's "
+        "speeds and gains";
   }
   return row;
 }
@@ -87,9 +110,12 @@ CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D&
   row.measured = m.str();
   if (std::abs(turn) < 0.05 && std::abs(ahead) < 0.005) {
     row.level = Level::kFail;
-    row.fix = std::string("the ") + name +
-              " wheel did not move: check its motor wiring and "
-              "the board's channel map (hardware.board)";
+    row.fix = std::string("the ") + name + " wheel did not move: " +
+              (board ? std::string("check its motor wiring and the board's channel map "
+                                   "(hardware.board); a motor dead band (TT motors start only "
+                                   "above about 60/255 PWM) needs hardware.") +
+                           name + ".beta (examples/lab-7-jetbots/jetbot-lab.yaml)"
+                     : std::string("check the base's driver and that it hears cmd_vel"));
     return row;
   }
   // Forward on one wheel: the robot pivots about the other one, turning away from it.

@@ -7,10 +7,12 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -80,9 +82,15 @@ std::vector<CheckRow> dds_checks(const DoctorOptions& o, const dds::QosProfile& 
   std::optional<smart_msg_MonitorInfo> seen;
   std::string host;
   for (const double end = steady_s() + o.seconds; steady_s() < end;) {
-    monitors.take_each([&](const smart_msg_MonitorInfo& m) {
+    monitors.take_each_info([&](const smart_msg_MonitorInfo& m, const dds_sample_info_t& info) {
       seen = m;
       host = m.host;
+      // Announced again every second (monitor/ownership_edge.hpp): its host's clock, too.
+      if (const auto who = monitors.participant_of(info.publication_handle)) {
+        auto& h = hosts[short_guid(*who)];
+        h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
+        ++h.samples;
+      }
     });
     hear_states(states, hosts);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -140,13 +148,25 @@ std::vector<agent::PoseSample> record(agent::PoseSource& pose, double seconds) {
   return out;
 }
 
-CheckRow drive_one_wheel(const DoctorOptions& o, const std::string& id, RobotIo& io, Wheel w) {
+// Drives one wheel alone; the direction row, and the time until the pose first moved (5 mm or
+// 1.5 degrees: well beyond mocap noise, 0.5 mm and 0.2 degrees, and reached within tens of ms
+// of a wheel turning at the test speed).
+CheckRow drive_one_wheel(const DoctorOptions& o, const std::string& id, RobotIo& io, Wheel w,
+                         std::optional<double>& moved_after_s) {
   const auto before = io.pose->read().pose;
   const agent::WheelSpeeds speeds = w == Wheel::kLeft ? agent::WheelSpeeds{o.wheel_speed_mps, 0.0}
                                                       : agent::WheelSpeeds{0.0, o.wheel_speed_mps};
-  for (const double end = steady_s() + o.wheel_s; steady_s() < end && !g_stop_requested;) {
+  const double start = steady_s();
+  for (const double end = start + o.wheel_s; steady_s() < end && !g_stop_requested;) {
     io.drive->set_wheel_speeds(speeds);  // repeated: the JetBot's command watchdog stays fed
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto now = io.pose->read().pose;
+    if (!moved_after_s &&
+        (std::hypot(now.x_m - before.x_m, now.y_m - before.y_m) > 0.005 ||
+         std::abs(std::remainder(now.yaw_rad - before.yaw_rad, 2 * std::numbers::pi)) >
+             1.5 * std::numbers::pi / 180)) {
+      moved_after_s = steady_s() - start;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   io.drive->stop();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // come to rest, fresh pose
@@ -186,9 +206,12 @@ std::vector<CheckRow> robot_checks(const DoctorOptions& o, uint32_t robot,
   }
   io.drive->configure();
   io.drive->activate();
-  rows.push_back(drive_one_wheel(o, id, io, Wheel::kLeft));
-  rows.push_back(drive_one_wheel(o, id, io, Wheel::kRight));
+  std::optional<double> left_s, right_s;
+  rows.push_back(drive_one_wheel(o, id, io, Wheel::kLeft, left_s));
+  rows.push_back(drive_one_wheel(o, id, io, Wheel::kRight, right_s));
   io.drive->deactivate();
+  rows.push_back(response_check(
+      id, left_s && right_s ? std::max(*left_s, *right_s) : (left_s ? left_s : right_s)));
   return rows;
 }
 

@@ -42,6 +42,7 @@ hw::EmulatedFlaws emulated_flaws(const BackendOptions& o) {
   if (o.emulate_wheel_gains.size() == 2)
     f.wheel_gain = {o.emulate_wheel_gains[0], o.emulate_wheel_gains[1]};
   if (!o.emulate_mounting.empty()) f.mounting = geometry::load_frame_transform(o.emulate_mounting);
+  if (o.emulate_motor_lag_s) f.lag_s = *o.emulate_motor_lag_s;
   return f;
 }
 
@@ -165,6 +166,10 @@ void add_backend_options(CLI::App* cmd, BackendOptions& o) {
   cmd->add_flag("--emulate-realistic", o.emulate_realistic,
                 "an emulated JetBot with a real one's flaws: motor dead band and lag, Vicon "
                 "latency and noise (hw/emulated_jetbot.hpp cites the values)");
+  cmd->add_option("--emulate-motor-lag-s", o.emulate_motor_lag_s,
+                  "an emulated JetBot's motor time constant (first-order response; "
+                  "--emulate-realistic: 0.1)")
+      ->check(finite_in(0.0, 5.0));
   cmd->add_option("--emulate-seed", o.emulate_seed, "seed of the emulated Vicon's noise")
       ->capture_default_str();
   cmd->add_option("--emulate-mounting", o.emulate_mounting,

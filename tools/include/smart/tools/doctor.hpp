@@ -6,8 +6,12 @@
 // - wheel_check(): one wheel driven forward alone from `before` to `after`: a left wheel alone
 //   turns the robot clockwise (right), a right wheel counter-clockwise, and both move it forward;
 //   FAIL names the sign to flip in the robot file, or a wheel that did not move.
+// - response_check(): the time from the first wheel command to the pose stream showing motion
+//   (motor start-up + pose latency, what the controller lives with); WARN above tolerance_s,
+//   FAIL when the pose never moved.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,7 +38,11 @@ enum class Wheel { kLeft, kRight };
 CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D& before,
                      const agent::Pose2D& after, bool board = true);
 
-// A host heard on the domain through its robots' states: the smallest (receive time - the
+CheckRow response_check(const std::string& robot, std::optional<double> latency_s,
+                        double tolerance_s = 0.25);
+
+// A host heard on the domain through its robots' states (robots empty: the monitor's
+// announcements): the smallest (receive time - the
 // sample's source timestamp) over `samples` is its clock's offset from this host's plus the
 // one-way delay, an upper bound on the offset when positive. Above tolerance_s: WARN.
 CheckRow clock_check(const std::string& host, const std::vector<uint32_t>& robots,

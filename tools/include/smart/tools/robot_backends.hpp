@@ -42,10 +42,11 @@ struct BackendOptions {
   double pose_max_age_s = 0.1;
   std::string pose_transform;        // mocap/odometry frame -> grid frame (smart calibrate frame)
   std::vector<double> emulate_pose;  // x, y, yaw for --i2c emulated
-  std::vector<double> emulate_wheel_gains;  // left, right: a mismatched wheel
-  std::string emulate_mounting;             // transform file: the emulated mocap's mounting
-  bool emulate_realistic = false;           // hw::realistic_flaws(): dead band, lag, Vicon
-  uint64_t emulate_seed = 0;                // its Vicon noise
+  std::vector<double> emulate_wheel_gains;    // left, right: a mismatched wheel
+  std::string emulate_mounting;               // transform file: the emulated mocap's mounting
+  bool emulate_realistic = false;             // hw::realistic_flaws(): dead band, lag, Vicon
+  std::optional<double> emulate_motor_lag_s;  // overrides the flaws' motor time constant
+  uint64_t emulate_seed = 0;                  // its Vicon noise
 };
 
 void add_backend_options(CLI::App* cmd, BackendOptions& o);
