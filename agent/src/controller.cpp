@@ -1,7 +1,9 @@
 #include "smart/agent/controller.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "smart/agent/kinematics.hpp"
 
@@ -17,6 +19,17 @@ double braking_speed(double dist, double decel, double dt) {
   // Largest v with v·dt + v²/(2a) <= dist.
   return std::max(0.0, -a * dt + std::sqrt(a * a * dt * dt + 2.0 * a * dist));
 }
+// The segment's frame: unit vectors along its heading and to its left, and the offset of the
+// robot from a point (the same arithmetic, in the same order, as written out by hand before).
+Eigen::Vector2d along(const Segment& s) {
+  return {std::cos(s.heading_rad), std::sin(s.heading_rad)};
+}
+Eigen::Vector2d leftward(const Segment& s) {
+  return {-std::sin(s.heading_rad), std::cos(s.heading_rad)};
+}
+Eigen::Vector2d position(const Pose2D& p) { return {p.x_m, p.y_m}; }
+Eigen::Vector2d start(const Segment& s) { return {s.start_x_m, s.start_y_m}; }
+Eigen::Vector2d end(const Segment& s) { return {s.end_x_m, s.end_y_m}; }
 }  // namespace
 
 Controller::Controller(const RobotModel& model, double period_s) : m_(model), dt_(period_s) {}
@@ -54,26 +67,23 @@ Twist Controller::rotate(const PoseSample& p, double target, bool* done) {
 }
 
 double Controller::remaining_m(const Pose2D& pose, const Segment& s) {
-  return (s.end_x_m - pose.x_m) * std::cos(s.heading_rad) +
-         (s.end_y_m - pose.y_m) * std::sin(s.heading_rad);
+  return (end(s) - position(pose)).dot(along(s));
 }
 
 double Controller::progress_m(const Pose2D& pose, const Segment& s) {
-  return (pose.x_m - s.start_x_m) * std::cos(s.heading_rad) +
-         (pose.y_m - s.start_y_m) * std::sin(s.heading_rad);
+  return (position(pose) - start(s)).dot(along(s));
 }
 
 Twist Controller::drive(const PoseSample& p, const Segment& s, bool* done) {
   const double d = remaining_m(p.pose, s);
   // Lateral offset, positive when the robot is left of the line.
-  const double lateral = -(p.pose.x_m - s.start_x_m) * std::sin(s.heading_rad) +
-                         (p.pose.y_m - s.start_y_m) * std::cos(s.heading_rad);
+  const double lateral = leftward(s).dot(position(p.pose) - start(s));
   const double yaw_target = s.heading_rad - std::atan(m_.gains.cross_track_kp * lateral);
   const double yaw_err = wrap_angle(yaw_target - p.pose.yaw_rad);
   double speed = std::min({m_.max_speed_mps, braking_speed(std::abs(d), m_.max_decel_mps2, dt_),
                            m_.gains.distance_kp * std::abs(d)});
   // Do not drive on while badly misaligned: slow down in proportion.
-  speed *= std::max(0.0, std::cos(std::min(std::abs(yaw_err) * 2.0, M_PI / 2)));
+  speed *= std::max(0.0, std::cos(std::min(std::abs(yaw_err) * 2.0, std::numbers::pi / 2)));
   const double w =
       clamp(m_.gains.heading_kp * yaw_err, -m_.max_turn_rate_radps, m_.max_turn_rate_radps) -
       m_.gains.heading_kd * p.angular_radps;
