@@ -1,5 +1,5 @@
 // From nothing to an executed plan with only `smart` subcommands, on every generated map kind:
-// gen-map -> gen-scen -> plan -> check-plan -> run.
+// gen-map -> gen-scen -> plan -> check-plan -> run, and gen-map -> gen-walk -> run.
 #include <gtest/gtest.h>
 
 #include "support/smart_process.hpp"
@@ -55,6 +55,42 @@ TEST(Generated, BuiltInPlannerPlansExecuteToSuccessOnEveryMapKind) {
     EXPECT_EQ(j["robots"], k.robots);
     for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
   }
+}
+
+// Random walks (with rotation cycles round 2x2 blocks) of 50 robots on an empty 10x10 map: the
+// plan and scenario gen-walk writes pass check-plan and execute without a collision; the same seed
+// gives the same files.
+TEST(Generated, RandomWalksOfAnySizeAreWrittenAndExecute) {
+  const auto map = temp_file("walk.map").string();
+  const auto scen = temp_file("walk.scen").string(), scen2 = temp_file("walk2.scen").string();
+  const auto plan = temp_file("walk.plan").string(), plan2 = temp_file("walk2.plan").string();
+  ASSERT_EQ(run_smart({"gen-map", "empty", "--width", "10", "--height", "10", "--out", map}, 30s,
+                      "gen_walk_map")
+                .code,
+            0);
+  const std::vector<std::string> walk{
+      "gen-walk", "--map",  map, "--robots",           "50", "--steps",
+      "30",       "--seed", "7", "--move-probability", "0.5"};
+  auto first = walk, second = walk;
+  first.insert(first.end(), {"--out", plan, "--out-scen", scen});
+  second.insert(second.end(), {"--out", plan2, "--out-scen", scen2});
+  const auto w = run_smart(first, 30s, "gen_walk");
+  ASSERT_EQ(w.code, 0) << w.out;
+  EXPECT_EQ(w.last_json()["robots"], 50);
+  EXPECT_GT(w.last_json()["rotation_cycles"].get<int>(), 0);
+  ASSERT_EQ(run_smart(second, 30s, "gen_walk2").code, 0);
+  EXPECT_EQ(slurp(plan), slurp(plan2));
+  EXPECT_EQ(slurp(scen), slurp(scen2));
+  const auto check = run_smart(
+      {"check-plan", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"}, 30s, "check");
+  ASSERT_EQ(check.code, 0) << check.out;
+  const auto r = run_smart({"run", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy",
+                            "--domain", std::to_string(kRunWalk), "--no-progress"},
+                           120s, "run_walk");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(r.last_json()["success"].get<bool>());
+  EXPECT_EQ(r.last_json()["collisions"], 0);
+  for (const auto& f : {map, scen, scen2, plan, plan2}) std::filesystem::remove(f);
 }
 
 }  // namespace

@@ -97,6 +97,7 @@ enum DomainId : int {
   kMultihostLoss = 190,
   kMultihostCut = 191,
   kMultihostSecure = 192,
+  kRunWalk = 193,
   kRos2Calibrate = 178,
 };
 

@@ -1,5 +1,5 @@
-// `smart gen-map`, `smart gen-scen`, `smart plan`: a self-contained pipeline from nothing to an
-// executable plan (no outside data needed).
+// `smart gen-map`, `smart gen-scen`, `smart plan`, `smart gen-walk`: a self-contained pipeline
+// from nothing to an executable plan (no outside data needed).
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -10,6 +10,7 @@
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/planning/generators.hpp"
 #include "smart/planning/planner.hpp"
+#include "smart/planning/random_plan.hpp"
 #include "smart/tools/commands.hpp"
 
 namespace smart::tools {
@@ -21,6 +22,57 @@ void write_file(const std::string& path, const std::string& text) {
   if (!out || !(out << text)) {
     throw std::runtime_error("cannot write " + path + "; check the folder exists and is writable");
   }
+}
+
+struct WalkOptions {
+  std::string map, out_plan, out_scen;
+  planning::RandomPlanOptions walk;
+};
+
+// Conflict-free random walks of every robot (planning/random_plan.hpp): instances of any size at
+// once, for scaling measurements where planning would take longer than the run.
+int generate_walk(const WalkOptions& o) {
+  const auto g = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
+  auto inst = planning::generate_random_plan(g, o.walk);
+  inst.scen.map_name = std::filesystem::path(o.map).filename().string();
+  grid::throw_if_any(monitor::validate_plan(inst.plan, g, &inst.scen));
+  write_file(o.out_plan, planning::to_smart_plan_text(inst.plan));
+  write_file(o.out_scen, planning::to_movingai_scen(inst.scen, g));
+  const auto st = grid::plan_stats(inst.plan);
+  std::cout << nlohmann::json{{"plan", o.out_plan}, {"scen", o.out_scen},
+                              {"axis", "xy"},       {"robots", st.robots},
+                              {"soc", st.soc},      {"makespan", st.makespan},
+                              {"moves", st.moves},  {"rotation_cycles", inst.rotation_cycles}}
+                   .dump()
+            << std::endl;
+  return kExitSuccess;
+}
+
+void register_walk_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<WalkOptions>();
+  auto* w = app.add_subcommand(
+      "gen-walk",
+      "Generate conflict-free random walks of N robots on a map (seeded; any size at once): a "
+      "SMART timed plan (axis xy) and its scenario, for scaling runs");
+  w->add_option("--map", o->map, "MovingAI .map file")->required();
+  w->add_option("--robots", o->walk.robots, "number of robots")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->required();
+  w->add_option("--steps", o->walk.steps, "timesteps of every walk")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->capture_default_str();
+  w->add_option("--move-probability", o->walk.move_probability, "chance a robot moves per step")
+      ->check(finite_in(0.0, 1.0))
+      ->capture_default_str();
+  w->add_option("--rotation-probability", o->walk.rotation_probability,
+                "chance per step that four waiting robots round a 2x2 block rotate")
+      ->check(finite_in(0.0, 1.0))
+      ->capture_default_str();
+  w->add_option("--seed", o->walk.seed, "random seed: the same seed makes the same walks")
+      ->capture_default_str();
+  w->add_option("--out", o->out_plan, "the plan file to write")->required();
+  w->add_option("--out-scen", o->out_scen, "the scenario file to write")->required();
+  w->callback([&exit_code, o] { exit_code = generate_walk(*o); });
 }
 
 struct PlanOptions {
@@ -109,6 +161,7 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
 }
 
 void register_generate_commands(CLI::App& app, int& exit_code) {
+  register_walk_command(app, exit_code);
   auto o = std::make_shared<GenMapOptionsPublic>();
   auto kind = std::make_shared<MapKind>(MapKind::kWarehouse);
   auto out = std::make_shared<std::string>();
