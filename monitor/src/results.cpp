@@ -144,6 +144,20 @@ nlohmann::json pose_contacts_json(const MonitorResult& r) {
           {"first_pose_contact", first}};
 }
 
+// How long the instance took to load and check, and the run to start: the wall time from the
+// monitor's start to the first report of a host (discovery, world creation, first windows).
+nlohmann::json timing_json(const Instance& in, const MonitorResult& r) {
+  const auto& t = in.timings;
+  return {{"build_time_ms",
+           {{"read", t.read_ms},
+            {"validate", t.validate_ms},
+            {"actions", t.actions_ms},
+            {"adg", t.adg_ms},
+            {"acyclic", t.acyclic_ms},
+            {"adg_total", t.actions_ms + t.adg_ms + t.acyclic_ms}}},
+          {"first_report_wall_s", r.first_progress_wall_s}};
+}
+
 }  // namespace
 
 nlohmann::json adg_json(const AdgStats& a) {
@@ -213,6 +227,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"versions", {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };
   j.update(pose_contacts_json(r));
+  j.update(timing_json(in, r));
   double waiting = 0;
   uint64_t stops = 0;
   for (const auto& m : r.robots) {

@@ -76,6 +76,8 @@ TEST(Results, SummaryHasTheKeysUsersReadAndTheRightAverages) {
   for (const char* key : {"collisions", "min_separation_m", "adg", "plan", "versions"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
+  EXPECT_TRUE(j["build_time_ms"].contains("adg_total"));
+  EXPECT_TRUE(j.contains("first_report_wall_s"));
   EXPECT_EQ(j["pose_contacts"], 0);
   EXPECT_TRUE(j["pose_min_separation_m"].is_null());  // no poses compared: null, not 0
   EXPECT_TRUE(j["first_pose_contact"].is_null());

@@ -58,6 +58,10 @@ TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
     EXPECT_EQ(row["collisions"], 0);
     EXPECT_GT(row["monitor_peak_rss_mb"].get<double>(), 1.0);
     EXPECT_GT(row["sim_peak_rss_mb"].get<double>(), 1.0);
+    EXPECT_GT(row["cpu_s_per_sim_s"].get<double>(), 0.0);
+    EXPECT_GT(row["adg_build_ms"].get<double>(), 0.0);
+    EXPECT_GT(row["first_report_wall_s"].get<double>(), 0.0);  // discovery and start-up
+    EXPECT_LT(row["first_report_wall_s"].get<double>(), row["wall_time_s"].get<double>());
   }
   EXPECT_THAT(r.out, HasSubstr("| robots | success | sim time |"));
   EXPECT_THAT(r.out, HasSubstr("\n| 5 | yes | "));

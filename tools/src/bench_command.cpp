@@ -128,19 +128,20 @@ struct BenchRunOptions {
 // The rows as the Markdown table of docs/performance.md.
 void print_table(const std::vector<nlohmann::json>& rows) {
   std::cout
-      << "\n| robots | success | sim time | wall time | sim speed | AET | collisions | closest "
-         "approach | monitor RSS | sim RSS |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|"
-         "\n";
+      << "\n| robots | success | sim time | wall time | sim speed | CPU s per sim s | AET | "
+         "collisions | closest approach | monitor RSS | sim RSS | ADG build | first report |\n"
+         "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  const auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : 0.0; };
   for (const auto& r : rows) {
-    char line[256];
-    std::snprintf(
-        line, sizeof line,
-        "| %zu | %s | %.0f s | %.1f s | %.1fx | %.0f s | %d | %.2f m | %.0f MB | %.0f MB |",
-        r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
-        r["sim_time_s"].get<double>(), r["wall_time_s"].get<double>(), r["sim_speed"].get<double>(),
-        r["aet_s"].is_number() ? r["aet_s"].get<double>() : 0, r["collisions"].get<int>(),
-        r["min_separation_m"].is_number() ? r["min_separation_m"].get<double>() : 0,
-        r["monitor_peak_rss_mb"].get<double>(), r["sim_peak_rss_mb"].get<double>());
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "| %zu | %s | %.0f s | %.1f s | %.1fx | %.2f | %.0f s | %d | %.2f m | %.0f MB | "
+                  "%.0f MB | %.0f ms | %.1f s |",
+                  r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
+                  num(r["sim_time_s"]), num(r["wall_time_s"]), num(r["sim_speed"]),
+                  num(r["cpu_s_per_sim_s"]), num(r["aet_s"]), r["collisions"].get<int>(),
+                  num(r["min_separation_m"]), num(r["monitor_peak_rss_mb"]),
+                  num(r["sim_peak_rss_mb"]), num(r["adg_build_ms"]), num(r["first_report_wall_s"]));
     std::cout << line << "\n";
   }
   std::cout << "\nmachine: " << machine_description() << std::endl;
@@ -191,6 +192,9 @@ int run_bench_run(const BenchRunOptions& o) {
                           {"min_separation_m", s["min_separation_m"]},
                           {"monitor_peak_rss_mb", s["peak_rss_mb"]["monitor"]},
                           {"sim_peak_rss_mb", s["peak_rss_mb"]["sim"]},
+                          {"cpu_s_per_sim_s", s["cpu_s_per_sim_s"]},
+                          {"adg_build_ms", s["build_time_ms"]["adg_total"]},
+                          {"first_report_wall_s", s["first_report_wall_s"]},
                           {"machine", machine_description()}};
     std::cout << row.dump() << std::endl;
     rows.push_back(row);
