@@ -11,6 +11,7 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 SMART=${SMART:-$HERE/../build/bin/smart}
 DOMAIN=${DOMAIN:-50}
 CELL=0.4
+PERIOD=${PERIOD:-0.1}  # the agents' control period
 SIZES=${*:-1 10 50 100}
 WORK=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$WORK"' EXIT
@@ -31,7 +32,7 @@ for n in $SIZES; do
     '{ printf "%d %.4f %.4f\n", NR-1, $5*c, (h-1-$6)*c }' |
   while read -r id x y; do
     "$SMART" --log-level error agent --robot-id "$id" --config jetbot --i2c emulated \
-      --emulate-pose "$x,$y,0" --domain "$DOMAIN" > /dev/null &
+      --emulate-pose "$x,$y,0" --period-s "$PERIOD" --domain "$DOMAIN" > /dev/null &
   done
   wait "$monitor" || true
   wait
@@ -39,13 +40,19 @@ for n in $SIZES; do
 import csv, json, statistics, sys, time
 work, n, start = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 s = json.load(open(f"{work}/summary.json"))
-first = {}
+first, heard = {}, {}
 for row in csv.DictReader(open(f"{work}/out/actions.csv")):
     if row["action"] == "0" and row["finish_time_s"]:
         first[int(row["robot"])] = float(row["finish_time_s"])
-t = sorted(first.values())
-print(json.dumps({"agents": n, "success": s["success"], "robots_started": len(t),
-                  "first_action_s": {"first": t[0], "median": statistics.median(t), "last": t[-1]},
-                  "wall_time_s": s["wall_time_s"], "machine": s.get("machine", "")}))
+for row in csv.reader(open(f"{work}/out/states.csv")):
+    if row[0] != "t_s":
+        heard.setdefault(int(row[1]), float(row[0]))
+def spread(d):
+    t = sorted(d.values())
+    return {"robots": len(t), "first": round(t[0], 3), "median": round(statistics.median(t), 3),
+            "last": round(t[-1], 3)}
+print(json.dumps({"agents": n, "success": s["success"], "heard_s": spread(heard),
+                  "first_action_s": spread(first), "wall_time_s": s["wall_time_s"],
+                  "machine": s.get("machine", "")}))
 PY
 done

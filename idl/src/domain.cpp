@@ -81,7 +81,11 @@ Domain::Domain(dds_domainid_t id, const DomainConfig& config) : id_(id), config_
   const std::string xml = render_cyclone_config(config);
   const dds_entity_t h = dds_create_domain(id, xml.c_str());
   check(h, "creating DDS domain " + std::to_string(id) +
-               " (a domain can be created once per process; share the Domain object)");
+               " (a domain can be created once per process; share the Domain object; with "
+               "loopback discovery at most " +
+               std::to_string(config.max_auto_participant_index + 1) +
+               " processes of one domain fit on a host: more need --network network, or "
+               "several robots per agent process)");
   entity_ = std::make_shared<Entity>(h);
 }
 

@@ -145,6 +145,22 @@ std::set<uint32_t> receive_lossy_burst(int domain_id, const std::string& reliabi
   return got;
 }
 
+// Regression: with loopback discovery only 61 processes of a domain fitted on one host (each
+// takes a participant index, Cyclone's MaxAutoParticipantIndex was 60); the 62nd failed to
+// create its domain, so a fleet of 100 agent processes on one machine could not join a run.
+TEST(CrossProcess, AHundredProcessesJoinOneDomainOnOneHost) {
+  std::vector<ChildProcess> echoes;
+  for (int i = 0; i < 100; ++i) {
+    echoes.emplace_back(
+        std::vector<std::string>{test::smart_exe().string(), "dds-echo", "--domain",
+                                 std::to_string(test::kManyProcesses), "--duration-s", "4"},
+        "/dev/null");
+  }
+  int failed = 0;
+  for (auto& e : echoes) failed += e.wait(60s).value_or(-1) != 0;
+  EXPECT_EQ(failed, 0) << "processes that could not join the domain";
+}
+
 TEST(LossyLink, ReliableDeliversEverySampleUnderTwentyPercentLoss) {
   int rc = -1;
   const auto got = receive_lossy_burst(test::kLossyReliable, "reliable", 400, &rc);

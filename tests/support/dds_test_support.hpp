@@ -98,6 +98,7 @@ enum DomainId : int {
   kMultihostCut = 191,
   kMultihostSecure = 192,
   kRunWalk = 193,
+  kManyProcesses = 194,
   kRos2Calibrate = 178,
 };
 

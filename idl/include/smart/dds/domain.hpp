@@ -48,7 +48,13 @@ struct DomainConfig {
   std::vector<std::string> interfaces{"lo"};
   std::vector<std::string> peers{"127.0.0.1"};
   bool allow_multicast = false;
-  int max_auto_participant_index = 60;
+  // Loopback discovery sends to the port of every participant index up to this one, and each
+  // process on a host takes one index: 119 is Cyclone's largest (indices below 120 keep the
+  // unicast ports inside the domain's 250-port block; Cyclone manual, Discovery/
+  // ParticipantIndex), room for 100 agent processes with a monitor, sim hosts and viewers. At 60,
+  // the 61st process of a domain on one host failed ("Failed to find a free participant index";
+  // bench/discovery.sh, docs/performance.md).
+  int max_auto_participant_index = 119;
   TransportConfig transport;
   std::string tracing_verbosity = "warning";
   std::optional<SecurityFiles> security;  // none: no DDS Security
