@@ -49,6 +49,8 @@ struct RunInfo {
 // The "adg" and "plan" objects shared by summary.json and `smart check-plan`.
 nlohmann::json adg_json(const AdgStats& stats);
 nlohmann::json plan_json(const Plan& plan, const PlanStats& stats);
+// How long loading the instance took: read, validate, actions, adg, acyclic, adg_total (ms).
+nlohmann::json build_time_json(const InstanceTimings& timings);
 
 nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
                             const RunInfo& info);
