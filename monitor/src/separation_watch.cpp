@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace smart::monitor {
 
@@ -69,6 +70,18 @@ void SeparationWatch::on_pose(uint32_t robot, double x_m, double y_m, double t_s
         if (other != robot) compare(robot, other);
       }
     }
+  }
+  forget_separated(robot);
+}
+
+// A pair that touched and is now out of reach (not compared above) has separated.
+void SeparationWatch::forget_separated(uint32_t robot) {
+  for (auto it = touching_.begin(); it != touching_.end();) {
+    const uint32_t other = it->first == robot ? it->second : it->first;
+    const bool mine = it->first == robot || it->second == robot;
+    const double d =
+        std::hypot(last_[robot].x_m - last_[other].x_m, last_[robot].y_m - last_[other].y_m);
+    it = mine && d > reach_m_ ? touching_.erase(it) : std::next(it);
   }
 }
 

@@ -58,6 +58,19 @@ TEST(SeparationWatch, AContactCountsOnceUntilThePairSeparates) {
   EXPECT_NEAR(*w.min_gap_m(), -0.09, 1e-12);
 }
 
+// Regression: a pair that touched and was next seen far apart (two buckets away, so never
+// compared) stayed "touching", and its next contact was not counted.
+TEST(SeparationWatch, APairThatJumpedApartCountsItsNextContact) {
+  SeparationWatch w(2, kRadius);
+  w.on_pose(0, 0, 0, 1.0);
+  w.on_pose(1, 0.1, 0, 1.0);
+  EXPECT_EQ(w.contacts(), 1u);
+  w.on_pose(1, 2.0, 0, 1.05);  // a gap in its samples: next seen far away
+  w.on_pose(1, 0.1, 0, 2.0);
+  w.on_pose(0, 0, 0, 2.0);
+  EXPECT_EQ(w.contacts(), 2u);
+}
+
 TEST(SeparationWatch, NeighboursAcrossBucketBordersAreCompared) {
   SeparationWatch w(2, kRadius);  // buckets of 0.36 m
   w.on_pose(0, 0.359, -0.001, 2.0);

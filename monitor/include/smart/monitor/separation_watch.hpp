@@ -50,6 +50,7 @@ class SeparationWatch {
   std::pair<int64_t, int64_t> bucket_of(double x_m, double y_m) const;
   void move_to_bucket(uint32_t robot, int64_t bucket);
   void compare(uint32_t robot, uint32_t other);
+  void forget_separated(uint32_t robot);
 
   double radius_m_, reach_m_, max_skew_s_;
   std::vector<Last> last_;
