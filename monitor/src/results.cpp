@@ -144,6 +144,21 @@ nlohmann::json pose_contacts_json(const MonitorResult& r) {
           {"first_pose_contact", first}};
 }
 
+// What the run cost: peak memory and CPU of the monitor and the sim host, and the machine.
+nlohmann::json resources_json(const MonitorResult& r, const RunInfo& info) {
+  auto mb = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
+  nlohmann::json j;
+  j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
+  if (!info.machine.empty()) j["machine"] = info.machine;
+  j["cpu_s"] = {{"monitor", mb(info.monitor_cpu_s)}, {"sim", mb(info.sim_cpu_s)}};
+  if (info.monitor_cpu_s && info.sim_cpu_s && r.sim_time_s > 0) {
+    j["cpu_s_per_sim_s"] = (*info.monitor_cpu_s + *info.sim_cpu_s) / r.sim_time_s;
+  }
+  return j;
+}
+
 // How long the instance took to load and check, and the run to start: the wall time from the
 // monitor's start to the first report of a host (discovery, world creation, first windows).
 nlohmann::json timing_json(const Instance& in, const MonitorResult& r) {
@@ -235,15 +250,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   }
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
   j["stops"] = stops;
-  auto mb = [](const std::optional<double>& v) {
-    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-  };
-  j["peak_rss_mb"] = {{"monitor", mb(info.monitor_peak_rss_mb)}, {"sim", mb(r.host_peak_rss_mb)}};
-  if (!info.machine.empty()) j["machine"] = info.machine;
-  j["cpu_s"] = {{"monitor", mb(info.monitor_cpu_s)}, {"sim", mb(info.sim_cpu_s)}};
-  if (info.monitor_cpu_s && info.sim_cpu_s && r.sim_time_s > 0) {
-    j["cpu_s_per_sim_s"] = (*info.monitor_cpu_s + *info.sim_cpu_s) / r.sim_time_s;
-  }
+  j.update(resources_json(r, info));
   if (info.limits) j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
   if (!info.link.is_null()) j["link"] = info.link;
