@@ -52,15 +52,23 @@ std::string short_guid(const dds_guid_t& g) {
   return s.str();
 }
 
+// The host (participant) that wrote a sample, its clock offset + delay updated; null when the
+// writer already left.
+template <class Reader>
+HeardHost* heard_from(const Reader& reader, const dds_sample_info_t& info,
+                      std::map<std::string, HeardHost>& hosts) {
+  const auto who = reader.participant_of(info.publication_handle);
+  if (!who) return nullptr;
+  auto& h = hosts[short_guid(*who)];
+  h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
+  ++h.samples;
+  return &h;
+}
+
 void hear_states(dds::WireReader<smart_msg_RobotState>& states,
                  std::map<std::string, HeardHost>& hosts) {
   states.take_each_info([&](const smart_msg_RobotState& s, const dds_sample_info_t& info) {
-    const auto who = states.participant_of(info.publication_handle);
-    if (!who) return;
-    auto& h = hosts[short_guid(*who)];
-    h.robots.insert(s.robot_id);
-    h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
-    ++h.samples;
+    if (auto* h = heard_from(states, info, hosts)) h->robots.insert(s.robot_id);
   });
 }
 
@@ -86,11 +94,7 @@ std::vector<CheckRow> dds_checks(const DoctorOptions& o, const dds::QosProfile& 
       seen = m;
       host = m.host;
       // Announced again every second (monitor/ownership_edge.hpp): its host's clock, too.
-      if (const auto who = monitors.participant_of(info.publication_handle)) {
-        auto& h = hosts[short_guid(*who)];
-        h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
-        ++h.samples;
-      }
+      heard_from(monitors, info, hosts);
     });
     hear_states(states, hosts);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
