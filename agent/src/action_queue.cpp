@@ -2,6 +2,18 @@
 
 namespace smart::agent {
 
+ActionQueue::Snapshot ActionQueue::snapshot() const {
+  return {run_id_, started_, finished_seq_, {pending_.begin(), pending_.end()}, duplicates_};
+}
+
+void ActionQueue::restore(const Snapshot& s) {
+  run_id_ = s.run_id;
+  started_ = s.started;
+  finished_seq_ = s.finished_seq;
+  pending_.assign(s.pending.begin(), s.pending.end());
+  duplicates_ = s.duplicates;
+}
+
 ActionQueue::Result ActionQueue::apply(uint64_t run_id, const std::vector<AgentAction>& window) {
   if (started_ && run_id < run_id_) return Result::kStaleRun;
   if (!started_ || run_id > run_id_) {

@@ -44,6 +44,29 @@ ActionQueue::Result Agent::on_window(uint64_t run_id, const std::vector<AgentAct
   return queue_.apply(run_id, window);
 }
 
+AgentSnapshot Agent::snapshot() const {
+  return {
+      controller_.last(), queue_.snapshot(),       pose_sample_, command_,       stale_,
+      had_pose_,          watchdog_stops_,         now_s_,       stall_until_s_, stall_checked_seq_,
+      last_front_move_,   last_front_heading_rad_, stalls_};
+}
+
+void Agent::restore(const AgentSnapshot& s) {
+  controller_.restore(s.last_command);
+  queue_.restore(s.queue);
+  pose_sample_ = s.pose;
+  command_ = s.wheels;
+  stale_ = s.stale;
+  had_pose_ = s.had_pose;
+  watchdog_stops_ = s.watchdog_stops;
+  now_s_ = s.now_s;
+  stall_until_s_ = s.stall_until_s;
+  stall_checked_seq_ = s.stall_checked_seq;
+  last_front_move_ = s.last_front_move;
+  last_front_heading_rad_ = s.last_front_heading_rad;
+  stalls_ = s.stalls;
+}
+
 void Agent::write(Twist t) {
   command_ = controller_.wheels(t);
   drive_.set_wheel_speeds(command_);

@@ -86,6 +86,7 @@ void World::Impl::find_contacts(bool everyone) {
   for (const auto t : touched) head[t] = kNoRobot;
   touched.clear();
   for (uint32_t i = static_cast<uint32_t>(n); i-- > 0;) {
+    if (presence[i] == Presence::kAbsent) continue;
     const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
     if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) continue;
     const auto ci = static_cast<std::size_t>(grid.index(c));
@@ -145,7 +146,11 @@ void World::Impl::find_contacts(bool everyone) {
     touch[fill_at[a]++] = b;
     touch[fill_at[b]++] = a;
   }
+  uint32_t counted_now = 0;
   for (const auto p : pairs_now) {
+    // A pair with a ghost is counted by the shard that simulates its lower index (world.hpp).
+    if (!simulated(static_cast<uint32_t>(p >> 32))) continue;
+    ++counted_now;
     auto [it, fresh] = pair_last_contact.emplace(p, now);
     if (fresh || now - it->second > cfg.contact_debounce_s) ++stats.robot_robot_events;
     if (stats.first_pair_a < 0) {
@@ -154,7 +159,7 @@ void World::Impl::find_contacts(bool everyone) {
     }
     it->second = now;
   }
-  stats.robot_robot_now = static_cast<uint32_t>(pairs_now.size());
+  stats.robot_robot_now = counted_now;
   stats.robot_wall_now = walls_now;
 }
 

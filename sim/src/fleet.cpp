@@ -38,6 +38,19 @@ void Fleet::set_external(uint32_t robot) {
   agents_[robot]->deactivate();
 }
 
+std::pair<RobotPhysics, agent::AgentSnapshot> Fleet::release(uint32_t robot, Presence now) {
+  std::pair out{world_.export_robot(robot), agents_.at(robot)->snapshot()};
+  agents_[robot]->deactivate();
+  world_.set_presence(robot, now);
+  return out;
+}
+
+void Fleet::adopt(uint32_t robot, const RobotPhysics& physics, const agent::AgentSnapshot& agent) {
+  world_.import_robot(robot, physics);
+  agents_.at(robot)->activate();
+  agents_[robot]->restore(agent);
+}
+
 void Fleet::step() {
   // Inactive (external) agents do nothing in step().
   for (auto& a : agents_) a->step(world_.time_s());

@@ -45,6 +45,7 @@ World::World(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
   I.system_of.assign(n, Impl::kAsleep);
   I.slot_of.assign(n, Impl::kAsleep);
   I.is_external.assign(n, 0);
+  I.presence.assign(n, Presence::kSimulated);
   I.external_pose.assign(starts.begin(), starts.end());
   for (uint32_t i = 0; i < n; ++i) {
     const auto& p = starts[i];
@@ -127,8 +128,11 @@ void World::step() {
     I.ramp_from_r[i] = I.command(I.ramp_from_r, I.target_r, i, t0);
   }
   I.ramp_t0 = t0;
+  // Robots arrived, left or moved as ghosts at this boundary: their contacts are found anew.
+  if (I.contacts_stale) I.find_contacts(false);
+  I.contacts_stale = false;
   for (uint32_t i = 0; i < I.n; ++i) {
-    if (I.commanded(i, t0)) I.wake(i);
+    if (I.simulated(i) && I.commanded(i, t0)) I.wake(i);
   }
   for (int j = 0; j < I.substeps; ++j) I.substep_once(h);
   ++I.control_steps;
@@ -144,7 +148,7 @@ void World::step() {
 void World::Impl::substep_once(double h) {
   // Contacts wake both robots (a sleeping robot can be pushed).
   for (uint32_t i = 0; i < n; ++i) {
-    if (in_contact[i]) wake(i);
+    if (in_contact[i] && simulated(i)) wake(i);
   }
   active.clear();
   for (auto& s : systems) {
@@ -174,6 +178,7 @@ void World::Impl::substep_once(double h) {
     vx[i] = st[4];
     vy[i] = st[5];
   }
+  move_ghosts(h);
   ++substep;
   find_contacts(false);
 }

@@ -52,6 +52,9 @@ struct World::Impl : detail::RobotForces {
   std::vector<std::size_t> touched;
 
   std::vector<uint8_t> is_external;
+  std::vector<Presence> presence;  // sim shards: simulated here, a ghost, or absent
+  bool contacts_stale = false;     // presence changed since the last contact search
+  bool any_ghosts = false;
   std::vector<agent::Pose2D> external_pose;
   ContactStats stats;
   std::vector<uint64_t> pairs_now;
@@ -83,6 +86,7 @@ struct World::Impl : detail::RobotForces {
            command(ramp_from_l, target_l, i, t) != 0 || command(ramp_from_r, target_r, i, t) != 0;
   }
   bool awake(uint32_t i) const { return system_of[i] != kAsleep; }
+  bool simulated(uint32_t i) const { return presence[i] == Presence::kSimulated; }
 
   void wake(uint32_t i);
   void sleep(uint32_t i);
@@ -90,6 +94,7 @@ struct World::Impl : detail::RobotForces {
   void pack();
   void find_contacts(bool everyone);
   void substep_once(double h);
+  void move_ghosts(double h);
   void settle(double time_s);
   void robot_force(uint32_t robot, double time_s, const double* q, const double* u,
                    double* f) const override;

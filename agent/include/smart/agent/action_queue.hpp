@@ -18,6 +18,17 @@ class ActionQueue {
  public:
   enum class Result { kAccepted, kUnchanged, kGap, kStaleRun };
 
+  // Everything the queue holds, to continue it elsewhere (a robot moving between sim shards).
+  struct Snapshot {
+    uint64_t run_id = 0;
+    bool started = false;
+    int64_t finished_seq = -1;
+    std::vector<AgentAction> pending;
+    uint64_t duplicates = 0;
+  };
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
+
   Result apply(uint64_t run_id, const std::vector<AgentAction>& window);
 
   const std::deque<AgentAction>& pending() const { return pending_; }

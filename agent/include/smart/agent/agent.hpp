@@ -33,6 +33,24 @@ struct AgentConfig {
 
 enum class LifecycleState { kUnconfigured, kInactive, kActive };
 
+// Everything an agent carries from one control period to the next, so that another process can
+// continue it bit for bit (a robot moving between sim shards, sim/shard.hpp).
+struct AgentSnapshot {
+  Twist last_command;  // the controller's
+  ActionQueue::Snapshot queue;
+  PoseSample pose;
+  WheelSpeeds wheels;
+  bool stale = false;
+  bool had_pose = false;
+  uint64_t watchdog_stops = 0;
+  double now_s = 0;
+  double stall_until_s = -1;
+  int64_t stall_checked_seq = -1;
+  bool last_front_move = false;
+  double last_front_heading_rad = 0;
+  uint64_t stalls = 0;
+};
+
 class Agent {
  public:
   Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose);
@@ -43,6 +61,9 @@ class Agent {
   LifecycleState state() const { return state_; }
 
   ActionQueue::Result on_window(uint64_t run_id, const std::vector<AgentAction>& window);
+  AgentSnapshot snapshot() const;
+  // Continues from a snapshot (the lifecycle state is not part of it).
+  void restore(const AgentSnapshot& s);
   void step(double now_s);
 
   uint32_t robot_id() const { return config_.robot_id; }

@@ -32,6 +32,11 @@ class Controller {
   // After an emergency stop (stale pose): the robot was stopped outright.
   void reset() { v_ = w_ = 0; }
   Twist last() const { return {v_, w_}; }
+  // Continues from a command given elsewhere (the controller's only state).
+  void restore(Twist last) {
+    v_ = last.linear_mps;
+    w_ = last.angular_radps;
+  }
   WheelSpeeds wheels(Twist t) const;
 
   // Signed distance still to go along the segment's heading (negative once past the end).

@@ -42,6 +42,12 @@ class Fleet {
   void set_external(uint32_t robot);
   bool external(uint32_t robot) const { return world_.external(robot); }
 
+  // Sim shards (shard.hpp), at a period boundary: a robot leaves this fleet's World (its state
+  // is returned; from then on it is `now` here and its agent is not driven) or arrives and is
+  // continued from the state another fleet returned.
+  std::pair<RobotPhysics, agent::AgentSnapshot> release(uint32_t robot, Presence now);
+  void adopt(uint32_t robot, const RobotPhysics& physics, const agent::AgentSnapshot& agent);
+
   void step();
   void deactivate();
   FleetStats stats() const;

@@ -53,10 +53,34 @@ struct ContactStats {
   uint64_t robot_wall_events = 0;
   uint32_t robot_robot_now = 0;  // pairs in contact after the last sub-step
   uint32_t robot_wall_now = 0;
-  double min_gap_m = 1e9;  // smallest surface distance between two robots seen so far
+  double min_gap_m = 1e9;     // smallest surface distance between two robots seen so far
   int64_t first_pair_a = -1;  // robots of the first robot-robot episode (-1: none yet)
   int64_t first_pair_b = -1;
 };
+
+// One robot's motion in the world frame: pose and velocity (vx, vy in the world frame).
+struct RobotMotion {
+  double x_m = 0, y_m = 0, yaw_rad = 0;
+  double vx_mps = 0, vy_mps = 0, w_radps = 0;
+};
+
+// Everything the World keeps about one robot between control periods, so that another World
+// (a sim shard on another host, shard.hpp) continues it bit for bit. The motor ramp is relative
+// to the period's start, which every shard shares (lock-step).
+struct RobotPhysics {
+  RobotMotion motion;
+  double target_l_mps = 0, target_r_mps = 0;
+  double ramp_from_l_mps = 0, ramp_from_r_mps = 0;
+  double wall_last_contact_s = -1e300;
+  bool awake = false;
+  // Its robot pairs still within the contact debounce: (other robot, last contact time).
+  std::vector<std::pair<uint32_t, double>> pair_last_contact_s;
+};
+
+// Which robots a World steps (sim shards, shard.hpp): its own (kSimulated, the default), a
+// neighbour shard's near the border (kGhost: an obstacle at the motion it was given, moved on at
+// that velocity through the period, never stepped nor woken), the rest (kAbsent: not there).
+enum class Presence : uint8_t { kSimulated, kGhost, kAbsent };
 
 class World {
  public:
@@ -76,6 +100,17 @@ class World {
   void set_external(uint32_t robot, bool external);
   void set_external_pose(uint32_t robot, const agent::Pose2D& pose);
   bool external(uint32_t robot) const;
+
+  // Sim shards, at a period boundary: a robot leaves (export_robot, then set_presence), arrives
+  // (import_robot: simulated from then on) or is shown as a ghost (set_ghost). A contact between
+  // a simulated robot and a ghost counts here only when the simulated one has the lower index,
+  // so that the neighbour, seeing the same pair the other way round, does not count it again.
+  Presence presence(uint32_t robot) const;
+  void set_presence(uint32_t robot, Presence presence);
+  RobotPhysics export_robot(uint32_t robot) const;
+  void import_robot(uint32_t robot, const RobotPhysics& physics);
+  void set_ghost(uint32_t robot, const RobotMotion& motion);
+  RobotMotion motion(uint32_t robot) const;
 
   // Wheel ground-speed targets, reached through the motor ramp.
   void set_wheel_targets(uint32_t robot, agent::WheelSpeeds targets);
