@@ -18,10 +18,31 @@ AgentNode::AgentNode(const dds::Participant& p, const dds::QosProfile& qos, std:
       progress_(p, qos),
       states_(p, qos) {}
 
-void AgentNode::host(Agent& agent) {
-  if (hosted_.size() <= agent.robot_id()) hosted_.resize(agent.robot_id() + 1);
-  hosted_[agent.robot_id()].agent = &agent;
+void AgentNode::host(Agent& agent, int64_t reported_finished, int64_t reported_executing) {
+  const uint32_t robot = agent.robot_id();
+  if (hosted_.size() <= robot) hosted_.resize(robot + 1);
+  hosted_[robot] = {&agent, reported_finished, reported_executing};
+  if (auto it = parked_.find(robot); it != parked_.end()) {
+    agent.on_window(it->second.first, it->second.second);  // idempotent if it knew it already
+    parked_.erase(it);
+  }
 }
+
+std::pair<int64_t, int64_t> AgentNode::unhost(uint32_t robot) {
+  const auto r = reported(robot);
+  if (robot < hosted_.size()) hosted_[robot] = {};
+  return r;
+}
+
+std::pair<int64_t, int64_t> AgentNode::reported(uint32_t robot) const {
+  if (robot >= hosted_.size() || hosted_[robot].agent == nullptr) return {-1, -1};
+  return {hosted_[robot].reported_finished, hosted_[robot].reported_executing};
+}
+
+void AgentNode::set_relay(Relay relay) { relay_ = std::move(relay); }
+
+void AgentNode::write_relayed(const smart_msg_Progress& p) { progress_.write(p); }
+void AgentNode::write_relayed(const smart_msg_RobotState& s) { states_.write(s); }
 
 AgentNode::Hosted* AgentNode::hosted(uint32_t robot) {
   return robot < hosted_.size() && hosted_[robot].agent != nullptr ? &hosted_[robot] : nullptr;
@@ -94,7 +115,10 @@ std::size_t AgentNode::take_windows(const Accept& accept, double now_s) {
                           n == 0 ? 0 : m.actions._buffer[n - 1].seq + 1, n == 0};
     if (accept && !accept(info)) return;
     Hosted* h = hosted(m.robot_id);
-    if (h == nullptr) return;
+    if (h == nullptr) {
+      if (relay_) parked_[m.robot_id] = {m.run_id, wire::actions_from_wire(m)};
+      return;
+    }
     if (!to_host_) {
       h->agent->on_window(m.run_id, wire::actions_from_wire(m));
       return;
@@ -150,7 +174,8 @@ uint64_t AgentNode::publish_progress(double now_s) {
     if (finished > h.reported_finished) {
       newly_finished += static_cast<uint64_t>(finished - h.reported_finished);
     }
-    progress_.write(wire::progress(robot, h.agent->run_id(), finished, executing));
+    const auto sample = wire::progress(robot, h.agent->run_id(), finished, executing);
+    if (!relay_ || !relay_(sample)) progress_.write(sample);
     h.reported_finished = finished;
     h.reported_executing = executing;
   }

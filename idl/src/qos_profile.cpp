@@ -153,6 +153,8 @@ const TopicQos& QosProfile::topic(TopicRole role) const {
       return clock;
     case TopicRole::kStatus:
       return status;
+    case TopicRole::kShard:
+      return shard;
   }
   return action;
 }
@@ -183,6 +185,12 @@ QosProfile default_qos_profile() {
   p.status.durability = Durability::kTransientLocal;
   p.status.depth = 1;
   p.status.autodispose = false;
+  // Sim shards wait for each other's exchange of every period: reliable, and a shard that is
+  // discovered late still gets the last few (a shard is at most one period ahead of another).
+  p.shard.reliability = Reliability::kReliable;
+  p.shard.durability = Durability::kTransientLocal;
+  p.shard.depth = 4;
+  p.shard.max_blocking = std::chrono::milliseconds(1000);
   return p;
 }
 
@@ -208,7 +216,8 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
   if (root["topics"]) {
     const auto topics = root["topics"];
     require_map(source, topics, "topics");
-    reject_unknown(source, topics, "topics", {"action", "progress", "state", "clock", "status"});
+    reject_unknown(source, topics, "topics",
+                   {"action", "progress", "state", "clock", "status", "shard"});
     if (topics["action"]) parse_topic(source, topics["action"], "topics.action", p.action);
     if (topics["progress"]) {
       parse_topic(source, topics["progress"], "topics.progress", p.progress);
@@ -216,6 +225,7 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
     if (topics["state"]) parse_topic(source, topics["state"], "topics.state", p.state);
     if (topics["clock"]) parse_topic(source, topics["clock"], "topics.clock", p.clock);
     if (topics["status"]) parse_topic(source, topics["status"], "topics.status", p.status);
+    if (topics["shard"]) parse_topic(source, topics["shard"], "topics.shard", p.shard);
   }
   return p;
 }

@@ -1,5 +1,6 @@
 #include "smart/wire/validate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
@@ -53,6 +54,78 @@ std::string check_step(const smart_msg_ActionStep& s, const std::string& at,
   if (why.empty()) why = outside(s.from.x_m, s.from.y_m, bounds, at + ".from");
   if (why.empty()) why = outside(s.to.x_m, s.to.y_m, bounds, at + ".to");
   return why;
+}
+
+std::string check_motion(const smart_msg_RobotMotion& m, const std::optional<Bounds>& bounds,
+                         const std::string& at) {
+  auto why = first_not_finite({{"x_m", m.x_m},
+                               {"y_m", m.y_m},
+                               {"yaw_rad", m.yaw_rad},
+                               {"vx_mps", m.vx_mps},
+                               {"vy_mps", m.vy_mps},
+                               {"w_radps", m.w_radps}},
+                              at + ".motion.");
+  return why.empty() ? outside(m.x_m, m.y_m, bounds, at) : why;
+}
+
+template <class Seq>
+bool well_formed(const Seq& s, uint32_t max) {
+  return s._length <= max && (s._length == 0 || s._buffer != nullptr);
+}
+
+std::string check_queued(const smart_msg_QueuedAction& a, const std::optional<Bounds>& bounds,
+                         const std::string& at) {
+  uint32_t type = 0;
+  static_assert(sizeof(a.type) == sizeof(type));
+  std::memcpy(&type, &a.type, sizeof type);
+  if (type != smart_msg_ACTION_MOVE && type != smart_msg_ACTION_ROTATE) {
+    return "unknown action type at " + at;
+  }
+  auto why = first_not_finite({{"from_x_m", a.from_x_m},
+                               {"from_y_m", a.from_y_m},
+                               {"to_x_m", a.to_x_m},
+                               {"to_y_m", a.to_y_m},
+                               {"heading_rad", a.heading_rad}},
+                              at + ".");
+  if (why.empty()) why = outside(a.from_x_m, a.from_y_m, bounds, at + ".from");
+  return why.empty() ? outside(a.to_x_m, a.to_y_m, bounds, at + ".to") : why;
+}
+
+std::string check_handover(const smart_msg_RobotHandover& h, uint32_t shards, std::size_t robots,
+                           const std::optional<Bounds>& bounds, const std::string& at) {
+  if (auto why = robot_range(h.robot_id, robots); !why.empty()) return why;
+  if (h.to_shard >= shards) return at + " goes to a shard that is not in this sim";
+  if (auto why = check_motion(h.motion, bounds, at); !why.empty()) return why;
+  if (auto why = first_not_finite({{"target_left_mps", h.target_left_mps},
+                                   {"target_right_mps", h.target_right_mps},
+                                   {"ramp_from_left_mps", h.ramp_from_left_mps},
+                                   {"ramp_from_right_mps", h.ramp_from_right_mps},
+                                   {"command_linear_mps", h.command_linear_mps},
+                                   {"command_angular_radps", h.command_angular_radps},
+                                   {"pose.x_m", h.pose.x_m},
+                                   {"pose.y_m", h.pose.y_m},
+                                   {"pose.yaw_rad", h.pose.yaw_rad},
+                                   {"wheel_left_mps", h.wheel_left_mps},
+                                   {"wheel_right_mps", h.wheel_right_mps}},
+                                  at + ".");
+      !why.empty()) {
+    return why;
+  }
+  if (!well_formed(h.pairs, static_cast<uint32_t>(robots)) ||
+      !well_formed(h.pending, smart_msg_MAX_WINDOW_ACTIONS)) {
+    return at + " has a malformed or too long sequence";
+  }
+  for (uint32_t i = 0; i < h.pairs._length; ++i) {
+    if (auto why = robot_range(h.pairs._buffer[i].other, robots); !why.empty()) return why;
+  }
+  for (uint32_t i = 0; i < h.pending._length; ++i) {
+    const auto& a = h.pending._buffer[i];
+    if (auto why = check_queued(a, bounds, at + ".pending[" + std::to_string(i) + "]");
+        !why.empty()) {
+      return why;
+    }
+  }
+  return {};
 }
 
 }  // namespace
@@ -127,6 +200,45 @@ bool Rejections::count(const std::string& topic, const std::string& reason) {
   ++total_;
   const uint64_t n = ++per_topic_[topic];
   return n <= 5 || n % 1000 == 0;
+}
+
+}  // namespace smart::wire
+
+namespace smart::wire {
+
+std::string check_exchange(const smart_msg_ShardExchange& e, std::size_t robots,
+                           const std::optional<Bounds>& bounds) {
+  if (e.shards < 2 || e.shards > smart_msg_MAX_SHARDS || e.shard >= e.shards) {
+    return "shard " + std::to_string(e.shard) + " of " + std::to_string(e.shards) +
+           " is not a shard of a sharded sim (2 to MAX_SHARDS shards, numbered from 0)";
+  }
+  const auto cap = static_cast<uint32_t>(std::max<std::size_t>(robots, 1));
+  if (!well_formed(e.handovers, cap) || !well_formed(e.ghosts, cap) ||
+      !well_formed(e.progress, cap) || !well_formed(e.states, cap)) {
+    return "a sequence is malformed or longer than the fleet";
+  }
+  for (uint32_t i = 0; i < e.handovers._length; ++i) {
+    const auto at = "handovers[" + std::to_string(i) + "]";
+    if (auto why = check_handover(e.handovers._buffer[i], e.shards, robots, bounds, at);
+        !why.empty()) {
+      return why;
+    }
+  }
+  for (uint32_t i = 0; i < e.ghosts._length; ++i) {
+    const auto& g = e.ghosts._buffer[i];
+    if (auto why = robot_range(g.robot_id, robots); !why.empty()) return why;
+    if (auto why = check_motion(g.motion, bounds, "ghosts[" + std::to_string(i) + "]");
+        !why.empty()) {
+      return why;
+    }
+  }
+  for (uint32_t i = 0; i < e.progress._length; ++i) {
+    if (auto why = check_progress(e.progress._buffer[i], robots); !why.empty()) return why;
+  }
+  for (uint32_t i = 0; i < e.states._length; ++i) {
+    if (auto why = check_state(e.states._buffer[i], robots, bounds); !why.empty()) return why;
+  }
+  return first_not_finite({{"min_gap_m", e.min_gap_m}, {"peak_rss_mb", e.peak_rss_mb}});
 }
 
 }  // namespace smart::wire

@@ -146,6 +146,13 @@ void World::Impl::find_contacts(bool everyone) {
     touch[fill_at[a]++] = b;
     touch[fill_at[b]++] = a;
   }
+  count_robot_contacts(now);
+  stats.robot_wall_now = walls_now;
+}
+
+// Robot-robot contact episodes of the snapshot's pairs (a bounce within the debounce window is
+// the same episode).
+void World::Impl::count_robot_contacts(double now) {
   uint32_t counted_now = 0;
   for (const auto p : pairs_now) {
     // A pair with a ghost is counted by the shard that simulates its lower index (world.hpp).
@@ -160,7 +167,6 @@ void World::Impl::find_contacts(bool everyone) {
     it->second = now;
   }
   stats.robot_robot_now = counted_now;
-  stats.robot_wall_now = walls_now;
 }
 
 }  // namespace smart::sim

@@ -99,6 +99,12 @@ enum DomainId : int {
   kMultihostSecure = 192,
   kRunWalk = 193,
   kManyProcesses = 194,
+  kShardedSmall = 195,
+  kShardedWarehouse = 196,
+  kShardedWarehouse1000 = 197,
+  kShardedProcesses = 198,
+  kShardedBadInput = 199,
+  kMultihostSharded = 200,  // and 201: its one-host reference
   kRos2Calibrate = 178,
 };
 

@@ -5,11 +5,15 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <tuple>
 
 #include "smart/agent/robot_model.hpp"
+#include "smart/dds/topics.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/scen_reader.hpp"
 #include "smart/grid/text_file.hpp"
@@ -35,6 +39,7 @@ nlohmann::json sim_report(const sim::SimHostResult& r) {
           {"wall_contacts", r.contacts.robot_wall_events},
           {"mean_awake_robots", r.mean_awake_robots},
           {"mean_active_systems", r.mean_active_systems},
+          {"handovers_in", r.handovers_in},
           {"rejected_samples", r.rejected_samples},
           {"peak_rss_mb", peak_rss_mb()}};
 }
@@ -82,22 +87,57 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
   }
 }
 
-// `smart run`'s sim child, with the monitor's own options and the plan's robot count.
-ChildProcess spawn_sim(const MonitorCliOptions& o, std::size_t robots, const std::string& robot) {
-  SimCliOptions child = o.sim;
-  child.world.agents = robots;
-  child.world.robot = robot;
-  return ChildProcess(sim_argv(self_executable().string(), child), "/dev/null");
+std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard) {
+  if (o.out.empty()) return "/dev/null";
+  std::filesystem::create_directories(o.out);
+  return std::filesystem::path(o.out) / ("sim-" + std::to_string(shard) + ".json");
 }
 
-std::function<std::string()> watch(ChildProcess& sim) {
-  return [&sim]() -> std::string {
-    if (sim.running()) return {};
-    const int code = sim.wait(std::chrono::milliseconds(0)).value_or(-1);
-    return "the `smart sim` process this run started " +
-           (code > 128 ? "was killed by signal " + std::to_string(code - 128)
-                       : "exited with code " + std::to_string(code)) +
-           " before the run ended; its messages are above";
+// `smart run`'s sim children (one per shard), with the monitor's own options and the plan's
+// robot count.
+// Their reports (JSON) go to sim-<shard>.json in the results folder, when there is one.
+std::vector<ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t robots,
+                                     const std::string& robot) {
+  std::vector<ChildProcess> out;
+  for (uint32_t s = 0; s < o.sim.shards; ++s) {
+    SimCliOptions child = o.sim;
+    child.world.agents = robots;
+    child.world.robot = robot;
+    child.shard = s;
+    out.emplace_back(sim_argv(self_executable().string(), child), sim_report_file(o, s));
+  }
+  return out;
+}
+
+// Robots handed between shards, from the shards' reports (nothing when one is missing).
+std::optional<uint64_t> sim_handovers(const MonitorCliOptions& o) {
+  uint64_t sum = 0;
+  for (uint32_t s = 0; s < o.sim.shards; ++s) {
+    std::ifstream in(sim_report_file(o, s));
+    std::string line, last;
+    while (std::getline(in, line)) {
+      if (!line.empty()) last = line;
+    }
+    const auto j = nlohmann::json::parse(last, nullptr, false);
+    if (j.is_discarded() || !j.contains("handovers_in")) return std::nullopt;
+    sum += j["handovers_in"].get<uint64_t>();
+  }
+  return sum;
+}
+
+std::function<std::string()> watch(std::vector<ChildProcess>& sims) {
+  return [&sims]() -> std::string {
+    for (std::size_t s = 0; s < sims.size(); ++s) {
+      if (sims[s].running()) continue;
+      const int code = sims[s].wait(std::chrono::milliseconds(0)).value_or(-1);
+      return "the `smart sim` process " +
+             (sims.size() > 1 ? "of shard " + std::to_string(s) + " " : std::string()) +
+             "this run started " +
+             (code > 128 ? "was killed by signal " + std::to_string(code - 128)
+                         : "exited with code " + std::to_string(code)) +
+             " before the run ended; its messages are above";
+    }
+    return {};
   };
 }
 
@@ -123,6 +163,7 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.clock = enum_name(o.sim.clock, kClockNames);
   info.run = o.sim.dds.run;
   info.cell_m = o.sim.world.cell_m;
+  info.sim_hosts = o.sim.shards;
   info.monitor_peak_rss_mb = peak_rss_mb();
   info.machine = machine_description();
   return info;
@@ -137,8 +178,15 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
   const auto model = agent::load_robot_model(robot_file);  // fail early on a bad model
   const auto profile = run_qos_profile(o.sim.dds);
-  std::optional<ChildProcess> sim;
-  if (spawn_sim_child) sim.emplace(spawn_sim(o, in.plan.paths.size(), robot_file));
+  if (o.sim.shards > 1 && (o.sim.clock != sim::ClockMode::kLockstep ||
+                           profile.link.to_host.active() || profile.link.to_monitor.active())) {
+    throw std::invalid_argument(
+        "--sim-hosts " + std::to_string(o.sim.shards) +
+        ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
+        "--qos lan or wifi, or --sim-hosts 1");
+  }
+  std::vector<ChildProcess> sims;
+  if (spawn_sim_child) sims = spawn_sims(o, in.plan.paths.size(), robot_file);
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
   auto mo = monitor_options(o);
@@ -157,17 +205,20 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
     states.emplace(o.out);
     mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
   }
-  if (sim) mo.host_check = watch(*sim);
+  if (!sims.empty()) mo.host_check = watch(sims);
   monitor::MonitorNode node(participant, profile, in, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
   monitor::ProgressCallback cb;
   if (tty) cb = [](const monitor::MonitorResult& r, std::size_t d) { print_progress(r, d, false); };
   const auto result = node.run(g_stop_requested, cb);
   if (tty) print_progress(result, result.success() ? result.robots.size() : 0, true);
-  if (sim && !sim->wait(std::chrono::seconds(5))) sim->terminate();
+  for (auto& sim : sims) {
+    if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
+  }
   auto info = run_info(o, robot_file);
   info.monitor_cpu_s = common::cpu_seconds_self();
-  if (sim) info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim host
+  if (!sims.empty()) info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim hosts
+  if (!sims.empty() && !o.out.empty()) info.sim_handovers = sim_handovers(o);
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
@@ -193,6 +244,18 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--external-robots", so->external,
                   "robots executed by other hosts (mixed runs), shown at their published poses")
       ->delimiter(',');
+  sim->add_option_function<std::string>(
+         "--shard",
+         [so](const std::string& v) {
+           try {
+             std::tie(so->shard, so->shards) = parse_shard(v);
+           } catch (const std::invalid_argument& e) {
+             throw CLI::ValidationError(e.what());
+           }
+         },
+         "host shard I of N of a sharded sim (map strips; every shard with the same world "
+         "options); `smart run --sim-hosts N` starts them all")
+      ->type_name("I/N");
   sim->callback([&exit_code, so] {
     install_stop_handlers();
     exit_code = run_sim(*so);
@@ -217,6 +280,11 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
   add_sim_host_options(run, ro->sim);
+  run->add_option("--sim-hosts", ro->sim.shards,
+                  "start the simulated fleet as this many `smart sim --shard I/N` processes "
+                  "(map strips, lock-step; docs/simulation.md \"Sharded sim\")")
+      ->check(CLI::Range(1u, dds::kMaxShards))
+      ->capture_default_str();
   run->callback([&exit_code, ro] {
     install_stop_handlers();
     exit_code = run_monitor(*ro, true);

@@ -160,7 +160,28 @@ sim::SimHostOptions sim_host_options(const SimCliOptions& o) {
   ho.sim.threads = o.threads;
   ho.external_robots = o.external;
   ho.ros_pose_robots = o.ros_pose_robots;
+  ho.shard = o.shard;
+  ho.shards = o.shards;
   return ho;
+}
+
+std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  uint32_t i = 0, n = 0;
+  std::size_t used_i = 0, used_n = 0;
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    i = static_cast<uint32_t>(std::stoul(text.substr(0, slash), &used_i));
+    n = static_cast<uint32_t>(std::stoul(text.substr(slash + 1), &used_n));
+  } catch (const std::exception&) {
+    used_i = 0;
+  }
+  if (used_i == 0 || used_i != slash || used_n != text.size() - slash - 1 || n < 1 ||
+      n > dds::kMaxShards || i >= n) {
+    throw std::invalid_argument("--shard '" + text + "': give I/N, shard I (0 to N-1) of N (1 to " +
+                                std::to_string(dds::kMaxShards) + "), e.g. --shard 0/2");
+  }
+  return {i, n};
 }
 
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
@@ -219,6 +240,9 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
   if (!o.ros_pose_robots.empty())
     argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
   if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});
+  if (o.shards > 1) {
+    argv.insert(argv.end(), {"--shard", std::to_string(o.shard) + "/" + std::to_string(o.shards)});
+  }
   for (const auto& [flag, v] : {std::pair{"--stall-probability", o.stall_probability},
                                 {"--stall-s", o.stall_s},
                                 {"--speed-sigma", o.speed_sigma},

@@ -27,6 +27,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "smart/agent/agent.hpp"
@@ -54,8 +55,21 @@ class AgentNode {
   AgentNode(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots = 0,
             std::optional<wire::Bounds> bounds = std::nullopt);
 
-  // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node.
-  void host(Agent& agent);
+  // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node. A robot arriving
+  // from another sim shard comes with what its previous host last reported (progress is
+  // counted per host: the count continues instead of reporting its actions again).
+  void host(Agent& agent, int64_t reported_finished = -1, int64_t reported_executing = -1);
+  // The robot leaves this host; returns what was last reported for it (finished, executing).
+  std::pair<int64_t, int64_t> unhost(uint32_t robot);
+  std::pair<int64_t, int64_t> reported(uint32_t robot) const;
+
+  // Sim shards (sim/shard.hpp): windows of robots not hosted here are kept (the newest per
+  // robot) and given to the robot's agent when it arrives; progress of hosted robots for which
+  // `relay` returns true is not written (their home shard writes it, write_relayed()).
+  using Relay = std::function<bool(const smart_msg_Progress&)>;
+  void set_relay(Relay relay);
+  void write_relayed(const smart_msg_Progress& progress);
+  void write_relayed(const smart_msg_RobotState& state);
 
   // Turns the link model on (off by default: everything passes at once).
   void set_link(const wire::LinkModel& link);
@@ -102,6 +116,8 @@ class AgentNode {
   std::vector<std::pair<int64_t, int64_t>> queued_;  // per robot: last progress sent on the link
   std::map<uint32_t, std::pair<double, double>> window_draws_;  // robot: receipt time, arrival
   std::optional<dds_guid_t> monitor_;  // participant of the last accepted window
+  Relay relay_;                        // sim shards only
+  std::map<uint32_t, std::pair<uint64_t, std::vector<AgentAction>>> parked_;  // run, window
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;

@@ -16,7 +16,7 @@
 namespace smart::dds {
 
 // Which QoS of a profile a topic uses; each topic's role is in the table of topics.hpp.
-enum class TopicRole { kAction, kProgress, kState, kClock, kStatus };
+enum class TopicRole { kAction, kProgress, kState, kClock, kStatus, kShard };
 
 struct QosProfile {
   std::string name;
@@ -27,6 +27,7 @@ struct QosProfile {
   TopicQos state;
   TopicQos clock;
   TopicQos status;  // SimStatus: the latest status of the sim host
+  TopicQos shard;   // ShardExchange between sim shards: every period's, none lost
   // `link:` section: delay, jitter and loss of windows and progress (smart/wire/link.hpp),
   // applied by the hosts' AgentNode; none by default.
   wire::LinkModel link;

@@ -19,6 +19,7 @@ SMART_DDS_TOPIC_TYPE(smart_msg_RobotState)
 SMART_DDS_TOPIC_TYPE(smart_msg_Clock)
 SMART_DDS_TOPIC_TYPE(smart_msg_SimStatus)
 SMART_DDS_TOPIC_TYPE(smart_msg_MonitorInfo)
+SMART_DDS_TOPIC_TYPE(smart_msg_ShardExchange)
 
 namespace smart::dds {
 
@@ -43,6 +44,8 @@ SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, t
 // Latest per monitor, kept for late joiners: the status role's QoS; shared, every monitor is
 // seen.
 SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false);
+// Between the shards of one sim; keyed by shard, shared: every shard hears every other.
+SMART_DDS_WIRE_TOPIC(smart_msg_ShardExchange, smart_msg_TOPIC_SHARD, kShard, false);
 #undef SMART_DDS_WIRE_TOPIC
 
 inline constexpr std::string_view kActionTopic = WireTopic<smart_msg_ActionWindow>::name;
@@ -54,6 +57,7 @@ inline constexpr std::string_view kSimStatusTopic = WireTopic<smart_msg_SimStatu
 inline constexpr uint32_t kSimClockSource = smart_msg_CLOCK_SOURCE_SIM;
 inline constexpr uint32_t kMonitorClockSource = smart_msg_CLOCK_SOURCE_MONITOR;
 inline constexpr int32_t kNoSeq = smart_msg_NO_SEQ;
+inline constexpr uint32_t kMaxShards = smart_msg_MAX_SHARDS;
 inline constexpr uint32_t kMaxWindowActions = smart_msg_MAX_WINDOW_ACTIONS;
 inline constexpr double kClockReannounceS = smart_msg_CLOCK_REANNOUNCE_MS / 1000.0;
 inline constexpr int32_t kHostStrength = smart_msg_HOST_STRENGTH;

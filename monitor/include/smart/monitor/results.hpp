@@ -30,6 +30,10 @@ struct RunInfo {
   double cell_m = 1.0;
   double control_period_s = 0.1;
   uint64_t seed = 0;
+  uint32_t sim_hosts = 1;  // `smart run --sim-hosts`: the sim's shards (sim/shard.hpp)
+  // Robots handed from one shard to another over the run, when `smart run` read its shards'
+  // reports.
+  std::optional<uint64_t> sim_handovers;
   // Filled by the tools when known: peak resident memory of the monitor process (the sim's
   // comes with its status, MonitorResult::host_peak_rss_mb) and the machine the run was
   // measured on.

@@ -8,6 +8,13 @@
 //   are bit-identical. A silent monitor for timeout_s ends the run with an error.
 // - realtime: periods paced to the wall clock (hardware-in-the-loop, mixed runs).
 // The host stops when the monitor's clock says stop, on `stop_requested`, or on error.
+// Sharded (shards > 1, lock-step only; sim/shard.hpp): the host simulates the robots of its map
+// strip; after each period it publishes its ShardExchange and steps again only once every other
+// shard's exchange of that period is in (robots handed to it adopted, neighbours' robots near its
+// strip as ghosts). Each robot speaks on the monitor's topics through its home shard (the strip
+// it started in), which relays what other shards report for it. Shard 0 leads: it announces the
+// ticks (sync_total summed over the shards) and publishes the fleet's SimStatus, so the monitor
+// sees one sim host. No ROS 2 view in sharded runs.
 #pragma once
 
 #include <atomic>
@@ -39,6 +46,8 @@ struct SimHostOptions {
   std::vector<uint32_t> external_robots;
   // Robots that also get their own ROS 2 pose topic rt/robot_<id>/pose (ros_view.hpp).
   std::vector<uint32_t> ros_pose_robots;
+  uint32_t shard = 0;   // this host's shard, of
+  uint32_t shards = 1;  // shards (1: not sharded)
 };
 
 struct SimHostResult {
@@ -52,6 +61,7 @@ struct SimHostResult {
   // On average per period: robots stepped by Simbody (the rest sleep) and Simbody systems.
   double mean_awake_robots = 0;
   double mean_active_systems = 0;
+  uint64_t handovers_in = 0;  // sharded: robots adopted from other shards
   // Samples dropped by the wire checks: topic -> reason -> count.
   std::map<std::string, std::map<std::string, uint64_t>> rejected_samples;
 };

@@ -43,6 +43,7 @@ struct SimCliOptions {
   int threads = 2;
   std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
   std::vector<uint32_t> ros_pose_robots;
+  uint32_t shard = 0, shards = 1;  // `smart sim --shard I/N` (sim/shard.hpp)
   // Execution uncertainty overrides of the robot model's `uncertainty:` section.
   std::optional<double> stall_probability, stall_s, speed_sigma, slip_sigma;
   std::optional<uint64_t> seed;
@@ -83,6 +84,8 @@ monitor::InstanceOptions instance_options(const WorldCliOptions& world, const st
                                           std::optional<grid::AxisOrder> axis,
                                           grid::PlanFormat format);
 sim::SimHostOptions sim_host_options(const SimCliOptions& o);
+// "I/N" of --shard: shard I (from 0) of N; throws std::invalid_argument saying what is wrong.
+std::pair<uint32_t, uint32_t> parse_shard(const std::string& text);
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o);
 // `exe sim ...` with every option of `o`, for `smart run`'s child.
 std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o);

@@ -1,0 +1,51 @@
+// Internal to the sim host: the DDS edge between the shards of a sharded sim (sim/shard.hpp,
+// idl/smart.idl "Sim shards"). ShardPeer publishes this shard's exchange of each period and
+// takes the others': each is checked (wire::check_exchange; dropped and counted otherwise),
+// handed to the caller once on receipt (to relay the progress and states of robots homed here)
+// and kept by period until the caller has applied that period.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "shard_wire.hpp"
+#include "smart/dds/participant.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/dds/wire.hpp"
+#include "smart/wire/validate.hpp"
+
+namespace smart::sim::detail {
+
+class ShardPeer {
+ public:
+  ShardPeer(const dds::Participant& participant, const dds::QosProfile& qos, uint32_t shard,
+            uint32_t shards, std::size_t robots, wire::Bounds bounds);
+  void publish(const Exchange& e);
+  // Takes what arrived; on_receipt(e) for each exchange that passed the checks.
+  void take(const std::function<void(const Exchange&)>& on_receipt);
+  // Every other shard's exchange of `tick` (or their last exchanges) is in.
+  bool complete(uint64_t tick) const;
+  bool last_complete() const { return last_.size() + 1 == shards_; }
+  // The other shards' exchanges of `tick`, by shard; last(): their final ones.
+  std::vector<const Exchange*> of(uint64_t tick) const;
+  std::vector<const Exchange*> last() const;
+  // Shards whose exchange of `tick` is missing, e.g. "1, 3".
+  std::string missing(uint64_t tick) const;
+  void forget_before(uint64_t tick);
+  dds_entity_t reader() const { return in_.handle(); }
+  const wire::Rejections& rejections() const { return rejected_; }
+
+ private:
+  uint32_t shard_, shards_;
+  std::size_t robots_;
+  wire::Bounds bounds_;
+  dds::WireWriter<smart_msg_ShardExchange> out_;
+  dds::WireReader<smart_msg_ShardExchange> in_;
+  std::map<uint64_t, std::map<uint32_t, Exchange>> by_tick_;
+  std::map<uint32_t, Exchange> last_;
+  wire::Rejections rejected_;
+};
+
+}  // namespace smart::sim::detail
