@@ -66,8 +66,9 @@ class MultihostBenchmark : public Multihost {
     return a;
   }
   // The same plan on this host alone (`smart run`, loopback): the reference.
-  nlohmann::json one_host_run(const std::filesystem::path& out) const {
-    auto a = monitor(kMultihostLockstep + 1, out);
+  nlohmann::json one_host_run(const std::filesystem::path& out,
+                              int domain = kMultihostLockstep + 1) const {
+    auto a = monitor(domain, out);
     a[0] = "run";
     const auto r = run_smart(a, 120s, "one_host");
     EXPECT_EQ(r.code, 0) << r.out;
@@ -112,6 +113,37 @@ TEST_F(MultihostBenchmark, LockstepRunWithMonitorAndSimOnTwoHostsGivesTheOneHost
   const auto lan = two_host_run(kMultihostLockstep, lan_dir);
   expect_same_run(one, one_dir, lan, lan_dir);
   EXPECT_GT(lab_->sent_packets(1) - before, 100u) << "the run crossed the sim host's link";
+  std::filesystem::remove_all(one_dir);
+  std::filesystem::remove_all(lan_dir);
+}
+
+// The sim as two shards (`smart sim --shard I/2`), each on a host of its own, the monitor on a
+// third: robots are handed between the hosts and the results are the one-host run's.
+TEST_F(MultihostBenchmark, ShardedSimOnTwoHostsGivesTheOneHostResults) {
+  const auto one_dir = temp_file("one_host_sharded"), lan_dir = temp_file("lan_sharded");
+  const auto one = one_host_run(one_dir, kMultihostSharded + 1);
+  const std::string run = "shards";
+  std::vector<tools::ChildProcess> shards;
+  std::vector<std::filesystem::path> outs;
+  for (int s = 0; s < 2; ++s) {
+    auto a = on_lan(world("sim", kMultihostSharded), run);
+    a.insert(a.end(), {"--shard", std::to_string(s) + "/2"});
+    outs.push_back(temp_file("lan_shard" + std::to_string(s)));
+    shards.push_back(lab_->start_smart(1 + s, a, outs.back()));
+  }
+  const auto mon_out = temp_file("lan_shard_monitor");
+  auto mon = lab_->start_smart(0, on_lan(monitor(kMultihostSharded, lan_dir), run), mon_out);
+  const auto lan = report_of(mon, mon_out, 120s);
+  uint64_t adopted = 0;
+  for (int s = 0; s < 2; ++s) {
+    const auto r = report_of(shards[s], outs[s], 15s);
+    EXPECT_TRUE(r["stopped_by_monitor"].get<bool>()) << r.dump();
+    adopted += r["handovers_in"].get<uint64_t>();
+    std::filesystem::remove(outs[s]);
+  }
+  EXPECT_GT(adopted, 0u) << "no robot crossed between the shards' hosts";
+  expect_same_run(one, one_dir, lan, lan_dir);
+  std::filesystem::remove(mon_out);
   std::filesystem::remove_all(one_dir);
   std::filesystem::remove_all(lan_dir);
 }
