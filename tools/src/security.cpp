@@ -104,8 +104,9 @@ std::vector<Grant> role_grants(const std::vector<uint32_t>& agent_ids) {
        {t(kActionTopic), t(kClockTopic), monitor_info},
        {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info}},
       {"sim",
-       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), "rt/*"},
-       {t(kActionTopic), t(kClockTopic), t(kStateTopic)}},
+       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), t(kShardTopic),
+        "rt/*"},
+       {t(kActionTopic), t(kClockTopic), t(kStateTopic), t(kShardTopic)}},
       {"viewer", {}, {"*"}},
   };
   for (const uint32_t id : agent_ids) {

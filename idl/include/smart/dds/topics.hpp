@@ -53,6 +53,7 @@ inline constexpr std::string_view kProgressTopic = WireTopic<smart_msg_Progress>
 inline constexpr std::string_view kStateTopic = WireTopic<smart_msg_RobotState>::name;
 inline constexpr std::string_view kClockTopic = WireTopic<smart_msg_Clock>::name;
 inline constexpr std::string_view kSimStatusTopic = WireTopic<smart_msg_SimStatus>::name;
+inline constexpr std::string_view kShardTopic = WireTopic<smart_msg_ShardExchange>::name;
 
 inline constexpr uint32_t kSimClockSource = smart_msg_CLOCK_SOURCE_SIM;
 inline constexpr uint32_t kMonitorClockSource = smart_msg_CLOCK_SOURCE_MONITOR;
