@@ -200,3 +200,38 @@ TEST(AgentNode, WindowsFromAWriterWeakerThanAMonitorAreDropped) {
 
 }  // namespace
 }  // namespace smart::agent
+
+namespace smart::agent {
+namespace {
+
+// Sim shards: a window for a robot the node does not host is kept and given to the robot's agent
+// when it arrives; the arriving robot continues its previous host's progress count; progress the
+// relay takes is counted but not written (its home shard writes it).
+TEST(AgentNode, ShardsParkWindowsOfRobotsNotHostedAndRelayProgress) {
+  Rig rig(test::kAgentNodeShards);
+  rig.node.set_relay([](const smart_msg_Progress& p) { return p.robot_id == 4; });
+  rig.send(4, 9, {rotate_step(0, 0.0), rotate_step(1, 0.0), rotate_step(2, 1.0)});
+  std::size_t taken = 0;
+  ASSERT_TRUE(eventually([&] {
+    taken += rig.node.take_windows();
+    return taken > 0;
+  }));
+  test::FakeRobot body(0.3);
+  Agent a({4, footbot(), 0.1, 0.5}, body, body);
+  a.activate();
+  a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
+  a.step(0.0);  // seq 0 finished where it was (another host reported it)
+  rig.node.host(a, 0, -1);
+  EXPECT_EQ(a.queue_length(), 2u) << "the parked window reached the agent";
+  EXPECT_EQ(rig.node.reported(4), (std::pair<int64_t, int64_t>{0, -1}));
+  a.step(0.1);  // seq 1: already facing 0
+  ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
+  EXPECT_EQ(rig.node.publish_progress(), 1u) << "one action beyond what was reported before";
+  std::this_thread::sleep_for(200ms);
+  EXPECT_EQ(rig.progress.take_each([](const smart_msg_Progress&) {}), 0u) << "relayed, not written";
+  EXPECT_EQ(rig.node.unhost(4), (std::pair<int64_t, int64_t>{1, 2}));
+  EXPECT_EQ(rig.node.reported(4), (std::pair<int64_t, int64_t>{-1, -1}));
+}
+
+}  // namespace
+}  // namespace smart::agent

@@ -105,6 +105,7 @@ enum DomainId : int {
   kShardedProcesses = 198,
   kShardedBadInput = 199,
   kMultihostSharded = 200,  // and 201: its one-host reference
+  kAgentNodeShards = 203,
   kRos2Calibrate = 178,
 };
 
