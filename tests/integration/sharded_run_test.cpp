@@ -142,6 +142,29 @@ TEST_F(Sharded, ShardProcessesStartedByHandHandRobotsOverAndMatchTheUnshardedRun
   std::filesystem::remove_all(out);
 }
 
+// Under DDS Security the shards' exchange is a topic of the `sim` identity's permissions.
+TEST_F(Sharded, ASecureShardedRunMatchesTheUnshardedRun) {
+  const auto keys = temp_file("sharded_keys"), ref = temp_file("secure_ref"),
+             out = temp_file("secure_sharded");
+  for (const auto& d : {keys, ref, out}) std::filesystem::remove_all(d);
+  ASSERT_EQ(run_smart({"security", "init", "--out", keys.string()}, 60s, "sharded_keys").code, 0);
+  const Plan p = plan("random-32-32-20.map", "random-32-32-20-random-1.scen",
+                      "example_paths_xy.txt", "xy", "30");
+  auto plain = run_args(p, kShardedSecure);
+  plain.insert(plain.end(), {"--out", ref.string()});
+  ASSERT_EQ(run_smart(plain, 60s, "secure_ref").code, 0);
+  auto secure = run_args(p, kShardedSecure);
+  secure.insert(secure.end(), {"--sim-hosts", "2", "--security", keys.string(), "--out",
+                               out.string()});
+  const auto r = run_smart(secure, 60s, "secure_sharded", true);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = last_json_line(r.out);
+  EXPECT_GT(j["sim_handovers"].get<int>(), 0);
+  EXPECT_TRUE(j["rejected_samples"].empty()) << j["rejected_samples"].dump();
+  EXPECT_EQ(slurp(out / "robots.csv"), slurp(ref / "robots.csv"));
+  for (const auto& d : {keys, ref, out}) std::filesystem::remove_all(d);
+}
+
 TEST_F(Sharded, BadShardOptionsAreRefusedNamingTheFix) {
   const auto bad = run_smart({"sim", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
                               (b_ / "scens/random-32-32-20-random-1.scen").string(), "--shard",

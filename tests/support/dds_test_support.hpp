@@ -106,6 +106,7 @@ enum DomainId : int {
   kShardedBadInput = 199,
   kMultihostSharded = 200,  // and 201: its one-host reference
   kAgentNodeShards = 203,
+  kShardedSecure = 204,
   kRos2Calibrate = 178,
 };
 
