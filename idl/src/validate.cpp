@@ -32,7 +32,8 @@ std::string outside(double x, double y, const std::optional<Bounds>& b, const st
 
 // The action type as its bytes hold it: a forged value is no enumerator of smart_msg_ActionType,
 // and loading it as that type is undefined behaviour (UBSan reported it on the forged window).
-uint32_t raw_type(const smart_msg_ActionStep& s) {
+template <class Step>
+uint32_t raw_type(const Step& s) {
   static_assert(sizeof(s.type) == sizeof(uint32_t));
   uint32_t v = 0;
   std::memcpy(&v, &s.type, sizeof v);
@@ -75,10 +76,7 @@ bool well_formed(const Seq& s, uint32_t max) {
 
 std::string check_queued(const smart_msg_QueuedAction& a, const std::optional<Bounds>& bounds,
                          const std::string& at) {
-  uint32_t type = 0;
-  static_assert(sizeof(a.type) == sizeof(type));
-  std::memcpy(&type, &a.type, sizeof type);
-  if (type != smart_msg_ACTION_MOVE && type != smart_msg_ACTION_ROTATE) {
+  if (const auto t = raw_type(a); t != smart_msg_ACTION_MOVE && t != smart_msg_ACTION_ROTATE) {
     return "unknown action type at " + at;
   }
   auto why = first_not_finite({{"from_x_m", a.from_x_m},

@@ -4,20 +4,12 @@
 
 #include <cmath>
 
+#include "support/sim_fixtures.hpp"
+
 namespace smart::sim {
 namespace {
 
-agent::RobotModel model() {
-  agent::RobotModel m;
-  m.name = "test";
-  m.radius_m = 0.2;
-  m.mass_kg = 10;
-  m.wheel_base_m = 0.3;
-  m.max_speed_mps = 1.0;
-  m.max_accel_mps2 = 1.0;
-  m.max_decel_mps2 = 1.0;
-  return m;
-}
+agent::RobotModel model() { return test::sim_test_model(); }
 
 const grid::Grid kOpen(6, 3, std::vector<uint8_t>(18, 0), "open");
 

@@ -6,20 +6,12 @@
 #include <cstring>
 #include <memory>
 
+#include "support/sim_fixtures.hpp"
+
 namespace smart::sim {
 namespace {
 
-agent::RobotModel model() {
-  agent::RobotModel m;
-  m.name = "test";
-  m.radius_m = 0.2;
-  m.mass_kg = 10;
-  m.wheel_base_m = 0.3;
-  m.max_speed_mps = 1.0;
-  m.max_accel_mps2 = 1.0;
-  m.max_decel_mps2 = 1.0;
-  return m;
-}
+agent::RobotModel model() { return test::sim_test_model(); }
 
 const grid::Grid kLong(24, 4, std::vector<uint8_t>(96, 0), "long");
 
