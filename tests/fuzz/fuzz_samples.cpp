@@ -1,7 +1,8 @@
 // Fuzz target: every DDS sample handler, with samples made of raw fuzz bytes (as a rogue on the
 // wire could send them): the edge checks (wire/validate.hpp), then, for what passes, what the
 // receivers do with it: a window becomes agent actions in an ActionQueue; progress, states,
-// ticks and sim status become RunSupervisor events; answers drive the host's handshake.
+// ticks and sim status become RunSupervisor events; answers drive the host's handshake; a sim
+// shard's exchange is checked.
 #include <vector>
 
 #include "fuzz_input.hpp"
@@ -61,9 +62,50 @@ void window(fuzz::Bytes& in, agent::ActionQueue& queue, const wire::Bounds& boun
   (void)queue.apply(w.run_id, wire::actions_from_wire(w));
 }
 
+// A sim shard's exchange (sim/shard.hpp) with fuzz-sized nested sequences: the check must read
+// only what the sequences hold, whatever their contents (the sim host's use of what passes is
+// tested in tests/sim/shard_wire_test.cpp and the sharded runs).
+template <class T>
+std::vector<T> items(fuzz::Bytes& in) {
+  std::vector<T> v(in.take<uint8_t>() % 4);
+  for (auto& x : v) x = in.take<T>();
+  return v;
+}
+template <class T, class Seq>
+void borrow(Seq& seq, std::vector<T>& v) {
+  seq._length = seq._maximum = static_cast<uint32_t>(v.size());
+  seq._buffer = v.empty() ? nullptr : v.data();
+  seq._release = false;
+}
+
+void exchange(fuzz::Bytes& in, const wire::Bounds& bounds) {
+  auto e = in.take<smart_msg_ShardExchange>();
+  auto handovers = items<smart_msg_RobotHandover>(in);
+  std::vector<std::vector<smart_msg_PairContact>> pairs;
+  std::vector<std::vector<smart_msg_QueuedAction>> pending;
+  for (std::size_t i = 0; i < handovers.size(); ++i) {
+    pairs.push_back(items<smart_msg_PairContact>(in));
+    pending.push_back(items<smart_msg_QueuedAction>(in));
+    for (auto& a : pending.back())
+      a.type = static_cast<smart_msg_ActionType>(in.take<uint8_t>() % 2);
+  }
+  for (std::size_t i = 0; i < handovers.size(); ++i) {
+    borrow(handovers[i].pairs, pairs[i]);
+    borrow(handovers[i].pending, pending[i]);
+  }
+  auto ghosts = items<smart_msg_GhostRobot>(in);
+  auto progress = items<smart_msg_Progress>(in);
+  auto states = items<smart_msg_RobotState>(in);
+  borrow(e.handovers, handovers);
+  borrow(e.ghosts, ghosts);
+  borrow(e.progress, progress);
+  borrow(e.states, states);
+  (void)wire::check_exchange(e, kRobots, bounds);
+}
+
 void one_sample(fuzz::Bytes& in, monitor::RunSupervisor& sup, agent::ActionQueue& queue,
                 wire::HostHandshake& host, const wire::Bounds& bounds, double now_s) {
-  switch (in.take<uint8_t>() % 6) {
+  switch (in.take<uint8_t>() % 7) {
     case 0:
       return window(in, queue, bounds);
     case 1: {
@@ -91,6 +133,8 @@ void one_sample(fuzz::Bytes& in, monitor::RunSupervisor& sup, agent::ActionQueue
       }
       return;
     }
+    case 5:
+      return exchange(in, bounds);
     default: {
       const auto c = clock(in);
       if (wire::check_clock(c).empty()) host.on_answer(wire::from_wire(c));
