@@ -190,9 +190,14 @@ struct SimHost::Impl {
       return;
     }
     last_status = c;
+    write_status(c, fleet_rss_mb(false));
+  }
+
+  // The fleet's status: this host's, or (sharded, from the lead) every shard's.
+  void write_status(const ContactStats& c, double rss_mb) {
     status_out.write(smart_msg_SimStatus{
         dds::kSimClockSource, run_id, fleet.world().time_s(), static_cast<uint32_t>(fleet.robots()),
-        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), fleet_rss_mb(false),
+        c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), rss_mb,
         static_cast<int32_t>(c.first_pair_a), static_cast<int32_t>(c.first_pair_b)});
   }
 
@@ -413,12 +418,7 @@ void SimHost::Impl::finish_shard() {
     spdlog::warn("sim shard {}: no final exchange from every shard; final poses may be missing",
                  opt.shard);
   }
-  if (!lead()) return;
-  const auto c = fleet_contacts(true);
-  status_out.write(smart_msg_SimStatus{
-      dds::kSimClockSource, run_id, fleet.world().time_s(), static_cast<uint32_t>(fleet.robots()),
-      c.robot_robot_events, c.robot_wall_events, c.min_gap_m, wall_s(), fleet_rss_mb(true),
-      static_cast<int32_t>(c.first_pair_a), static_cast<int32_t>(c.first_pair_b)});
+  if (lead()) write_status(fleet_contacts(true), fleet_rss_mb(true));
 }
 
 SimHostResult SimHost::Impl::run_realtime(const std::atomic<bool>& stop_requested) {

@@ -89,7 +89,6 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
 
 std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard) {
   if (o.out.empty()) return "/dev/null";
-  std::filesystem::create_directories(o.out);
   return std::filesystem::path(o.out) / ("sim-" + std::to_string(shard) + ".json");
 }
 
@@ -99,6 +98,7 @@ std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard
 std::vector<ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t robots,
                                      const std::string& robot) {
   std::vector<ChildProcess> out;
+  if (!o.out.empty()) std::filesystem::create_directories(o.out);
   for (uint32_t s = 0; s < o.sim.shards; ++s) {
     SimCliOptions child = o.sim;
     child.world.agents = robots;
