@@ -36,9 +36,11 @@ function runResults() {
   return { out, summary: JSON.parse(readFileSync(path.join(out, 'summary.json'), 'utf8')) };
 }
 
+let serverLog = '';  // the tail of smart serve's log, shown when a check fails
 function startServer(results) {
   const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'),
     '--web', dist, '--open', results, '--domain', domain]);
+  server.stderr.on('data', (d) => { serverLog = (serverLog + d).slice(-4000); });  // read, or it blocks
   return new Promise((resolve, reject) => {
     let text = '';
     server.stdout.on('data', (d) => {
@@ -292,15 +294,22 @@ try {
     throw new Error(`no navigation after the upload (${e.message}); the form says: ${status}`);
   });
   assert.match(page.url(), /run=run-000002/);
-  let sawLive = false, replay = null;
+  let sawLive = false, replay = null, last = null;
   for (const until = Date.now() + 150000; Date.now() < until && !replay;) {
     const s = await page.evaluate(() => window.__viewer && { ...window.__viewer }).catch(() => null);  // reloads
     if (s && s.live && s.liveEvents > 0 && s.robots === 50) sawLive = true;
     if (s && s.ready) replay = s;
+    if (s) last = s;
+    if (s && s.error) break;  // the page gave up: say why below
     await new Promise((r) => setTimeout(r, 100));
   }
   assert.ok(sawLive, 'the run was never shown live with its 50 robots');
-  assert.ok(replay, 'the finished run was not replayed');
+  if (!replay) {
+    // Everything that says why: the page's state, the server's word on the run, the run's output.
+    const run = await page.evaluate(async () => (await fetch('/api/runs/run-000002')).text()).catch((e) => String(e));
+    const out = (() => { try { return readFileSync(path.join(work, 'data', 'run-000002', 'run.out'), 'utf8'); } catch (e) { return String(e); } })();
+    assert.fail(`the finished run was not replayed; page: ${JSON.stringify(last)}; server: ${run}; run.out (last 4000 bytes): ${out.slice(-4000)}; serve's log: ${serverLog}`);
+  }
   assert.equal(replay.robots, 50);
   assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
   await checkResultsUpload(page, out, summary);
