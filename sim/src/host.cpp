@@ -54,12 +54,19 @@ struct SimHost::Impl {
   uint64_t handovers_in = 0;
   uint64_t announced_total = 0;  // the lead's last tick: the fleet's finished actions
 
+  // A shard simulates about its share of the fleet: automatic threads count that share.
+  static SimConfig fleet_config(const SimHostOptions& o, std::size_t robots) {
+    SimConfig c = o.sim;
+    c.threads = sim_threads(c.threads, robots / std::max<uint32_t>(1, o.shards));
+    return c;
+  }
+
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const grid::Grid& grid,
        const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
        const SimHostOptions& o)
       : participant(p),
         opt(o),
-        fleet(grid, model, o.sim, starts, o.pose_timeout_s),
+        fleet(grid, model, fleet_config(o, starts.size()), starts, o.pose_timeout_s),
         bounds(wire::bounds_of(grid, o.sim.cell_m)),
         node(p, qos, starts.size(), bounds),
         ros_view(p, qos, starts.size(), o.ros_pose_robots),

@@ -75,6 +75,11 @@ World::World(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
 
 World::~World() = default;
 
+int sim_threads(int requested, std::size_t robots) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::clamp<std::size_t>(robots / kMinRobotsPerThread, 1, 2));
+}
+
 std::size_t World::robots() const { return impl_->n; }
 double World::time_s() const {
   return static_cast<double>(impl_->substep) * impl_->cfg.physics_step_s;
@@ -85,6 +90,7 @@ const SimConfig& World::config() const { return impl_->cfg; }
 bool World::awake(uint32_t robot) const { return impl_->awake(robot); }
 std::size_t World::awake_robots() const { return impl_->awake_count; }
 std::size_t World::system_capacity() const { return impl_->capacity; }
+int World::threads() const { return impl_->workers.size(); }
 
 std::size_t World::active_systems() const {
   return static_cast<std::size_t>(std::count_if(impl_->systems.begin(), impl_->systems.end(),

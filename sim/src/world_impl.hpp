@@ -74,7 +74,7 @@ struct World::Impl : detail::RobotForces {
   detail::Workers workers;
 
   Impl(const grid::Grid& g, const agent::RobotModel& m, const SimConfig& c, std::size_t robots)
-      : grid(g), model(m), cfg(c), n(robots), workers(c.threads) {}
+      : grid(g), model(m), cfg(c), n(robots), workers(sim_threads(c.threads, robots)) {}
 
   double command(const std::vector<double>& from, const std::vector<double>& target, uint32_t i,
                  double t) const {

@@ -131,6 +131,24 @@ TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndSystemCapaci
   EXPECT_EQ(a, run_hash(2, 0));
 }
 
+// Regression (web_viewer failed in CI): a 50-robot lock-step run with two sim threads took over
+// 120 s instead of 9 s while other processes kept both cores busy, each sub-step barrier waiting
+// for a descheduled thread. Automatic threads: one for small fleets, two from 500 robots.
+TEST(World, AutomaticThreadsAreOneForSmallFleetsAndWhatWasAskedForOtherwise) {
+  EXPECT_EQ(sim_threads(0, 1), 1);
+  EXPECT_EQ(sim_threads(0, 50), 1);
+  EXPECT_EQ(sim_threads(0, 2 * kMinRobotsPerThread - 1), 1);
+  EXPECT_EQ(sim_threads(0, 2 * kMinRobotsPerThread), 2);
+  EXPECT_EQ(sim_threads(0, 10000), 2);
+  EXPECT_EQ(sim_threads(3, 10), 3);
+  const auto grid = planning::generate_random_grid(10, 10, 0.0, 1);
+  std::vector<agent::Pose2D> starts{{1, 1, 0}, {3, 3, 0}};
+  EXPECT_EQ(World(grid, model(), SimConfig{}, starts).threads(), 1);
+  SimConfig two;
+  two.threads = 2;
+  EXPECT_EQ(World(grid, model(), two, starts).threads(), 2);
+}
+
 TEST(World, RestingRobotsSleepAndACommandWakesThem) {
   const auto grid = open_map(10, 10);
   SimConfig cfg;

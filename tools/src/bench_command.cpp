@@ -31,7 +31,7 @@ struct BenchSimOptions {
   double sim_seconds = 30;
   double cell_m = 1.0;
   uint64_t seed = 1;
-  int system_capacity = 0, threads = 2;
+  int system_capacity = 0, threads = 0;
 };
 
 // Independent random walks from free[r], `steps` timesteps each (collisions allowed).
@@ -112,7 +112,7 @@ int run_bench_sim(const BenchSimOptions& o) {
                               {"system_capacity", world.system_capacity()},
                               {"mean_awake_robots", stats.mean_awake_robots},
                               {"mean_active_systems", stats.mean_active_systems},
-                              {"threads", o.threads},
+                              {"threads", world.threads()},
                               {"machine", machine_description()}}
                    .dump()
             << std::endl;
@@ -223,7 +223,9 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                   "robot bodies per Simbody system (0: automatic)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  sim->add_option("--threads", o->threads)->check(CLI::Range(1, 64))->capture_default_str();
+  sim->add_option("--threads", o->threads, "sim threads (0: automatic)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   sim->callback([&exit_code, o] { exit_code = run_bench_sim(*o); });
 
   auto r = std::make_shared<BenchRunOptions>();

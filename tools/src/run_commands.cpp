@@ -10,6 +10,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <thread>
 #include <tuple>
 
 #include "smart/agent/robot_model.hpp"
@@ -104,6 +105,12 @@ std::vector<ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t rob
     child.world.agents = robots;
     child.world.robot = robot;
     child.shard = s;
+    // N shards started here share this machine's cores: automatic threads divide them (more
+    // threads than cores stall at the sub-step barriers, sim::kMinRobotsPerThread).
+    if (child.threads == 0 && o.sim.shards > 1) {
+      child.threads = static_cast<int>(
+          std::max<uint32_t>(1, std::thread::hardware_concurrency() / o.sim.shards));
+    }
     out.emplace_back(sim_argv(self_executable().string(), child), sim_report_file(o, s));
   }
   return out;

@@ -90,8 +90,9 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
                   "robot bodies per Simbody system (0: automatic)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  cmd->add_option("--threads", o.threads, "sim threads")
-      ->check(CLI::Range(1, 64))
+  cmd->add_option("--threads", o.threads,
+                  "sim threads (0: automatic, 1 below 500 simulated robots, else 2)")
+      ->check(CLI::Range(0, 64))
       ->capture_default_str();
   cmd->add_option("--ros-pose-robots", o.ros_pose_robots,
                   "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")

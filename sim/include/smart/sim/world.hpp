@@ -22,6 +22,7 @@
 // Sim time only: nothing here reads the wall clock.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -39,7 +40,8 @@ struct SimConfig {
   // Bodies per Simbody system; 0 = automatic (see World::World). Each system costs ~10 µs per
   // step plus ~1.2 µs per body, occupied or not (docs/performance.md).
   int system_capacity = 0;
-  int threads = 2;
+  // Threads stepping the systems; 0 = automatic (sim_threads below).
+  int threads = 0;
   double contact_modulus_pa = 2e5;   // effective Hertz modulus E
   double contact_damping_spm = 0.5;  // Hunt-Crossley c (s/m)
   double friction_mu = 0.6;          // wheel-ground Coulomb limit
@@ -47,6 +49,18 @@ struct SimConfig {
   // A contact that resumes within this time of the last one is the same collision (bounces).
   double contact_debounce_s = 1.0;
 };
+
+// Fewer robots than this per thread and a second thread costs more at the sub-step barriers
+// than it saves: SMART's warehouse plan in lock-step on 2 cores, 1 vs 2 threads, was 69x vs 55x
+// real time at 100 robots, 48x vs 46x at 250, 27x vs 33x at 500 (docs/performance.md). Under CPU
+// contention a barrier waits for a descheduled thread: 50 robots ran 9 s with 1 thread and over
+// 120 s with 2 while two other processes kept both cores busy.
+inline constexpr std::size_t kMinRobotsPerThread = 250;
+
+// The threads a World of `robots` simulated robots uses: `requested` if > 0, else one per
+// kMinRobotsPerThread robots, at least 1 and at most 2 (the only count measured on this
+// machine; more are used only when asked for).
+int sim_threads(int requested, std::size_t robots);
 
 struct ContactStats {
   uint64_t robot_robot_events = 0;
@@ -123,6 +137,7 @@ class World {
   std::size_t awake_robots() const;
   std::size_t active_systems() const;  // Simbody systems with a robot in them
   std::size_t system_capacity() const;
+  int threads() const;  // the threads stepping the systems (SimConfig::threads resolved)
   // FNV-1a over every robot's pose and velocity bits: equal hashes = identical trajectories.
   uint64_t state_hash() const;
   const SimConfig& config() const;

@@ -40,7 +40,7 @@ struct SimCliOptions {
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
   int system_capacity = 0;  // robot bodies per Simbody system (0: automatic)
-  int threads = 2;
+  int threads = 0;  // 0: automatic (sim::sim_threads)
   std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
   std::vector<uint32_t> ros_pose_robots;
   uint32_t shard = 0, shards = 1;  // `smart sim --shard I/N` (sim/shard.hpp)
