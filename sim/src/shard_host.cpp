@@ -2,11 +2,19 @@
 
 #include <spdlog/spdlog.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace smart::sim::detail {
 
 ShardPeer::ShardPeer(const dds::Participant& p, const dds::QosProfile& qos, uint32_t shard,
                      uint32_t shards, std::size_t robots, wire::Bounds bounds)
-    : shard_(shard), shards_(shards), robots_(robots), bounds_(bounds), out_(p, qos), in_(p, qos) {}
+    : shard_(shard), shards_(shards), robots_(robots), bounds_(bounds), out_(p, qos), in_(p, qos) {
+  if (dds_get_instance_handle(out_.handle(), &self_) < 0) {
+    throw std::runtime_error("sim shard " + std::to_string(shard) +
+                             ": cannot read the handle of its own exchange writer");
+  }
+}
 
 void ShardPeer::publish(const Exchange& e) {
   const ExchangeBuffer buf(e);
@@ -14,17 +22,18 @@ void ShardPeer::publish(const Exchange& e) {
 }
 
 void ShardPeer::take(const std::function<void(const Exchange&)>& on_receipt) {
-  in_.take_each([&](const smart_msg_ShardExchange& m) {
+  in_.take_each_from([&](const smart_msg_ShardExchange& m, dds_instance_handle_t from) {
+    if (from == self_) return;  // our own
     std::string why = wire::check_exchange(m, robots_, bounds_);
     if (why.empty() && m.shards != shards_) {
       why = "from a sim of " + std::to_string(m.shards) + " shards, this one has " +
             std::to_string(shards_) + " (every shard must be started with the same --shard I/N)";
     }
+    if (why.empty()) why = admit(m.shard, from);
     if (!why.empty()) {
       if (rejected_.count("shard", why)) spdlog::warn("sim shard: exchange rejected: {}", why);
       return;
     }
-    if (m.shard == shard_) return;  // our own (a second process with our --shard is refused)
     Exchange e = from_wire(m);
     on_receipt(e);
     if (e.last) {
@@ -33,6 +42,30 @@ void ShardPeer::take(const std::function<void(const Exchange&)>& on_receipt) {
       by_tick_[e.tick][e.shard] = std::move(e);
     }
   });
+}
+
+std::string ShardPeer::admit(uint32_t shard, dds_instance_handle_t from) {
+  const auto name = [this](uint32_t s) {
+    return "shard " + std::to_string(s) + "/" + std::to_string(shards_);
+  };
+  if (shard == shard_) {
+    return "another process also runs " + name(shard) +
+           " of this run (this one does); stop it: each --shard I/N once per run";
+  }
+  for (const auto& [s, w] : holder_) {
+    if (w == from && s != shard) {
+      return "a writer that speaks for " + name(s) + " also claims " + name(shard) +
+             "; refused (a forged exchange: run with --security to allow only the sim identity)";
+    }
+  }
+  auto [it, fresh] = holder_.try_emplace(shard, from);
+  if (fresh || it->second == from) return {};
+  if (in_.writer_matched(it->second)) {
+    return name(shard) + " is held by another writer in this run; a second writer's exchange " +
+           "is refused (a second process with that --shard, or a forger: run with --security)";
+  }
+  it->second = from;  // the holder left: a restarted shard speaks for it now
+  return {};
 }
 
 bool ShardPeer::complete(uint64_t tick) const {

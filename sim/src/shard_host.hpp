@@ -3,6 +3,12 @@
 // takes the others': each is checked (wire::check_exchange; dropped and counted otherwise),
 // handed to the caller once on receipt (to relay the progress and states of robots homed here)
 // and kept by period until the caller has applied that period.
+// Who may speak for a shard: the first writer whose exchange for it passed the checks, until that
+// writer leaves (as the monitor's SenderGate holds each robot's progress). A second writer
+// claiming a held shard, a writer claiming a second shard number, or any writer but this one's
+// claiming this shard's number (a second process started with the same --shard I/N) is refused
+// and counted. Without --security the first writer of a shard number wins, whoever it is; under
+// --security only the `sim` identity may write on smart/shard (tools/security.hpp).
 #pragma once
 
 #include <cstdint>
@@ -39,12 +45,17 @@ class ShardPeer {
 
  private:
   uint32_t shard_, shards_;
+  // Why an exchange for `shard` from writer `from` is refused, or "" (and `from` holds it now).
+  std::string admit(uint32_t shard, dds_instance_handle_t from);
+
   std::size_t robots_;
   wire::Bounds bounds_;
   dds::WireWriter<smart_msg_ShardExchange> out_;
   dds::WireReader<smart_msg_ShardExchange> in_;
   std::map<uint64_t, std::map<uint32_t, Exchange>> by_tick_;
   std::map<uint32_t, Exchange> last_;
+  dds_instance_handle_t self_ = 0;                    // out_'s publication handle
+  std::map<uint32_t, dds_instance_handle_t> holder_;  // shard -> the writer speaking for it
   wire::Rejections rejected_;
 };
 

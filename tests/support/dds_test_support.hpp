@@ -107,6 +107,8 @@ enum DomainId : int {
   kMultihostSharded = 200,  // and 201: its one-host reference
   kAgentNodeShards = 203,
   kShardedSecure = 204,
+  kShardPeerWriters = 205,
+  kShardPeerClaims = 206,
   kRos2Calibrate = 178,
 };
 
