@@ -37,13 +37,22 @@ class RobotForces {
 //
 // step() is one semi-explicit Euler step of h, the update of Simbody's
 // SemiExplicitEulerIntegrator: u1 = u0 + h·u̇(t, q0, u0), q1 = q0 + h·N(q0)·u1, with u̇ from
-// Simbody's realize(Acceleration). It is done here rather than by the Integrator so that the
+// Simbody (see Dynamics). It is done here rather than by the Integrator so that the
 // time is set exactly (t = k·h, no accumulated stepTo rounding) and a system that sat empty can
 // resume without a 0.2 ms re-initialisation; measured per-system overhead 10 µs per step
 // instead of 18 µs (docs/performance.md).
 class SimbodySystem {
  public:
-  SimbodySystem(const RobotForces& forces, std::size_t capacity, double mass_kg, double radius_m);
+  // How u̇ is computed. kMassMatrix: u̇ = M⁻¹·f with Simbody's O(n) operator
+  // (SimbodyMatterSubsystem::multiplyByMInv) against articulated body inertias realized once;
+  // exact for these bodies because M does not depend on q and there are no velocity-dependent
+  // forces (a Planar body on Ground with its centre of mass on the rotation axis). kFullRealize:
+  // realize(Acceleration) at every step, Simbody's whole forward dynamics (kinematics, inertias,
+  // forces, accelerations), kept as the reference the fast path is tested against.
+  enum class Dynamics { kMassMatrix, kFullRealize };
+
+  SimbodySystem(const RobotForces& forces, std::size_t capacity, double mass_kg, double radius_m,
+                Dynamics dynamics = Dynamics::kMassMatrix);
   ~SimbodySystem();
   SimbodySystem(const SimbodySystem&) = delete;
   SimbodySystem& operator=(const SimbodySystem&) = delete;
