@@ -141,8 +141,9 @@ uint64_t AgentNode::write_progress(double now_s) {
       h.reported_finished = d.finished;  // progress is cumulative: an older one changes nothing
     }
     h.reported_executing = d.executing;
-    progress_.write(wire::progress(d.robot, d.run_id, d.finished, d.executing));
+    progress_.write_batched(wire::progress(d.robot, d.run_id, d.finished, d.executing));
   }
+  progress_.flush();
   progress_in_flight_.erase(progress_in_flight_.begin(), progress_in_flight_.begin() + long(n));
   return newly_finished;
 }
@@ -175,10 +176,11 @@ uint64_t AgentNode::publish_progress(double now_s) {
       newly_finished += static_cast<uint64_t>(finished - h.reported_finished);
     }
     const auto sample = wire::progress(robot, h.agent->run_id(), finished, executing);
-    if (!relay_ || !relay_(sample)) progress_.write(sample);
+    if (!relay_ || !relay_(sample)) progress_.write_batched(sample);
     h.reported_finished = finished;
     h.reported_executing = executing;
   }
+  progress_.flush();
   return newly_finished;
 }
 
@@ -187,17 +189,20 @@ void AgentNode::republish_progress() {
     const Hosted& h = hosted_[robot];
     if (h.agent == nullptr || h.agent->run_id() == 0) continue;
     if (h.reported_finished < 0 && h.reported_executing < 0) continue;  // nothing reported yet
-    progress_.write(
+    progress_.write_batched(
         wire::progress(robot, h.agent->run_id(), h.reported_finished, h.reported_executing));
   }
+  progress_.flush();
 }
 
 void AgentNode::publish_state(uint32_t robot, uint64_t run_id, double time_s,
                               const PoseSample& pose, WheelSpeeds wheels) {
   const Hosted* h = hosted(robot);
   const std::size_t queue = h ? h->agent->queue_length() : 0;
-  states_.write(wire::robot_state(robot, run_id, time_s, pose, wheels, queue));
+  states_.write_batched(wire::robot_state(robot, run_id, time_s, pose, wheels, queue));
 }
+
+void AgentNode::flush_states() { states_.flush(); }
 
 std::optional<wire::Tick> AgentNode::take_monitor_clock() {
   std::optional<wire::Tick> newest;

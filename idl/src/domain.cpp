@@ -58,6 +58,10 @@ std::string render_cyclone_config(const DomainConfig& c) {
     x << "</Peers>";
   }
   x << "</Discovery><Internal>";
+  // Writes are packed until the writer is flushed (Writer<T>: write() flushes at once,
+  // write_batched() + flush() send a fleet's states in a few messages instead of one per robot).
+  // Cyclone 0.10 has this only as a domain-wide setting (Internal/WriteBatch, dds_write_flush).
+  x << "<WriteBatch>true</WriteBatch>";
   if (c.transport.heartbeat_interval) {
     x << "<HeartbeatInterval>" << ms(*c.transport.heartbeat_interval) << "</HeartbeatInterval>";
   }

@@ -180,6 +180,7 @@ struct SimHost::Impl {
   }
 
   void publish_clock() {
+    node.flush_states();
     clock_out.write(wire::to_wire({run_id, tick, fleet.world().time_s(), finished_total, false},
                                   dds::kSimClockSource));
   }

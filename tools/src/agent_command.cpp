@@ -66,6 +66,7 @@ bool control_loop(std::vector<Robot>& robots, agent::AgentNode& node, double per
         node.publish_state(a.robot_id(), a.run_id(), now, a.last_pose(), a.last_command());
       }
     }
+    node.flush_states();
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(period_s));
     std::this_thread::sleep_until(next);

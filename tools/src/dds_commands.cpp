@@ -76,9 +76,12 @@ int run_echo(const DdsOptions& o, double duration_s) {
         s.pose.y_m = last.to.y_m;
         s.pose.yaw_rad = last.heading_rad;
       }
-      progress.write(p);
-      states.write(s);
+      progress.write_batched(p);
+      states.write_batched(s);
     });
+    // The answers to every window taken go out together, as a sim host sends a period's states.
+    progress.flush();
+    states.flush();
     clocks.take_each([&](const smart_msg_Clock& c) {
       if (c.source_id != kSimSource) return;  // our own answers come back too
       ++ticks;

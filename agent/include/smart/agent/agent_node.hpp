@@ -7,8 +7,10 @@
 //   handshake);
 // - publish_progress() publishes a robot's cumulative progress only when it changed, for
 //   robots that have a run, and returns how many actions were newly reported finished;
-// - publish_state() publishes one robot's state; take_monitor_clock() the monitor's newest
-//   clock sample (its answers and its stop).
+// - publish_state() packs one robot's state, flush_states() sends what was packed (a host with
+//   many robots sends a period's states in a few messages: Writer::write_batched); progress is
+//   sent before publish_progress() and republish_progress() return; take_monitor_clock() the
+//   monitor's newest clock sample (its answers and its stop).
 // - Only the run's monitor is heard (idl/smart.idl, "Ownership"): windows and clock answers
 //   from writers weaker than MONITOR_STRENGTH_MIN are dropped (counted, reason "not a
 //   monitor's writer"); DDS exclusive ownership delivers the strongest monitor's windows, and
@@ -83,6 +85,7 @@ class AgentNode {
   void republish_progress();
   void publish_state(uint32_t robot, uint64_t run_id, double time_s, const PoseSample& pose,
                      WheelSpeeds wheels);
+  void flush_states();
   std::optional<wire::Tick> take_monitor_clock();
 
   const wire::Rejections& rejections() const { return rejections_; }
