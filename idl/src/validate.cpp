@@ -193,6 +193,23 @@ std::string check_status(const smart_msg_SimStatus& s, std::size_t robots) {
   return {};
 }
 
+std::string check_monitor_info(const smart_msg_MonitorInfo& m) {
+  if (m.run_id == 0) return "run id 0 (no run)";
+  if (m.pid <= 0) return "pid " + std::to_string(m.pid) + " is not a process id";
+  if (m.strength < smart_msg_MONITOR_STRENGTH_MIN) {
+    return "strength " + std::to_string(m.strength) +
+           " is below MONITOR_STRENGTH_MIN: not a monitor";
+  }
+  for (std::size_t i = 0; i < sizeof(m.host) && m.host[i] != '\0'; ++i) {
+    const auto c = static_cast<unsigned char>(m.host[i]);
+    if (c < 0x20 || c > 0x7e) {
+      return "host name has a non-printable byte (" + std::to_string(c) + " at " +
+             std::to_string(i) + ")";
+    }
+  }
+  return {};
+}
+
 bool Rejections::count(const std::string& topic, const std::string& reason) {
   ++counts_[topic][reason];
   ++total_;

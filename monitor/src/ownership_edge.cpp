@@ -64,6 +64,12 @@ std::optional<std::string> MonitorAnnouncer::poll() {
     if (!s.alive()) {
       others_.erase(m.monitor_id);
     } else if (s.valid() && m.monitor_id != self_.monitor_id) {
+      if (auto why = wire::check_monitor_info(m); !why.empty()) {
+        if (rejected_.count("monitor", why)) {
+          spdlog::warn("monitor: announcement on run '{}' rejected: {}", run_name_, why);
+        }
+        continue;
+      }
       others_[m.monitor_id] = claim_of(m);
     }
   }

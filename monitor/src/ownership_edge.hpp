@@ -22,6 +22,7 @@
 
 #include "smart/dds/wire.hpp"
 #include "smart/wire/ownership.hpp"
+#include "smart/wire/validate.hpp"
 
 namespace smart::monitor {
 
@@ -48,6 +49,7 @@ class MonitorAnnouncer {
   dds::WireReader<smart_msg_MonitorInfo> in_;
   std::map<uint64_t, wire::MonitorClaim> others_;  // alive, by monitor_id
   std::set<uint64_t> warned_;
+  wire::Rejections rejected_;  // announcements that fail wire::check_monitor_info
   smart_msg_MonitorInfo announcement_{};
   std::chrono::steady_clock::time_point announced_;
 };

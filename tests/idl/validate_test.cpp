@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -90,6 +91,30 @@ TEST(Validate, StatesProgressClockAndStatus) {
   EXPECT_EQ(check_status(st, 4), "");
   st.min_gap_m = std::nan("");
   EXPECT_THAT(check_status(st, 4), HasSubstr("min_gap_m"));
+}
+
+TEST(Validate, AMonitorsAnnouncementNeedsARunAPidAMonitorsStrengthAndAPrintableHost) {
+  smart_msg_MonitorInfo m{};
+  m.monitor_id = 7;
+  m.run_id = 42;
+  m.pid = 1234;
+  m.strength = smart_msg_MONITOR_STRENGTH_MIN + 5;
+  std::snprintf(m.host, sizeof(m.host), "%s", "lab-pc-1.local");
+  EXPECT_EQ(check_monitor_info(m), "");
+  m.strength = smart_msg_MONITOR_STRENGTH_RESUME;  // a monitor started with --resume
+  EXPECT_EQ(check_monitor_info(m), "");
+  auto bad = m;
+  bad.run_id = 0;
+  EXPECT_THAT(check_monitor_info(bad), HasSubstr("run id 0"));
+  bad = m;
+  bad.pid = -1;
+  EXPECT_THAT(check_monitor_info(bad), HasSubstr("pid -1"));
+  bad = m;
+  bad.strength = 0;  // a stray program's default strength
+  EXPECT_THAT(check_monitor_info(bad), HasSubstr("below MONITOR_STRENGTH_MIN"));
+  bad = m;
+  std::snprintf(bad.host, sizeof(bad.host), "%s", "pc\x1b]0;owned\x07");  // a terminal escape
+  EXPECT_THAT(check_monitor_info(bad), HasSubstr("non-printable byte (27 at 2)"));
 }
 
 TEST(Validate, RejectionsAreCountedByTopicAndReasonAndLoggedSparingly) {

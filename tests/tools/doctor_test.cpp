@@ -65,5 +65,22 @@ TEST(Doctor, ASlowResponseToTheFirstCommandIsAWarningAndNoneAFailure) {
   EXPECT_EQ(response_check("2", std::nullopt).level, Level::kFail);
 }
 
+TEST(Doctor, SamplesThatFailTheWireChecksAreOneWarningNamingTopicCountAndReason) {
+  wire::Rejections rejected;
+  EXPECT_FALSE(rejected_row(rejected).has_value());
+  rejected.count("monitor", "host name has a non-printable byte (27 at 2)");
+  rejected.count("state", "robot_id 4000000000 ...");
+  rejected.count("state", "robot_id 4000000000 ...");
+  const auto row = rejected_row(rejected);
+  ASSERT_TRUE(row.has_value());
+  EXPECT_EQ(row->level, Level::kWarn);
+  EXPECT_EQ(row->check, "wire");
+  EXPECT_NE(row->measured.find("3 sample(s)"), std::string::npos) << row->measured;
+  EXPECT_NE(row->measured.find("1 monitor: host name has a non-printable byte"), std::string::npos)
+      << row->measured;
+  EXPECT_NE(row->measured.find("2 state: robot_id"), std::string::npos) << row->measured;
+  EXPECT_NE(row->fix.find("--security"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace smart::tools

@@ -6,6 +6,21 @@
 
 namespace smart::tools {
 
+std::optional<CheckRow> rejected_row(const wire::Rejections& rejected) {
+  if (rejected.total() == 0) return std::nullopt;
+  std::string what;
+  for (const auto& [topic, reasons] : rejected.counts()) {
+    for (const auto& [reason, n] : reasons) {
+      what += (what.empty() ? "" : "; ") + std::to_string(n) + " " + topic + ": " + reason;
+    }
+  }
+  return CheckRow{
+      "", "wire", Level::kWarn,
+      std::to_string(rejected.total()) + " sample(s) failed the wire checks (" + what + ")",
+      "a program on this domain and run writes malformed samples (ignored here and by "
+      "the monitor); run with --security so that only SMART's identities can write"};
+}
+
 const char* level_name(Level level) {
   switch (level) {
     case Level::kOk:

@@ -65,9 +65,15 @@ HeardHost* heard_from(const Reader& reader, const dds_sample_info_t& info,
   return &h;
 }
 
+// Samples that fail the wire checks are not believed (anything on the wire is untrusted): they
+// are counted in `rejected` and shown as one row.
 void hear_states(dds::WireReader<smart_msg_RobotState>& states,
-                 std::map<std::string, HeardHost>& hosts) {
+                 std::map<std::string, HeardHost>& hosts, wire::Rejections& rejected) {
   states.take_each_info([&](const smart_msg_RobotState& s, const dds_sample_info_t& info) {
+    if (auto why = wire::check_state(s, 0, std::nullopt); !why.empty()) {
+      rejected.count("state", why);
+      return;
+    }
     if (auto* h = heard_from(states, info, hosts)) h->robots.insert(s.robot_id);
   });
 }
@@ -87,19 +93,25 @@ std::vector<CheckRow> dds_checks(const DoctorOptions& o, const dds::QosProfile& 
   dds::WireReader<smart_msg_ActionWindow> actions(participant, profile);
   dds::WireReader<smart_msg_RobotState> states(participant, profile);
   std::map<std::string, HeardHost> hosts;
+  wire::Rejections rejected;
   std::optional<smart_msg_MonitorInfo> seen;
   std::string host;
   for (const double end = steady_s() + o.seconds; steady_s() < end;) {
     monitors.take_each_info([&](const smart_msg_MonitorInfo& m, const dds_sample_info_t& info) {
+      if (auto why = wire::check_monitor_info(m); !why.empty()) {
+        rejected.count("monitor", why);
+        return;
+      }
       seen = m;
       host = m.host;
       // Announced again every second (monitor/ownership_edge.hpp): its host's clock, too.
       heard_from(monitors, info, hosts);
     });
-    hear_states(states, hosts);
+    hear_states(states, hosts, rejected);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   std::vector<CheckRow> rows = host_rows(hosts);
+  if (auto row = rejected_row(rejected)) rows.push_back(*row);
   const std::string where = "domain " + std::to_string(o.dds.domain) + ", run " + o.dds.run;
   if (!seen) {
     rows.push_back({"", "monitor", Level::kWarn, "none seen in " + where,

@@ -30,6 +30,10 @@ std::string check_state(const smart_msg_RobotState& s, std::size_t robots,
 std::string check_progress(const smart_msg_Progress& p, std::size_t robots);
 std::string check_clock(const smart_msg_Clock& c);
 std::string check_status(const smart_msg_SimStatus& s, std::size_t robots);
+// A monitor's announcement: a run id, a pid, a monitor's strength (MONITOR_STRENGTH_MIN ..
+// MONITOR_STRENGTH_RESUME) and a host name of printable ASCII (it is printed in refusals, logs
+// and `smart doctor`'s table: no terminal control sequences from the wire).
+std::string check_monitor_info(const smart_msg_MonitorInfo& m);
 // A sim shard's exchange (sim/shard.hpp): shard numbers, every robot id, number and position in
 // its hand-overs, ghosts, relayed progress and states.
 std::string check_exchange(const smart_msg_ShardExchange& e, std::size_t robots,

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "smart/agent/types.hpp"
+#include "smart/wire/validate.hpp"
 
 namespace smart::tools {
 
@@ -47,6 +48,10 @@ CheckRow response_check(const std::string& robot, std::optional<double> latency_
 // one-way delay, an upper bound on the offset when positive. Above tolerance_s: WARN.
 CheckRow clock_check(const std::string& host, const std::vector<uint32_t>& robots,
                      double min_offset_s, std::size_t samples, double tolerance_s);
+
+// Samples heard on the domain that failed the wire checks (wire::Rejections): one WARN row
+// naming how many, on which topic and why; none when every sample passed.
+std::optional<CheckRow> rejected_row(const wire::Rejections& rejected);
 
 const char* level_name(Level level);
 
