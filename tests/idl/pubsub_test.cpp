@@ -266,6 +266,25 @@ TEST(Listener, DataAvailableCallbackRunsAndStopsWithTheReader) {
   EXPECT_EQ(calls.load(), before);
 }
 
+// Regression (an emulated ROS 2 agent aborted at shutdown under ASan): its odometry listener took
+// from a reader that was being deleted, dds_take failed, the wrapper threw, and the exception left
+// Cyclone's listener thread: std::terminate. A failing callback is now logged and dropped.
+TEST(Listener, ACallbackThatThrowsDoesNotAbortTheProcessAndLaterSamplesStillArrive) {
+  TwoParticipants f(test::kListenerThrows);
+  Topic<smart_msg_Progress> tp(f.pub, std::string(kProgressTopic));
+  Topic<smart_msg_Progress> ts(f.sub, std::string(kProgressTopic));
+  Writer<smart_msg_Progress> w(f.pub, tp, f.profile.progress.to_dds());
+  std::atomic<int> calls{0};
+  Reader<smart_msg_Progress> r(f.sub, ts, f.profile.progress.to_dds(), [&] {
+    if (++calls == 1) throw Error(DDS_RETCODE_BAD_PARAMETER, "taking from 'rt/robot_1/odom'");
+  });
+  ASSERT_TRUE(w.wait_for_readers(1, 5s));
+  w.write(smart_msg_Progress{1, 1, 0, -1});
+  ASSERT_TRUE(wait_until([&] { return calls.load() >= 1; }, 5000ms));
+  w.write(smart_msg_Progress{1, 1, 1, -1});
+  EXPECT_TRUE(wait_until([&] { return calls.load() >= 2; }, 5000ms));
+}
+
 TEST(WaitSetTest, GuardConditionWakesAWaiterAndTimeoutReturnsNothing) {
   Domain d(test::kWaitSet, test::loopback());
   Participant p(d);

@@ -109,6 +109,7 @@ enum DomainId : int {
   kShardedSecure = 204,
   kShardPeerWriters = 205,
   kShardPeerClaims = 206,
+  kListenerThrows = 207,
   kRos2Calibrate = 178,
 };
 

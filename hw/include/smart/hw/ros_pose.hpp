@@ -30,6 +30,9 @@ class RosPoseSource : public agent::PoseSource {
   RosPoseSource(const dds::Participant& participant, const std::string& ros_topic,
                 geometry::FrameTransform transform, double max_age_s, std::function<double()> now_s,
                 Message message = Message::kPoseStamped);
+  // Listeners that fire while the readers are being deleted return at once (the Reader's
+  // trampoline also catches a take that fails then).
+  ~RosPoseSource() override { ready_ = false; }
   agent::PoseSample read() override;
   uint64_t samples() const;
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <dds/dds.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cstddef>
@@ -235,7 +236,17 @@ class Reader {
   dds_entity_t handle() const { return entity_.handle(); }
 
  private:
-  static void trampoline(dds_entity_t, void* arg) { (*static_cast<Callback*>(arg))(); }
+  // The callback runs on Cyclone's listener thread, inside C code: an exception must not leave
+  // it (std::terminate). Regression: an agent's odometry listener took from its reader while the
+  // reader was being deleted at shutdown ("Bad Parameter"), and the process aborted.
+  static void trampoline(dds_entity_t reader, void* arg) {
+    try {
+      (*static_cast<Callback*>(arg))();
+    } catch (const std::exception& e) {
+      spdlog::warn("DDS listener of reader {}: {} (the callback failed; this sample is dropped)",
+                   reader, e.what());
+    }
+  }
 
   LoanedSamples<T> get(std::size_t max, bool take) {
     std::vector<void*> buffers(max, nullptr);  // null first entry: Cyclone lends its memory
