@@ -60,11 +60,14 @@ class Faults : public ::testing::Test {
 
 TEST_F(Faults, ASecondMonitorIsRefusedNamingTheOwnerAndTheFirstRunIsUndisturbed) {
   const int d = kFaultsSecondMonitor;
-  auto sim = start_smart(with("sim", d), temp_file("faults_sim.out"));
   const auto first_out = temp_file("faults_first.out");
   auto first = start_smart(with("monitor", d, plan()), first_out);
   std::this_thread::sleep_for(1500ms);  // the first monitor owns the run by now
+  // The sim joins only after the second monitor was refused: a lock-step run of these 20 robots
+  // takes about a second, so with the sim already there the first run could be over before the
+  // second monitor starts (it then waited for a sim that had left: "host lost", a flaky test).
   const auto second = run_smart(with("monitor", d, plan()), 60s, "faults_second");
+  auto sim = start_smart(with("sim", d), temp_file("faults_sim.out"));
   EXPECT_EQ(second.code, 1) << second.out;
   EXPECT_THAT(second.out, HasSubstr("refused: run 'default' on domain " + std::to_string(d) +
                                     " is already owned by the monitor on host"));
