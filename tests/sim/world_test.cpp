@@ -133,10 +133,11 @@ TEST(World, SameInputsGiveBitIdenticalTrajectoriesWhateverThreadsAndSystemCapaci
 
 // Regression (web_viewer failed in CI): a 50-robot lock-step run with two sim threads took over
 // 120 s instead of 9 s while other processes kept both cores busy, each sub-step barrier waiting
-// for a descheduled thread. Automatic threads: one for small fleets, two from 500 robots.
+// for a descheduled thread. Automatic threads: one for small fleets, two from 2000 robots.
 TEST(World, AutomaticThreadsAreOneForSmallFleetsAndWhatWasAskedForOtherwise) {
   EXPECT_EQ(sim_threads(0, 1), 1);
   EXPECT_EQ(sim_threads(0, 50), 1);
+  EXPECT_EQ(sim_threads(0, 1000), 1);  // SMART's 1000-robot warehouse
   EXPECT_EQ(sim_threads(0, 2 * kMinRobotsPerThread - 1), 1);
   EXPECT_EQ(sim_threads(0, 2 * kMinRobotsPerThread), 2);
   EXPECT_EQ(sim_threads(0, 10000), 2);

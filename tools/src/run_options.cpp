@@ -91,7 +91,7 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   cmd->add_option("--threads", o.threads,
-                  "sim threads (0: automatic, 1 below 500 simulated robots, else 2)")
+                  "sim threads (0: automatic, 1 below 2000 simulated robots, else 2)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
   cmd->add_option("--ros-pose-robots", o.ros_pose_robots,

@@ -51,11 +51,13 @@ struct SimConfig {
 };
 
 // Fewer robots than this per thread and a second thread costs more at the sub-step barriers
-// than it saves: SMART's warehouse plan in lock-step on 2 cores, 1 vs 2 threads, was 69x vs 55x
-// real time at 100 robots, 48x vs 46x at 250, 27x vs 33x at 500 (docs/performance.md). Under CPU
-// contention a barrier waits for a descheduled thread: 50 robots ran 9 s with 1 thread and over
-// 120 s with 2 while two other processes kept both cores busy.
-inline constexpr std::size_t kMinRobotsPerThread = 250;
+// than it saves (docs/performance.md, "Automatic sim threads"): end to end in lock-step on
+// 2 cores, where the monitor and the DDS threads share the cores with the sim, 1 vs 2 threads
+// gave 46x vs 38x on SMART's 1000-robot warehouse plan, 25x vs 27x on a 1000-robot random walk
+// (every robot always moving) and 12x vs 15x at 2000. Under CPU contention a barrier waits for
+// a descheduled thread: 50 robots ran 9 s with 1 thread and over 120 s with 2 while two other
+// processes kept both cores busy.
+inline constexpr std::size_t kMinRobotsPerThread = 1000;
 
 // The threads a World of `robots` simulated robots uses: `requested` if > 0, else one per
 // kMinRobotsPerThread robots, at least 1 and at most 2 (the only count measured on this
