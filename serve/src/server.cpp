@@ -92,23 +92,30 @@ struct RunRequest {
   std::size_t agents = 0;
   std::string robot = "footbot";
   std::map<std::string, double> limits;  // robot YAML key -> value, from the upload form
+  double real_time_factor = 0;           // `smart run --real-time-factor`: 0, as fast as possible
   std::string error;
 };
 
 // The kinodynamic limits an upload may override (robot YAML keys, agent/robot_model.hpp).
 constexpr const char* kLimitFields[] = {"max_speed_mps", "max_accel_mps2", "max_turn_rate_radps"};
 
+// The whole text as a finite number, or none.
+std::optional<double> finite_number(const std::string& text) {
+  double v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) return {};
+  return v;
+}
+
 void read_limits(const httplib::Request& req, RunRequest& r) {
   for (const char* key : kLimitFields) {
     if (!req.has_file(key) || req.get_file_value(key).content.empty()) continue;
-    const auto& text = req.get_file_value(key).content;
-    double v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) || v <= 0) {
+    const auto v = finite_number(req.get_file_value(key).content);
+    if (!v || *v <= 0) {
       r.error = std::string(key) + " must be a positive number, e.g. 0.5";
       return;
     }
-    r.limits[key] = v;
+    r.limits[key] = *v;
   }
 }
 
@@ -136,6 +143,14 @@ RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) 
     r.error = "robot must name a model in config/robots, e.g. footbot";
   }
   if (r.error.empty()) read_limits(req, r);
+  if (auto f = field("real_time_factor"); f && !f->empty() && r.error.empty()) {
+    const auto v = finite_number(*f);
+    if (!v || *v < 0 || *v > 1000) {
+      r.error = "real_time_factor must be a number from 0 (as fast as possible) to 1000, e.g. 10";
+    } else {
+      r.real_time_factor = *v;
+    }
+  }
   return r;
 }
 }  // namespace
@@ -196,6 +211,8 @@ struct Server::Impl {
             opt.qos,
             "--out",
             (d / "results").string(),
+            "--real-time-factor",
+            std::to_string(r.real_time_factor),
             "--no-progress"};
   }
 

@@ -13,6 +13,7 @@
 #include "smart/common/memory.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
+#include "smart/sim/pacer.hpp"
 #include "smart/sim/ros_view.hpp"
 #include "smart/sim/shard.hpp"
 #include "smart/wire/convert.hpp"
@@ -36,7 +37,8 @@ struct SimHost::Impl {
   dds::WireWriter<smart_msg_SimStatus> status_out;
   dds::WireReader<smart_msg_RobotState> states_in;  // external robots' poses
   wire::HostHandshake handshake;
-  wire::SyncCounter windows;    // per robot, the end of the latest window received
+  Pacer pacer;                // lock-step: periods no faster than opt.real_time_factor x real time
+  wire::SyncCounter windows;  // per robot, the end of the latest window received
   uint64_t finished_total = 0;  // actions reported finished (sum over robots)
   uint64_t run_id = 0;
   uint64_t tick = 0;
@@ -74,6 +76,7 @@ struct SimHost::Impl {
         status_out(p, qos),
         states_in(p, qos),
         handshake(o.timeout_s, dds::kClockReannounceS),
+        pacer(o.clock == ClockMode::kLockstep ? o.real_time_factor : 0, o.sim.control_period_s),
         windows(starts.size()) {
     node.set_link(qos.link);  // windows and progress travel over the modelled link
     for (const uint32_t e : o.external_robots) fleet.set_external(e);
@@ -177,10 +180,10 @@ struct SimHost::Impl {
                                           world.wheel_speeds(i), fleet.agent(i).queue_length()));
       }
     }
+    node.flush_states();
   }
 
   void publish_clock() {
-    node.flush_states();
     clock_out.write(wire::to_wire({run_id, tick, fleet.world().time_s(), finished_total, false},
                                   dds::kSimClockSource));
   }
@@ -246,6 +249,16 @@ struct SimHost::Impl {
            std::to_string(participant.domain_id()) + " with the same --qos and --network?";
   }
 
+  // Waits until the pacer lets the next period start (false: a stop was requested meanwhile).
+  bool paced(const std::atomic<bool>& stop_requested) {
+    for (double w = pacer.wait_s(wall_s()); w > 0; w = pacer.wait_s(wall_s())) {
+      if (stop_requested.load()) return false;
+      std::this_thread::sleep_for(std::chrono::duration<double>(std::min(w, 0.05)));
+    }
+    pacer.started(wall_s());
+    return true;
+  }
+
   SimHostResult run_lockstep(const std::atomic<bool>& stop_requested);
   SimHostResult run_sharded(const std::atomic<bool>& stop_requested);
   ContactStats fleet_contacts(bool last) const;
@@ -274,6 +287,7 @@ SimHostResult SimHost::Impl::run_lockstep(const std::atomic<bool>& stop_requeste
     if (handshake.stop()) return finish(true, "", true);
     read_windows();
     if (handshake.may_step(run_id, windows.total())) {
+      if (!paced(stop_requested)) continue;  // the loop's top returns
       advance();
       handshake.announced(tick, wall_s());
     } else if (handshake.should_reannounce(wall_s())) {
@@ -401,6 +415,7 @@ SimHostResult SimHost::Impl::run_sharded(const std::atomic<bool>& stop_requested
     if (handshake.stop()) return finish(true, "", true);
     read_windows();
     if (applied && handshake.may_step(run_id, windows.total())) {
+      if (!paced(stop_requested)) continue;
       advance_shard();
       if (!lead()) handshake.announced(tick, wall_s());
     } else if (lead() && applied && handshake.should_reannounce(wall_s())) {

@@ -102,15 +102,20 @@ TEST_F(Run, SmartExampleOnRandomMapSucceedsWithoutCollisionsAndWritesResults) {
   std::filesystem::remove_all(out);
 }
 
-TEST_F(Run, LockStepRunsOfTheSamePlanGiveIdenticalNumbers) {
+// The second run is paced to 100x real time (--real-time-factor, to watch a run live): it takes
+// at least the makespan / 100 of wall time (about 1.7 s; unpaced about 1 s) and gives the same
+// numbers.
+TEST_F(Run, LockStepRunsOfTheSamePlanGiveIdenticalNumbersPacedOrNot) {
   std::vector<nlohmann::json> results;
   for (int i = 0; i < 2; ++i) {
     auto args = example_args(kRunLockstep, "20");
     args.insert(args.begin(), "run");
+    if (i == 1) args.insert(args.end(), {"--real-time-factor", "100"});
     const auto r = run_smart(args, 120s, "run_lockstep");
     ASSERT_EQ(r.code, 0) << r.out;
     results.push_back(r.last_json());
   }
+  EXPECT_GE(results[1]["wall_time_s"].get<double>(), results[1]["makespan_s"].get<double>() / 100);
   for (const char* key : {"aet_s", "makespan_s", "sim_time_s", "collisions", "wall_contacts",
                           "min_separation_m", "stops", "waiting_time_s", "finished_actions"}) {
     EXPECT_EQ(results[0][key], results[1][key]) << key;

@@ -48,13 +48,15 @@ class Serve : public ::testing::Test {
     server_.reset();
     std::filesystem::remove_all(data_);
   }
-  httplib::Result upload(const std::string& plan_file, const std::string& agents) {
+  httplib::Result upload(const std::string& plan_file, const std::string& agents,
+                         const std::string& real_time_factor = "") {
     httplib::MultipartFormDataItems items{
         {"map", slurp(b_ / "maps/random-32-32-20.map"), "random-32-32-20.map", ""},
         {"scen", slurp(b_ / "scens/random-32-32-20-random-1.scen"), "random.scen", ""},
         {"plan", slurp(plan_file), "paths.txt", ""},
         {"agents", agents, "", ""},
-        {"max_speed_mps", "0.75", "", ""}};
+        {"max_speed_mps", "0.75", "", ""},
+        {"real_time_factor", real_time_factor, "", ""}};
     return client().Post("/api/runs", items);
   }
   httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
@@ -65,7 +67,9 @@ class Serve : public ::testing::Test {
 
 TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
   start();
-  const auto posted = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20");
+  // Paced to 100x real time (about 2 s; unpaced it takes about 1 s), as the page's speed choice
+  // does to watch a run live.
+  const auto posted = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20", "100");
   ASSERT_TRUE(posted);
   ASSERT_EQ(posted->status, 200) << posted->body;
   const auto id = json::parse(posted->body)["id"].get<std::string>();
@@ -78,6 +82,8 @@ TEST_F(Serve, AnUploadRunsToCompletionAndItsSummaryAndRecordingAreServed) {
   ASSERT_EQ(run["state"], "done") << run.dump();
   EXPECT_TRUE(run["summary"]["success"].get<bool>());
   EXPECT_EQ(run["summary"]["robots"], 20);
+  EXPECT_GE(run["summary"]["wall_time_s"].get<double>(),
+            run["summary"]["makespan_s"].get<double>() / 100);
   // The robot limits given with the upload are the ones the run used.
   const auto robot = slurp(data_ / id / "robot.yaml");
   EXPECT_THAT(robot, HasSubstr("max_speed_mps: 0.75"));
@@ -143,6 +149,12 @@ TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
   l = client().Post("/api/runs", limits);
   EXPECT_EQ(l->status, 400);
   EXPECT_THAT(l->body, HasSubstr("max_turn_rate_radps"));
+  for (const char* factor : {"fast", "-1", "1e9", "nan"}) {
+    limits.back() = {"real_time_factor", factor, "", ""};
+    l = client().Post("/api/runs", limits);
+    EXPECT_EQ(l->status, 400) << factor;
+    EXPECT_THAT(l->body, HasSubstr("real_time_factor must be a number from 0")) << factor;
+  }
   httplib::MultipartFormDataItems missing{{"map", "x", "m.map", ""}};
   const auto m = client().Post("/api/runs", missing);
   EXPECT_EQ(m->status, 400);

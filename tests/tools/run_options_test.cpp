@@ -85,6 +85,8 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
                 "8",
                 "--threads",
                 "1",
+                "--real-time-factor",
+                "2.5",
                 "--ros-pose-robots",
                 "1,4",
                 "--external-robots",
@@ -117,6 +119,7 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   EXPECT_EQ(back.timeout_s, 12.5);
   EXPECT_EQ(back.system_capacity, 8);
   EXPECT_EQ(back.threads, 1);
+  EXPECT_EQ(back.real_time_factor, 2.5);
   EXPECT_EQ(back.ros_pose_robots, (std::vector<uint32_t>{1, 4}));
   EXPECT_EQ(back.external, (std::vector<uint32_t>{2}));
   EXPECT_EQ(back.dds.domain, 33);
@@ -124,6 +127,22 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   EXPECT_EQ(back.dds.network, Network::kNetwork);
   EXPECT_EQ(back.dds.run, "exp-1.b_2");
   EXPECT_TRUE(back.dds.run_given);
+}
+
+TEST(RunOptions, ARealTimeFactorPacesLockstepAndIsRefusedWithTheRealtimeClock) {
+  SimCliOptions o;
+  parse_sim(o, {"--map", "m", "--scen", "s", "--real-time-factor", "10"});
+  EXPECT_EQ(sim_host_options(o).real_time_factor, 10);
+  EXPECT_THROW(parse_sim(o, {"--map", "m", "--scen", "s", "--real-time-factor", "-1"}),
+               CLI::ParseError);
+  SimCliOptions rt;
+  parse_sim(rt, {"--map", "m", "--scen", "s", "--clock", "realtime", "--real-time-factor", "10"});
+  try {
+    (void)sim_host_options(rt);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("drop --real-time-factor or use --clock lockstep"));
+  }
 }
 
 TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {

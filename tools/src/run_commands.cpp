@@ -185,6 +185,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
   const auto model = agent::load_robot_model(robot_file);  // fail early on a bad model
   const auto profile = run_qos_profile(o.sim.dds);
+  check_real_time_factor(o.sim);
   if (o.sim.shards > 1 && (o.sim.clock != sim::ClockMode::kLockstep ||
                            profile.link.to_host.active() || profile.link.to_monitor.active())) {
     throw std::invalid_argument(

@@ -94,6 +94,11 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
                   "sim threads (0: automatic, 1 below 2000 simulated robots, else 2)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
+  cmd->add_option("--real-time-factor", o.real_time_factor,
+                  "lockstep: run at most this many times real time, to watch a run live (same "
+                  "results); 0: as fast as possible")
+      ->check(finite_in(0.0, 1000.0))
+      ->capture_default_str();
   cmd->add_option("--ros-pose-robots", o.ros_pose_robots,
                   "robots that also get a ROS 2 PoseStamped topic rt/robot_<id>/pose")
       ->delimiter(',');
@@ -151,11 +156,21 @@ monitor::InstanceOptions instance_options(const WorldCliOptions& world, const st
   return io;
 }
 
+void check_real_time_factor(const SimCliOptions& o) {
+  if (o.clock == sim::ClockMode::kRealtime && o.real_time_factor > 0) {
+    throw std::invalid_argument("--real-time-factor " + exact(o.real_time_factor) +
+                                " paces a lock-step run, but --clock realtime already runs at "
+                                "real time: drop --real-time-factor or use --clock lockstep");
+  }
+}
+
 sim::SimHostOptions sim_host_options(const SimCliOptions& o) {
+  check_real_time_factor(o);
   sim::SimHostOptions ho;
   ho.clock = o.clock;
   ho.state_rate_hz = o.state_rate_hz;
   ho.timeout_s = o.timeout_s;
+  ho.real_time_factor = o.real_time_factor;
   ho.sim.cell_m = o.world.cell_m;
   ho.sim.system_capacity = o.system_capacity;
   ho.sim.threads = o.threads;
@@ -237,7 +252,9 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
                            "--system-capacity",
                            std::to_string(o.system_capacity),
                            "--threads",
-                           std::to_string(o.threads)});
+                           std::to_string(o.threads),
+                           "--real-time-factor",
+                           exact(o.real_time_factor)});
   if (!o.ros_pose_robots.empty())
     argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
   if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});

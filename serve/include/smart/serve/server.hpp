@@ -4,7 +4,9 @@
 //   POST /api/runs               multipart: map, scen, plan (files); axis (xy|rowcol), agents,
 //                                robot (a model name), max_speed_mps, max_accel_mps2,
 //                                max_turn_rate_radps (overrides of the model's limits, checked
-//                                against its ranges). 200 {"id"}; 400 {"error", "problems":
+//                                against its ranges), real_time_factor (0 or none: as fast as
+//                                possible; e.g. 10 to watch it live; `smart run
+//                                --real-time-factor`). 200 {"id"}; 400 {"error", "problems":
 //                                [{file, line, robot, message}]} as `smart check-plan` lists them
 //   GET  /api/runs               [{id, state, map, robots}]
 //   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}

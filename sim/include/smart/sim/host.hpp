@@ -5,7 +5,9 @@
 // clock. Clock modes:
 // - lockstep: before each period the host waits for the monitor's answer to its last tick and
 //   for windows adding up to the answer's sync_total (wire/lockstep.hpp, HostHandshake). Runs
-//   are bit-identical. A silent monitor for timeout_s ends the run with an error.
+//   are bit-identical. A silent monitor for timeout_s ends the run with an error. With
+//   real_time_factor > 0 periods start no faster than that many times real time (sim/pacer.hpp),
+//   to watch a run live; the results are the same.
 // - realtime: periods paced to the wall clock (hardware-in-the-loop, mixed runs).
 // The host stops when the monitor's clock says stop, on `stop_requested`, or on error.
 // Sharded (shards > 1, lock-step only; sim/shard.hpp): the host simulates the robots of its map
@@ -39,7 +41,8 @@ enum class ClockMode { kLockstep, kRealtime };
 struct SimHostOptions {
   ClockMode clock = ClockMode::kLockstep;
   double state_rate_hz = 2.0;
-  double timeout_s = 30.0;  // lockstep: longest wait for the monitor
+  double timeout_s = 30.0;      // lockstep: longest wait for the monitor
+  double real_time_factor = 0;  // lockstep: at most this many times real time; 0: unpaced
   double pose_timeout_s = 0.5;
   SimConfig sim;
   // Robots executed by other hosts (mixed runs): shown at their published poses, not driven.

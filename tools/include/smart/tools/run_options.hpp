@@ -39,8 +39,9 @@ struct SimCliOptions {
   sim::ClockMode clock = sim::ClockMode::kLockstep;
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
-  int system_capacity = 0;  // robot bodies per Simbody system (0: automatic)
-  int threads = 0;  // 0: automatic (sim::sim_threads)
+  int system_capacity = 0;         // robot bodies per Simbody system (0: automatic)
+  int threads = 0;                 // 0: automatic (sim::sim_threads)
+  double real_time_factor = 0;     // lockstep: at most this many times real time; 0: unpaced
   std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
   std::vector<uint32_t> ros_pose_robots;
   uint32_t shard = 0, shards = 1;  // `smart sim --shard I/N` (sim/shard.hpp)
@@ -83,6 +84,10 @@ monitor::Footprint robot_footprint(const WorldCliOptions& world);
 monitor::InstanceOptions instance_options(const WorldCliOptions& world, const std::string& plan,
                                           std::optional<grid::AxisOrder> axis,
                                           grid::PlanFormat format);
+// Throws std::invalid_argument naming the flags when --real-time-factor is given with --clock
+// realtime (pacing is for lock-step runs).
+void check_real_time_factor(const SimCliOptions& o);
+// The sim host's options (checks them with check_real_time_factor first).
 sim::SimHostOptions sim_host_options(const SimCliOptions& o);
 // "I/N" of --shard: shard I (from 0) of N; throws std::invalid_argument saying what is wrong.
 std::pair<uint32_t, uint32_t> parse_shard(const std::string& text);
