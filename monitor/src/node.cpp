@@ -25,7 +25,9 @@ uint64_t wall_clock_run_id() {
                                    .count());
 }
 
-// The supervisor's decisions, written to DDS.
+// The supervisor's decisions, written to DDS. Windows are packed (Cyclone's write batching,
+// dds/writer.hpp) and go out together when the pump's turn ends (flush) or, before a tick's
+// answer, so that a host finds the windows the answer counts already sent.
 class DdsRunWriter final : public RunWriter {
  public:
   DdsRunWriter(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
@@ -37,11 +39,13 @@ class DdsRunWriter final : public RunWriter {
     for (uint32_t s = w.first; s < w.end; ++s) {
       buf.steps().push_back(wire::to_wire(in_.actions.at(robot, s), in_.grid, cell_m_));
     }
-    actions_.write(buf.view());
+    actions_.write_batched(buf.view());
   }
   void answer_tick(const wire::Tick& answer) override {
+    actions_.flush();
     clock_.write(wire::to_wire(answer, dds::kMonitorClockSource));
   }
+  void flush() { actions_.flush(); }
   bool wait_for_acks(milliseconds timeout) { return clock_.wait_for_acks(timeout); }
 
  private:
@@ -224,6 +228,7 @@ struct MonitorNode::Impl {
     sup.poll(now);
     sup.on_hosts_matched(progress.subscription_matched().current_count, now);
     if (auto refusal = announcer.poll()) sup.refuse(*refusal);
+    writer.flush();  // the windows decided in this turn
     log_notes();
   }
 
@@ -244,6 +249,7 @@ struct MonitorNode::Impl {
   // states and status, which follow its stop; then the verdict.
   MonitorResult finish() {
     sup.finish(now_s());
+    writer.flush();
     writer.wait_for_acks(milliseconds(1000));
     const auto drain_until = SteadyClock::now() + milliseconds(300);
     while (SteadyClock::now() < drain_until && sup.result().outcome != Outcome::kHostLost) {
@@ -292,6 +298,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   }
   if (I.opt.resume && !I.resume()) return I.sup.result();
   I.sup.start(I.now_s());
+  I.writer.flush();
   I.start_plan_view();
   spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim", I.sup.result().run_id,
                I.sup.result().robots.size(), I.sup.tracker().total());
