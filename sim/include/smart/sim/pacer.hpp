@@ -7,7 +7,8 @@
 // schedule, so wake-up latency and the monitor's round trip do not add up: periods that start
 // late are caught up on. A period that starts more than kCatchUpS (or one interval) late, where
 // the sim is slower than the factor, restarts the schedule from then, so a slow stretch is not
-// followed by a long burst; like Gazebo's real_time_factor, a target, not a promise.
+// followed by a long burst. Like Gazebo's target real-time factor (SDFormat <physics>
+// <real_time_factor>, http://sdformat.org/spec?elem=physics), a target, not a promise.
 #pragma once
 
 #include <optional>
@@ -21,7 +22,8 @@ class Pacer {
   // round trips of single periods are longer than one interval.
   static constexpr double kCatchUpS = 0.25;
 
-  // real_time_factor 0: unpaced (wait_s is always 0). Otherwise > 0; period_s > 0.
+  // real_time_factor 0: unpaced (wait_s is always 0). Throws std::invalid_argument for a
+  // negative or NaN factor or a period that is not > 0.
   Pacer(double real_time_factor, double period_s);
 
   bool paced() const { return interval_wall_s_ > 0; }
