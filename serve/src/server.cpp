@@ -96,6 +96,9 @@ struct RunRequest {
   std::string error;
 };
 
+// Uploads run on `smart run`'s default cells (--cell-m 1).
+constexpr double kUploadCellM = 1.0;
+
 // The kinodynamic limits an upload may override (robot YAML keys, agent/robot_model.hpp).
 constexpr const char* kLimitFields[] = {"max_speed_mps", "max_accel_mps2", "max_turn_rate_radps"};
 
@@ -177,7 +180,9 @@ struct Server::Impl {
     return opt.data_dir / ("upload-" + std::to_string(++uploads));
   }
 
-  // The instance in a folder of the run's files (map.map, scen.scen, plan.txt).
+  // The instance in a folder of the run's files (map.map, scen.scen, plan.txt), with the ADG
+  // footprint `smart run` gives its robot (robot.yaml, when there) on the run's cells, so that
+  // the robot panel's waits are the run's and a robot too wide for the cells is refused here.
   static monitor::Instance load_files(const fs::path& d, std::size_t agents,
                                       const std::string& axis) {
     monitor::InstanceOptions io;
@@ -186,6 +191,17 @@ struct Server::Impl {
     io.plan = d / "plan.txt";
     io.agents = agents;
     io.read.axis = axis == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
+    if (fs::exists(d / "robot.yaml")) {
+      const double radius_m = agent::load_robot_model((d / "robot.yaml").string()).radius_m;
+      const auto f = monitor::footprint_for(radius_m, kUploadCellM);
+      if (!f) {
+        throw std::invalid_argument(
+            fmt::format("the robot (radius {:g} m) is half a cell ({:g} m) wide or more: robots on "
+                        "neighbouring cells would touch; pick a smaller robot model",
+                        radius_m, kUploadCellM));
+      }
+      io.footprint = *f;
+    }
     return monitor::load_instance(io);
   }
 
@@ -205,6 +221,8 @@ struct Server::Impl {
             std::to_string(r.agents),
             "--robot",
             (d / "robot.yaml").string(),
+            "--cell-m",
+            std::to_string(kUploadCellM),
             "--domain",
             std::to_string(opt.domain),
             "--qos",
@@ -254,8 +272,9 @@ struct Server::Impl {
     const RunRequest r = read_fields(req, opt.config_dir / "robots");
     if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
     const fs::path scratch = scratch_dir();
-    auto bad = check_upload(req, scratch, r);
-    if (!bad) bad = write_robot(scratch, r);
+    fs::create_directories(scratch);
+    auto bad = write_robot(scratch, r);  // first: the upload is checked with its robot
+    if (!bad) bad = check_upload(req, scratch, r);
     if (bad) {
       fs::remove_all(scratch);
       return reply(res, 400, *bad);

@@ -162,6 +162,35 @@ TEST_F(Serve, ABadUploadGetsTheProblemListAndNothingOutsideDataIsServed) {
   std::filesystem::remove(bad);
 }
 
+// Regression: uploads were checked with the half-cell ADG footprint whatever their robot, so a
+// model too wide for the cells was accepted and only its run failed (and the robot panel's waits
+// could differ from the run's). A model half a 1 m cell wide is now refused with the upload.
+TEST_F(Serve, AnUploadIsCheckedWithItsRobotsFootprint) {
+  const auto config = temp_file("serve_config");
+  std::filesystem::create_directories(config / "robots");
+  const std::string footbot = slurp(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
+  std::ofstream(config / "robots" / "footbot.yaml") << footbot;
+  std::string wide = footbot;
+  wide.replace(wide.find("radius_m: 0.085"), 15, "radius_m: 0.6");
+  std::ofstream(config / "robots" / "wide.yaml") << wide;
+  ASSERT_EQ(::setenv("SMART_CONFIG_DIR", config.c_str(), 1), 0);  // smart serve's models
+  start();
+  ::unsetenv("SMART_CONFIG_DIR");
+  httplib::MultipartFormDataItems items{
+      {"map", slurp(b_ / "maps/random-32-32-20.map"), "m.map", ""},
+      {"scen", slurp(b_ / "scens/random-32-32-20-random-1.scen"), "s.scen", ""},
+      {"plan", slurp(b_ / "smart-examples/example_paths_xy.txt"), "p.txt", ""},
+      {"agents", "2", "", ""},
+      {"robot", "wide", "", ""}};
+  const auto r = client().Post("/api/runs", items);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  EXPECT_THAT(r->body, HasSubstr("radius 0.6"));
+  EXPECT_THAT(r->body, HasSubstr("pick a smaller robot model"));
+  EXPECT_EQ(json::parse(client().Get("/api/runs")->body).size(), 0u);
+  std::filesystem::remove_all(config);
+}
+
 // The live stream of a run: events while it goes, the last one when it ended, with every robot.
 // Paced to 50x real time (about 4 s; unpaced about 1 s, which could end before the stream began).
 TEST_F(Serve, ALiveStreamFollowsTheRunUntilItEnds) {

@@ -6,7 +6,9 @@
 //                                max_turn_rate_radps (overrides of the model's limits, checked
 //                                against its ranges), real_time_factor (0 or none: as fast as
 //                                possible; e.g. 10 to watch it live; `smart run
-//                                --real-time-factor`). 200 {"id"}; 400 {"error", "problems":
+//                                --real-time-factor`). Runs on 1 m cells; the plan is checked
+//                                with the robot's ADG footprint there (a robot half a cell wide
+//                                is refused). 200 {"id"}; 400 {"error", "problems":
 //                                [{file, line, robot, message}]} as `smart check-plan` lists them
 //   GET  /api/runs               [{id, state, map, robots}]
 //   GET  /api/runs/{id}          {id, state, error, summary (summary.json, once done)}
