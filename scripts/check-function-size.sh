@@ -7,8 +7,8 @@ build=${1:?usage: $0 BUILD_DIR}
 cd "$(dirname "$0")/.."
 command -v clang-tidy >/dev/null || { echo "clang-tidy not found; run scripts/install-deps.sh" >&2; exit 2; }
 [[ -f $build/compile_commands.json ]] || { echo "$build/compile_commands.json missing; configure first" >&2; exit 2; }
-files=$(git ls-files 'idl/*.cpp' 'grid/*.cpp' 'planning/*.cpp' 'monitor/*.cpp' 'agent/*.cpp' \
-  'sim/*.cpp' 'hw/*.cpp' 'tools/*.cpp' 'common/*.cpp')
+files=$(git ls-files 'idl/*.cpp' 'grid/*.cpp' 'planning/*.cpp' 'monitor/*.cpp' 'agent/*.cpp' 'convert/*.cpp' \
+  'sim/*.cpp' 'hw/*.cpp' 'tools/*.cpp' 'common/*.cpp' 'serve/*.cpp')
 config='{Checks: "-*,readability-function-size", WarningsAsErrors: "readability-function-size",
   CheckOptions: [{key: readability-function-size.LineThreshold, value: 80}]}'
 out=$(mktemp)

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "smart/wire/convert.hpp"
+#include "smart/convert/convert.hpp"
 
 namespace smart::agent {
 

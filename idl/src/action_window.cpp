@@ -1,5 +1,7 @@
 #include "smart/dds/action_window.hpp"
 
+#include "smart/dds/sequence.hpp"
+
 namespace smart::dds {
 
 ActionWindowBuffer::ActionWindowBuffer(uint32_t robot_id, uint64_t run_id, uint32_t total_actions,
@@ -11,16 +13,12 @@ ActionWindowBuffer::ActionWindowBuffer(uint32_t robot_id, uint64_t run_id, uint3
 }
 
 const smart_msg_ActionWindow& ActionWindowBuffer::view() {
-  msg_.actions._buffer = steps_.data();
-  msg_.actions._length = static_cast<uint32_t>(steps_.size());
-  msg_.actions._maximum = static_cast<uint32_t>(steps_.size());
-  msg_.actions._release = false;  // the vector owns the memory, not Cyclone
+  borrow(msg_.actions, steps_);
   return msg_;
 }
 
 std::vector<smart_msg_ActionStep> copy_steps(const smart_msg_ActionWindow& window) {
-  return std::vector<smart_msg_ActionStep>(window.actions._buffer,
-                                           window.actions._buffer + window.actions._length);
+  return copy_of<smart_msg_ActionStep>(window.actions);
 }
 
 }  // namespace smart::dds

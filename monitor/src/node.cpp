@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "ownership_edge.hpp"
+#include "smart/convert/convert.hpp"
+#include "smart/convert/validate.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/monitor/ros_plan_view.hpp"
-#include "smart/wire/convert.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::monitor {
 
@@ -83,8 +83,8 @@ struct MonitorNode::Impl {
   std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
   uint32_t status_writers_seen = 0;  // status writers matched so far (total_count)
   const SteadyClock::time_point wall0 = SteadyClock::now();
-  std::optional<RosPlanView> plan_view;             // --ros-plan-hz
-  std::vector<std::optional<agent::Pose2D>> poses;  // last reported, for the plan view
+  std::optional<RosPlanView> plan_view;              // --ros-plan-hz
+  std::vector<std::optional<common::Pose2D>> poses;  // last reported, for the plan view
   double plan_view_s = -1e9;
 
   Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
@@ -143,7 +143,7 @@ struct MonitorNode::Impl {
     states.take_each_from([&](const smart_msg_RobotState& s, dds_instance_handle_t from) {
       if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
       if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s())) return;
-      if (plan_view) poses[s.robot_id] = agent::Pose2D{s.pose.x_m, s.pose.y_m, s.pose.yaw_rad};
+      if (plan_view) poses[s.robot_id] = common::Pose2D{s.pose.x_m, s.pose.y_m, s.pose.yaw_rad};
       if (!opt.on_state) return;
       // One time base for states.csv: the sim clock in lock-step; in real time the monitor's
       // run clock (hosts' clocks differ: a JetBot stamps host uptime, a sim host its own start).

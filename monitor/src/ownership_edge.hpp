@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
+#include "smart/convert/validate.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/wire/ownership.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::monitor {
 

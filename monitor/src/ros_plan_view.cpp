@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "smart/dds/sequence.hpp"
+
 namespace smart::monitor {
 
 namespace {
@@ -76,15 +78,13 @@ void RosPlanView::publish_paths() {
     }
     nav_msgs_msg_dds__Path_ m{};
     m.header = {stamp, g_map_frame.data()};
-    m.poses._buffer = poses.data();
-    m.poses._length = m.poses._maximum = static_cast<uint32_t>(poses.size());
-    m.poses._release = false;
+    dds::borrow(m.poses, poses);
     path_writers_[r].write(m);
   }
 }
 
 void RosPlanView::publish(const PlanSnapshot& snapshot,
-                          const std::vector<std::optional<agent::Pose2D>>& poses, double stamp_s) {
+                          const std::vector<std::optional<common::Pose2D>>& poses, double stamp_s) {
   const auto stamp = dds::ros_stamp(stamp_s);
   const auto robots = static_cast<uint32_t>(paths_.size());
   auto where = [&](uint32_t r) {
@@ -114,17 +114,13 @@ void RosPlanView::publish(const PlanSnapshot& snapshot,
     const auto a = where(w.robot), b = where(w.for_robot);
     arrows[k] = {{{a.x_m, a.y_m, 0.15}, {b.x_m, b.y_m, 0.15}}};
     auto m = marker(g_waits_ns, static_cast<int32_t>(k), kArrow, stamp);
-    m.points._buffer = arrows[k].data();
-    m.points._length = m.points._maximum = 2;
-    m.points._release = false;
+    dds::borrow(m.points, arrows[k]);
     m.scale = {0.05 * cell_m_, 0.12 * cell_m_, 0.15 * cell_m_};  // shaft, head width, head length
     m.color = {1.0f, 0.3f, 0.0f, 1.0f};
     ms.push_back(m);
   }
   visualization_msgs_msg_dds__MarkerArray_ array{};
-  array.markers._buffer = ms.data();
-  array.markers._length = array.markers._maximum = static_cast<uint32_t>(ms.size());
-  array.markers._release = false;
+  dds::borrow(array.markers, ms);
   markers_.write(array);
   ++arrays_;
 }

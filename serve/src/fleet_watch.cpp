@@ -4,12 +4,12 @@
 
 #include <chrono>
 
+#include "smart/convert/validate.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/reader.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::serve {
 

@@ -16,13 +16,13 @@
 #include <thread>
 
 #include "smart/agent/robot_model.hpp"
+#include "smart/common/child_process.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_registry.hpp"
-#include "smart/tools/child_process.hpp"
 
 namespace smart::serve {
 
@@ -164,7 +164,7 @@ struct Server::Impl {
   std::mutex m;
   RunRegistry registry;
   std::map<std::string, std::vector<std::string>> argv;  // queued runs' `smart run` command
-  std::map<std::string, tools::ChildProcess> children;   // running ones
+  std::map<std::string, common::ChildProcess> children;  // running ones
   uint64_t uploads = 0;
   std::atomic<bool> stopping{false};
   std::map<std::string, std::shared_ptr<const monitor::Instance>> instances;  // loaded on demand
@@ -678,7 +678,7 @@ struct Server::Impl {
   void tend_runs() {
     std::lock_guard lock(m);
     for (const auto& id : registry.start_ready(opt.max_running)) {
-      children.emplace(id, tools::ChildProcess(argv.at(id), dir(id) / "run.out"));
+      children.emplace(id, common::ChildProcess(argv.at(id), dir(id) / "run.out"));
       spdlog::info("serve: {} started", id);
     }
     for (auto it = children.begin(); it != children.end();) {

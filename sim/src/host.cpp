@@ -11,14 +11,14 @@
 #include "shard_host.hpp"
 #include "smart/agent/agent_node.hpp"
 #include "smart/common/memory.hpp"
+#include "smart/convert/convert.hpp"
+#include "smart/convert/validate.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/sim/pacer.hpp"
 #include "smart/sim/ros_view.hpp"
 #include "smart/sim/shard.hpp"
-#include "smart/wire/convert.hpp"
 #include "smart/wire/lockstep.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::sim {
 

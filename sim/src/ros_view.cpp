@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "smart/dds/sequence.hpp"
+
 namespace smart::sim {
 
 std::vector<int8_t> occupancy_cells(const grid::Grid& grid) {
@@ -28,11 +30,7 @@ RosView::RosView(const dds::Participant& participant, const dds::QosProfile& qos
       tf_topic_(participant, dds::ros_topic(std::string(dds::kRosTfTopic))),
       tf_(participant, tf_topic_, qos.state.to_dds()),
       map_topic_(participant, dds::ros_topic(std::string(dds::kRosMapTopic))),
-      map_(participant, map_topic_,
-           dds::Qos()
-               .reliability(dds::Reliability::kReliable)
-               .durability(dds::Durability::kTransientLocal)
-               .keep_last(1)),
+      map_(participant, map_topic_, dds::ros_latched_qos().to_dds()),
       pose_robots_(pose_robots) {
   for (const uint32_t r : pose_robots_) {
     if (r >= robots) {
@@ -62,15 +60,11 @@ void RosView::publish(const World& world) {
   }
   geometry_msgs_msg_dds__PoseArray_ poses{};
   poses.header = {stamp, g_map_frame.data()};
-  poses.poses._buffer = pose_buffer_.data();
-  poses.poses._length = poses.poses._maximum = static_cast<uint32_t>(pose_buffer_.size());
-  poses.poses._release = false;
+  dds::borrow(poses.poses, pose_buffer_);
   poses_.write(poses);
 
   tf2_msgs_msg_dds__TFMessage_ tf{};
-  tf.transforms._buffer = tf_buffer_.data();
-  tf.transforms._length = tf.transforms._maximum = static_cast<uint32_t>(tf_buffer_.size());
-  tf.transforms._release = false;
+  dds::borrow(tf.transforms, tf_buffer_);
   tf_.write(tf);
 
   for (std::size_t k = 0; k < pose_robots_.size(); ++k) {
@@ -91,9 +85,7 @@ void RosView::publish_map(const grid::Grid& grid, double cell_m) {
   // Cell centres are at multiples of cell_m (grid/grid.hpp), so the grid starts half a cell
   // before the first centre.
   m.info.origin = {{-cell_m / 2, -cell_m / 2, 0.0}, yaw_quaternion(0.0)};
-  m.data._buffer = cells.data();
-  m.data._length = m.data._maximum = static_cast<uint32_t>(cells.size());
-  m.data._release = false;
+  dds::borrow(m.data, cells);
   map_.write(m);
 }
 

@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "shard_wire.hpp"
+#include "smart/convert/validate.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/wire.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::sim::detail {
 

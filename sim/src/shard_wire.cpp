@@ -1,21 +1,13 @@
 #include "shard_wire.hpp"
 
+#include "smart/dds/sequence.hpp"
+
 namespace smart::sim::detail {
 
 namespace {
 
-template <class T, class Seq>
-void borrow(Seq& seq, std::vector<T>& v) {
-  seq._length = seq._maximum = static_cast<uint32_t>(v.size());
-  seq._buffer = v.empty() ? nullptr : v.data();
-  seq._release = false;
-}
-
-template <class T, class Seq>
-std::vector<T> copy(const Seq& seq) {
-  return seq._length == 0 ? std::vector<T>{}
-                          : std::vector<T>(seq._buffer, seq._buffer + seq._length);
-}
+using dds::borrow;
+using dds::copy_of;
 
 smart_msg_RobotMotion to_wire(const RobotMotion& m) {
   return {m.x_m, m.y_m, m.yaw_rad, m.vx_mps, m.vy_mps, m.w_radps};
@@ -173,8 +165,8 @@ Exchange from_wire(const smart_msg_ShardExchange& m) {
     e.outbox.ghosts.push_back(
         {m.ghosts._buffer[i].robot_id, from_wire(m.ghosts._buffer[i].motion)});
   }
-  e.progress = copy<smart_msg_Progress>(m.progress);
-  e.states = copy<smart_msg_RobotState>(m.states);
+  e.progress = copy_of<smart_msg_Progress>(m.progress);
+  e.states = copy_of<smart_msg_RobotState>(m.states);
   e.finished_total = m.finished_total;
   e.contacts.robot_robot_events = m.robot_contacts;
   e.contacts.robot_wall_events = m.wall_contacts;

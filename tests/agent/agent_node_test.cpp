@@ -7,10 +7,10 @@
 #include <chrono>
 #include <thread>
 
+#include "smart/convert/convert.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/domain.hpp"
 #include "smart/dds/wire.hpp"
-#include "smart/wire/convert.hpp"
 #include "support/dds_test_support.hpp"
 #include "support/fake_robot.hpp"
 

@@ -7,10 +7,10 @@
 
 #include "fuzz_input.hpp"
 #include "smart/agent/action_queue.hpp"
+#include "smart/convert/convert.hpp"
+#include "smart/convert/validate.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/run_supervisor.hpp"
-#include "smart/wire/convert.hpp"
-#include "smart/wire/validate.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace {

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "smart/common/child_process.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
@@ -15,14 +16,13 @@
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/dds/writer.hpp"
-#include "smart/tools/child_process.hpp"
 #include "support/dds_test_support.hpp"
 
 namespace smart::dds {
 namespace {
 
 using namespace std::chrono_literals;
-using tools::ChildProcess;
+using common::ChildProcess;
 
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p);

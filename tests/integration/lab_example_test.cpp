@@ -18,9 +18,9 @@ using namespace std::chrono_literals;
 TEST(LabExample, SevenEmulatedJetbotsCompleteTheLabPlanAndTheTableIsWritten) {
   const auto out = temp_file("lab_example");
   const auto script = std::string(SMART_SOURCE_DIR) + "/examples/lab-7-jetbots/run-emulated.sh";
-  tools::ChildProcess run({"/usr/bin/env", "SMART=" + smart_exe().string(), "/bin/sh", script, "1",
-                           out.string(), std::to_string(kLabExample)},
-                          temp_file("lab_example.log"));
+  common::ChildProcess run({"/usr/bin/env", "SMART=" + smart_exe().string(), "/bin/sh", script, "1",
+                            out.string(), std::to_string(kLabExample)},
+                           temp_file("lab_example.log"));
   ASSERT_EQ(run.wait(110s).value_or(-1), 0) << slurp(temp_file("lab_example.log"));
   std::istringstream trials(slurp(out / "trials.csv"));
   std::string header, row;

@@ -22,9 +22,9 @@ constexpr double kCellM = MixedFleet::kCellM;
 class MixedRun : public ::testing::Test {
  protected:
   void plan_instance(const std::string& tag) { fleet_.emplace(tag); }
-  tools::ChildProcess start_sim(int domain) const { return fleet_->start_sim(domain); }
-  static tools::ChildProcess start_agent(int domain, double x, double y, double yaw,
-                                         const std::filesystem::path& out) {
+  common::ChildProcess start_sim(int domain) const { return fleet_->start_sim(domain); }
+  static common::ChildProcess start_agent(int domain, double x, double y, double yaw,
+                                          const std::filesystem::path& out) {
     return MixedFleet::start_agent(domain, x, y, yaw, out);
   }
   std::vector<std::string> monitor_args(int domain) const { return fleet_->monitor_args(domain); }

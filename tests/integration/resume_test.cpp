@@ -49,7 +49,7 @@ TEST_F(Resume, AResumedMonitorFinishesTheRunExactlyAsAnUninterruptedOne) {
   auto sim_args = world_args();
   sim_args.insert(sim_args.begin(), {smart_exe().string(), "sim"});
   sim_args.insert(sim_args.end(), {"--domain", std::to_string(kResume)});
-  tools::ChildProcess sim(sim_args, "/dev/null");
+  common::ChildProcess sim(sim_args, "/dev/null");
   auto first = start_smart(monitor_args(kResume), "/dev/null");
   // Kill the monitor once robots have progressed.
   FleetWatcher watcher(kResume);

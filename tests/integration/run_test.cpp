@@ -128,7 +128,7 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   margs.insert(margs.end(), {"--timeout-s", "3"});
   const auto mout = temp_file("kill_monitor.out");
   auto monitor = start_smart(margs, mout);
-  tools::ChildProcess sim(
+  common::ChildProcess sim(
       {smart_exe().string(), "sim", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
        "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--agents", "100",
        "--domain", std::to_string(kRunKillSim), "--real-time-factor", "20"},

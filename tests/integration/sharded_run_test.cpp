@@ -115,7 +115,7 @@ TEST_F(Sharded, ShardProcessesStartedByHandHandRobotsOverAndMatchTheUnshardedRun
       "--map",    p.map,    "--scen",   p.scen,
       "--agents", "50",     "--domain", std::to_string(kShardedProcesses),
       "--run",    "by-hand"};
-  std::vector<tools::ChildProcess> shards;
+  std::vector<common::ChildProcess> shards;
   for (const char* s : {"0/2", "1/2"}) {
     auto args = world;
     args.insert(args.begin(), "sim");
@@ -154,8 +154,8 @@ TEST_F(Sharded, ASecureShardedRunMatchesTheUnshardedRun) {
   plain.insert(plain.end(), {"--out", ref.string()});
   ASSERT_EQ(run_smart(plain, 60s, "secure_ref").code, 0);
   auto secure = run_args(p, kShardedSecure);
-  secure.insert(secure.end(), {"--sim-hosts", "2", "--security", keys.string(), "--out",
-                               out.string()});
+  secure.insert(secure.end(),
+                {"--sim-hosts", "2", "--security", keys.string(), "--out", out.string()});
   const auto r = run_smart(secure, 60s, "secure_sharded", true);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = last_json_line(r.out);

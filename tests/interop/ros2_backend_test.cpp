@@ -66,13 +66,13 @@ std::string start_pose(const char* ns, int col, int row, double yaw) {
   return s.str();
 }
 
-tools::ChildProcess start_robots(int domain, const std::string& odom,
-                                 const std::vector<std::string>& robots,
-                                 const std::filesystem::path& out) {
+common::ChildProcess start_robots(int domain, const std::string& odom,
+                                  const std::vector<std::string>& robots,
+                                  const std::filesystem::path& out) {
   std::vector<std::string> argv{
       FASTDDS_DIFFDRIVE, std::to_string(domain), "90", "0.22", "2.84", "0.5", "3.0", odom};
   argv.insert(argv.end(), robots.begin(), robots.end());
-  return tools::ChildProcess(argv, out);
+  return common::ChildProcess(argv, out);
 }
 
 struct FinalPose {

@@ -25,8 +25,8 @@ TEST(RosInterop, FastDdsNodeReadsTheFleetPosesWrittenByCyclone) {
   const auto b = benchmarks_dir();
   if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
   const auto out = temp_file("fastdds_listener.out");
-  tools::ChildProcess listener({FASTDDS_POSE_LISTENER, std::to_string(kFastDdsInterop), "4", "60"},
-                               out);
+  common::ChildProcess listener({FASTDDS_POSE_LISTENER, std::to_string(kFastDdsInterop), "4", "60"},
+                                out);
   const auto run = run_smart(
       {"run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
        (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
@@ -69,7 +69,7 @@ TEST(RosInterop, FastDdsReaderDecodesThePlanViewRviz2Shows) {
   std::ofstream(scen) << "version 1\n0\tm.map\t5\t2\t1\t0\t2\t1\t2\n"
                          "0\tm.map\t5\t2\t0\t0\t2\t0\t2\n";
   std::ofstream(plan) << "Agent 0:(1,0)->(1,1)->(2,1)->\nAgent 1:(0,0)->(1,0)->(2,0)->\n";
-  tools::ChildProcess listener({FASTDDS_PLAN_LISTENER, std::to_string(kRosPlanView), "60"}, out);
+  common::ChildProcess listener({FASTDDS_PLAN_LISTENER, std::to_string(kRosPlanView), "60"}, out);
   const auto run = run_smart({"run", "--map", map.string(), "--scen", scen.string(), "--plan",
                               plan.string(), "--axis", "xy", "--clock", "realtime", "--ros-plan-hz",
                               "10", "--domain", std::to_string(kRosPlanView), "--no-progress"},

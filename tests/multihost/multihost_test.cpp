@@ -30,7 +30,7 @@ class Multihost : public ::testing::Test {
     return args;
   }
   // Waits for `p` and returns its report (the last JSON object it printed).
-  static nlohmann::json report_of(tools::ChildProcess& p, const std::filesystem::path& out,
+  static nlohmann::json report_of(common::ChildProcess& p, const std::filesystem::path& out,
                                   std::chrono::seconds timeout) {
     const auto code = p.wait(timeout);
     if (!code) p.terminate();
@@ -123,7 +123,7 @@ TEST_F(MultihostBenchmark, ShardedSimOnTwoHostsGivesTheOneHostResults) {
   const auto one_dir = temp_file("one_host_sharded"), lan_dir = temp_file("lan_sharded");
   const auto one = one_host_run(one_dir, kMultihostSharded + 1);
   const std::string run = "shards";
-  std::vector<tools::ChildProcess> shards;
+  std::vector<common::ChildProcess> shards;
   std::vector<std::filesystem::path> outs;
   for (int s = 0; s < 2; ++s) {
     auto a = on_lan(world("sim", kMultihostSharded), run);
@@ -172,7 +172,7 @@ class MultihostMixed : public Multihost {
     if (lab_) fleet_.emplace("lan_mixed");
   }
   struct Processes {
-    tools::ChildProcess sim, agent, monitor;
+    common::ChildProcess sim, agent, monitor;
   };
   Processes start(int domain) const {
     const std::string run = "mixed" + std::to_string(domain);

@@ -61,7 +61,7 @@ class Serve : public ::testing::Test {
   }
   httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
   std::filesystem::path b_, data_, out_;
-  std::optional<tools::ChildProcess> server_;
+  std::optional<common::ChildProcess> server_;
   int port_ = 0;
 };
 

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <limits>
 
-#include "smart/wire/validate.hpp"
+#include "smart/convert/validate.hpp"
 
 namespace smart::sim::detail {
 namespace {

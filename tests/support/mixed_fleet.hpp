@@ -59,7 +59,7 @@ struct MixedFleet {
             "--domain",
             std::to_string(domain)};
   }
-  tools::ChildProcess start_sim(int domain) const {
+  common::ChildProcess start_sim(int domain) const {
     return start_smart(sim_args(domain), "/dev/null");
   }
   // Robot 2's agent, its emulated JetBot starting at (x, y, yaw).
@@ -80,15 +80,15 @@ struct MixedFleet {
             "--domain",
             std::to_string(domain)};
   }
-  static tools::ChildProcess start_agent(int domain, double x, double y, double yaw,
-                                         const std::filesystem::path& out) {
+  static common::ChildProcess start_agent(int domain, double x, double y, double yaw,
+                                          const std::filesystem::path& out) {
     return start_smart(agent_args(domain, x, y, yaw), out);
   }
   // Robot 2 at its start cell (4, 0), facing east.
   static std::vector<std::string> agent_at_start_args(int domain) {
     return agent_args(domain, 4 * kCellM, (6 - 1 - 0) * kCellM, 0.0);
   }
-  static tools::ChildProcess start_agent_at_start(int domain, const std::filesystem::path& out) {
+  static common::ChildProcess start_agent_at_start(int domain, const std::filesystem::path& out) {
     return start_smart(agent_at_start_args(domain), out);
   }
   std::vector<std::string> monitor_args(int domain) const {

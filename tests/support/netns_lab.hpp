@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "smart/tools/child_process.hpp"
+#include "smart/common/child_process.hpp"
 #include "support/dds_test_support.hpp"
 
 namespace smart::test {
@@ -57,13 +57,13 @@ class NetnsLab {
     return a;
   }
   // `smart args...` in host i, stdout (and, with_stderr, stderr) to `out`.
-  tools::ChildProcess start_smart(int i, const std::vector<std::string>& args,
-                                  const std::filesystem::path& out,
-                                  bool with_stderr = false) const {
+  common::ChildProcess start_smart(int i, const std::vector<std::string>& args,
+                                   const std::filesystem::path& out,
+                                   bool with_stderr = false) const {
     std::vector<std::string> argv{smart_exe().string()};
     argv.insert(argv.end(), args.begin(), args.end());
     if (with_stderr) argv.insert(argv.begin(), {"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>&1"});
-    return tools::ChildProcess(in_host(i, argv), out);
+    return common::ChildProcess(in_host(i, argv), out);
   }
 
   // Host i's link drops `per_mille` of its packets each way (0: none; 1000: the link is cut).

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "smart/tools/child_process.hpp"
+#include "smart/common/child_process.hpp"
 #include "support/dds_test_support.hpp"
 
 namespace smart::test {
@@ -40,11 +40,11 @@ inline std::string slurp(const std::filesystem::path& p) {
 }
 
 // Starts `smart args...` in the background, stdout to `out`.
-inline tools::ChildProcess start_smart(const std::vector<std::string>& args,
-                                       const std::filesystem::path& out) {
+inline common::ChildProcess start_smart(const std::vector<std::string>& args,
+                                        const std::filesystem::path& out) {
   std::vector<std::string> argv{smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
-  return tools::ChildProcess(argv, out);
+  return common::ChildProcess(argv, out);
 }
 
 // Runs `smart args...` to the end; with_stderr: its error messages are in `out` too.
@@ -54,7 +54,7 @@ inline SmartRun run_smart(const std::vector<std::string>& args, std::chrono::sec
   std::vector<std::string> argv{smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
   if (with_stderr) argv.insert(argv.begin(), {"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>&1"});
-  tools::ChildProcess p(argv, out);
+  common::ChildProcess p(argv, out);
   SmartRun r;
   if (auto rc = p.wait(timeout)) {
     r.code = *rc;

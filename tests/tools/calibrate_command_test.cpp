@@ -42,7 +42,7 @@ SmartRun smart_no_stdin(const std::vector<std::string>& args, const std::string&
   std::vector<std::string> argv{"/bin/sh", "-c", "exec \"$0\" \"$@\" </dev/null 2>&1",
                                 smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
-  tools::ChildProcess p(argv, out);
+  common::ChildProcess p(argv, out);
   SmartRun r;
   r.code = p.wait(60s).value_or(-1);
   r.out = slurp(out);
@@ -163,7 +163,7 @@ TEST(CalibrateTrim, AsksBeforeMovingAndDoesNotMoveWithoutAYes) {
 // driving on for --seconds.
 TEST(CalibrateTrim, ASignalStopsTheTrialAndTheWheels) {
   const auto out = temp_file("calibrate_trim_signal.out");
-  tools::ChildProcess p(
+  common::ChildProcess p(
       {"/bin/sh", "-c", "exec \"$0\" \"$@\" </dev/null 2>&1", smart_exe().string(), "calibrate",
        "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0,0,0", "--seconds", "30",
        "--yes", "--domain", std::to_string(kCalibrate)},

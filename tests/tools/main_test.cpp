@@ -13,7 +13,7 @@ using ::testing::HasSubstr;
 
 test::SmartRun smart_with_stderr(const std::string& args, const std::string& tag) {
   const auto out = test::temp_file(tag + ".out");
-  ChildProcess p({"/bin/sh", "-c", test::smart_exe().string() + " " + args + " 2>&1"}, out);
+  common::ChildProcess p({"/bin/sh", "-c", test::smart_exe().string() + " " + args + " 2>&1"}, out);
   test::SmartRun r;
   r.code = p.wait(60s).value_or(-1);
   r.out = test::slurp(out);

@@ -7,19 +7,20 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <random>
+#include <stdexcept>
 #include <thread>
 
 #include "smart/agent/agent.hpp"
+#include "smart/common/child_process.hpp"
+#include "smart/convert/convert.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/action_builder.hpp"
+#include "smart/planning/random_walks.hpp"
 #include "smart/sim/fleet.hpp"
-#include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
-#include "smart/wire/convert.hpp"
 
 namespace smart::tools {
 
@@ -34,55 +35,25 @@ struct BenchSimOptions {
   int system_capacity = 0, threads = 0;
 };
 
-// Independent random walks from free[r], `steps` timesteps each (collisions allowed).
-grid::Plan random_walks(const grid::Grid& grid, const std::vector<grid::Cell>& free,
-                        std::size_t robots, std::size_t steps, std::mt19937_64& rng) {
-  grid::Plan plan;
-  for (std::size_t r = 0; r < robots; ++r) {
-    grid::RobotPath p{static_cast<int>(r), 0, {}};
-    grid::Cell c = free[r];
-    p.steps.push_back({c, 0, 0});
-    for (std::size_t k = 1; k < steps; ++k) {
-      const grid::Cell n[4] = {{c.x + 1, c.y}, {c.x - 1, c.y}, {c.x, c.y + 1}, {c.x, c.y - 1}};
-      for (int tries = 0; tries < 8; ++tries) {
-        const auto cand = n[rng() % 4];
-        if (grid.free(cand)) {
-          c = cand;
-          break;
-        }
-      }
-      p.steps.push_back({c, double(k), 0});
-    }
-    plan.paths.push_back(std::move(p));
-  }
-  return plan;
-}
-
 int run_bench_sim(const BenchSimOptions& o) {
   const auto grid = grid::parse_map(grid::read_text_file(o.map, "map"), o.map);
   const auto model = agent::load_robot_model(find_config_file("robots", o.robot));
-  std::mt19937_64 rng(o.seed);
-  std::vector<grid::Cell> free;
-  for (int32_t y = 0; y < grid.height(); ++y) {
-    for (int32_t x = 0; x < grid.width(); ++x) {
-      if (!grid.blocked({x, y})) free.push_back({x, y});
-    }
-  }
-  if (free.size() < o.robots) {
-    std::cerr << "bench sim: " << o.robots << " robots do not fit on " << free.size()
-              << " free cells of " << o.map << "; use fewer --robots or a larger map\n";
+  planning::RandomWalks walks;
+  try {
+    walks = planning::generate_random_walks(grid, o.robots,
+                                            static_cast<std::size_t>(o.sim_seconds) + 10, o.seed);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "bench sim: " << e.what() << " of " << o.map
+              << "; use fewer --robots or a larger map\n";
     return kExitBadInput;
   }
-  std::shuffle(free.begin(), free.end(), rng);
-  const auto plan =
-      random_walks(grid, free, o.robots, static_cast<std::size_t>(o.sim_seconds) + 10, rng);
+  const auto& plan = walks.plan;
   const auto actions = monitor::build_actions(plan, grid::Heading::kEast);
   sim::SimConfig cfg;
   cfg.cell_m = o.cell_m;
   cfg.system_capacity = o.system_capacity;
   cfg.threads = o.threads;
-  std::vector<grid::Cell> start_cells(free.begin(), free.begin() + static_cast<long>(o.robots));
-  sim::Fleet fleet(grid, model, cfg, sim::start_poses(grid, o.cell_m, start_cells, 0.0));
+  sim::Fleet fleet(grid, model, cfg, sim::start_poses(grid, o.cell_m, walks.starts, 0.0));
   for (uint32_t r = 0; r < o.robots; ++r) {
     // Through the wire conversion, exactly what a sim host's agents would receive.
     std::vector<agent::AgentAction> w;
@@ -151,7 +122,7 @@ int run_bench_run(const BenchRunOptions& o) {
   std::vector<nlohmann::json> rows;
   for (const auto n : o.agents) {
     const auto dir = std::filesystem::path(o.out) / std::to_string(n);
-    std::vector<std::string> argv{self_executable().string(),
+    std::vector<std::string> argv{common::self_executable().string(),
                                   "run",
                                   "--map",
                                   o.map,
@@ -171,7 +142,7 @@ int run_bench_run(const BenchRunOptions& o) {
                                   dir.string(),
                                   "--no-progress"};
     if (!o.axis.empty()) argv.insert(argv.end(), {"--axis", o.axis});
-    ChildProcess run(argv, "/dev/null");
+    common::ChildProcess run(argv, "/dev/null");
     const int rc = run.wait(std::chrono::hours(4)).value_or(124);
     std::ifstream in(dir / "summary.json");
     if (rc != 0 || !in) {

@@ -14,6 +14,7 @@
 #include <random>
 #include <thread>
 
+#include "smart/common/child_process.hpp"
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/reader.hpp"
@@ -21,7 +22,6 @@
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/dds/writer.hpp"
-#include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 
@@ -183,9 +183,9 @@ struct Pinger {
 };
 
 int run_ping(const DdsOptions& o, const PingOptions& po) {
-  std::optional<ChildProcess> echo;
+  std::optional<common::ChildProcess> echo;
   if (po.spawn_echo) {
-    std::vector<std::string> argv{self_executable().string(), "dds-echo"};
+    std::vector<std::string> argv{common::self_executable().string(), "dds-echo"};
     const auto dds = dds_argv(o);
     argv.insert(argv.end(), dds.begin(), dds.end());
     echo.emplace(argv);

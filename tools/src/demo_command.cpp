@@ -3,7 +3,7 @@
 // simulated fleet over DDS (`smart run`), and print the summary.
 #include <iostream>
 
-#include "smart/tools/child_process.hpp"
+#include "smart/common/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 
@@ -44,13 +44,13 @@ void register_demo_command(CLI::App& app, int& exit_code) {
     std::cerr << "demo: 3/4 planning with the built-in prioritized planner\n";
     if ((exit_code = plan_instance(map, scen, o->robots, o->seed, 120, plan)) != 0) return;
     std::cerr << "demo: 4/4 executing the plan: monitor + Simbody sim host over DDS\n";
-    ChildProcess run({self_executable().string(), "run", "--map", map, "--scen", scen, "--plan",
-                      plan, "--axis", "xy", "--domain", std::to_string(o->domain), "--out",
-                      (dir / "results").string()});
+    common::ChildProcess run({common::self_executable().string(), "run", "--map", map, "--scen",
+                              scen, "--plan", plan, "--axis", "xy", "--domain",
+                              std::to_string(o->domain), "--out", (dir / "results").string()});
     exit_code = run.wait(std::chrono::hours(1)).value_or(124);
     std::cerr << "demo: results in " << (dir / "results").string() << "\n"
-              << "demo: watch it in the viewer: " << self_executable().string() << " serve --open "
-              << std::filesystem::absolute(dir / "results").string()
+              << "demo: watch it in the viewer: " << common::self_executable().string()
+              << " serve --open " << std::filesystem::absolute(dir / "results").string()
               << "   then open http://127.0.0.1:8080/\n";
   });
 }

@@ -15,8 +15,8 @@
 #include <optional>
 #include <thread>
 
+#include "smart/common/child_process.hpp"
 #include "smart/grid/text_file.hpp"
-#include "smart/tools/child_process.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/experiment.hpp"
@@ -81,7 +81,7 @@ fs::path make_plan(Experiment& e, std::size_t instance, std::size_t agents) {
   if (!fs::exists(plan)) {
     std::vector<std::string> argv;
     if (e.spec.plan_source == PlanSource::kBuiltin) {
-      argv = {self_executable().string(),
+      argv = {common::self_executable().string(),
               "plan",
               "--map",
               map.string(),
@@ -102,8 +102,9 @@ fs::path make_plan(Experiment& e, std::size_t instance, std::size_t agents) {
       }
       argv = {"/bin/sh", "-c", cmd};
     }
-    const int rc =
-        ChildProcess(argv, plan.string() + ".log").wait(std::chrono::hours(24)).value_or(-1);
+    const int rc = common::ChildProcess(argv, plan.string() + ".log")
+                       .wait(std::chrono::hours(24))
+                       .value_or(-1);
     if (rc != 0 || !fs::exists(plan)) {
       throw std::runtime_error("experiment: planning " + std::to_string(agents) + " robots of " +
                                scen.string() + " failed (exit code " + std::to_string(rc) +
@@ -115,7 +116,7 @@ fs::path make_plan(Experiment& e, std::size_t instance, std::size_t agents) {
 
 std::vector<std::string> run_argv(Experiment& e, const ExperimentCell& c, int domain) {
   const auto& [map, scen] = e.files[c.instance];
-  std::vector<std::string> argv{self_executable().string(),
+  std::vector<std::string> argv{common::self_executable().string(),
                                 "--log-level",
                                 "error",
                                 "run",
@@ -153,7 +154,7 @@ std::string eta_text(double s) {
 
 namespace {
 struct Slot {
-  std::optional<ChildProcess> child;
+  std::optional<common::ChildProcess> child;
   const ExperimentCell* cell = nullptr;
   Clock::time_point started;
 };
@@ -297,7 +298,7 @@ int plot_experiment(const std::string& results_dir, const std::string& out) {
     return kExitBadInput;
   }
   const auto dir = out.empty() ? (fs::path(results_dir) / "figures").string() : out;
-  const int rc = ChildProcess({"/usr/bin/python3", script.string(), results_dir, dir})
+  const int rc = common::ChildProcess({"/usr/bin/python3", script.string(), results_dir, dir})
                      .wait(std::chrono::minutes(10))
                      .value_or(-1);
   if (rc != 0) {

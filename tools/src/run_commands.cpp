@@ -14,12 +14,12 @@
 #include <tuple>
 
 #include "smart/agent/robot_model.hpp"
+#include "smart/common/child_process.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/scen_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/results.hpp"
-#include "smart/tools/child_process.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/run_options.hpp"
@@ -96,9 +96,9 @@ std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard
 // `smart run`'s sim children (one per shard), with the monitor's own options and the plan's
 // robot count.
 // Their reports (JSON) go to sim-<shard>.json in the results folder, when there is one.
-std::vector<ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t robots,
-                                     const std::string& robot) {
-  std::vector<ChildProcess> out;
+std::vector<common::ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t robots,
+                                             const std::string& robot) {
+  std::vector<common::ChildProcess> out;
   if (!o.out.empty()) std::filesystem::create_directories(o.out);
   for (uint32_t s = 0; s < o.sim.shards; ++s) {
     SimCliOptions child = o.sim;
@@ -111,7 +111,7 @@ std::vector<ChildProcess> spawn_sims(const MonitorCliOptions& o, std::size_t rob
       child.threads = static_cast<int>(
           std::max<uint32_t>(1, std::thread::hardware_concurrency() / o.sim.shards));
     }
-    out.emplace_back(sim_argv(self_executable().string(), child), sim_report_file(o, s));
+    out.emplace_back(sim_argv(common::self_executable().string(), child), sim_report_file(o, s));
   }
   return out;
 }
@@ -132,7 +132,7 @@ std::optional<uint64_t> sim_handovers(const MonitorCliOptions& o) {
   return sum;
 }
 
-std::function<std::string()> watch(std::vector<ChildProcess>& sims) {
+std::function<std::string()> watch(std::vector<common::ChildProcess>& sims) {
   return [&sims]() -> std::string {
     for (std::size_t s = 0; s < sims.size(); ++s) {
       if (sims[s].running()) continue;
@@ -193,7 +193,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
         "--qos lan or wifi, or --sim-hosts 1");
   }
-  std::vector<ChildProcess> sims;
+  std::vector<common::ChildProcess> sims;
   if (spawn_sim_child) sims = spawn_sims(o, in.plan.paths.size(), robot_file);
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);

@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "smart/common/child_process.hpp"
 #include "smart/config/yaml_checks.hpp"
 #include "smart/dds/topics.hpp"
-#include "smart/tools/child_process.hpp"
 
 namespace smart::tools {
 
@@ -61,7 +61,7 @@ std::string openssl_path() {
 void openssl(const std::vector<std::string>& args, const std::string& step) {
   std::vector<std::string> argv{openssl_path()};
   argv.insert(argv.end(), args.begin(), args.end());
-  ChildProcess p(argv, "/dev/null");
+  common::ChildProcess p(argv, "/dev/null");
   const auto rc = p.wait(std::chrono::seconds(60));
   if (rc.value_or(-1) != 0) {
     throw std::runtime_error("openssl failed to " + step +

@@ -6,9 +6,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "smart/common/child_process.hpp"
 #include "smart/serve/fleet_watch.hpp"
 #include "smart/serve/server.hpp"
-#include "smart/tools/child_process.hpp"
 #include "smart/tools/commands.hpp"
 
 namespace smart::tools {
@@ -50,7 +50,7 @@ std::filesystem::path default_data_dir() {
 int serve_runs(ServeCliOptions o) {
   auto& s = o.serve;
   if (s.data_dir.empty()) s.data_dir = default_data_dir();
-  s.smart_exe = self_executable();
+  s.smart_exe = common::self_executable();
   // The viewer built next to this executable (<build>/web-dist), unless --web says otherwise.
   const auto built = s.smart_exe.parent_path().parent_path() / "web-dist";
   if (s.web_dir.empty() && std::filesystem::exists(built / "index.html")) s.web_dir = built;

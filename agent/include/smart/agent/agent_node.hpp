@@ -33,12 +33,12 @@
 #include <vector>
 
 #include "smart/agent/agent.hpp"
+#include "smart/convert/validate.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/wire/link.hpp"
 #include "smart/wire/lockstep.hpp"
-#include "smart/wire/validate.hpp"
 
 namespace smart::agent {
 

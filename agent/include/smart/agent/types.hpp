@@ -1,42 +1,21 @@
 // Contract: plain value types of the agent, in the world frame of grid/grid.hpp (metres,
 // yaw counter-clockwise from +x). Times are in seconds of whichever clock drives the agent (sim
-// time in simulation, wall time on hardware); an agent never mixes the two.
+// time in simulation, wall time on hardware); an agent never mixes the two. Poses, twists and
+// wheel values live in common/pose.hpp (they are shared by layers below the agent) and are named
+// here as the agent's own.
 #pragma once
 
 #include <cstdint>
 
+#include "smart/common/pose.hpp"
+
 namespace smart::agent {
 
-struct Pose2D {
-  double x_m = 0;
-  double y_m = 0;
-  double yaw_rad = 0;
-};
-
-struct PoseSample {
-  Pose2D pose;
-  double linear_mps = 0;  // forward speed
-  double angular_radps = 0;
-  double stamp_s = 0;  // when the pose was measured
-  bool valid = false;
-};
-
-struct WheelSpeeds {
-  double left_mps = 0;
-  double right_mps = 0;
-};
-
-// A dimensionless factor per wheel (measured gains, trims), 1 = as commanded.
-struct WheelFactors {
-  double left = 1.0;
-  double right = 1.0;
-  bool operator==(const WheelFactors&) const = default;
-};
-
-struct Twist {
-  double linear_mps = 0;
-  double angular_radps = 0;
-};
+using common::Pose2D;
+using common::PoseSample;
+using common::Twist;
+using common::WheelFactors;
+using common::WheelSpeeds;
 
 enum class ActionKind : uint8_t { kMove, kRotate };
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "smart/agent/types.hpp"
+#include "smart/common/pose.hpp"
 #include "smart/dds/participant.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/dds/writer.hpp"
@@ -25,8 +25,8 @@ class RosPlanView {
               double robot_radius_m);
   void publish_paths();
   // poses: each robot's last reported pose (nullopt: none yet; drawn at its start).
-  void publish(const PlanSnapshot& snapshot, const std::vector<std::optional<agent::Pose2D>>& poses,
-               double stamp_s);
+  void publish(const PlanSnapshot& snapshot,
+               const std::vector<std::optional<common::Pose2D>>& poses, double stamp_s);
   uint64_t marker_arrays() const { return arrays_; }
 
  private:

@@ -111,7 +111,7 @@ struct MonitorResult {
   std::vector<uint32_t> off_goal;         // robots seen away from their goal after finishing
   std::vector<uint32_t> goal_unverified;  // robots not seen after finishing
   uint64_t rejected_progress = 0;
-  // Samples the edge dropped before they became events (wire/validate.hpp): topic -> reason ->
+  // Samples the edge dropped before they became events (convert/validate.hpp): topic -> reason ->
   // count.
   std::map<std::string, std::map<std::string, uint64_t>> rejected_samples;
 };

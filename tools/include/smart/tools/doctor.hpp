@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "smart/agent/types.hpp"
-#include "smart/wire/validate.hpp"
+#include "smart/convert/validate.hpp"
 
 namespace smart::tools {
 

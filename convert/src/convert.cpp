@@ -1,4 +1,4 @@
-#include "smart/wire/convert.hpp"
+#include "smart/convert/convert.hpp"
 
 namespace smart::wire {
 

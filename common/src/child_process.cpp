@@ -1,4 +1,4 @@
-#include "smart/tools/child_process.hpp"
+#include "smart/common/child_process.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace smart::tools {
+namespace smart::common {
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
                            const std::filesystem::path& stdout_file) {
@@ -79,4 +79,4 @@ int ChildProcess::terminate(std::chrono::milliseconds grace) {
 
 std::filesystem::path self_executable() { return std::filesystem::read_symlink("/proc/self/exe"); }
 
-}  // namespace smart::tools
+}  // namespace smart::common

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace smart::tools {
+namespace smart::common {
 
 class ChildProcess {
  public:
@@ -37,4 +37,4 @@ class ChildProcess {
 // Path of the running executable (/proc/self/exe).
 std::filesystem::path self_executable();
 
-}  // namespace smart::tools
+}  // namespace smart::common

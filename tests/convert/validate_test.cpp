@@ -1,5 +1,5 @@
 // The checks every received sample passes before it touches a core or a results file.
-#include "smart/wire/validate.hpp"
+#include "smart/convert/validate.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "smart/tools/child_process.hpp"
+#include "smart/common/child_process.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace smart::tools {
+namespace smart::common {
 namespace {
 
 using namespace std::chrono_literals;
@@ -51,4 +51,4 @@ TEST(ChildProcess, AMissingProgramIsAnErrorNamingIt) {
 }
 
 }  // namespace
-}  // namespace smart::tools
+}  // namespace smart::common

@@ -1,5 +1,5 @@
 // The one conversion between core types and wire types, both ways.
-#include "smart/wire/convert.hpp"
+#include "smart/convert/convert.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "smart/wire/validate.hpp"
+#include "smart/convert/validate.hpp"
 
 #include <algorithm>
 #include <cmath>
