@@ -22,10 +22,6 @@ void AgentNode::host(Agent& agent, int64_t reported_finished, int64_t reported_e
   const uint32_t robot = agent.robot_id();
   if (hosted_.size() <= robot) hosted_.resize(robot + 1);
   hosted_[robot] = {&agent, reported_finished, reported_executing};
-  if (auto it = parked_.find(robot); it != parked_.end()) {
-    agent.on_window(it->second.first, it->second.second);  // idempotent if it knew it already
-    parked_.erase(it);
-  }
 }
 
 std::pair<int64_t, int64_t> AgentNode::unhost(uint32_t robot) {
@@ -39,10 +35,8 @@ std::pair<int64_t, int64_t> AgentNode::reported(uint32_t robot) const {
   return {hosted_[robot].reported_finished, hosted_[robot].reported_executing};
 }
 
-void AgentNode::set_relay(Relay relay) { relay_ = std::move(relay); }
-
-void AgentNode::write_relayed(const smart_msg_Progress& p) { progress_.write(p); }
-void AgentNode::write_relayed(const smart_msg_RobotState& s) { states_.write(s); }
+void AgentNode::write(const smart_msg_Progress& p) { progress_.write(p); }
+void AgentNode::write(const smart_msg_RobotState& s) { states_.write(s); }
 
 AgentNode::Hosted* AgentNode::hosted(uint32_t robot) {
   return robot < hosted_.size() && hosted_[robot].agent != nullptr ? &hosted_[robot] : nullptr;
@@ -100,7 +94,7 @@ void AgentNode::deliver_windows(double now_s) {
   windows_in_flight_.erase(windows_in_flight_.begin(), windows_in_flight_.begin() + long(n));
 }
 
-std::size_t AgentNode::take_windows(const Accept& accept, double now_s) {
+std::size_t AgentNode::take_windows(const Accept& accept, double now_s, const Unhosted& unhosted) {
   deliver_windows(now_s);
   return actions_.take_each_from([&](const smart_msg_ActionWindow& m, dds_instance_handle_t from) {
     if (!from_monitor("action", from, true)) return;
@@ -116,7 +110,7 @@ std::size_t AgentNode::take_windows(const Accept& accept, double now_s) {
     if (accept && !accept(info)) return;
     Hosted* h = hosted(m.robot_id);
     if (h == nullptr) {
-      if (relay_) parked_[m.robot_id] = {m.run_id, wire::actions_from_wire(m)};
+      if (unhosted) unhosted(m.robot_id, m.run_id, wire::actions_from_wire(m));
       return;
     }
     if (!to_host_) {
@@ -148,7 +142,7 @@ uint64_t AgentNode::write_progress(double now_s) {
   return newly_finished;
 }
 
-uint64_t AgentNode::publish_progress(double now_s) {
+uint64_t AgentNode::publish_progress(double now_s, const ProgressFilter& write_here) {
   if (to_monitor_) {
     queued_.resize(hosted_.size(), {-1, -1});
     for (uint32_t robot = 0; robot < hosted_.size(); ++robot) {
@@ -176,7 +170,7 @@ uint64_t AgentNode::publish_progress(double now_s) {
       newly_finished += static_cast<uint64_t>(finished - h.reported_finished);
     }
     const auto sample = wire::progress(robot, h.agent->run_id(), finished, executing);
-    if (!relay_ || !relay_(sample)) progress_.write_batched(sample);
+    if (!write_here || write_here(sample)) progress_.write_batched(sample);
     h.reported_finished = finished;
     h.reported_executing = executing;
   }

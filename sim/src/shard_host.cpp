@@ -68,11 +68,6 @@ std::string ShardPeer::admit(uint32_t shard, dds_instance_handle_t from) {
   return {};
 }
 
-bool ShardPeer::complete(uint64_t tick) const {
-  const auto it = by_tick_.find(tick);
-  return it != by_tick_.end() && it->second.size() + 1 == shards_;
-}
-
 std::vector<const Exchange*> ShardPeer::of(uint64_t tick) const {
   std::vector<const Exchange*> out;
   if (const auto it = by_tick_.find(tick); it != by_tick_.end()) {
@@ -84,16 +79,6 @@ std::vector<const Exchange*> ShardPeer::of(uint64_t tick) const {
 std::vector<const Exchange*> ShardPeer::last() const {
   std::vector<const Exchange*> out;
   for (const auto& [s, e] : last_) out.push_back(&e);
-  return out;
-}
-
-std::string ShardPeer::missing(uint64_t tick) const {
-  std::string out;
-  const auto it = by_tick_.find(tick);
-  for (uint32_t s = 0; s < shards_; ++s) {
-    if (s == shard_ || (it != by_tick_.end() && it->second.count(s))) continue;
-    out += (out.empty() ? "" : ", ") + std::to_string(s);
-  }
   return out;
 }
 

@@ -31,14 +31,11 @@ class ShardPeer {
   void publish(const Exchange& e);
   // Takes what arrived; on_receipt(e) for each exchange that passed the checks.
   void take(const std::function<void(const Exchange&)>& on_receipt);
-  // Every other shard's exchange of `tick` (or their last exchanges) is in.
-  bool complete(uint64_t tick) const;
+  // Every other shard's last exchange is in.
   bool last_complete() const { return last_.size() + 1 == shards_; }
   // The other shards' exchanges of `tick`, by shard; last(): their final ones.
   std::vector<const Exchange*> of(uint64_t tick) const;
   std::vector<const Exchange*> last() const;
-  // Shards whose exchange of `tick` is missing, e.g. "1, 3".
-  std::string missing(uint64_t tick) const;
   void forget_before(uint64_t tick);
   dds_entity_t reader() const { return in_.handle(); }
   const wire::Rejections& rejections() const { return rejected_; }

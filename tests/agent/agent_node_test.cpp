@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 #include <thread>
 
 #include "smart/convert/convert.hpp"
@@ -96,7 +97,7 @@ TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
   Rig rig(test::kAgentNodeProgress);
   test::FakeRobot body(0.3);
   Agent a({2, footbot(), 0.1, 0.5}, body, body);
-  a.activate();
+  EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   EXPECT_EQ(rig.node.publish_progress(), 0u);  // no run yet: nothing to say
   a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
@@ -128,7 +129,7 @@ TEST(AgentNode, OverAModelledLinkWindowsAndProgressArriveTheDelayLater) {
   rig.node.set_link(link);
   test::FakeRobot body(0.3);
   Agent a({1, footbot(), 0.1, 0.5}, body, body);
-  a.activate();
+  EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   rig.send(1, 9, {rotate_step(0, 0.0)});
   std::size_t seen = 0;
@@ -159,7 +160,7 @@ TEST(AgentNode, RepublishRepeatsTheLastReportedProgressForARestartedAgentsSake) 
   Rig rig(test::kAgentNodeRepublish);
   test::FakeRobot body(0.3);
   Agent a({1, footbot(), 0.1, 0.5}, body, body);
-  a.activate();
+  EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   rig.node.republish_progress();  // nothing reported yet: nothing repeated
   a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
@@ -204,31 +205,52 @@ TEST(AgentNode, WindowsFromAWriterWeakerThanAMonitorAreDropped) {
 namespace smart::agent {
 namespace {
 
-// Sim shards: a window for a robot the node does not host is kept and given to the robot's agent
-// when it arrives; the arriving robot continues its previous host's progress count; progress the
-// relay takes is counted but not written (its home shard writes it).
-TEST(AgentNode, ShardsParkWindowsOfRobotsNotHostedAndRelayProgress) {
+// Sim shards: a window for a robot the node does not host goes to the caller (who gives it to the
+// robot's agent when it arrives); the arriving robot continues its previous host's progress
+// count; progress the caller's filter takes is counted but not written (its home shard writes it).
+TEST(AgentNode, WindowsOfRobotsNotHostedGoToTheCallerAndFilteredProgressIsNotWritten) {
   Rig rig(test::kAgentNodeShards);
-  rig.node.set_relay([](const smart_msg_Progress& p) { return p.robot_id == 4; });
   rig.send(4, 9, {rotate_step(0, 0.0), rotate_step(1, 0.0), rotate_step(2, 1.0)});
-  std::size_t taken = 0;
+  std::optional<std::pair<uint64_t, std::vector<AgentAction>>> kept;
   ASSERT_TRUE(eventually([&] {
-    taken += rig.node.take_windows();
-    return taken > 0;
+    rig.node.take_windows({}, 0, [&](uint32_t robot, uint64_t run, std::vector<AgentAction> w) {
+      EXPECT_EQ(robot, 4u);
+      kept.emplace(run, std::move(w));
+    });
+    return kept.has_value();
   }));
+  EXPECT_EQ(kept->first, 9u);
+  ASSERT_EQ(kept->second.size(), 3u);
   test::FakeRobot body(0.3);
   Agent a({4, footbot(), 0.1, 0.5}, body, body);
-  a.activate();
+  EXPECT_TRUE(a.activate().ok());
   a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
   a.step(0.0);  // seq 0 finished where it was (another host reported it)
   rig.node.host(a, 0, -1);
-  EXPECT_EQ(a.queue_length(), 2u) << "the parked window reached the agent";
+  a.on_window(kept->first, kept->second);
+  EXPECT_EQ(a.queue_length(), 2u) << "the kept window reached the agent";
   EXPECT_EQ(rig.node.reported(4), (std::pair<int64_t, int64_t>{0, -1}));
   a.step(0.1);  // seq 1: already facing 0
   ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
-  EXPECT_EQ(rig.node.publish_progress(), 1u) << "one action beyond what was reported before";
-  std::this_thread::sleep_for(200ms);
-  EXPECT_EQ(rig.progress.take_each([](const smart_msg_Progress&) {}), 0u) << "relayed, not written";
+  std::vector<smart_msg_Progress> taken;
+  EXPECT_EQ(rig.node.publish_progress(0,
+                                      [&](const smart_msg_Progress& p) {
+                                        taken.push_back(p);
+                                        return p.robot_id != 4;
+                                      }),
+            1u)
+      << "one action beyond what was reported before";
+  ASSERT_EQ(taken.size(), 1u);
+  EXPECT_EQ(taken[0].finished_seq, 1);
+  // One writer delivers in order: once a sentinel written after publish_progress() is in, a
+  // sample the node had written for robot 4 would be in too.
+  rig.node.write(wire::progress(5, 9, 0, -1));
+  std::vector<uint32_t> written;
+  ASSERT_TRUE(eventually([&] {
+    rig.progress.take_each([&](const smart_msg_Progress& p) { written.push_back(p.robot_id); });
+    return !written.empty() && written.back() == 5;
+  }));
+  EXPECT_EQ(written, std::vector<uint32_t>{5}) << "the filtered sample was written by the node";
   EXPECT_EQ(rig.node.unhost(4), (std::pair<int64_t, int64_t>{1, 2}));
   EXPECT_EQ(rig.node.reported(4), (std::pair<int64_t, int64_t>{-1, -1}));
 }

@@ -81,7 +81,6 @@ TEST(ShardPeer, ASecondWriterOfAHeldShardIsRefusedUntilTheHolderLeaves) {
       << "the second writer's exchanges were not refused";
   EXPECT_EQ(me.peer.of(1).at(0)->finished_total, 5u);
   EXPECT_TRUE(me.peer.of(2).empty());
-  EXPECT_THAT(me.peer.missing(2), HasSubstr("1"));
   EXPECT_EQ(me.peer.rejections().total(), 2u) << "our own exchange was counted as refused";
 
   // The holder leaves: the next writer of shard 1 (a restarted shard) is taken.
@@ -104,8 +103,7 @@ TEST(ShardPeer, AWriterClaimingAnotherShardOrThisShardsNumberIsRefused) {
   other.peer.publish(exchange(0, 1, 3));
   ASSERT_TRUE(
       take_until(me.peer, [&] { return refused(me.peer, "another process also runs shard 0/3"); }));
-  EXPECT_EQ(me.peer.of(1).size(), 1u);
-  EXPECT_FALSE(me.peer.complete(1));
+  EXPECT_EQ(me.peer.of(1).size(), 1u) << "only the holder's exchange of period 1 is kept";
 }
 
 }  // namespace

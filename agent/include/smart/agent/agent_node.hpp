@@ -4,9 +4,12 @@
 //   rejections(), logged rate-limited), and routes each other received action window (keyed topic,
 //   demultiplexed by robot id) to the hosted agent of that robot, when `accept` (if given) agrees;
 //   `accept` sees every window, hosted robot or not (the sim host counts them for the lock-step
-//   handshake);
+//   handshake); a window of a robot not hosted here goes to `unhosted`, if given (a sharded sim
+//   keeps it for the robot's arrival), else nowhere;
 // - publish_progress() publishes a robot's cumulative progress only when it changed, for
-//   robots that have a run, and returns how many actions were newly reported finished;
+//   robots that have a run, where `write_here` (if given) agrees (else the caller took the sample:
+//   a sharded sim's robot whose home is another shard), and returns how many actions were newly
+//   reported finished; write() sends samples the caller made for robots this node speaks for;
 // - publish_state() packs one robot's state, flush_states() sends what was packed (a host with
 //   many robots sends a period's states in a few messages: Writer::write_batched); progress is
 //   sent before publish_progress() and republish_progress() return; take_monitor_clock() the
@@ -58,27 +61,29 @@ class AgentNode {
             std::optional<wire::Bounds> bounds = std::nullopt);
 
   // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node. A robot arriving
-  // from another sim shard comes with what its previous host last reported (progress is
+  // from another host (a sim shard) comes with what its previous host last reported (progress is
   // counted per host: the count continues instead of reporting its actions again).
   void host(Agent& agent, int64_t reported_finished = -1, int64_t reported_executing = -1);
   // The robot leaves this host; returns what was last reported for it (finished, executing).
   std::pair<int64_t, int64_t> unhost(uint32_t robot);
   std::pair<int64_t, int64_t> reported(uint32_t robot) const;
 
-  // Sim shards (sim/shard.hpp): windows of robots not hosted here are kept (the newest per
-  // robot) and given to the robot's agent when it arrives; progress of hosted robots for which
-  // `relay` returns true is not written (their home shard writes it, write_relayed()).
-  using Relay = std::function<bool(const smart_msg_Progress&)>;
-  void set_relay(Relay relay);
-  void write_relayed(const smart_msg_Progress& progress);
-  void write_relayed(const smart_msg_RobotState& state);
+  // Samples the caller made for robots this node speaks for, on the node's own writers (a
+  // sharded sim writes what another shard reported for the robots homed here: the monitor hears
+  // each robot from one writer).
+  void write(const smart_msg_Progress& progress);
+  void write(const smart_msg_RobotState& state);
 
   // Turns the link model on (off by default: everything passes at once).
   void set_link(const wire::LinkModel& link);
 
   using Accept = std::function<bool(const WindowInfo&)>;
-  std::size_t take_windows(const Accept& accept = {}, double now_s = 0);
-  uint64_t publish_progress(double now_s = 0);
+  using Unhosted =
+      std::function<void(uint32_t robot, uint64_t run_id, std::vector<AgentAction> actions)>;
+  std::size_t take_windows(const Accept& accept = {}, double now_s = 0,
+                           const Unhosted& unhosted = {});
+  using ProgressFilter = std::function<bool(const smart_msg_Progress&)>;
+  uint64_t publish_progress(double now_s = 0, const ProgressFilter& write_here = {});
   // Real time: writes every hosted robot's last reported progress again. Progress is cumulative,
   // so a repeat is harmless, and it reaches a monitor that dropped the first copy (a restarted
   // agent's writer owns its robot's instance only once the dead one's lease ran out).
@@ -119,8 +124,6 @@ class AgentNode {
   std::vector<std::pair<int64_t, int64_t>> queued_;  // per robot: last progress sent on the link
   std::map<uint32_t, std::pair<double, double>> window_draws_;  // robot: receipt time, arrival
   std::optional<dds_guid_t> monitor_;  // participant of the last accepted window
-  Relay relay_;                        // sim shards only
-  std::map<uint32_t, std::pair<uint64_t, std::vector<AgentAction>>> parked_;  // run, window
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;

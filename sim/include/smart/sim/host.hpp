@@ -1,5 +1,5 @@
-// Contract: the sim host, a thin pump around a Fleet (fleet.hpp): one process, one DDS
-// participant, and the fleet's agents behind one AgentNode (the same DDS loop as `smart agent`).
+// Contract: the sim host, a pump around a Fleet (fleet.hpp): one process, one DDS participant,
+// and the fleet's agents behind one AgentNode (the same DDS loop as `smart agent`).
 // Each control period: apply received action windows, step the fleet, publish changed progress,
 // robot states at state_rate_hz (and the ROS 2 view), the sim status when it changed, and the
 // clock. Clock modes:
@@ -16,7 +16,8 @@
 // strip as ghosts). Each robot speaks on the monitor's topics through its home shard (the strip
 // it started in), which relays what other shards report for it. Shard 0 leads: it announces the
 // ticks (sync_total summed over the shards) and publishes the fleet's SimStatus, so the monitor
-// sees one sim host. No ROS 2 view in sharded runs.
+// sees one sim host. No ROS 2 view in sharded runs. When a shard applies, steps or gives up is
+// decided by the pure ShardBarrier (shard_barrier.hpp).
 #pragma once
 
 #include <atomic>

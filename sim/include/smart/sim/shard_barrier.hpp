@@ -1,0 +1,82 @@
+// Contract: when one shard of a sharded sim (shard.hpp, docs/simulation.md "Sharded sim") may
+// apply a period's exchanges, announce a tick, step or give up: a pure state machine shaped like
+// the monitor's RunSupervisor (events in, decisions out; no DDS, no clock read, deterministic),
+// around the lock-step HostHandshake (idl/…/wire/lockstep.hpp).
+// Events: this shard's own exchange of a period went out (sent), another shard's exchange of a
+// period arrived (received, after the wire checks and the one-writer-per-shard guard), the
+// monitor's answer (on_answer), the time (timed_out, should_reannounce).
+// The rule:
+// - A period is applied once every shard's exchange of it is in (ready, then apply): the pump
+//   adopts the robots handed to it and shows the neighbours' ghosts.
+// - The lead (shard 0) then announces the tick to the monitor with the fleet's finished actions:
+//   the sum of every shard's finished total of that period (announced_total). The monitor sees
+//   one sim host.
+// - Every shard steps once its period is applied and the monitor's answer to the tick is in with
+//   the windows received adding up to it (may_step). Shards are never more than one period apart
+//   (a shard steps only after every shard's exchange of its period), so exchanges of any other
+//   period than the current one and the next are ignored.
+// - A shard gives up after timeout_s without progress: waiting for the named shards' exchanges
+//   while its period is not applied, else for the monitor. The wait runs from this shard's last
+//   announcement: the lead's to the monitor (or its start), another shard's own exchange.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "smart/wire/lockstep.hpp"
+
+namespace smart::sim {
+
+struct ShardTimeout {
+  enum class Waiting { kNothing, kShards, kMonitor };
+  Waiting waiting = Waiting::kNothing;
+  uint64_t tick = 0;
+  std::vector<uint32_t> missing;  // kShards: the shards whose exchange of `tick` is not in
+};
+
+class ShardBarrier {
+ public:
+  // Throws std::invalid_argument unless 2 <= shards and shard < shards.
+  ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s);
+  bool lead() const { return shard_ == 0; }
+  uint64_t tick() const { return tick_; }
+  bool applied() const { return applied_; }
+
+  // This shard's exchange of `tick` went out with the actions its host reported finished: 0 at
+  // the start, then the period after each step. Throws std::logic_error for any other tick.
+  void sent(uint64_t tick, uint64_t finished_total, double now_s);
+  // Another shard's exchange of `tick`; a repeat replaces the first. False: ignored (this shard's
+  // own number, a shard out of range, or a period neither current nor next).
+  bool received(uint32_t shard, uint64_t tick, uint64_t finished_total);
+  // Every shard's exchange of the current period is in and it is not applied yet.
+  bool ready() const;
+  // The pump applied the period (call once ready()); the lead announces the tick now.
+  void apply(double now_s);
+  // The lead's announcement of the applied period: the fleet's finished actions.
+  uint64_t announced_total() const { return announced_total_; }
+
+  void on_answer(const wire::Tick& answer) { handshake_.on_answer(answer); }
+  bool stop() const { return handshake_.stop(); }
+  bool may_step(uint64_t run_id, uint64_t windows_received) const {
+    return applied_ && handshake_.may_step(run_id, windows_received);
+  }
+  // The lead announces the applied tick again (a monitor that joined late missed it).
+  bool should_reannounce(double now_s) const {
+    return lead() && applied_ && handshake_.should_reannounce(now_s);
+  }
+  void reannounced(double now_s) { handshake_.reannounced(now_s); }
+  ShardTimeout timed_out(double now_s) const;
+
+ private:
+  uint32_t shard_, shards_;
+  wire::HostHandshake handshake_;
+  uint64_t tick_ = 0;
+  bool started_ = false;
+  bool applied_ = false;
+  uint64_t own_total_ = 0;
+  uint64_t announced_total_ = 0;
+  std::map<uint64_t, std::map<uint32_t, uint64_t>> totals_;  // period -> shard -> finished
+};
+
+}  // namespace smart::sim

@@ -1,0 +1,74 @@
+#include "smart/sim/shard_barrier.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace smart::sim {
+
+ShardBarrier::ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s)
+    : shard_(shard), shards_(shards), handshake_(timeout_s, reannounce_s) {
+  if (shards < 2 || shard >= shards) {
+    throw std::invalid_argument("shard " + std::to_string(shard) + "/" + std::to_string(shards) +
+                                ": a sharded sim has at least 2 shards, numbered from 0");
+  }
+}
+
+void ShardBarrier::sent(uint64_t tick, uint64_t finished_total, double now_s) {
+  const uint64_t expected = started_ ? tick_ + 1 : 0;
+  if (tick != expected || (started_ && !applied_)) {
+    throw std::logic_error("shard " + std::to_string(shard_) + ": exchange of period " +
+                           std::to_string(tick) + " sent, expected " + std::to_string(expected) +
+                           (started_ && !applied_
+                                ? " after applying period " + std::to_string(tick_)
+                                : std::string()));
+  }
+  started_ = true;
+  tick_ = tick;
+  own_total_ = finished_total;
+  applied_ = false;
+  // The lead waits from its announcement to the monitor (or the start), the others from here.
+  if (!lead() || tick == 0) handshake_.announced(tick, now_s);
+}
+
+bool ShardBarrier::received(uint32_t shard, uint64_t tick, uint64_t finished_total) {
+  if (shard == shard_ || shard >= shards_) return false;
+  const bool current = tick == tick_ && !applied_;
+  const bool next = tick == tick_ + 1 || (tick == tick_ && !started_);
+  if (!current && !next) return false;
+  totals_[tick][shard] = finished_total;
+  return true;
+}
+
+bool ShardBarrier::ready() const {
+  if (!started_ || applied_) return false;
+  const auto it = totals_.find(tick_);
+  return it != totals_.end() && it->second.size() + 1 == shards_;
+}
+
+void ShardBarrier::apply(double now_s) {
+  if (!ready()) {
+    throw std::logic_error("shard " + std::to_string(shard_) + ": period " + std::to_string(tick_) +
+                           " applied before every exchange was in");
+  }
+  uint64_t total = own_total_;
+  for (const auto& [s, t] : totals_.at(tick_)) total += t;
+  totals_.erase(totals_.begin(), totals_.upper_bound(tick_));
+  applied_ = true;
+  if (lead()) {
+    announced_total_ = total;
+    handshake_.announced(tick_, now_s);
+  }
+}
+
+ShardTimeout ShardBarrier::timed_out(double now_s) const {
+  if (!handshake_.timed_out(now_s)) return {};
+  if (applied_) return {ShardTimeout::Waiting::kMonitor, tick_, {}};
+  ShardTimeout t{ShardTimeout::Waiting::kShards, tick_, {}};
+  const auto it = totals_.find(tick_);
+  for (uint32_t s = 0; s < shards_; ++s) {
+    if (s != shard_ && (it == totals_.end() || !it->second.count(s))) t.missing.push_back(s);
+  }
+  return t;
+}
+
+}  // namespace smart::sim
