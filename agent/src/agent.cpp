@@ -20,24 +20,34 @@ Agent::Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose)
       pose_(pose),
       controller_(with_speed_factor(config_.model, config_.robot_id), config_.period_s) {}
 
-void Agent::configure() {
-  if (state_ != LifecycleState::kUnconfigured) return;
-  drive_.configure();
-  state_ = LifecycleState::kInactive;
+LifecycleResult Agent::named(LifecycleResult r) const {
+  if (!r.ok()) r.message = "robot " + std::to_string(config_.robot_id) + ": " + r.message;
+  return r;
 }
 
-void Agent::activate() {
-  if (state_ == LifecycleState::kUnconfigured) configure();
-  drive_.activate();
-  state_ = LifecycleState::kActive;
+LifecycleResult Agent::configure() {
+  if (state_ != LifecycleState::kUnconfigured) return LifecycleResult::success();
+  auto r = drive_.configure();
+  if (r.ok()) state_ = LifecycleState::kInactive;
+  return named(std::move(r));
 }
 
-void Agent::deactivate() {
-  if (state_ == LifecycleState::kUnconfigured) return;
-  drive_.deactivate();
+LifecycleResult Agent::activate() {
+  if (state_ == LifecycleState::kUnconfigured) {
+    if (auto r = configure(); !r.ok()) return r;
+  }
+  auto r = drive_.activate();
+  if (r.ok()) state_ = LifecycleState::kActive;
+  return named(std::move(r));
+}
+
+LifecycleResult Agent::deactivate() {
+  if (state_ == LifecycleState::kUnconfigured) return LifecycleResult::success();
+  auto r = drive_.deactivate();
   controller_.reset();
   command_ = {};
   state_ = LifecycleState::kInactive;
+  return named(std::move(r));
 }
 
 ActionQueue::Result Agent::on_window(uint64_t run_id, const std::vector<AgentAction>& window) {

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "smart/config/yaml_checks.hpp"
 
@@ -99,24 +101,46 @@ JetbotDrive::~JetbotDrive() {
   }
 }
 
-void JetbotDrive::configure() {
+agent::LifecycleResult JetbotDrive::configure() {
   std::lock_guard<std::mutex> lock(mutex_);
-  pwm_.init(cfg_.pwm_frequency_hz);
-  configured_ = true;
-  outputs_off();
+  try {
+    pwm_.init(cfg_.pwm_frequency_hz);
+    configured_ = true;
+    outputs_off();
+  } catch (const std::exception& e) {
+    return agent::LifecycleResult::error(board() + " did not configure: " + e.what() +
+                                         "; check its wiring and address (`i2cdetect -y 1`)");
+  }
+  return agent::LifecycleResult::success();
 }
 
-void JetbotDrive::activate() {
+agent::LifecycleResult JetbotDrive::activate() {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (!configured_) {
+    return agent::LifecycleResult::failure(board() + " activated before configure(); configure it");
+  }
   active_ = true;
   last_command_s_ = now_s_();
   timed_out_ = false;
+  return agent::LifecycleResult::success();
 }
 
-void JetbotDrive::deactivate() {
+agent::LifecycleResult JetbotDrive::deactivate() {
   std::lock_guard<std::mutex> lock(mutex_);
   active_ = false;
-  if (configured_) outputs_off();
+  try {
+    if (configured_) outputs_off();
+  } catch (const std::exception& e) {
+    return agent::LifecycleResult::error(board() + " did not stop its outputs: " + e.what() +
+                                         "; cut the motor power");
+  }
+  return agent::LifecycleResult::success();
+}
+
+std::string JetbotDrive::board() const {
+  char addr[8];
+  std::snprintf(addr, sizeof addr, "0x%02x", static_cast<unsigned>(cfg_.address));
+  return std::string("JetBot motor driver (PCA9685 at I2C address ") + addr + ")";
 }
 
 void JetbotDrive::stop() {

@@ -16,6 +16,13 @@ std::vector<agent::Pose2D> start_poses(const grid::Grid& grid, double cell_m,
   return out;
 }
 
+namespace {
+// A simulated robot's backend has no device that could fail: a failed lifecycle call is a bug.
+void expect_ok(const agent::LifecycleResult& r) {
+  if (!r.ok()) throw std::logic_error("sim fleet: " + r.message);
+}
+}  // namespace
+
 Fleet::Fleet(const grid::Grid& grid, const agent::RobotModel& model, const SimConfig& config,
              const std::vector<agent::Pose2D>& starts, double pose_timeout_s)
     : world_(grid, model, config, starts) {
@@ -25,7 +32,7 @@ Fleet::Fleet(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
     agents_.push_back(std::make_unique<agent::Agent>(
         agent::AgentConfig{i, model, config.control_period_s, pose_timeout_s}, *backends_[i],
         *backends_[i]));
-    agents_.back()->activate();
+    expect_ok(agents_.back()->activate());
   }
 }
 
@@ -35,19 +42,19 @@ void Fleet::set_external(uint32_t robot) {
                                 std::to_string(agents_.size()) + " robots");
   }
   world_.set_external(robot, true);
-  agents_[robot]->deactivate();
+  expect_ok(agents_[robot]->deactivate());
 }
 
 std::pair<RobotPhysics, agent::AgentSnapshot> Fleet::release(uint32_t robot, Presence now) {
   std::pair out{world_.export_robot(robot), agents_.at(robot)->snapshot()};
-  agents_[robot]->deactivate();
+  expect_ok(agents_[robot]->deactivate());
   world_.set_presence(robot, now);
   return out;
 }
 
 void Fleet::adopt(uint32_t robot, const RobotPhysics& physics, const agent::AgentSnapshot& agent) {
   world_.import_robot(robot, physics);
-  agents_.at(robot)->activate();
+  expect_ok(agents_.at(robot)->activate());
   agents_[robot]->restore(agent);
 }
 
@@ -61,7 +68,7 @@ void Fleet::step() {
 }
 
 void Fleet::deactivate() {
-  for (auto& a : agents_) a->deactivate();
+  for (auto& a : agents_) expect_ok(a->deactivate());
 }
 
 FleetStats Fleet::stats() const {

@@ -44,7 +44,7 @@ struct Drive {
 
 TEST(Agent, MergedRunReportsEveryHalfMoveInOrderWithoutStopping) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 5)), ActionQueue::Result::kAccepted);
   r.steps(300);
   ASSERT_EQ(r.agent.finished_seq(), 5);
@@ -70,7 +70,7 @@ TEST(Agent, AStallHoldsTheRobotAtRestForStallSecondsThenItDrives) {
   m.uncertainty.stall_probability = 1.0;
   m.uncertainty.stall_s = 2.0;
   Drive r(m);
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 1)), ActionQueue::Result::kAccepted);
   r.steps(19);  // 1.9 s: still stalled
   EXPECT_TRUE(r.agent.stalled());
@@ -90,7 +90,7 @@ TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
     mm.uncertainty.speed_sigma = 0.3;
     mm.uncertainty.seed = seed;
     Drive r(mm);
-    r.agent.activate();
+    EXPECT_TRUE(r.agent.activate().ok());
     (void)r.agent.on_window(1, east_half_moves(0, 9));
     r.steps(40);
     double v = 0;
@@ -105,7 +105,7 @@ TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
 
 TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(1, east_half_moves(0, 3));
   for (int i = 0; i < 300; ++i) {
     r.agent.step(r.robot.time());
@@ -122,7 +122,7 @@ TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
 
 TEST(Agent, DuplicatedAndOutOfOrderWindowsCauseNoDuplicateExecution) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(3, east_half_moves(0, 3));
   r.steps(10);
   r.agent.on_window(3, east_half_moves(0, 3));  // duplicate
@@ -135,7 +135,7 @@ TEST(Agent, DuplicatedAndOutOfOrderWindowsCauseNoDuplicateExecution) {
 
 TEST(Agent, RotationThenMove) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   std::vector<AgentAction> w{{0, ActionKind::kRotate, 0, 0, 0, 0, M_PI / 2},
                              {1, ActionKind::kMove, 0, 0, 0, 0.5, M_PI / 2},
                              {2, ActionKind::kMove, 0, 0.5, 0, 1.0, M_PI / 2}};
@@ -148,7 +148,7 @@ TEST(Agent, RotationThenMove) {
 
 TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(1, east_half_moves(0, 9));
   r.steps(30);
   ASSERT_GT(std::abs(r.agent.last_command().left_mps), 0.1);
@@ -169,7 +169,7 @@ TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
 // its odometry had not arrived yet.
 TEST(Agent, WaitingForTheFirstPoseIsNotAWatchdogStop) {
   Drive r(footbot());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   r.robot.valid = false;
   r.agent.step(0.0);
   EXPECT_TRUE(r.agent.pose_stale());
@@ -189,18 +189,41 @@ TEST(Agent, LifecycleOnlyActiveAgentsMoveAndDeactivateStops) {
   r.agent.on_window(1, east_half_moves(0, 1));
   r.agent.step(0.0);
   EXPECT_TRUE(r.robot.commands.empty());
-  r.agent.configure();
+  EXPECT_TRUE(r.agent.configure().ok());
   EXPECT_EQ(r.robot.configured, 1);
   EXPECT_EQ(r.agent.state(), LifecycleState::kInactive);
   r.agent.step(0.0);
   EXPECT_TRUE(r.robot.commands.empty());
-  r.agent.activate();
+  EXPECT_TRUE(r.agent.activate().ok());
   r.steps(5);
   EXPECT_FALSE(r.robot.commands.empty());
-  r.agent.deactivate();
+  EXPECT_TRUE(r.agent.deactivate().ok());
   EXPECT_EQ(r.robot.deactivated, 1);
   EXPECT_EQ(r.robot.commands.back().left_mps, 0.0);
   EXPECT_EQ(r.agent.state(), LifecycleState::kInactive);
+}
+
+TEST(Agent, ADriveThatFailsToConfigureLeavesTheAgentUnconfiguredAndNamesTheRobot) {
+  Drive r(footbot());
+  r.robot.configure_answer = LifecycleResult::error("motor driver did not answer");
+  const auto a = r.agent.activate();
+  EXPECT_EQ(a.code, CallbackReturn::kError);
+  EXPECT_EQ(a.message, "robot 7: motor driver did not answer");
+  EXPECT_EQ(r.agent.state(), LifecycleState::kUnconfigured);
+  EXPECT_EQ(r.robot.activated, 0) << "never activated after a failed configure";
+  r.robot.configure_answer = LifecycleResult::success();  // the device answers now: retry
+  EXPECT_TRUE(r.agent.activate().ok());
+  EXPECT_EQ(r.agent.state(), LifecycleState::kActive);
+}
+
+TEST(Agent, AFailedActivationKeepsTheAgentInactiveSoItNeverMoves) {
+  Drive r(footbot());
+  r.robot.activate_answer = LifecycleResult::failure("not yet");
+  r.agent.on_window(1, east_half_moves(0, 1));
+  EXPECT_EQ(r.agent.activate().code, CallbackReturn::kFailure);
+  EXPECT_EQ(r.agent.state(), LifecycleState::kInactive);
+  r.steps(5);
+  EXPECT_TRUE(r.robot.commands.empty());
 }
 
 }  // namespace

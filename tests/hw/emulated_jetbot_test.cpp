@@ -17,8 +17,8 @@ TEST(EmulatedJetbot, TheRealDriverMovesItAndItStopsWhenOutputsGoOff) {
   EmulatedJetbot bot(c, 0.1025, {0, 0, 0}, "", 0);
   EXPECT_EQ(bot.commanded().left_mps, 0.0);  // asleep until init
   JetbotDrive drive(bot, c, [](double) {});
-  drive.configure();
-  drive.activate();
+  EXPECT_TRUE(drive.configure().ok());
+  EXPECT_TRUE(drive.activate().ok());
   drive.set_wheel_speeds({0.3, 0.3});
   EXPECT_NEAR(bot.commanded().left_mps, 0.3, 0.01);
   EXPECT_NEAR(bot.commanded().right_mps, 0.3, 0.01);
@@ -26,7 +26,7 @@ TEST(EmulatedJetbot, TheRealDriverMovesItAndItStopsWhenOutputsGoOff) {
   EXPECT_GT(bot.pose().x_m, 0.05);
   drive.set_wheel_speeds({-0.2, 0.2});
   EXPECT_NEAR(bot.commanded().left_mps, -0.2, 0.01);
-  drive.deactivate();
+  EXPECT_TRUE(drive.deactivate().ok());
   EXPECT_EQ(bot.commanded().left_mps, 0.0);
   EXPECT_EQ(bot.commanded().right_mps, 0.0);
 }
@@ -58,8 +58,8 @@ TEST(EmulatedJetbot, RealisticFlawsDeadBandLagAndNoise) {
   EmulatedFlaws flaws = realistic_flaws(7);
   EmulatedJetbot bot(plain, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
   JetbotDrive drive(bot, plain, [](double) {});
-  drive.configure();
-  drive.activate();
+  EXPECT_TRUE(drive.configure().ok());
+  EXPECT_TRUE(drive.activate().ok());
   drive.set_wheel_speeds({0.1, 0.1});  // 16 % duty: inside the dead band
   EXPECT_EQ(bot.commanded().left_mps, 0.0);
   JetbotConfig compensated;
@@ -67,8 +67,8 @@ TEST(EmulatedJetbot, RealisticFlawsDeadBandLagAndNoise) {
   compensated.left.beta = compensated.right.beta = 60.0 / 255.0;
   EmulatedJetbot lab(compensated, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
   JetbotDrive lab_drive(lab, compensated, [](double) {});
-  lab_drive.configure();
-  lab_drive.activate();
+  EXPECT_TRUE(lab_drive.configure().ok());
+  EXPECT_TRUE(lab_drive.activate().ok());
   lab_drive.set_wheel_speeds({0.1, 0.3});
   EXPECT_NEAR(lab.commanded().left_mps, 0.1, 0.005);
   EXPECT_NEAR(lab.commanded().right_mps, 0.3, 0.005);

@@ -28,11 +28,36 @@ struct Fixture {
   explicit Fixture(JetbotConfig c = {}) {
     drive = std::make_unique<JetbotDrive>(bus, c, [](double) {});
     drive->set_clock([this] { return now; });
-    drive->configure();
-    drive->activate();
+    EXPECT_TRUE(drive->configure().ok());
+    EXPECT_TRUE(drive->activate().ok());
     bus.ops.clear();
   }
 };
+
+TEST(JetbotDrive, ABoardThatDoesNotAnswerFailsConfigureNamingItsAddress) {
+  test::RecordingI2cBus bus;
+  bus.fail_writes = true;
+  JetbotDrive drive(bus, {}, [](double) {});
+  const auto r = drive.configure();
+  EXPECT_EQ(r.code, agent::CallbackReturn::kError);
+  EXPECT_THAT(r.message, HasSubstr("PCA9685 at I2C address 0x60"));
+  EXPECT_THAT(r.message, HasSubstr("Remote I/O error"));
+  EXPECT_THAT(r.message, HasSubstr("i2cdetect"));
+  EXPECT_EQ(drive.activate().code, agent::CallbackReturn::kFailure) << "not configured";
+  bus.fail_writes = false;
+  drive.set_wheel_speeds({0.5, 0.5});
+  EXPECT_TRUE(bus.ops.empty()) << "an unconfigured drive never writes a command";
+}
+
+TEST(JetbotDrive, ActivateBeforeConfigureIsAFailureThatCanBeRetried) {
+  test::RecordingI2cBus bus;
+  JetbotDrive drive(bus, {}, [](double) {});
+  const auto r = drive.activate();
+  EXPECT_EQ(r.code, agent::CallbackReturn::kFailure);
+  EXPECT_THAT(r.message, HasSubstr("activated before configure()"));
+  EXPECT_TRUE(drive.configure().ok());
+  EXPECT_TRUE(drive.activate().ok());
+}
 
 TEST(JetbotDrive, AdafruitChannelMapForwardAndBackward) {
   Fixture f;
@@ -84,7 +109,7 @@ TEST(JetbotDrive, WaveshareReversedWheelSwapsItsInputs) {
   EXPECT_EQ(channel(f.bus, 1), (Regs{0x00, 0x00, 0xF0, 0x0F}));  // left forward: ina
   EXPECT_EQ(channel(f.bus, 2), (Regs{0x00, 0x00, 0x00, 0x00}));  // right reversed: not ina...
   EXPECT_EQ(channel(f.bus, 3), (Regs{0x00, 0x00, 0xF0, 0x0F}));  // ...but inb
-  f.drive->deactivate();
+  EXPECT_TRUE(f.drive->deactivate().ok());
   for (int ch : {0, 1, 2, 3}) EXPECT_EQ(channel(f.bus, ch)[2], 0x00) << ch;
   EXPECT_EQ(f.bus.ops.back(), (test::RecordingI2cBus::Op{'w', 0x60, 0xFD, 0x10}));
 }
@@ -119,7 +144,7 @@ void expect_all_off(const test::RecordingI2cBus& bus) {
 TEST(JetbotDriveStop, Deactivate) {
   Fixture f;
   f.drive->set_wheel_speeds({0.5, 0.5});
-  f.drive->deactivate();
+  EXPECT_TRUE(f.drive->deactivate().ok());
   expect_all_off(f.bus);
   f.bus.ops.clear();
   f.drive->set_wheel_speeds({0.5, 0.5});  // inactive: ignored

@@ -42,7 +42,7 @@ TEST(RosTwistDrive, WheelSpeedsBecomeATwistAndShutdownWritesAStop) {
       }
     }
     EXPECT_GE(drive.commands(), 1u);
-    drive.deactivate();
+    EXPECT_TRUE(drive.deactivate().ok());
     const auto stop = next_twist(cmd_vel);
     ASSERT_TRUE(stop.has_value());
     EXPECT_EQ(stop->linear.x, 0.0);

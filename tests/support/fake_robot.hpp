@@ -15,12 +15,21 @@ class FakeRobot : public agent::DriveBackend, public agent::PoseSource {
   explicit FakeRobot(double wheel_base_m, agent::Pose2D start = {}) : b_(wheel_base_m) {
     pose_ = start;
   }
-  void configure() override { ++configured; }
-  void activate() override { ++activated; }
-  void deactivate() override {
+  // Each call counts and answers what the test set (success by default).
+  agent::LifecycleResult configure() override {
+    ++configured;
+    return configure_answer;
+  }
+  agent::LifecycleResult activate() override {
+    ++activated;
+    return activate_answer;
+  }
+  agent::LifecycleResult deactivate() override {
     ++deactivated;
     stop();
+    return agent::LifecycleResult::success();
   }
+  agent::LifecycleResult configure_answer, activate_answer;
   void set_wheel_speeds(agent::WheelSpeeds w) override {
     wheels_ = w;
     commands.push_back(w);

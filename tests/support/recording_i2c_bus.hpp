@@ -17,6 +17,7 @@ class RecordingI2cBus : public hw::I2cBus {
     bool operator==(const Op&) const = default;
   };
   void write(uint8_t address, const std::vector<uint8_t>& bytes) override {
+    if (fail_writes) throw hw::I2cError("I2C write to 0x60 on /dev/i2c-1 failed: Remote I/O error");
     for (std::size_t i = 1; i < bytes.size(); ++i) {
       ops.push_back({'w', address, static_cast<uint8_t>(bytes[0] + i - 1), bytes[i]});
       regs[static_cast<uint8_t>(bytes[0] + i - 1)] = bytes[i];
@@ -32,6 +33,7 @@ class RecordingI2cBus : public hw::I2cBus {
       if (o.kind == 'w' && o.reg == reg) out.push_back(o);
     return out;
   }
+  bool fail_writes = false;  // a board that does not answer
   std::vector<Op> ops;
   std::array<uint8_t, 256> regs{};
 };

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 
 #include "smart/agent/agent.hpp"
@@ -133,19 +134,34 @@ nlohmann::json robot_report(const Robot& r) {
   return out;
 }
 
+// Brings every robot's wheels to zero; the first failure, if any, is logged for each and returned.
+agent::LifecycleResult deactivate_all(std::vector<Robot>& robots) {
+  agent::LifecycleResult first;
+  for (auto& r : robots) {
+    auto d = r.agent->deactivate();
+    if (d.ok()) continue;
+    spdlog::error("{}", d.message);
+    if (first.ok()) first = std::move(d);
+  }
+  return first;
+}
+
 // Hosts the robots on one AgentNode, runs them until the monitor stops their run (true) or a
-// signal arrives (false), and brings their wheels to zero.
+// signal arrives (false), and brings their wheels to zero. A robot that does not configure,
+// activate or stop ends the command (the others stopped first): exit 3 with its message.
 bool execute(const dds::QosProfile& profile, const dds::Participant& participant,
              std::vector<Robot>& robots, double period_s) {
   agent::AgentNode node(participant, profile);
   node.set_link(profile.link);
   for (auto& r : robots) {
     node.host(*r.agent);
-    r.agent->configure();
-    r.agent->activate();
+    if (auto a = r.agent->activate(); !a.ok()) {  // configures first
+      (void)deactivate_all(robots);
+      throw std::runtime_error(a.message);
+    }
   }
   const bool stopped_by_monitor = control_loop(robots, node, period_s);
-  for (auto& r : robots) r.agent->deactivate();
+  if (auto d = deactivate_all(robots); !d.ok()) throw std::runtime_error(d.message);
   return stopped_by_monitor;
 }
 

@@ -222,8 +222,9 @@ bool confirmed(const TrimOptions& o) {
 // watchdog fed) and returns every new pose sample; the wheels stop at the end.
 std::vector<agent::PoseSample> drive_straight(const TrimOptions& o, RobotIo& io) {
   std::vector<agent::PoseSample> samples;
-  io.drive->configure();
-  io.drive->activate();
+  auto ready = io.drive->configure();
+  if (ready.ok()) ready = io.drive->activate();
+  if (!ready.ok()) throw std::runtime_error(ready.message);
   double last_stamp = -1;
   const double start_s = steady_s(), first_pose_deadline_s = start_s + 5.0;
   for (double now = start_s; now < start_s + o.seconds && !g_stop_requested; now = steady_s()) {
@@ -237,7 +238,7 @@ std::vector<agent::PoseSample> drive_straight(const TrimOptions& o, RobotIo& io)
                                                : agent::WheelSpeeds{o.speed_mps, o.speed_mps});
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  io.drive->deactivate();
+  if (auto r = io.drive->deactivate(); !r.ok()) throw std::runtime_error(r.message);
   if (g_stop_requested) throw std::runtime_error("stopped by signal; the wheels are off");
   if (samples.empty()) {
     throw std::runtime_error("robot " + std::to_string(o.robot_id) + ": no pose from " +

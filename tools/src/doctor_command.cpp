@@ -220,12 +220,18 @@ std::vector<CheckRow> robot_checks(const DoctorOptions& o, uint32_t robot,
     rows.push_back({id, "wheels", Level::kWarn, "not run", "answer yes, or pass --yes"});
     return rows;
   }
-  io.drive->configure();
-  io.drive->activate();
+  auto ready = io.drive->configure();
+  if (ready.ok()) ready = io.drive->activate();
+  if (!ready.ok()) {
+    rows.push_back({id, "wheels", Level::kFail, "not run", ready.message});
+    return rows;
+  }
   std::optional<double> left_s, right_s;
   rows.push_back(drive_one_wheel(o, id, io, Wheel::kLeft, left_s));
   rows.push_back(drive_one_wheel(o, id, io, Wheel::kRight, right_s));
-  io.drive->deactivate();
+  if (auto r = io.drive->deactivate(); !r.ok()) {
+    rows.push_back({id, "wheels", Level::kFail, "did not stop", r.message});
+  }
   rows.push_back(response_check(
       id, left_s && right_s ? std::max(*left_s, *right_s) : (left_s ? left_s : right_s)));
   return rows;

@@ -1,6 +1,8 @@
 // Contract: one robot's executor, the same class for simulated and physical robots.
-// - Lifecycle (ros2_control style): configure() opens the backend, activate() allows motion,
-//   deactivate() brings the wheels to zero. Only an active agent moves.
+// - Lifecycle (ros2_control style, lifecycle.hpp): configure() opens the backend, activate()
+//   allows motion, deactivate() brings the wheels to zero. Only an active agent moves. A call the
+//   backend fails leaves the agent in its state (deactivate: inactive all the same, it never
+//   moves again unless activated) and returns the backend's result, naming the robot.
 // - on_window() feeds the monitor's action window into the ActionQueue (idempotent).
 // - step(now_s) is the cyclic read/update/write at the control period: read the pose; if it is
 //   invalid or older than pose_timeout_s the wheels are stopped at once (watchdog); otherwise
@@ -55,9 +57,9 @@ class Agent {
  public:
   Agent(AgentConfig config, DriveBackend& drive, PoseSource& pose);
 
-  void configure();
-  void activate();
-  void deactivate();
+  LifecycleResult configure();
+  LifecycleResult activate();
+  LifecycleResult deactivate();
   LifecycleState state() const { return state_; }
 
   ActionQueue::Result on_window(uint64_t run_id, const std::vector<AgentAction>& window);
@@ -83,6 +85,8 @@ class Agent {
   bool idle() const { return queue_.empty() && command_.left_mps == 0 && command_.right_mps == 0; }
 
  private:
+  // Prefixes a failed result's message with the robot id.
+  LifecycleResult named(LifecycleResult r) const;
   void write(Twist t);
   // Runs the front actions; returns the command for this period.
   Twist update();

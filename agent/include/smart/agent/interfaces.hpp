@@ -1,9 +1,11 @@
 // Contract: the agent's only ways to touch the world. Every backend (Simbody sim, JetBot
 // hardware, test fakes) implements these; agent code never includes sim/ or hw/ headers.
 // Lifecycle as in ros2_control: configure() opens resources, activate() allows motion,
-// deactivate() brings the wheels to zero. Calls come from the agent's control loop thread.
+// deactivate() brings the wheels to zero; each returns a LifecycleResult (lifecycle.hpp) and
+// never throws. Calls come from the agent's control loop thread.
 #pragma once
 
+#include "smart/agent/lifecycle.hpp"
 #include "smart/agent/types.hpp"
 
 namespace smart::agent {
@@ -11,9 +13,12 @@ namespace smart::agent {
 class DriveBackend {
  public:
   virtual ~DriveBackend() = default;
-  virtual void configure() {}
-  virtual void activate() {}
-  virtual void deactivate() { stop(); }
+  virtual LifecycleResult configure() { return LifecycleResult::success(); }
+  virtual LifecycleResult activate() { return LifecycleResult::success(); }
+  virtual LifecycleResult deactivate() {
+    stop();
+    return LifecycleResult::success();
+  }
   // Wheel ground speeds in m/s (positive = forward).
   virtual void set_wheel_speeds(WheelSpeeds speeds) = 0;
   virtual void stop() { set_wheel_speeds({0.0, 0.0}); }

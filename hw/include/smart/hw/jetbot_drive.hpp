@@ -47,9 +47,10 @@ class JetbotDrive : public agent::DriveBackend {
   JetbotDrive(I2cBus& bus, JetbotConfig config, Sleeper sleeper);
   ~JetbotDrive() override;
 
-  void configure() override;  // PCA9685 init, outputs off
-  void activate() override;
-  void deactivate() override;  // outputs off
+  // PCA9685 init, outputs off; kError naming the board's address when the bus fails.
+  agent::LifecycleResult configure() override;
+  agent::LifecycleResult activate() override;    // kFailure before configure()
+  agent::LifecycleResult deactivate() override;  // outputs off
   void set_wheel_speeds(agent::WheelSpeeds speeds) override;
   void stop() override;
   // Stops the motors when the last command is older than command_timeout_s; true if it did.
@@ -65,6 +66,7 @@ class JetbotDrive : public agent::DriveBackend {
   WheelOutput right_output() const { return right_out_; }
 
  private:
+  std::string board() const;  // "JetBot motor driver (PCA9685 at I2C address 0x60)"
   void drive_wheel(bool left, double speed_mps);
   void outputs_off();
 
