@@ -86,14 +86,6 @@ std::vector<double> bounds_of(const Instance& in, const RunInfo& info) {
                      : std::vector<double>();
 }
 
-// SMART's stats columns (server/src/ADG_server.cpp saveStats), in SMART's order. SMART writes
-// wall-clock seconds under "time finish sim" and "sum finish time"; these are sim seconds, so
-// they are named for what they hold.
-constexpr const char* kStatsHeader =
-    "steps finish sim,sum of steps finish sim,makespan sim s,sum of finish times sim s,"
-    "original plan cost,#type-2 edges,#type-1 edges,#Nodes,#Move,#Rotate,"
-    "#Consecutive Move,#Agent pair,instance name,number of agent\n";
-
 std::string stats_row(const Instance& in, const MonitorResult& r, const RunInfo& info) {
   double max_t = 0, sum_t = 0;
   long long max_steps = 0, sum_steps = 0;
@@ -269,58 +261,53 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
 
 StatesCsvWriter::StatesCsvWriter(const std::filesystem::path& dir) {
   create_out_dir(dir);
-  out_ = open_out(dir / "states.csv");
-  out_ << "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue\n";
+  out_ = open_out(dir / results::kStatesCsv);
+  out_ << results::kStatesHeader << '\n';
 }
-
-namespace {
-// One CSV field and its comma, as the results' streams write it (open_out: printf's %g with 10
-// significant digits) but through std::to_chars: the stream's printf path with its multi-precision
-// arithmetic took a quarter of the monitor's CPU in a 1000-robot lock-step run (perf, issue 15), in
-// series with the sim.
-template <class T>
-void put_field(std::string& line, T v, char sep = ',') {
-  char buf[32];
-  std::to_chars_result r;
-  if constexpr (std::is_floating_point_v<T>) {
-    r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 10);
-  } else {
-    r = std::to_chars(buf, buf + sizeof buf, v);
-  }
-  line.append(buf, r.ptr);
-  line.push_back(sep);
-}
-}  // namespace
 
 void StatesCsvWriter::add(const StateRow& s) {
   std::string line;
   line.reserve(128);
-  put_field(line, s.t_s);
-  put_field(line, s.robot);
-  for (const double v : {s.x_m, s.y_m, s.yaw_rad, s.v_mps, s.w_radps, s.left_mps, s.right_mps}) {
-    put_field(line, v);
-  }
-  put_field(line, s.queue, '\n');
+  results::append_row(line, s);
   out_ << line;
   ++rows_;
 }
 
 namespace {
+// One row per robot: finish and waiting time, stops, actions, the motion lower bound.
+void write_robots_csv(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
+                      const RunInfo& info) {
+  std::string text(results::kRobotsHeader);
+  text.push_back('\n');
+  const auto bound = bounds_of(in, info);
+  for (uint32_t i = 0; i < r.robots.size(); ++i) {
+    const auto& m = r.robots[i];
+    results::RobotRow row{i, std::nullopt, m.waiting_time_s, m.stops, m.actions, std::nullopt};
+    if (!std::isnan(m.finish_time_s) && finished(in, r, i)) row.finish_time_s = m.finish_time_s;
+    if (i < bound.size()) row.lower_bound_s = bound[i];
+    results::append_row(text, row);
+  }
+  open_out(dir / results::kRobotsCsv) << text;
+}
+
 // One row per action in ADG order: who, which, what, and when it finished on the sim clock
 // (empty: never finished, or before a resume).
 void write_actions_csv(const std::filesystem::path& dir, const Instance& in,
                        const MonitorResult& r) {
-  auto out = open_out(dir / "actions.csv");
-  out << "robot,action,type,finish_time_s\n";
+  std::string text(results::kActionsHeader);
+  text.push_back('\n');
   for (std::size_t node = 0; node < in.actions.actions.size(); ++node) {
     const auto& a = in.actions.actions[node];
-    out << a.robot << "," << a.seq << "," << (a.type == grid::ActionType::kMove ? "move" : "rotate")
-        << ",";
+    results::ActionRow row{a.robot, a.seq,
+                           a.type == grid::ActionType::kMove ? results::ActionType::kMove
+                                                             : results::ActionType::kRotate,
+                           std::nullopt};
     if (node < r.action_finish_s.size() && !std::isnan(r.action_finish_s[node])) {
-      out << r.action_finish_s[node];
+      row.finish_time_s = r.action_finish_s[node];
     }
-    out << "\n";
+    results::append_row(text, row);
   }
+  open_out(dir / results::kActionsCsv) << text;
 }
 }  // namespace
 
@@ -334,34 +321,16 @@ void append_stats(const std::filesystem::path& file, const Instance& in, const M
     throw std::runtime_error("cannot append to the stats file " + file.string() +
                              "; check the folder exists and is writable");
   }
-  if (fresh) out << kStatsHeader;
+  if (fresh) out << results::kStatsHeader << '\n';
   out << stats_row(in, r, info);
 }
 
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
                    const RunInfo& info) {
   create_out_dir(dir);
-  {
-    auto out = open_out(dir / "summary.json");
-    out << summary_json(in, r, info).dump(2) << "\n";
-  }
-  {
-    auto out = open_out(dir / "stats.csv");
-    out << kStatsHeader << stats_row(in, r, info);
-  }
-  {
-    auto out = open_out(dir / "robots.csv");
-    out << "robot,finish_time_s,waiting_time_s,stops,actions,lower_bound_s\n";
-    const auto bound = bounds_of(in, info);
-    for (uint32_t i = 0; i < r.robots.size(); ++i) {
-      const auto& m = r.robots[i];
-      out << i << ",";
-      if (!std::isnan(m.finish_time_s) && finished(in, r, i)) out << m.finish_time_s;
-      out << "," << m.waiting_time_s << "," << m.stops << "," << m.actions << ",";
-      if (i < bound.size()) out << bound[i];
-      out << "\n";
-    }
-  }
+  open_out(dir / results::kSummaryJson) << summary_json(in, r, info).dump(2) << "\n";
+  open_out(dir / results::kStatsCsv) << results::kStatsHeader << '\n' << stats_row(in, r, info);
+  write_robots_csv(dir, in, r, info);
   write_actions_csv(dir, in, r);
 }
 

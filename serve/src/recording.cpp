@@ -7,6 +7,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "smart/monitor/results_format.hpp"
+
 namespace smart::serve {
 
 namespace {
@@ -29,39 +31,13 @@ T get(std::string_view in, std::size_t& at) {
   return v;
 }
 
-bool field(std::string_view& line, double& out) {
-  const auto comma = std::min(line.find(','), line.size());
-  const auto [end, ec] = std::from_chars(line.data(), line.data() + comma, out);
-  line.remove_prefix(std::min(comma + 1, line.size()));
-  return ec == std::errc() && std::isfinite(out);
-}
-
-// The queue column (the 10th) of what is left of a row after its pose; 0 when the row has none.
-uint32_t queue_field(std::string_view rest) {
-  double v = 0;
-  for (int skip = 0; skip < 4; ++skip) {
-    if (!field(rest, v)) return 0;
-  }
-  return field(rest, v) && v >= 0 ? static_cast<uint32_t>(std::min(v, 1e6)) : 0;
-}
 }  // namespace
 
 std::vector<PoseRow> parse_states_csv(std::string_view text) {
   std::vector<PoseRow> rows;
-  std::size_t line_no = 0;
-  while (!text.empty()) {
-    const auto nl = std::min(text.find('\n'), text.size());
-    std::string_view line = text.substr(0, nl);
-    text.remove_prefix(std::min(nl + 1, text.size()));
-    if (++line_no == 1 || line.empty()) continue;  // header
-    double t, robot, x, y, yaw;
-    if (!field(line, t) || !field(line, robot) || !field(line, x) || !field(line, y) ||
-        !field(line, yaw) || robot < 0 || robot > 1e7) {
-      throw std::invalid_argument("states.csv line " + std::to_string(line_no) +
-                                  ": expected t_s,robot,x_m,y_m,yaw_rad,... numbers");
-    }
-    rows.push_back({t, static_cast<uint32_t>(robot), x, y, yaw, queue_field(line)});
-  }
+  results::for_each_state_row(text, [&](const results::StateRow& s) {
+    rows.push_back({s.t_s, s.robot, s.x_m, s.y_m, s.yaw_rad, s.queue});
+  });
   return rows;
 }
 
@@ -108,15 +84,11 @@ void PoseTail::feed(std::string_view appended) {
       header_seen_ = true;
       continue;
     }
-    double t, robot, x, y, yaw;
-    if (!field(line, t) || !field(line, robot) || !field(line, x) || !field(line, y) ||
-        !field(line, yaw) || robot < 0 || robot > 1e6) {
-      continue;
-    }
-    const auto r = static_cast<uint32_t>(robot);
-    if (latest_.size() <= r) latest_.resize(r + 1);
-    latest_[r] = {t, r, x, y, yaw};
-    time_s_ = std::max(time_s_, t);
+    const auto s = results::parse_state_line(line);
+    if (!s || s->robot > 1000000) continue;  // the tail keeps a pose per robot id
+    if (latest_.size() <= s->robot) latest_.resize(s->robot + 1);
+    latest_[s->robot] = {s->t_s, s->robot, s->x_m, s->y_m, s->yaw_rad};
+    time_s_ = std::max(time_s_, s->t_s);
   }
   partial_.erase(0, start);
 }

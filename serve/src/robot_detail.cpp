@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "smart/monitor/results_format.hpp"
+
 namespace smart::serve {
 
 namespace {
@@ -66,52 +68,19 @@ json steps(const monitor::Instance& in, uint32_t robot, const std::vector<double
   return out;
 }
 
-bool next_field(std::string_view& line, std::string_view& field) {
-  if (line.data() == nullptr) return false;
-  const auto comma = line.find(',');
-  field = line.substr(0, comma);
-  line = comma == std::string_view::npos ? std::string_view() : line.substr(comma + 1);
-  return true;
-}
-
-template <class T>
-bool number(std::string_view text, T& out) {
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return ec == std::errc() && end == text.data() + text.size();
-}
-
-// One row "robot,action,type,finish_time_s" into `times`; false when it does not fit.
-bool read_row(std::string_view line, const monitor::ActionPlan& actions,
-              std::vector<double>& times) {
-  std::string_view robot_text, seq_text, type, finish;
-  uint32_t robot = 0, seq = 0;
-  if (!next_field(line, robot_text) || !next_field(line, seq_text) || !next_field(line, type) ||
-      !next_field(line, finish) || !number(robot_text, robot) || !number(seq_text, seq) ||
-      robot >= actions.robots() || seq >= actions.count(robot)) {
-    return false;
-  }
-  if (finish.empty()) return true;
-  double t = 0;
-  if (!number(finish, t) || !std::isfinite(t) || t < 0) return false;
-  times[actions.offset[robot] + seq] = t;
-  return true;
-}
 }  // namespace
 
 std::vector<double> parse_action_times(std::string_view csv, const monitor::ActionPlan& actions) {
   std::vector<double> times(actions.actions.size(), std::nan(""));
-  std::size_t line_no = 0;
-  while (!csv.empty()) {
-    const auto nl = std::min(csv.find('\n'), csv.size());
-    const std::string_view line = csv.substr(0, nl);
-    csv.remove_prefix(std::min(nl + 1, csv.size()));
-    if (++line_no == 1 || line.empty()) continue;  // header
-    if (!read_row(line, actions, times)) {
-      throw std::invalid_argument("actions.csv line " + std::to_string(line_no) +
-                                  ": expected robot,action,type,finish_time_s of an action in "
-                                  "this run's plan");
+  results::for_each_action_row(csv, [&](const results::ActionRow& row, std::size_t line) {
+    if (row.robot >= actions.robots() || row.action >= actions.count(row.robot)) {
+      throw std::invalid_argument(std::string(results::kActionsCsv) + " line " +
+                                  std::to_string(line) + ": robot " + std::to_string(row.robot) +
+                                  " action " + std::to_string(row.action) +
+                                  " is not an action of this run's plan");
     }
-  }
+    if (row.finish_time_s) times[actions.offset[row.robot] + row.action] = *row.finish_time_s;
+  });
   return times;
 }
 

@@ -2,32 +2,27 @@
 
 #include <httplib.h>
 #include <spdlog/spdlog.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
 #include <fstream>
-#include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <thread>
 
 #include "smart/agent/robot_model.hpp"
-#include "smart/common/child_process.hpp"
-#include "smart/grid/map_reader.hpp"
-#include "smart/grid/problem.hpp"
-#include "smart/monitor/instance.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
-#include "smart/serve/run_registry.hpp"
+#include "smart/serve/run_store.hpp"
+#include "uploads.hpp"
 
 namespace smart::serve {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+namespace key = results::summary_key;
 
 namespace {
 std::string slurp(const fs::path& p) {
@@ -41,356 +36,69 @@ void reply(httplib::Response& res, int status, const json& body) {
   res.status = status;
   res.set_content(body.dump(), "application/json");
 }
-
-// Problems name the files as the user uploaded them, not the server's scratch paths.
-// What a results folder may hold (monitor/results.hpp); nothing else is kept or served.
-constexpr const char* kResultFiles[] = {"summary.json", "stats.csv", "robots.csv", "actions.csv",
-                                        "states.csv"};
-// A run's own files: upload field or summary.json "files" key -> name under the run's folder.
-constexpr std::pair<const char*, const char*> kRunFiles[] = {
-    {"map", "map.map"}, {"scen", "scen.scen"}, {"plan", "plan.txt"}};
-
-// `names`: scratch path -> the name the user knows the file by.
-json problems_json(const std::vector<grid::Problem>& problems,
-                   const std::map<std::string, std::string>& names) {
-  json out = json::array();
-  for (const auto& p : problems) {
-    const auto it = names.find(p.source);
-    out.push_back({{"file", it == names.end() ? p.source : it->second},
-                   {"line", p.line},
-                   {"robot", p.robot},
-                   {"message", p.message}});
-  }
-  return out;
-}
-
-json problems_json(const std::vector<grid::Problem>& problems, const httplib::Request& req,
-                   const fs::path& scratch) {
-  std::map<std::string, std::string> names;
-  for (const auto& [field, name] : kRunFiles) {
-    names[(scratch / name).string()] = req.get_file_value(field).filename;
-  }
-  return problems_json(problems, names);
-}
-
-// The most robots a replayed results folder may have (the largest fleets measured are 10 000).
-constexpr uint64_t kMaxReplayRobots = 100000;
-
-bool result_file(const std::string& name) {
-  return std::any_of(std::begin(kResultFiles), std::end(kResultFiles),
-                     [&](const char* f) { return name == f; });
-}
-
-bool plain_name(const std::string& s) {
-  return !s.empty() && s.size() <= 64 &&
-         s.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos;
-}
-
-// What an upload asks for beyond its files; an error text when a field is wrong.
-struct RunRequest {
-  std::string axis = "xy";
-  std::size_t agents = 0;
-  std::string robot = "footbot";
-  std::map<std::string, double> limits;  // robot YAML key -> value, from the upload form
-  double real_time_factor = 0;           // `smart run --real-time-factor`: 0, as fast as possible
-  std::string error;
-};
-
-// Uploads run on `smart run`'s default cells (--cell-m 1).
-constexpr double kUploadCellM = 1.0;
-
-// The kinodynamic limits an upload may override (robot YAML keys, agent/robot_model.hpp).
-constexpr const char* kLimitFields[] = {"max_speed_mps", "max_accel_mps2", "max_turn_rate_radps"};
-
-// The whole text as a finite number, or none.
-std::optional<double> finite_number(const std::string& text) {
-  double v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) return {};
-  return v;
-}
-
-void read_limits(const httplib::Request& req, RunRequest& r) {
-  for (const char* key : kLimitFields) {
-    if (!req.has_file(key) || req.get_file_value(key).content.empty()) continue;
-    const auto v = finite_number(req.get_file_value(key).content);
-    if (!v || *v <= 0) {
-      r.error = std::string(key) + " must be a positive number, e.g. 0.5";
-      return;
-    }
-    r.limits[key] = *v;
-  }
-}
-
-RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) {
-  RunRequest r;
-  auto field = [&](const char* name) {
-    return req.has_file(name) ? std::optional(req.get_file_value(name).content) : std::nullopt;
-  };
-  for (const char* f : {"plan", "scen", "map"}) {  // the first missing one is named
-    if (!req.has_file(f)) r.error = "missing the '" + std::string(f) + "' file field";
-  }
-  if (auto a = field("axis")) r.axis = *a;
-  if (r.axis != "xy" && r.axis != "rowcol") r.error = "axis must be xy or rowcol";
-  if (auto n = field("agents")) {
-    try {
-      const long long v = std::stoll(*n);
-      if (v < 0 || v > 100000) throw std::out_of_range(*n);
-      r.agents = static_cast<std::size_t>(v);
-    } catch (const std::logic_error&) {
-      r.error = "agents must be a whole number from 0 (all) to 100000";
-    }
-  }
-  if (auto m = field("robot")) r.robot = *m;
-  if (!plain_name(r.robot) || !fs::is_regular_file(robots_dir / (r.robot + ".yaml"))) {
-    r.error = "robot must name a model in config/robots, e.g. footbot";
-  }
-  if (r.error.empty()) read_limits(req, r);
-  if (auto f = field("real_time_factor"); f && !f->empty() && r.error.empty()) {
-    const auto v = finite_number(*f);
-    if (!v || *v < 0 || *v > 1000) {
-      r.error = "real_time_factor must be a number from 0 (as fast as possible) to 1000, e.g. 10";
-    } else {
-      r.real_time_factor = *v;
-    }
-  }
-  return r;
-}
 }  // namespace
 
+// The routes: each reads the request, asks the run store or the upload checks, and answers.
 struct Server::Impl {
   ServeOptions opt;
   httplib::Server http;
-  std::mutex m;
-  RunRegistry registry;
-  std::map<std::string, std::vector<std::string>> argv;  // queued runs' `smart run` command
-  std::map<std::string, common::ChildProcess> children;  // running ones
-  uint64_t uploads = 0;
+  RunStore store;
   std::atomic<bool> stopping{false};
-  std::map<std::string, std::shared_ptr<const monitor::Instance>> instances;  // loaded on demand
-  std::map<std::string, std::shared_ptr<const std::vector<double>>> action_times;  // by node
 
-  explicit Impl(ServeOptions o) : opt(std::move(o)) {}
+  explicit Impl(ServeOptions o) : opt(std::move(o)), store(opt.data_dir) {}
 
-  fs::path dir(const std::string& id) const { return opt.data_dir / id; }
-
-  // A fresh folder under --data for an upload being checked (renamed to the run's when taken).
-  fs::path scratch_dir() {
-    std::lock_guard lock(m);
-    return opt.data_dir / ("upload-" + std::to_string(++uploads));
-  }
-
-  // The instance in a folder of the run's files (map.map, scen.scen, plan.txt), with the ADG
-  // footprint `smart run` gives its robot (robot.yaml, when there) on the run's cells, so that
-  // the robot panel's waits are the run's and a robot too wide for the cells is refused here.
-  static monitor::Instance load_files(const fs::path& d, std::size_t agents,
-                                      const std::string& axis) {
-    monitor::InstanceOptions io;
-    io.map = d / "map.map";
-    io.scen = d / "scen.scen";
-    io.plan = d / "plan.txt";
-    io.agents = agents;
-    io.read.axis = axis == "rowcol" ? grid::AxisOrder::kRowCol : grid::AxisOrder::kXY;
-    if (fs::exists(d / "robot.yaml")) {
-      const double radius_m = agent::load_robot_model((d / "robot.yaml").string()).radius_m;
-      const auto f = monitor::footprint_for(radius_m, kUploadCellM);
-      if (!f) {
-        throw std::invalid_argument(
-            fmt::format("the robot (radius {:g} m) is half a cell ({:g} m) wide or more: robots on "
-                        "neighbouring cells would touch; pick a smaller robot model",
-                        radius_m, kUploadCellM));
-      }
-      io.footprint = *f;
-    }
-    return monitor::load_instance(io);
-  }
-
-  std::vector<std::string> run_argv(const std::string& id, const RunRequest& r) const {
-    const auto d = dir(id);
-    return {opt.smart_exe.string(),
-            "run",
-            "--map",
-            (d / "map.map").string(),
-            "--scen",
-            (d / "scen.scen").string(),
-            "--plan",
-            (d / "plan.txt").string(),
-            "--axis",
-            r.axis,
-            "--agents",
-            std::to_string(r.agents),
-            "--robot",
-            (d / "robot.yaml").string(),
-            "--cell-m",
-            std::to_string(kUploadCellM),
-            "--domain",
-            std::to_string(opt.domain),
-            "--qos",
-            opt.qos,
-            "--out",
-            (d / "results").string(),
-            "--real-time-factor",
-            std::to_string(r.real_time_factor),
-            "--no-progress"};
-  }
-
-  // The robot model of the run: the named model with the upload's limits, written next to the
-  // run's files and checked like any robot YAML (the limits' ranges come from there).
-  std::optional<json> write_robot(const fs::path& scratch, const RunRequest& r) {
-    try {
-      YAML::Node model = YAML::LoadFile((opt.config_dir / "robots" / (r.robot + ".yaml")).string());
-      for (const auto& [key, value] : r.limits) model[key] = value;
-      YAML::Emitter out;
-      out << model;
-      std::ofstream(scratch / "robot.yaml") << out.c_str();
-      (void)agent::parse_robot_model(out.c_str(), "the upload's robot limits");
-      return std::nullopt;
-    } catch (const std::exception& e) {
-      return json{{"error", e.what()}, {"problems", json::array()}};
-    }
-  }
-
-  // Writes the upload under a scratch folder and checks it as `smart check-plan` would.
-  std::optional<json> check_upload(const httplib::Request& req, const fs::path& scratch,
-                                   const RunRequest& r) {
-    fs::create_directories(scratch);
-    for (const auto& [field, name] : kRunFiles) {
-      std::ofstream(scratch / name, std::ios::binary) << req.get_file_value(field).content;
-    }
-    try {
-      (void)load_files(scratch, r.agents, r.axis);
-      return std::nullopt;
-    } catch (const grid::InputError& e) {
-      return json{{"error", "the upload has problems"},
-                  {"problems", problems_json(e.problems(), req, scratch)}};
-    } catch (const std::exception& e) {
-      return json{{"error", e.what()}, {"problems", json::array()}};
-    }
-  }
+  fs::path dir(const std::string& id) const { return store.dir(id); }
+  std::optional<RunEntry> entry(const std::string& id) const { return store.entry(id); }
 
   void post_run(const httplib::Request& req, httplib::Response& res) {
-    const RunRequest r = read_fields(req, opt.config_dir / "robots");
+    const auto r = upload::read_fields(req, opt.config_dir / "robots");
     if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
-    const fs::path scratch = scratch_dir();
-    fs::create_directories(scratch);
-    auto bad = write_robot(scratch, r);  // first: the upload is checked with its robot
-    if (!bad) bad = check_upload(req, scratch, r);
+    const fs::path staged = store.stage();
+    auto bad = upload::write_robot(staged, opt.config_dir, r);  // first: checked with its robot
+    if (!bad) bad = upload::check_run(req, staged, r);
     if (bad) {
-      fs::remove_all(scratch);
+      fs::remove_all(staged);
       return reply(res, 400, *bad);
     }
-    std::lock_guard lock(m);
-    const auto id = registry.add(req.get_file_value("map").filename, r.agents);
-    fs::rename(scratch, dir(id));
-    std::ofstream(dir(id) / "request.json") << json{{"axis", r.axis}, {"agents", r.agents}}.dump();
-    argv[id] = run_argv(id, r);
+    std::ofstream(staged / "request.json") << upload::request_json(r).dump();
+    const auto id = store.add_queued(
+        staged, req.get_file_value("map").filename, r.agents,
+        [&](const std::string& run) { return upload::run_argv(opt, dir(run), r); });
     reply(res, 200, {{"id", id}});
-  }
-
-  // A staged replay (results/ and the run's files) checked as the viewer will read it; the
-  // recording is made here once. An error naming the file and line, or nothing.
-  std::optional<json> check_results(const fs::path& staged) {
-    const auto bad = [](std::string what) {
-      return json{{"error", std::move(what)}, {"problems", json::array()}};
-    };
-    const auto r = staged / "results";
-    for (const char* f : {"summary.json", "states.csv"}) {
-      if (!fs::is_regular_file(r / f)) return bad(std::string("no ") + f + " in the results");
-    }
-    const auto summary = json::parse(slurp(r / "summary.json"), nullptr, false);
-    if (!summary.is_object() || !summary["robots"].is_number_unsigned() ||
-        summary["robots"].get<uint64_t>() > kMaxReplayRobots) {
-      return bad(
-          "summary.json is not the summary `smart run --out` writes (\"robots\" must be "
-          "a whole number up to " +
-          std::to_string(kMaxReplayRobots) + ")");
-    }
-    if (!fs::is_regular_file(staged / "map.map")) {
-      const auto named = summary.value("files", json::object());
-      return bad("no map: give the run's map file (summary.json names " +
-                 (named.is_object() ? named.value("map", std::string("none")) : "none") +
-                 ", not found from here)");
-    }
-    try {
-      (void)grid::parse_map(slurp(staged / "map.map"), "the map");
-      const auto rows = parse_states_csv(slurp(r / "states.csv"));
-      // The recording holds every robot in every frame: a forged robot id would size it.
-      const auto robots = summary["robots"].get<uint64_t>();
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (rows[i].robot >= robots) {
-          return bad("states.csv row " + std::to_string(i + 2) + " names robot " +
-                     std::to_string(rows[i].robot) + " but summary.json has " +
-                     std::to_string(robots) + " robots; give the files of one run");
-        }
-      }
-      std::ofstream(staged / "recording-v2.smrc", std::ios::binary) << encode_recording(rows);
-      if (fs::is_regular_file(staged / "scen.scen") && fs::is_regular_file(staged / "plan.txt")) {
-        write_request(staged, summary);
-        const auto in = load(staged);
-        if (fs::is_regular_file(r / "actions.csv")) {
-          (void)parse_action_times(slurp(r / "actions.csv"), in.actions);
-        }
-      }
-    } catch (const grid::InputError& e) {
-      return json{{"error", "the run's files have problems"},
-                  {"problems", problems_json(e.problems(), staged_names(staged))}};
-    } catch (const std::exception& e) {
-      return bad(e.what());
-    }
-    return std::nullopt;
-  }
-
-  static std::map<std::string, std::string> staged_names(const fs::path& staged) {
-    std::map<std::string, std::string> names;
-    for (const auto& [field, name] : kRunFiles) names[(staged / name).string()] = field;
-    return names;
-  }
-
-  // How the plan is read again (axis, robots), from the summary of the run that was made on it.
-  static void write_request(const fs::path& staged, const json& summary) {
-    const auto plan = summary.value("plan", json::object());
-    std::ofstream(staged / "request.json") << json{
-        {"axis", plan.is_object() ? plan.value("axis", "xy") : "xy"},
-        {"agents",
-         summary.value("robots", std::size_t{0})}}.dump();
   }
 
   // A checked replay becomes a done run.
   std::string adopt(const fs::path& staged) {
-    const auto summary = json::parse(slurp(staged / "results" / "summary.json"));
-    const auto files = summary.value("files", json::object());
-    const std::string map = files.is_object() ? files.value("map", "?") : "?";
-    std::lock_guard lock(m);
-    const auto id = registry.add_done(fs::path(map).filename().string(),
-                                      summary.value("robots", std::size_t{0}));
-    fs::rename(staged, dir(id));
-    return id;
+    const auto [map, robots] = upload::replay_entry(staged);
+    return store.add_done(staged, map, robots);
   }
 
   // POST /api/results: a results folder (fields "files", many) with the run's map (and scen and
   // plan for the robot panel), replayed like --open.
   void post_results(const httplib::Request& req, httplib::Response& res) {
-    const fs::path scratch = scratch_dir();
-    fs::create_directories(scratch / "results");
+    const fs::path staged = store.stage();
+    fs::create_directories(staged / "results");
     const auto [first, last] = req.files.equal_range("files");
     for (auto it = first; it != last; ++it) {
       const auto name = fs::path(it->second.filename).filename().string();
-      if (result_file(name)) std::ofstream(scratch / "results" / name) << it->second.content;
+      if (results::is_results_file(name)) {
+        std::ofstream(staged / "results" / name) << it->second.content;
+      }
     }
     for (const auto& [field, name] : kRunFiles) {
-      if (req.has_file(field)) std::ofstream(scratch / name) << req.get_file_value(field).content;
+      if (req.has_file(field)) std::ofstream(staged / name) << req.get_file_value(field).content;
     }
-    if (auto bad = check_results(scratch)) {
-      fs::remove_all(scratch);
+    if (auto bad = upload::check_results(staged)) {
+      fs::remove_all(staged);
       return reply(res, 400, *bad);
     }
-    reply(res, 200, {{"id", adopt(scratch)}});
+    reply(res, 200, {{"id", adopt(staged)}});
   }
 
   // GET /api/runs/{id}/results/{name}: a results file as a download, streamed from disk.
   void get_result_file(const std::string& id, const std::string& name, httplib::Response& res) {
-    const auto path = dir(id) / "results" / name;
-    if (!entry(id) || !result_file(name) || !fs::is_regular_file(path)) {
+    const auto path = store.results_file(id, name);
+    if (!entry(id) || !results::is_results_file(name) || !fs::is_regular_file(path)) {
       return reply(res, 404, {{"error", "no " + name + " in the results of " + id}});
     }
     res.set_header("Content-Disposition", "attachment; filename=\"" + id + "-" + name + "\"");
@@ -417,12 +125,12 @@ struct Server::Impl {
     const auto e = entry(id);
     if (!e) return reply(res, 404, {{"error", "no run " + id}});
     json j = entry_json(*e);
-    const auto summary = dir(id) / "results" / "summary.json";
+    const auto summary = store.results_file(id, results::kSummaryJson);
     if (e->state == RunState::kDone && fs::exists(summary))
       j["summary"] = json::parse(slurp(summary));
     j["files"] = json::array();
-    for (const char* f : kResultFiles) {
-      if (e->state == RunState::kDone && fs::exists(dir(id) / "results" / f))
+    for (const auto f : results::kFiles) {
+      if (e->state == RunState::kDone && fs::exists(store.results_file(id, f)))
         j["files"].push_back(f);
     }
     reply(res, 200, j);
@@ -430,7 +138,7 @@ struct Server::Impl {
 
   void get_recording(const std::string& id, httplib::Response& res) {
     const auto e = entry(id);
-    const auto states = dir(id) / "results" / "states.csv";
+    const auto states = store.results_file(id, results::kStatesCsv);
     if (!e || e->state != RunState::kDone || !fs::exists(states)) {
       return reply(res, 404, {{"error", "no recording of " + id + " (yet)"}});
     }
@@ -441,16 +149,11 @@ struct Server::Impl {
     res.set_content(slurp(cached), "application/octet-stream");
   }
 
-  std::optional<RunEntry> entry(const std::string& id) {
-    std::lock_guard lock(m);
-    return is_run_id(id) ? registry.get(id) : std::nullopt;
-  }
-
   // One event per call, paced; the stream ends after the event that shows the run ended.
   bool live_event(const std::string& id, PoseTail& tail, std::uintmax_t& offset,
                   httplib::DataSink& sink) {
     const auto e = entry(id);
-    const auto states = dir(id) / "results" / "states.csv";
+    const auto states = store.results_file(id, results::kStatesCsv);
     std::ifstream in(states, std::ios::binary);
     if (in && in.seekg(static_cast<std::streamoff>(offset))) {
       std::string chunk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -481,41 +184,12 @@ struct Server::Impl {
                                      });
   }
 
-  // The instance in a run's folder: its files read as request.json says.
-  static monitor::Instance load(const fs::path& d) {
-    const auto request = json::parse(slurp(d / "request.json"));
-    return load_files(d, request.value("agents", std::size_t{0}),
-                      request.value("axis", std::string("xy")));
-  }
-
-  // The run's instance (plan, actions, ADG), loaded once from its files and request.json.
+  // The run's instance (plan, actions, ADG) and its actions' finish times, loaded once.
   std::shared_ptr<const monitor::Instance> instance(const std::string& id) {
-    {
-      std::lock_guard lock(m);
-      if (auto it = instances.find(id); it != instances.end()) return it->second;
-    }
-    auto in = std::make_shared<const monitor::Instance>(load(dir(id)));
-    std::lock_guard lock(m);
-    return instances.emplace(id, std::move(in)).first->second;
+    return store.instance(id, upload::load_run);
   }
-
-  // When each action of a finished run finished (actions.csv), by node; empty while it runs or
-  // when the run wrote none.
-  std::shared_ptr<const std::vector<double>> times(const std::string& id,
-                                                   const monitor::Instance& in) {
-    {
-      std::lock_guard lock(m);
-      if (auto it = action_times.find(id); it != action_times.end()) return it->second;
-    }
-    const auto csv = dir(id) / "results" / "actions.csv";
-    const auto e = entry(id);
-    if (!e || e->state != RunState::kDone || !fs::exists(csv)) {
-      return std::make_shared<const std::vector<double>>();
-    }
-    auto t =
-        std::make_shared<const std::vector<double>>(parse_action_times(slurp(csv), in.actions));
-    std::lock_guard lock(m);
-    return action_times.emplace(id, std::move(t)).first->second;
+  std::shared_ptr<const std::vector<double>> times(const std::string& id) {
+    return store.action_times(id, *instance(id));
   }
 
   // Finished actions over time (the stats panel's plot), from actions.csv.
@@ -525,32 +199,24 @@ struct Server::Impl {
       return reply(res, 404, {{"error", "no finished actions of " + id + " (no plan files)"}});
     }
     try {
-      reply(res, 200, finished_curve(*times(id, *instance(id))));
+      reply(res, 200, finished_curve(*times(id)));
     } catch (const std::exception& ex) {
       reply(res, 404, {{"error", ex.what()}});
     }
   }
 
   // robots.csv's row of `robot` as JSON (finish and waiting time, stops, lower bound), if the
-  // run wrote one; an empty field (not finished, bound unknown) is null.
+  // run wrote one; an unknown value (not finished, bound unknown) is null.
   json robot_results(const std::string& id, uint32_t robot) const {
-    std::ifstream in(dir(id) / "results" / "robots.csv");
-    std::string line;
-    const auto number = [](const std::string& text) {
-      double v = 0;
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-      return ec == std::errc() && end == text.data() + text.size() ? json(v) : json();
-    };
-    for (std::getline(in, line); std::getline(in, line);) {
-      std::istringstream row(line);
-      std::string cell[6];
-      for (auto& c : cell) std::getline(row, c, ',');
-      if (cell[0] == std::to_string(robot)) {
-        return {{"finish_time_s", number(cell[1])},
-                {"waiting_time_s", number(cell[2])},
-                {"stops", number(cell[3])},
-                {"lower_bound_s", number(cell[5])}};
-      }
+    const auto csv = store.results_file(id, results::kRobotsCsv);
+    if (!fs::is_regular_file(csv)) return json::object();
+    const auto or_null = [](const std::optional<double>& v) { return v ? json(*v) : json(); };
+    for (const auto& row : results::parse_robots_csv(slurp(csv))) {
+      if (row.robot != robot) continue;
+      return {{"finish_time_s", or_null(row.finish_time_s)},
+              {"waiting_time_s", row.waiting_time_s},
+              {"stops", row.stops},
+              {"lower_bound_s", or_null(row.lower_bound_s)}};
     }
     return json::object();
   }
@@ -564,7 +230,7 @@ struct Server::Impl {
     try {
       const auto robot = static_cast<uint32_t>(std::stoul(robot_text));
       const auto in = instance(id);
-      json j = robot_detail(*in, robot, summary_cell_m(id), *times(id, *in));
+      json j = robot_detail(*in, robot, summary_cell_m(id), *times(id));
       j["results"] = robot_results(id, robot);
       reply(res, 200, j);
     } catch (const std::exception& ex) {
@@ -573,8 +239,8 @@ struct Server::Impl {
   }
 
   double summary_cell_m(const std::string& id) const {
-    const auto s = dir(id) / "results" / "summary.json";
-    return fs::exists(s) ? json::parse(slurp(s)).value("cell_m", 1.0) : 1.0;
+    const auto s = store.results_file(id, results::kSummaryJson);
+    return fs::exists(s) ? json::parse(slurp(s)).value(key::kCellM, 1.0) : 1.0;
   }
 
   // GET /api/robots: the robot models an upload may name, with their limits (the form's
@@ -583,7 +249,7 @@ struct Server::Impl {
     json out = json::array();
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(opt.config_dir / "robots")) {
-      if (e.path().extension() == ".yaml" && plain_name(e.path().stem().string())) {
+      if (e.path().extension() == ".yaml" && upload::plain_name(e.path().stem().string())) {
         files.push_back(e.path());
       }
     }
@@ -645,8 +311,7 @@ struct Server::Impl {
     http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
     http.Get("/api/runs", [this](const auto&, auto& res) {
       json list = json::array();
-      std::lock_guard lock(m);
-      for (const auto& e : registry.list()) list.push_back(entry_json(e));
+      for (const auto& e : store.list()) list.push_back(entry_json(e));
       reply(res, 200, list);
     });
     http.Get(R"(/api/runs/([^/]+))",
@@ -673,58 +338,34 @@ struct Server::Impl {
              [this](const auto& req, auto& res) { get_live(req.matches[1], res); });
     if (!opt.web_dir.empty()) http.set_mount_point("/", opt.web_dir.string());
   }
-
-  // Starts what may start, collects what ended.
-  void tend_runs() {
-    std::lock_guard lock(m);
-    for (const auto& id : registry.start_ready(opt.max_running)) {
-      children.emplace(id, common::ChildProcess(argv.at(id), dir(id) / "run.out"));
-      spdlog::info("serve: {} started", id);
-    }
-    for (auto it = children.begin(); it != children.end();) {
-      const auto rc = it->second.wait(std::chrono::milliseconds(0));
-      if (!rc) {
-        ++it;
-        continue;
-      }
-      const bool summary = fs::exists(dir(it->first) / "results" / "summary.json");
-      const bool ok = (*rc == 0 || *rc == 1) && summary;
-      registry.finish(it->first, ok,
-                      ok ? ""
-                         : "smart run exited with code " + std::to_string(*rc) + "; see " +
-                               (dir(it->first) / "run.out").string());
-      spdlog::info("serve: {} ended (exit code {})", it->first, *rc);
-      it = children.erase(it);
-    }
-  }
 };
 
 Server::Server(ServeOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
-  fs::create_directories(impl_->opt.data_dir);
   impl_->routes();
 }
 
 Server::~Server() = default;
 
-std::string Server::open_results(const fs::path& results) {
+std::string Server::open_results(const fs::path& folder) {
   auto& I = *impl_;
-  const fs::path scratch = I.scratch_dir();
+  const fs::path scratch = I.store.stage();
   fs::create_directories(scratch / "results");
-  for (const char* f : kResultFiles) {
-    if (fs::is_regular_file(results / f)) fs::copy_file(results / f, scratch / "results" / f);
+  for (const auto f : results::kFiles) {
+    if (fs::is_regular_file(folder / f)) fs::copy_file(folder / f, scratch / "results" / f);
   }
   // The files the run was made on, when still where summary.json says (for the robot panel).
   json files = json::object();
-  if (fs::is_regular_file(results / "summary.json")) {
-    files = json::parse(slurp(results / "summary.json"), nullptr, false).value("files", files);
+  if (fs::is_regular_file(folder / results::kSummaryJson)) {
+    files = json::parse(slurp(folder / results::kSummaryJson), nullptr, false)
+                .value(key::kFiles, files);
   }
-  for (const auto& [key, name] : kRunFiles) {
-    const fs::path src = files.is_object() ? files.value(key, std::string()) : std::string();
+  for (const auto& [field, name] : kRunFiles) {
+    const fs::path src = files.is_object() ? files.value(field, std::string()) : std::string();
     if (!src.empty() && fs::is_regular_file(src)) fs::copy_file(src, scratch / name);
   }
-  if (auto bad = I.check_results(scratch)) {
+  if (auto bad = upload::check_results(scratch)) {
     fs::remove_all(scratch);
-    throw std::runtime_error("--open " + results.string() + ": " + bad->value("error", "") +
+    throw std::runtime_error("--open " + folder.string() + ": " + bad->value("error", "") +
                              "; give a folder written by `smart run --out`");
   }
   return I.adopt(scratch);
@@ -746,14 +387,13 @@ void Server::run(const std::atomic<bool>& stop) {
   auto& I = *impl_;
   std::thread listener([&] { I.http.listen_after_bind(); });
   while (!stop.load()) {
-    I.tend_runs();
+    I.store.tend(I.opt.max_running);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   I.stopping = true;
   I.http.stop();
   listener.join();
-  std::lock_guard lock(I.m);
-  I.children.clear();  // ChildProcess stops what still runs
+  I.store.stop_all();
 }
 
 }  // namespace smart::serve

@@ -17,6 +17,7 @@
 
 #include "smart/common/child_process.hpp"
 #include "smart/grid/text_file.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/experiment.hpp"
@@ -63,7 +64,7 @@ struct Experiment {
 
   fs::path cell_dir(const ExperimentCell& c) const { return out / "cells" / c.key; }
   bool done(const ExperimentCell& c) const {
-    std::ifstream in(cell_dir(c) / "summary.json");
+    std::ifstream in(cell_dir(c) / results::kSummaryJson);
     return in && nlohmann::json::parse(in, nullptr, false).is_object();
   }
 };
@@ -232,7 +233,7 @@ std::size_t write_results(const Experiment& e) {
   std::vector<nlohmann::json> rows;
   std::ofstream jsonl(e.out / "results.jsonl");
   for (const auto& c : e.cells) {
-    std::ifstream in(e.cell_dir(c) / "summary.json");
+    std::ifstream in(e.cell_dir(c) / results::kSummaryJson);
     const auto summary = nlohmann::json::parse(in, nullptr, false);
     if (!in || !summary.is_object()) continue;
     rows.push_back(result_row(e.spec, c, summary));

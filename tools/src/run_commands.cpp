@@ -20,6 +20,7 @@
 #include "smart/grid/scen_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/results.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/run_options.hpp"
@@ -90,7 +91,7 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
 
 std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard) {
   if (o.out.empty()) return "/dev/null";
-  return std::filesystem::path(o.out) / ("sim-" + std::to_string(shard) + ".json");
+  return std::filesystem::path(o.out) / results::sim_report_name(shard);
 }
 
 // `smart run`'s sim children (one per shard), with the monitor's own options and the plan's

@@ -43,6 +43,7 @@
 
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/instance.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/monitor/separation_watch.hpp"
 #include "smart/wire/lockstep.hpp"
 
@@ -62,12 +63,7 @@ enum class Outcome {
 };
 std::string_view to_string(Outcome outcome);
 
-struct StateRow {
-  double t_s;
-  uint32_t robot;
-  double x_m, y_m, yaw_rad, v_mps, w_radps, left_mps, right_mps;
-  uint32_t queue;
-};
+using results::StateRow;  // a states.csv row (results_format.hpp)
 
 struct RobotMetrics {
   double finish_time_s = 0;   // sim time its last action finished (0: no actions)

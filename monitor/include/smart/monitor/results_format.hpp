@@ -1,0 +1,103 @@
+// Contract: the results folder of a run (`smart run --out DIR`), specified once: its file names,
+// the columns of each CSV, the summary.json keys other programs read, and a writer and a reader
+// for each CSV's rows. The monitor writes through it (monitor/src/results.cpp), `smart serve`
+// reads through it (replays, the robot panel, the progress plot, uploads; the web app downloads
+// the files the server lists from kFiles), `smart experiment` collects summaries by kSummaryJson.
+// New outputs are added here first.
+// - Numbers are written as printf's %.10g (std::to_chars, general, 10 digits); an empty field is a
+//   value that is not known (a robot that did not finish, an action that never finished, a bound
+//   without the robot's limits).
+// - Readers take the whole text, skip the header line and empty lines, and throw
+//   std::invalid_argument naming the file, the line and what a row must hold. Pure: text in, text
+//   out, no files.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smart::results {
+
+inline constexpr std::string_view kSummaryJson = "summary.json";
+inline constexpr std::string_view kStatsCsv = "stats.csv";
+inline constexpr std::string_view kRobotsCsv = "robots.csv";
+inline constexpr std::string_view kActionsCsv = "actions.csv";
+inline constexpr std::string_view kStatesCsv = "states.csv";
+// Every file of a results folder that a viewer lists, downloads or replays, in that order.
+inline constexpr std::array<std::string_view, 5> kFiles = {kSummaryJson, kStatsCsv, kRobotsCsv,
+                                                           kActionsCsv, kStatesCsv};
+bool is_results_file(std::string_view name);
+// A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json.
+std::string sim_report_name(uint32_t shard);
+
+// summary.json keys that programs other than a person read (every key: monitor/results.hpp and
+// the README's paragraph on results).
+namespace summary_key {
+inline constexpr const char* kRobots = "robots";  // fleet size
+inline constexpr const char* kSuccess = "success";
+inline constexpr const char* kCellM = "cell_m";
+inline constexpr const char* kFiles = "files";  // {map, scen, plan, robot}: the run's inputs
+inline constexpr const char* kMap = "map";
+inline constexpr const char* kScen = "scen";
+inline constexpr const char* kPlan = "plan";    // also the plan object: {axis, ...}
+inline constexpr const char* kRobot = "robot";  // in "files"
+inline constexpr const char* kAxis = "axis";    // in "plan"
+}  // namespace summary_key
+
+// SMART's stats columns (smart-mapf/SMART server/src/ADG_server.cpp saveStats), in SMART's
+// order. SMART writes wall-clock seconds under "time finish sim" and "sum finish time"; here they
+// hold sim seconds, so they are named for what they hold.
+inline constexpr std::string_view kStatsHeader =
+    "steps finish sim,sum of steps finish sim,makespan sim s,sum of finish times sim s,"
+    "original plan cost,#type-2 edges,#type-1 edges,#Nodes,#Move,#Rotate,"
+    "#Consecutive Move,#Agent pair,instance name,number of agent";
+
+// robots.csv: one row per robot.
+inline constexpr std::string_view kRobotsHeader =
+    "robot,finish_time_s,waiting_time_s,stops,actions,lower_bound_s";
+struct RobotRow {
+  uint32_t robot = 0;
+  std::optional<double> finish_time_s;  // none: not finished, or done before a resume
+  double waiting_time_s = 0;
+  uint64_t stops = 0;
+  uint64_t actions = 0;
+  std::optional<double> lower_bound_s;  // none: the robot's limits were not known
+};
+void append_row(std::string& out, const RobotRow& row);
+std::vector<RobotRow> parse_robots_csv(std::string_view text);
+
+// actions.csv: one row per action, in ADG order.
+inline constexpr std::string_view kActionsHeader = "robot,action,type,finish_time_s";
+enum class ActionType { kMove, kRotate };  // written "move", "rotate"
+struct ActionRow {
+  uint32_t robot = 0;
+  uint32_t action = 0;  // the robot's action seq
+  ActionType type = ActionType::kMove;
+  std::optional<double> finish_time_s;  // sim time; none: never finished, or before a resume
+};
+void append_row(std::string& out, const ActionRow& row);
+// Calls `row` for each row with its line number (for the caller's own checks).
+void for_each_action_row(std::string_view text,
+                         const std::function<void(const ActionRow&, std::size_t line)>& row);
+
+// states.csv: robot states as the monitor received them, written row by row while a run goes.
+inline constexpr std::string_view kStatesHeader =
+    "t_s,robot,x_m,y_m,yaw_rad,v_mps,omega_radps,left_mps,right_mps,queue";
+struct StateRow {
+  double t_s = 0;
+  uint32_t robot = 0;
+  double x_m = 0, y_m = 0, yaw_rad = 0, v_mps = 0, w_radps = 0, left_mps = 0, right_mps = 0;
+  uint32_t queue = 0;
+};
+void append_row(std::string& out, const StateRow& row);
+// One line without its newline; none when it is not a row (a live file's partial line).
+std::optional<StateRow> parse_state_line(std::string_view line);
+// Rows need t_s, robot, x_m, y_m, yaw_rad (finite; robot up to 10^7); the other columns are read
+// when present (files of older versions lack some) and 0 otherwise.
+void for_each_state_row(std::string_view text, const std::function<void(const StateRow&)>& row);
+
+}  // namespace smart::results

@@ -1,0 +1,171 @@
+#include "smart/monitor/results_format.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+namespace smart::results {
+
+bool is_results_file(std::string_view name) {
+  return std::find(kFiles.begin(), kFiles.end(), name) != kFiles.end();
+}
+
+std::string sim_report_name(uint32_t shard) { return "sim-" + std::to_string(shard) + ".json"; }
+
+namespace {
+
+// One field as %.10g (doubles) or decimal (integers), then `sep`. std::to_chars with a format
+// and a precision converts as printf does (C++17 [charconv.to.chars]), without the stream's
+// locale and multi-precision path: a quarter of the monitor's CPU in a 1000-robot run (issue 15).
+template <class T>
+void put(std::string& out, T v, char sep = ',') {
+  char buf[32];
+  std::to_chars_result r;
+  if constexpr (std::is_floating_point_v<T>) {
+    r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 10);
+  } else {
+    r = std::to_chars(buf, buf + sizeof buf, v);
+  }
+  out.append(buf, r.ptr);
+  if (sep) out.push_back(sep);
+}
+
+void put(std::string& out, const std::optional<double>& v, char sep = ',') {
+  if (v) put(out, *v, 0);
+  if (sep) out.push_back(sep);
+}
+
+// Lines of `text` after the header, with their 1-based numbers; empty lines are skipped.
+template <class F>
+void rows_of(std::string_view text, F&& row) {
+  std::size_t line_no = 0;
+  while (!text.empty()) {
+    const auto nl = std::min(text.find('\n'), text.size());
+    std::string_view line = text.substr(0, nl);
+    text.remove_prefix(std::min(nl + 1, text.size()));
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (++line_no == 1 || line.empty()) continue;
+    row(line, line_no);
+  }
+}
+
+// The next comma-separated field of `line` (consumed).
+std::string_view next_field(std::string_view& line) {
+  const auto comma = std::min(line.find(','), line.size());
+  const auto f = line.substr(0, comma);
+  line.remove_prefix(std::min(comma + 1, line.size()));
+  return f;
+}
+
+template <class T>
+bool number(std::string_view f, T& out) {
+  const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), out);
+  if (ec != std::errc() || end != f.data() + f.size()) return false;
+  if constexpr (std::is_floating_point_v<T>) return std::isfinite(out);
+  return true;
+}
+
+// An empty field is "not known"; anything else must be a finite number.
+bool optional_number(std::string_view f, std::optional<double>& out) {
+  out.reset();
+  if (f.empty()) return true;
+  double v = 0;
+  if (!number(f, v)) return false;
+  out = v;
+  return true;
+}
+
+std::invalid_argument bad_row(std::string_view file, std::size_t line, std::string_view expected) {
+  return std::invalid_argument(std::string(file) + " line " + std::to_string(line) + ": expected " +
+                               std::string(expected));
+}
+
+}  // namespace
+
+void append_row(std::string& out, const RobotRow& r) {
+  put(out, r.robot);
+  put(out, r.finish_time_s);
+  put(out, r.waiting_time_s);
+  put(out, r.stops);
+  put(out, r.actions);
+  put(out, r.lower_bound_s, '\n');
+}
+
+std::vector<RobotRow> parse_robots_csv(std::string_view text) {
+  std::vector<RobotRow> rows;
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    RobotRow r;
+    const bool ok = number(next_field(line), r.robot) &&
+                    optional_number(next_field(line), r.finish_time_s) &&
+                    number(next_field(line), r.waiting_time_s) &&
+                    number(next_field(line), r.stops) && number(next_field(line), r.actions) &&
+                    optional_number(next_field(line), r.lower_bound_s) && line.empty();
+    if (!ok) throw bad_row(kRobotsCsv, line_no, kRobotsHeader);
+    rows.push_back(r);
+  });
+  return rows;
+}
+
+void append_row(std::string& out, const ActionRow& r) {
+  put(out, r.robot);
+  put(out, r.action);
+  out.append(r.type == ActionType::kMove ? "move," : "rotate,");
+  put(out, r.finish_time_s, '\n');
+}
+
+void for_each_action_row(std::string_view text,
+                         const std::function<void(const ActionRow&, std::size_t line)>& row) {
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    ActionRow r;
+    bool ok = number(next_field(line), r.robot) && number(next_field(line), r.action);
+    const auto type = next_field(line);
+    ok = ok && (type == "move" || type == "rotate") &&
+         optional_number(next_field(line), r.finish_time_s) && line.empty() &&
+         (!r.finish_time_s || *r.finish_time_s >= 0);
+    if (!ok) throw bad_row(kActionsCsv, line_no, "robot,action,move|rotate,finish_time_s (>= 0)");
+    r.type = type == "move" ? ActionType::kMove : ActionType::kRotate;
+    row(r, line_no);
+  });
+}
+
+void append_row(std::string& out, const StateRow& s) {
+  put(out, s.t_s);
+  put(out, s.robot);
+  for (const double v : {s.x_m, s.y_m, s.yaw_rad, s.v_mps, s.w_radps, s.left_mps, s.right_mps}) {
+    put(out, v);
+  }
+  put(out, s.queue, '\n');
+}
+
+std::optional<StateRow> parse_state_line(std::string_view line) {
+  StateRow s;
+  double robot = -1;
+  if (!number(next_field(line), s.t_s) || !number(next_field(line), robot) || robot < 0 ||
+      robot > 1e7 || !number(next_field(line), s.x_m) || !number(next_field(line), s.y_m) ||
+      !number(next_field(line), s.yaw_rad)) {
+    return std::nullopt;
+  }
+  s.robot = static_cast<uint32_t>(robot);
+  // Optional columns, in order, until one is missing or not a number.
+  double queue = 0;
+  for (double* v : {&s.v_mps, &s.w_radps, &s.left_mps, &s.right_mps, &queue}) {
+    if (line.empty() || !number(next_field(line), *v)) {
+      *v = 0;
+      break;
+    }
+  }
+  s.queue = queue >= 0 ? static_cast<uint32_t>(std::min(queue, 1e6)) : 0;
+  return s;
+}
+
+void for_each_state_row(std::string_view text, const std::function<void(const StateRow&)>& row) {
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    const auto s = parse_state_line(line);
+    if (!s) throw bad_row(kStatesCsv, line_no, "t_s,robot,x_m,y_m,yaw_rad,... numbers");
+    row(*s);
+  });
+}
+
+}  // namespace smart::results

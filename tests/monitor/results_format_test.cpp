@@ -1,0 +1,109 @@
+// The results folder's format: every row written and read back, numbers as %.10g, empty fields as
+// "not known", and readers that name the file and line of a bad row.
+#include "smart/monitor/results_format.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace smart::results {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string with_header(std::string_view header, const std::string& rows) {
+  return std::string(header) + "\n" + rows;
+}
+
+TEST(ResultsFormat, RobotRowsRoundTripAndEmptyFieldsAreNotKnown) {
+  std::string text;
+  append_row(text, RobotRow{0, 12.5, 3.25, 2, 14, 9.0});
+  append_row(text, RobotRow{1, std::nullopt, 0.1, 0, 3, std::nullopt});
+  EXPECT_EQ(text, "0,12.5,3.25,2,14,9\n1,,0.1,0,3,\n");
+  const auto rows = parse_robots_csv(with_header(kRobotsHeader, text));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].finish_time_s, 12.5);
+  EXPECT_EQ(rows[0].lower_bound_s, 9.0);
+  EXPECT_EQ(rows[1].robot, 1u);
+  EXPECT_FALSE(rows[1].finish_time_s.has_value());
+  EXPECT_FALSE(rows[1].lower_bound_s.has_value());
+  EXPECT_EQ(rows[1].actions, 3u);
+}
+
+TEST(ResultsFormat, NumbersAreWrittenAsPrintfsTenDigitG) {
+  for (const double v : {1.0 / 3.0, 1234567.891234, 1e-7, 0.1 + 0.2, 487.29999999999}) {
+    std::string text;
+    append_row(text, StateRow{v, 3, v, -v, 0, 0, 0, 0, 0, 7});
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%.10g,3,%.10g,%.10g,", v, v, -v);
+    EXPECT_EQ(text.substr(0, std::string(expected).size()), expected) << v;
+  }
+}
+
+TEST(ResultsFormat, ActionRowsRoundTripWithTheirLineNumbers) {
+  std::string text;
+  append_row(text, ActionRow{2, 0, ActionType::kRotate, 0.5});
+  append_row(text, ActionRow{2, 1, ActionType::kMove, std::nullopt});
+  EXPECT_EQ(text, "2,0,rotate,0.5\n2,1,move,\n");
+  std::vector<std::pair<ActionRow, std::size_t>> read;
+  for_each_action_row(with_header(kActionsHeader, text),
+                      [&](const ActionRow& r, std::size_t line) { read.emplace_back(r, line); });
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[0].first.type, ActionType::kRotate);
+  EXPECT_EQ(read[0].first.finish_time_s, 0.5);
+  EXPECT_EQ(read[0].second, 2u);
+  EXPECT_EQ(read[1].first.action, 1u);
+  EXPECT_FALSE(read[1].first.finish_time_s.has_value());
+}
+
+TEST(ResultsFormat, StateRowsRoundTripAndOlderFilesWithoutTheLastColumnsRead) {
+  std::string text;
+  const StateRow s{0.1, 4, 1.5, 2.5, 3.14, 0.2, -0.1, 0.19, 0.21, 6};
+  append_row(text, s);
+  EXPECT_EQ(text, "0.1,4,1.5,2.5,3.14,0.2,-0.1,0.19,0.21,6\n");
+  std::vector<StateRow> rows;
+  for_each_state_row(with_header(kStatesHeader, text + "0.2,1,1,2,0\n"),
+                     [&](const StateRow& r) { rows.push_back(r); });
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].queue, 6u);
+  EXPECT_EQ(rows[0].right_mps, 0.21);
+  EXPECT_EQ(rows[1].robot, 1u);
+  EXPECT_EQ(rows[1].queue, 0u) << "a pose-only row of an older file";
+  EXPECT_FALSE(parse_state_line("0.3,1,1,2").has_value()) << "a live file's partial line";
+}
+
+TEST(ResultsFormat, BadRowsNameTheFileTheLineAndWhatARowHolds) {
+  const auto message = [](auto read) {
+    try {
+      read();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(message([] { parse_robots_csv("h\n0,1,2,3,4,5\n1,soon,2,3,4,5\n"); }),
+              HasSubstr("robots.csv line 3: expected robot,finish_time_s,waiting_time_s"));
+  EXPECT_THAT(message([] { parse_robots_csv("h\n0,1,2,3,4,5,6\n"); }), HasSubstr("line 2"));
+  EXPECT_THAT(message([] { for_each_action_row("h\n0,0,jump,1\n", [](auto&, auto) {}); }),
+              HasSubstr("actions.csv line 2: expected robot,action,move|rotate"));
+  EXPECT_THAT(message([] { for_each_action_row("h\n0,0,move,-1\n", [](auto&, auto) {}); }),
+              HasSubstr("actions.csv line 2"));
+  EXPECT_THAT(message([] { for_each_state_row("h\n\n0,-1,0,0,0\n", [](auto&) {}); }),
+              HasSubstr("states.csv line 3"));
+  EXPECT_THAT(message([] { for_each_state_row("h\n0,1,nan,0,0\n", [](auto&) {}); }),
+              HasSubstr("states.csv line 2"));
+}
+
+TEST(ResultsFormat, OnlyTheFolderFilesAreResultsFiles) {
+  for (const auto f : kFiles) EXPECT_TRUE(is_results_file(f)) << f;
+  EXPECT_FALSE(is_results_file("run.out"));
+  EXPECT_FALSE(is_results_file("../summary.json"));
+  EXPECT_EQ(sim_report_name(3), "sim-3.json");
+}
+
+}  // namespace
+}  // namespace smart::results

@@ -1,0 +1,82 @@
+// The run store on a real temporary data folder, with real child processes standing in for
+// `smart run` (a shell that writes a summary, or fails).
+#include "smart/serve/run_store.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+namespace smart::serve {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("smart-run-store-" + std::to_string(::getpid()) +
+                                               "-" + std::to_string(counter++));
+  static inline int counter = 0;
+  ~TempDir() { fs::remove_all(path); }
+};
+
+// Tends the store until the run has ended (each check is an event: the child's exit).
+RunEntry ended(RunStore& store, const std::string& id) {
+  for (int i = 0; i < 3000; ++i) {
+    store.tend(1);
+    const auto e = store.entry(id);
+    if (e && (e->state == RunState::kDone || e->state == RunState::kFailed)) return *e;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ADD_FAILURE() << id << " never ended";
+  return {};
+}
+
+TEST(RunStore, AStagedUploadBecomesARunWholeAndItsCommandRunsThere) {
+  TempDir d;
+  RunStore store(d.path);
+  const auto staged = store.stage();
+  ASSERT_TRUE(fs::is_directory(staged));
+  std::ofstream(staged / "map.map") << "map";
+  const auto id = store.add_queued(staged, "warehouse.map", 3, [&](const std::string& run) {
+    const auto results = store.dir(run) / "results";
+    return std::vector<std::string>{
+        "/bin/sh", "-c",
+        "mkdir -p " + results.string() + " && echo '{}' > " + (results / "summary.json").string()};
+  });
+  EXPECT_FALSE(fs::exists(staged)) << "renamed, not copied";
+  EXPECT_TRUE(fs::exists(store.dir(id) / "map.map"));
+  EXPECT_EQ(store.entry(id)->state, RunState::kQueued);
+  const auto e = ended(store, id);
+  EXPECT_EQ(e.state, RunState::kDone) << e.error;
+  EXPECT_EQ(e.map_name, "warehouse.map");
+  EXPECT_EQ(store.list().size(), 1u);
+}
+
+TEST(RunStore, ARunThatFailsIsRecordedNamingItsOutput) {
+  TempDir d;
+  RunStore store(d.path);
+  const auto id = store.add_queued(store.stage(), "m", 1, [](const std::string&) {
+    return std::vector<std::string>{"/bin/sh", "-c", "echo broken; exit 3"};
+  });
+  const auto e = ended(store, id);
+  EXPECT_EQ(e.state, RunState::kFailed);
+  EXPECT_THAT(e.error, HasSubstr("exited with code 3"));
+  EXPECT_THAT(e.error, HasSubstr((store.dir(id) / "run.out").string()));
+}
+
+TEST(RunStore, AReplayIsDoneAtOnceAndOnlyRunIdsNameRuns) {
+  TempDir d;
+  RunStore store(d.path);
+  const auto id = store.add_done(store.stage(), "replay.map", 5);
+  EXPECT_EQ(store.entry(id)->state, RunState::kDone);
+  EXPECT_EQ(store.results_file(id, "robots.csv"), store.dir(id) / "results" / "robots.csv");
+  EXPECT_FALSE(store.entry("../" + id).has_value());
+  EXPECT_FALSE(store.entry("upload-1").has_value()) << "a staging folder is not a run";
+}
+
+}  // namespace
+}  // namespace smart::serve
