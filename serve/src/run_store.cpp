@@ -5,21 +5,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "slurp.hpp"
 #include "smart/monitor/results_format.hpp"
 #include "smart/serve/robot_detail.hpp"
 
 namespace smart::serve {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
 
 RunStore::RunStore(fs::path data_dir) : data_dir_(std::move(data_dir)) {
   fs::create_directories(data_dir_);

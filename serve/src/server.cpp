@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "slurp.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/monitor/results_format.hpp"
 #include "smart/serve/recording.hpp"
@@ -25,12 +26,6 @@ using nlohmann::json;
 namespace key = results::summary_key;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void reply(httplib::Response& res, int status, const json& body) {
   res.status = status;

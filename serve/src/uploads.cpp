@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "slurp.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/problem.hpp"
@@ -23,12 +24,6 @@ using nlohmann::json;
 namespace key = results::summary_key;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Problems name the files as the user uploaded them, not the server's scratch paths.
 // `names`: scratch path -> the name the user knows the file by.
