@@ -3,13 +3,11 @@
 #include <dds/version.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <type_traits>
 
 #ifndef SMART_VERSION
 #define SMART_VERSION "0.1.0"

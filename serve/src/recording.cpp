@@ -1,7 +1,6 @@
 #include "smart/serve/recording.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <map>

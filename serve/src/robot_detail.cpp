@@ -1,7 +1,6 @@
 #include "smart/serve/robot_detail.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <stdexcept>

@@ -49,7 +49,7 @@ class ShardedHost final : public HostLoop {
     return [this](uint32_t r) { return shard_.simulates(r); };
   }
   HostCore::RobotFilter home() const {
-    return [this](uint32_t r) { return shard_.home(r) == core_.opt.shard; };
+    return [this](uint32_t r) { return home_here(r); };
   }
   bool home_here(uint32_t robot) const { return shard_.home(robot) == core_.opt.shard; }
 
