@@ -1,27 +1,51 @@
-// The watch view: whatever run is live on the DDS domain (`smart serve --watch`, GET
-// /api/watch/live), simulated and physical robots alike, read-only. Robots are drawn in the
-// order the server lists them (by id; ids may have gaps in a mixed run).
-export const WATCH_COLORS = { moving: 0x3d8bfd, idle: 0xf0a030, stale: 0x777777, selected: 0xff3b30 };
+// Watch mode (`smart serve --watch`): every robot of the run live on the DDS domain (GET
+// /api/watch/live), its status colour (watch_board.js), a click shows its panel; no map given:
+// a floor under the robots.
+import { readMap } from './recording.js';
+import { WATCH_COLORS, extentOf, robotPanel, statusCounts } from './watch_board.js';
+import { $, fetchJson, viewer } from './page.js';
+import { buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, scene, startLoop } from './view.js';
 
-// Counts of robots per status, for the stats panel.
-export function statusCounts(robots) {
-  const n = { moving: 0, idle: 0, stale: 0 };
-  for (const r of robots) n[r.status] = (n[r.status] || 0) + 1;
-  return n;
+function showStats(ev) {
+  const n = statusCounts(ev.robots), m = ev.monitor;
+  $('stats').innerHTML = `<div>watching run ${ev.run_id || '(none yet)'}</div>` +
+    `<div>monitor: ${m ? `${m.host} pid ${m.pid}` : 'not seen'}</div><div>robots: ${ev.robots.length}</div>` +
+    `<div>moving ${n.moving}, idle ${n.idle}, stale ${n.stale}</div><div>dropped samples: ${ev.rejected_samples}</div>`;
+  $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
 }
 
-// The world rectangle the robots stand in (for a floor when no map was given), with a margin.
-export function extentOf(robots, margin) {
-  const xs = robots.map((r) => r.x_m), ys = robots.map((r) => r.y_m);
-  return { minX: Math.min(...xs) - margin, maxX: Math.max(...xs) + margin,
-           minY: Math.min(...ys) - margin, maxY: Math.max(...ys) + margin };
-}
-
-export function robotPanel(r) {
-  const row = (cls, text) => `<div class="${cls}">${text}</div>`;
-  return row('id', `robot ${r.id}`) + row('pose', `x ${r.x_m.toFixed(2)} m, y ${r.y_m.toFixed(2)} m`) +
-    row('heading', `heading ${(r.yaw_rad * 180 / Math.PI).toFixed(0)}°`) + row('status', `status: ${r.status}`) +
-    row('speed', `speed: ${r.linear_mps.toFixed(2)} m/s`) + row('queue', `queue: ${r.queue}`) +
-    row('finished', `finished actions: ${r.finished_seq + 1}`) +
-    row('current', r.executing_seq >= 0 ? `executing: #${r.executing_seq}` : 'executing: nothing');
+export async function startWatch(runId) {
+  const first = await fetchJson('/api/watch');
+  const cell = first.cell_m || 1;
+  const mapResp = await fetch('/api/watch/map');
+  if (mapResp.ok) buildMap(readMap(await mapResp.text()), cell);
+  resize();
+  Object.assign(viewer, { live: true, watch: true, liveEvents: 0 });
+  let framed = mapResp.ok, ids = [], mesh = null;
+  const source = new EventSource(`/api/watch/live${runId ? `?run_id=${runId}` : ''}`);
+  source.onmessage = (e) => {
+    const ev = JSON.parse(e.data);
+    if (!framed && ev.robots.length) {
+      const x = extentOf(ev.robots, 2 * cell), cells = (v) => Math.ceil(v / cell);
+      buildMap({ width: cells(x.maxX - x.minX), height: cells(x.maxY - x.minY), blocked: () => false }, cell);
+      framed = true;
+    }
+    if (!mesh || mesh.count !== ev.robots.length) {
+      if (mesh) scene.remove(mesh);
+      mesh = ev.robots.length ? buildRobots(ev.robots.length, cell) : null;
+    }
+    ids = ev.robots.map((r) => r.id);
+    ev.robots.forEach((r, i) => placeRobot(mesh, i, r.x_m, r.y_m, r.yaw_rad,
+      r.id === viewer.selected ? WATCH_COLORS.selected : WATCH_COLORS[r.status]));
+    if (mesh) robotsMoved(mesh);
+    const picked = ev.robots.find((r) => r.id === viewer.selected);
+    if (picked) $('robot').innerHTML = robotPanel(picked);
+    showStats(ev);
+    Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, watched: ev.robots, liveEvents: viewer.liveEvents + 1 });
+  };
+  viewer.select = (id) => { viewer.selected = id; return ids.includes(id); };
+  $('search').onchange = (e) => viewer.select(Number(e.target.value));
+  onRobotClick(() => mesh, (i) => viewer.select(ids[i]));
+  startLoop();
+  viewer.ready = true;
 }

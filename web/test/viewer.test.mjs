@@ -52,7 +52,7 @@ function startServer(results) {
   });
 }
 
-// Pixels of the canvas in robot colours (main.js COLORS): 'robots' counts moving (blue), done
+// Pixels of the canvas in robot colours (view.js COLORS): 'robots' counts moving (blue), done
 // (green) and waiting (orange); 'collided' the collided magenta.
 async function robotPixels(page, kind = 'robots') {
   return page.evaluate((kind) => {

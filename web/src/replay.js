@@ -1,0 +1,242 @@
+// Replay mode: a finished run's recording (SMRC, recording.js) played back, scrubbed, stepped;
+// robots coloured moving, waiting, done or collided; a click shows a robot's panel (panel.js),
+// its path, trail and the robots it waits for; the finished-actions curve (plot.js).
+import * as THREE from 'three';
+import { firstFrameBytes, readMap, readRecording } from './recording.js';
+import { robotList, robotStatus } from './panel.js';
+import { drawProgress } from './plot.js';
+import { $, fetchJson, viewer } from './page.js';
+import { COLORS, buildMap, buildRobots, controls, onRobotClick, placeRobot, pngDataUrl, renderOnce,
+         resize, robotsMoved, scene, startLoop } from './view.js';
+
+const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
+                collided: new Set(), collisionFrame: Infinity, progress: null };
+// Scratch poses, written by rec.pose().
+const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
+
+// Poses and colours of every robot at time t: moving, waiting (stands still before its end),
+// done (at its final pose for good).
+function showFrame(t) {
+  const { rec, mesh } = state;
+  const f = rec.frameAt(t), fp = Math.max(0, f - 1), end = rec.frames - 1;
+  for (let i = 0; i < rec.robots; i++) {
+    rec.pose(f, i, pose);
+    rec.pose(fp, i, prev);
+    rec.pose(end, i, last);
+    const still = Math.hypot(pose[0] - prev[0], pose[1] - prev[1]) < 1e-3 && Math.abs(pose[2] - prev[2]) < 1e-3;
+    const atEnd = Math.hypot(pose[0] - last[0], pose[1] - last[1]) < 1e-3;
+    const hit = state.collided.has(i) && f >= state.collisionFrame;
+    const kind = i === viewer.selected ? 'selected' : hit ? 'collided' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
+    placeRobot(mesh, i, pose[0], pose[1], pose[2], COLORS[kind]);
+  }
+  robotsMoved(mesh);
+  viewer.t = t;
+  viewer.frameT = rec.times[f];
+  $('clock').textContent = `${t.toFixed(1)} s`;
+  $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
+  if (viewer.selected >= 0) showRobot(viewer.selected, f);
+  if (state.progress) drawProgress($('plot'), state.progress, t, state.summary.total_actions);
+}
+
+// The pair the sim host reported colliding (summary.first_collision) is drawn as collided from
+// the frame they came closest on: the sim reports that they touched, not when.
+function findCollision() {
+  const pair = state.summary && state.summary.first_collision;
+  if (!Array.isArray(pair) || pair.length !== 2) return;
+  const [a, b] = pair, pa = new Float64Array(3), pb = new Float64Array(3);
+  let best = Infinity;
+  for (let f = 0; f < state.rec.frames; f++) {
+    state.rec.pose(f, a, pa);
+    state.rec.pose(f, b, pb);
+    const d = Math.hypot(pa[0] - pb[0], pa[1] - pb[1]);
+    if (d < best) { best = d; state.collisionFrame = f; }
+  }
+  state.collided = new Set(pair);
+  viewer.collided = [...state.collided];
+}
+
+const row = (cls, text) => `<div class="${cls}">${text}</div>`;
+
+// The panel's lines from the robot's detail (GET /api/runs/{id}/robots/{robot}) at frame f.
+function detailRows(d, s) {
+  let html = row('path', `path: ${d.path.length - 1} cells, ${d.actions} actions`);
+  if (s.timed) {
+    html += row('progress', `finished: ${s.finished} / ${s.total}`) +
+      row('current', s.current >= 0 ? `current: #${s.current} ${s.type}` : 'current: none (done)') +
+      row('waits-now', `waits now for: ${robotList(s.waitsNow)}`) +
+      row('waited-now', `waited for now by: ${robotList(s.waitedByNow)}`);
+  }
+  const res = d.results;
+  if (typeof res.finish_time_s === 'number') {
+    html += row('finish', `finished at ${res.finish_time_s.toFixed(1)} s, waited ${res.waiting_time_s.toFixed(1)} s`);
+    if (typeof res.lower_bound_s === 'number') html += row('bound', `alone it needs at least ${res.lower_bound_s.toFixed(1)} s`);
+  } else if (res.finish_time_s === null) {
+    html += row('finish', 'did not finish');
+  }
+  const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
+  return html + row('waits', `in the run waits for: ${list(d.waits_for)}`) + row('waited', `in the run waited by: ${list(d.waited_by)}`);
+}
+
+function showRobot(id, f) {
+  const p = state.rec.pose(f, id, new Float64Array(3));
+  const offGoal = (state.summary && state.summary.robots_off_goal || []).includes(id);
+  const d = state.detail && state.detail.robot === id ? state.detail : null;
+  let html = row('id', `robot ${id}`) + row('pose', `x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m`) +
+    row('heading', `heading ${(p[2] * 180 / Math.PI).toFixed(0)}°`) + row('queue', `queue: ${state.rec.queue(f, id)}`) +
+    (offGoal ? row('off-goal', 'NOT AT GOAL') : '') + (state.collided.has(id) ? row('collided', 'COLLIDED') : '');
+  if (d) {
+    const s = robotStatus(d, state.rec.times[f]);
+    viewer.status = s;
+    html += detailRows(d, s);
+    drawEdges(id, f, d, s);
+  }
+  $('robot').innerHTML = html;
+  drawTrail(id, f);
+  if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
+}
+
+// The selected robot's planned path, its trail, and lines to the robots it waits for.
+const overlay = { path: null, edges: null, trail: null };
+// Where the selected robot has been so far (one point per recorded frame, up to frame f).
+function drawTrail(id, f) {
+  if (overlay.trail) scene.remove(overlay.trail);
+  const pts = new Float32Array((f + 1) * 3), p = new Float64Array(3);
+  for (let i = 0; i <= f; i++) {
+    state.rec.pose(i, id, p);
+    pts.set([p[0], state.cell * 0.08, -p[1]], i * 3);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pts, 3));
+  overlay.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0xffffff }));
+  scene.add(overlay.trail);
+  viewer.trailPoints = f + 1;
+}
+function drawPath(d) {
+  if (overlay.path) scene.remove(overlay.path);
+  const pts = d.path.map(([x, y]) => new THREE.Vector3(x, state.cell * 0.05, -y));
+  overlay.path = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: COLORS.selected }));
+  scene.add(overlay.path);
+}
+// Lines from the selected robot to who it waits for now (red) and who waits for it now
+// (orange), at their poses at this frame; a run without action times draws every partner.
+function drawEdges(id, f, d, status) {
+  if (overlay.edges) scene.remove(overlay.edges);
+  const me = state.rec.pose(f, id, new Float64Array(3)), other = new Float64Array(3);
+  const pts = [], colors = [], h = state.cell * 0.4;
+  const groups = status.timed ? [[status.waitsNow, 0xff3b30, 'waits'], [status.waitedByNow, 0xf0a030, 'waited']]
+    : [[d.waits_for, 0xff3b30, 'waits'], [d.waited_by, 0xf0a030, 'waited']];
+  viewer.edgeLines = [];
+  for (const [group, hex, kind] of groups) {
+    const c = new THREE.Color(hex);
+    for (const robot of new Set(group.map((g) => g.robot))) {
+      state.rec.pose(f, robot, other);
+      pts.push(me[0], h, -me[1], other[0], h, -other[1]);
+      colors.push(c.r, c.g, c.b, c.r, c.g, c.b);
+      viewer.edgeLines.push({ kind, robot, from: [me[0], me[1]], to: [other[0], other[1]] });
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+  g.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
+  overlay.edges = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+  scene.add(overlay.edges);
+}
+
+function select(id) {
+  if (!state.rec || id < 0 || id >= state.rec.robots) return false;
+  viewer.selected = id;
+  showFrame(state.t);
+  fetchJson(`/api/runs/${state.run}/robots/${id}`).then((d) => {
+    state.detail = d;
+    drawPath(d);
+    viewer.detail = d;
+    showFrame(state.t);
+  }).catch(() => {});  // runs replayed without their plan files have no detail
+  return true;
+}
+const seek = (t) => { state.t = Math.max(0, Math.min(t, state.rec.times[state.rec.frames - 1])); showFrame(state.t); };
+
+function showStats(s) {
+  const line = (k, v) => `<div>${k}: ${v}</div>`;
+  $('stats').innerHTML = line('success', s.success) + line('robots', s.robots) + line('AET', `${(s.aet_s ?? NaN).toFixed(1)} s`) +
+    line('makespan', `${(s.makespan_s ?? NaN).toFixed(1)} s`) + line('sim speed', `${(s.sim_speed ?? 0).toFixed(1)}×`) +
+    line('actions', `${s.finished_actions} / ${s.total_actions}`) + line('collisions', s.collisions);
+}
+
+// Export: every results file of the run as a download (GET /api/runs/{id}/results/{name}).
+function showFiles(id, files) {
+  $('files').innerHTML = '';
+  for (const name of files || []) {
+    const a = document.createElement('a');
+    a.href = `/api/runs/${id}/results/${name}`;
+    a.download = `${id}-${name}`;
+    a.textContent = name;
+    $('files').appendChild(a);
+  }
+}
+
+function wireControls() {
+  $('play').onclick = () => { state.playing = !state.playing; $('play').textContent = state.playing ? 'pause' : 'play'; };
+  $('step').onclick = () => seek(state.rec.times[Math.min(state.rec.frames - 1, state.rec.frameAt(state.t) + 1)]);
+  $('speed').onchange = (e) => { state.speed = Number(e.target.value); };
+  $('scrub').oninput = (e) => seek((Number(e.target.value) / 1000) * state.rec.times[state.rec.frames - 1]);
+  $('search').onchange = (e) => select(Number(e.target.value));
+  $('png').onclick = () => { const a = document.createElement('a'); a.download = 'smart-run.png'; a.href = pngDataUrl(); a.click(); };
+  onRobotClick(() => state.mesh, select);
+}
+
+// Playback in the render loop; frame time = pose update + render (what a frame costs this page,
+// whatever the display rate).
+const frameTimes = [];
+function play(dt) {
+  if (!state.playing) return;
+  const t0 = performance.now();
+  seek(state.t + dt * state.speed);
+  frameTimes.push(performance.now() - t0);
+  if (frameTimes.length > 120) frameTimes.shift();
+  viewer.frameTimeMs = frameTimes.reduce((a, b) => a + b, 0) / frameTimes.length;
+}
+function rendered(ms) {
+  if (state.playing) viewer.renderMs = 0.9 * (viewer.renderMs || 0) + 0.1 * ms;
+}
+
+// The recording in two steps: the header and first frame (a range request, a few kB) are drawn
+// at once, then the whole file replaces it; playback starts when it is there.
+async function loadRecording(id, robots) {
+  const url = `/api/runs/${id}/recording`;
+  const head = await fetch(url, { headers: { Range: `bytes=0-${firstFrameBytes(robots) - 1}` } });
+  if (head.status === 206) {
+    const first = readRecording(await head.arrayBuffer());
+    if (first.frames > 0) return { first, rest: fetch(url).then((r) => r.arrayBuffer()).then(readRecording) };
+  }
+  const all = readRecording(await fetch(url).then((r) => r.arrayBuffer()));
+  return { first: all, rest: Promise.resolve(all) };
+}
+
+// Run `id` replayed: the first frame as soon as it is there, the controls once all of it is.
+export async function startReplay(id) {
+  const t0 = performance.now();
+  const [run, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
+  const { first, rest } = await loadRecording(id, run.summary.robots);
+  Object.assign(state, { summary: run.summary, run: id, cell: run.summary.cell_m || 1, rec: first });
+  buildMap(readMap(mapText), state.cell);
+  state.mesh = buildRobots(state.rec.robots, state.cell);
+  showStats(run.summary);
+  showFiles(id, run.files);
+  resize();
+  showFrame(0);
+  renderOnce();
+  Object.assign(viewer, { select, seek, robots: state.rec.robots, firstFrameMs: performance.now() - t0 });
+  viewer.pose = (i) => Array.from(state.rec.pose(state.rec.frameAt(state.t), i, new Float64Array(3)));
+  viewer.firstFrameAtMs = performance.now();  // since the navigation started
+  startLoop({ update: play, rendered });
+  state.rec = await rest;
+  findCollision();
+  state.progress = await fetchJson(`/api/runs/${id}/progress`).catch(() => null);
+  $('plot').hidden = !state.progress;
+  wireControls();
+  showFrame(0);
+  viewer.loadedMs = performance.now() - t0;
+  viewer.readyAtMs = performance.now();
+  viewer.ready = true;
+}

@@ -1,0 +1,47 @@
+// The upload forms: a new run (POST /api/runs) or a results folder to replay (POST
+// /api/results); problems are listed as `smart check-plan` prints them; an accepted upload is
+// shown (a new run live until it ended, then replayed).
+import { $, fetchJson } from './page.js';
+
+function wireForm(form, url, status, problems) {
+  $(form).onsubmit = async (e) => {
+    e.preventDefault();
+    $(problems).innerHTML = '';
+    $(status).textContent = 'uploading...';
+    const r = await fetch(url, { method: 'POST', body: new FormData($(form)) });
+    const body = await r.json();
+    if (!r.ok) {
+      $(status).textContent = body.error;
+      for (const p of body.problems || []) {
+        const li = document.createElement('li');
+        li.textContent = `${p.file}:${p.line}${p.robot >= 0 ? ` robot ${p.robot}` : ''}: ${p.message}`;
+        $(problems).appendChild(li);
+      }
+      return;
+    }
+    location.search = `?run=${body.id}`;
+  };
+}
+
+// Kinodynamic sliders: they start at the chosen model's limits (GET /api/robots); moving one
+// writes its number field, which the upload sends (empty: the model's own value).
+async function wireSliders() {
+  const models = await fetchJson('/api/robots').catch(() => []);
+  if (!models.length) return;
+  $('up-robot').innerHTML = '';
+  for (const m of models) $('up-robot').add(new Option(m.name, m.name, false, m.name === 'footbot'));
+  const field = (key) => $('upload').querySelector(`input[name=${key}]`);
+  const reset = () => {
+    const m = models.find((x) => x.name === $('up-robot').value) || models[0];
+    for (const s of document.querySelectorAll('#upload .slider')) { s.value = m[s.dataset.for]; field(s.dataset.for).value = ''; }
+  };
+  for (const s of document.querySelectorAll('#upload .slider')) s.oninput = () => { field(s.dataset.for).value = s.value; };
+  $('up-robot').onchange = reset;
+  reset();
+}
+
+export function wireUpload() {
+  wireSliders();
+  wireForm('upload', '/api/runs', 'upload-status', 'upload-problems');
+  wireForm('replay', '/api/results', 'replay-status', 'replay-problems');
+}

@@ -1,0 +1,27 @@
+// The watch board (pure): whatever run is live on the DDS domain (`smart serve --watch`, GET
+// /api/watch/live), simulated and physical robots alike, read-only. Robots are drawn in the
+// order the server lists them (by id; ids may have gaps in a mixed run).
+export const WATCH_COLORS = { moving: 0x3d8bfd, idle: 0xf0a030, stale: 0x777777, selected: 0xff3b30 };
+
+// Counts of robots per status, for the stats panel.
+export function statusCounts(robots) {
+  const n = { moving: 0, idle: 0, stale: 0 };
+  for (const r of robots) n[r.status] = (n[r.status] || 0) + 1;
+  return n;
+}
+
+// The world rectangle the robots stand in (for a floor when no map was given), with a margin.
+export function extentOf(robots, margin) {
+  const xs = robots.map((r) => r.x_m), ys = robots.map((r) => r.y_m);
+  return { minX: Math.min(...xs) - margin, maxX: Math.max(...xs) + margin,
+           minY: Math.min(...ys) - margin, maxY: Math.max(...ys) + margin };
+}
+
+export function robotPanel(r) {
+  const row = (cls, text) => `<div class="${cls}">${text}</div>`;
+  return row('id', `robot ${r.id}`) + row('pose', `x ${r.x_m.toFixed(2)} m, y ${r.y_m.toFixed(2)} m`) +
+    row('heading', `heading ${(r.yaw_rad * 180 / Math.PI).toFixed(0)}°`) + row('status', `status: ${r.status}`) +
+    row('speed', `speed: ${r.linear_mps.toFixed(2)} m/s`) + row('queue', `queue: ${r.queue}`) +
+    row('finished', `finished actions: ${r.finished_seq + 1}`) +
+    row('current', r.executing_seq >= 0 ? `executing: #${r.executing_seq}` : 'executing: nothing');
+}
