@@ -46,6 +46,10 @@ def read_table(doc):
     return rows
 
 
+# Folders of tests and benchmarks: they may include every layer and belong to none.
+UNLAYERED = ("tests/", "bench/")
+
+
 def layer_of(path, rows):
     best, best_len = None, -1
     for name, (globs, _) in rows.items():
@@ -70,6 +74,8 @@ def main():
     for f in files:
         mine = layer_of(f, rows)
         if mine is None:
+            if not f.startswith(UNLAYERED):
+                findings.append(f"{f}: in no layer of the table; add its folder to a row (files)")
             continue
         allowed = rows[mine][1]
         for n, line in enumerate((repo / f).read_text().splitlines(), 1):

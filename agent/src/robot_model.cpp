@@ -81,6 +81,7 @@ RobotModel parse_robot_model(const std::string& text, const std::string& source)
   if (const auto c = root["controller"]) {
     config::require_map(source, c, "controller");
     std::vector<std::string> gain_keys;
+    gain_keys.reserve(gains.size());
     for (const auto& [k, _] : gains) gain_keys.push_back(k);
     config::reject_unknown(source, c, "controller", gain_keys);
     for (const auto& [key, f] : gains) {

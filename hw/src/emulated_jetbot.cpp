@@ -14,7 +14,7 @@
 namespace smart::hw {
 
 EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
-                               std::string object, uint16_t port, double accel, EmulatedFlaws flaws)
+                               std::string object, uint16_t port, double accel, const EmulatedFlaws& flaws)
     : cfg_(config),
       wheel_base_m_(wheel_base_m),
       accel_(accel),

@@ -1,6 +1,6 @@
 #include "smart/hw/jetbot_drive.hpp"
 
-#include <signal.h>
+#include <signal.h>  // NOLINT(modernize-deprecated-headers): sigaction is POSIX, not <csignal>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "smart/common/steady_clock.hpp"
 #include "smart/config/yaml_checks.hpp"
 
 namespace smart::hw {
@@ -22,10 +23,6 @@ struct Channels {
 constexpr Channels kAdafruitLeft{8, 10, 9}, kAdafruitRight{13, 11, 12};
 // Waveshare: (ina, inb) = (1, 0) for motor 1 and (2, 3) for motor 2.
 constexpr Channels kWaveshareLeft{-1, 1, 0}, kWaveshareRight{-1, 2, 3};
-
-double steady_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 }  // namespace
 
@@ -91,7 +88,9 @@ JetbotConfig parse_jetbot_config(const std::string& text, const std::string& sou
 }
 
 JetbotDrive::JetbotDrive(I2cBus& bus, JetbotConfig config, Sleeper sleeper)
-    : pwm_(bus, config.address, std::move(sleeper)), cfg_(std::move(config)), now_s_(steady_now) {}
+    : pwm_(bus, config.address, std::move(sleeper)),
+      cfg_(std::move(config)),
+      now_s_(common::steady_s) {}
 
 JetbotDrive::~JetbotDrive() {
   try {

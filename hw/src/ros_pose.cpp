@@ -7,7 +7,7 @@ namespace smart::hw {
 RosPoseSource::RosPoseSource(const dds::Participant& p, const std::string& ros_topic,
                              geometry::FrameTransform transform, double max_age_s,
                              std::function<double()> now_s, Message message)
-    : transform_(transform), max_age_s_(max_age_s), now_s_(std::move(now_s)) {
+    : transform_(std::move(transform)), max_age_s_(max_age_s), now_s_(std::move(now_s)) {
   const auto qos = dds::ros_sensor_qos().to_dds();
   if (message == Message::kOdometry) {
     odom_topic_.emplace(p, dds::ros_topic(ros_topic));

@@ -43,7 +43,7 @@ std::optional<ViconFrame> parse_vicon_datagram(const uint8_t* d, std::size_t n,
       return std::nullopt;
     }
     const uint8_t id = d[at];
-    const uint16_t size = get<uint16_t>(d + at + 1);
+    const auto size = get<uint16_t>(d + at + 1);
     at += kItemHeader;
     if (at + size > n) {
       *error = "item " + std::to_string(i) + " claims " + std::to_string(size) +
@@ -63,8 +63,8 @@ std::optional<ViconFrame> parse_vicon_datagram(const uint8_t* d, std::size_t n,
     ViconObject o;
     const char* name = reinterpret_cast<const char*>(d + at);
     o.name.assign(name, strnlen(name, 24));
-    for (int k = 0; k < 3; ++k) o.position_mm[k] = get<double>(d + at + 24 + 8 * k);
-    for (int k = 0; k < 3; ++k) o.rotation_rad[k] = get<double>(d + at + 48 + 8 * k);
+    for (int k = 0; k < 3; ++k) o.position_mm[k] = get<double>(d + at + 24 + std::ptrdiff_t{8} * k);
+    for (int k = 0; k < 3; ++k) o.rotation_rad[k] = get<double>(d + at + 48 + std::ptrdiff_t{8} * k);
     for (int k = 0; k < 3; ++k) {
       if (!std::isfinite(o.position_mm[k]) || !std::isfinite(o.rotation_rad[k])) {
         *error = "object '" + o.name + "' has a non-finite value (occluded?)";
@@ -87,7 +87,8 @@ std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<Vicon
     d.insert(d.end(), reinterpret_cast<const uint8_t*>(&size),
              reinterpret_cast<const uint8_t*>(&size) + 2);
     char name[24] = {};
-    std::memcpy(name, o.name.data(), std::min<std::size_t>(o.name.size(), 24));
+    // A fixed 24-byte field, zero-padded, not a C string (Vicon DataStream UDP object layout).
+    std::copy_n(o.name.data(), std::min<std::size_t>(o.name.size(), 24), name);
     d.insert(d.end(), name, name + 24);
     for (const double* v : {o.position_mm, o.rotation_rad}) {
       d.insert(d.end(), reinterpret_cast<const uint8_t*>(v),
@@ -101,9 +102,9 @@ std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<Vicon
 }
 
 ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port,
-                             geometry::FrameTransform t, std::vector<std::string> objects,
+                             geometry::FrameTransform t, const std::vector<std::string>& objects,
                              std::function<double()> now_s)
-    : transform_(t), now_s_(std::move(now_s)) {
+    : transform_(std::move(t)), now_s_(std::move(now_s)) {
   for (auto& o : objects) latest_[o] = std::nullopt;
   fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw std::runtime_error(std::string("vicon: socket: ") + std::strerror(errno));

@@ -243,6 +243,18 @@ std::vector<std::filesystem::path> config_search_path() {
   return dirs;
 }
 
+std::string find_config_file(const std::string& kind, const std::string& name) {
+  if (name.find('/') != std::string::npos || name.ends_with(".yaml")) return name;
+  std::string looked;
+  for (const auto& dir : config_search_path()) {
+    const auto file = dir / kind / (name + ".yaml");
+    if (std::filesystem::exists(file)) return file.string();
+    looked += (looked.empty() ? "" : ", ") + file.string();
+  }
+  throw ConfigError(kind + " '" + name + "' not found (looked for " + looked +
+                    "); pass a path to a YAML file");
+}
+
 QosProfile find_qos_profile(const std::string& name_or_path) {
   const bool is_path = name_or_path.find('/') != std::string::npos ||
                        name_or_path.ends_with(".yaml") || name_or_path.ends_with(".yml");

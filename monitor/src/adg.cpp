@@ -110,7 +110,7 @@ std::vector<Occupancy> cell_occupancies(const ActionPlan& ap, const Grid& grid) 
 
 // Grouped by location (a counting sort keeps each robot's order); location l's occupancies are
 // [start[l], start[l + 1]).
-std::vector<Occupancy> by_location(std::vector<Occupancy> occ, std::size_t locations,
+std::vector<Occupancy> by_location(const std::vector<Occupancy>& occ, std::size_t locations,
                                    std::vector<uint32_t>& start) {
   start.assign(locations + 1, 0);
   for (const auto& o : occ) ++start[o.location + 1];

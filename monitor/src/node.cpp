@@ -92,7 +92,7 @@ struct MonitorNode::Impl {
       : participant(p),
         in(in),
         opt(o),
-        config(with_run_id(o.run, p.domain_id(), o.cell_m)),
+        config(with_run_id(o.run, static_cast<int>(p.domain_id()), o.cell_m)),
         announcer(p, qos, config.run_id, o.resume),
         writer(p, qos, in, o.cell_m, announcer.strength()),
         sup(in, config, writer),

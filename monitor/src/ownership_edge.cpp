@@ -31,7 +31,7 @@ wire::MonitorClaim claim_of(const smart_msg_MonitorInfo& m) {
 
 MonitorAnnouncer::MonitorAnnouncer(const dds::Participant& p, const dds::QosProfile& qos,
                                    uint64_t run_id, bool resume)
-    : run_name_(p.run()), domain_id_(p.domain_id()), out_(p, qos), in_(p, qos) {
+    : run_name_(p.run()), domain_id_(static_cast<int>(p.domain_id())), out_(p, qos), in_(p, qos) {
   std::random_device rd;
   self_ = {(uint64_t{rd()} << 32) | rd(),
            run_id,

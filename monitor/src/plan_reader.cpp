@@ -361,7 +361,7 @@ void parse_yaml(std::string_view text, Plan& plan, AxisOrder axis, std::vector<P
           break;
         }
         const auto x = step["x"].as<long long>(), y = step["y"].as<long long>();
-        const double t = step["t"].as<double>();
+        const auto t = step["t"].as<double>();
         path->steps.push_back({make_cell(x, y, axis), t, sl});
       } catch (const YAML::Exception&) {
         problems.push_back({plan.source, sl, robot,

@@ -214,6 +214,7 @@ std::vector<Problem> validate_plan(const Plan& plan, const Grid& grid, const Sce
       const bool last = k + 1 == steps.size();
       if (leaves || last) {
         // The interval of the cell held since `arrive`; for the move, the last step at the cell.
+        // NOLINTNEXTLINE(bugprone-narrowing-conversions): clang-tidy 14 misreads infinity
         const double depart = last ? kForever : steps[k + 1].time;
         intervals.push_back(
             {grid.index(steps[k].cell), arrive, depart, path.robot, steps[k].line, arrive});

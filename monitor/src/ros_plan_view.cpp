@@ -92,7 +92,7 @@ void RosPlanView::publish(const PlanSnapshot& snapshot,
   };
   std::vector<visualization_msgs_msg_dds__Marker_> ms;
   std::vector<std::array<geometry_msgs_msg_dds__Point_, 2>> arrows(snapshot.waits.size());
-  ms.reserve(2 * robots + snapshot.waits.size() + 1);
+  ms.reserve(2 * std::size_t{robots} + snapshot.waits.size() + 1);
   auto clear = marker(g_waits_ns, 0, kArrow, stamp);
   clear.action = kDeleteAll;
   ms.push_back(clear);

@@ -111,7 +111,7 @@ grid::Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t s
       const int nx = cx + dx, ny = cy + dy;
       if (nx >= 0 && ny >= 0 && nx < cw && ny < ch &&
           !seen[static_cast<std::size_t>(ny) * cw + nx]) {
-        next.push_back({nx, ny});
+        next.emplace_back(nx, ny);
       }
     }
     if (next.empty()) {
@@ -129,7 +129,7 @@ grid::Grid generate_maze(int32_t width, int32_t height, int corridor, uint64_t s
         open(cx * unit + k, std::max(cy, ny) * unit - 1);
       }
     }
-    stack.push_back({nx, ny});
+    stack.emplace_back(nx, ny);
   }
   return grid::Grid(width, height, std::move(cells), "maze");
 }

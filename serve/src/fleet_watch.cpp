@@ -74,7 +74,7 @@ struct FleetWatch::Pump {
   }
 };
 
-FleetWatch::FleetWatch(WatchOptions options)
+FleetWatch::FleetWatch(const WatchOptions& options)
     : pump_(std::make_unique<Pump>(options)), thread_([this] { loop(); }) {}
 
 FleetWatch::~FleetWatch() {

@@ -26,7 +26,7 @@ std::string RunRegistry::add(std::string map_name, std::size_t robots) {
 }
 
 std::string RunRegistry::add_done(std::string map_name, std::size_t robots) {
-  const auto id = add(std::move(map_name), robots);
+  auto id = add(std::move(map_name), robots);
   runs_[id].state = RunState::kDone;
   return id;
 }

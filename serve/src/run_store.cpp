@@ -37,7 +37,7 @@ std::string RunStore::add_queued(
     const fs::path& staged, const std::string& map_name, std::size_t robots,
     const std::function<std::vector<std::string>(const std::string&)>& argv) {
   std::lock_guard lock(m_);
-  const auto id = registry_.add(map_name, robots);
+  auto id = registry_.add(map_name, robots);
   fs::rename(staged, dir(id));
   argv_[id] = argv(id);
   return id;
@@ -46,7 +46,7 @@ std::string RunStore::add_queued(
 std::string RunStore::add_done(const fs::path& staged, const std::string& map_name,
                                std::size_t robots) {
   std::lock_guard lock(m_);
-  const auto id = registry_.add_done(map_name, robots);
+  auto id = registry_.add_done(map_name, robots);
   fs::rename(staged, dir(id));
   return id;
 }

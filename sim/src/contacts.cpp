@@ -85,7 +85,7 @@ void World::Impl::find_contacts(bool everyone) {
   const auto W = grid.width(), H = grid.height();
   for (const auto t : touched) head[t] = kNoRobot;
   touched.clear();
-  for (uint32_t i = static_cast<uint32_t>(n); i-- > 0;) {
+  for (auto i = static_cast<uint32_t>(n); i-- > 0;) {
     if (presence[i] == Presence::kAbsent) continue;
     const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
     if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) continue;

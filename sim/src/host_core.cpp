@@ -1,5 +1,6 @@
 #include "host_core.hpp"
 
+#include <cmath>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -39,7 +40,7 @@ HostCore::HostCore(const dds::Participant& p, const dds::QosProfile& qos, const 
       o.state_rate_hz <= 0
           ? 0
           : std::max<uint64_t>(
-                1, static_cast<uint64_t>(1.0 / (o.state_rate_hz * o.sim.control_period_s) + 0.5));
+                1, static_cast<uint64_t>(std::llround(1.0 / (o.state_rate_hz * o.sim.control_period_s))));
 }
 
 void HostCore::host_robots(const RobotFilter& steps) {

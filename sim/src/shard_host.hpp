@@ -8,7 +8,7 @@
 // claiming a held shard, a writer claiming a second shard number, or any writer but this one's
 // claiming this shard's number (a second process started with the same --shard I/N) is refused
 // and counted. Without --security the first writer of a shard number wins, whoever it is; under
-// --security only the `sim` identity may write on smart/shard (tools/security.hpp).
+// --security only the `sim` identity may write on smart/shard (security/keystore.hpp).
 #pragma once
 
 #include <cstdint>

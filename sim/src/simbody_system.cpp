@@ -71,7 +71,8 @@ SimbodySystem::SimbodySystem(const RobotForces& forces, std::size_t capacity, do
       mass_kg, SimTK::Vec3(0), SimTK::UnitInertia::cylinderAlongZ(radius_m, 0.05)));
   std::vector<SimTK::MobilizedBody::Planar> bodies;
   for (std::size_t k = 0; k < capacity; ++k) bodies.emplace_back(I.matter.Ground(), body);
-  SimTK::Force::Custom(I.forces, new CustomForce(forces, I.slots));
+  // The handle adds the force to the subsystem, which owns it (Simbody API: Force::Custom).
+  SimTK::Force::Custom(I.forces, new CustomForce(forces, I.slots));  // NOLINT(bugprone-unused-raii)
   I.system.realizeTopology();
   I.state = I.system.getDefaultState();
   I.system.realizeModel(I.state);

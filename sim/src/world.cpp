@@ -60,7 +60,7 @@ World::World(const grid::Grid& grid, const agent::RobotModel& model, const SimCo
   }
   // Automatic capacity: 32 bodies (per-body cost within 20 % of a single large system, and
   // little left empty), fewer for small fleets so that both threads get work when all move.
-  const std::size_t threads = static_cast<std::size_t>(I.workers.size());
+  const auto threads = static_cast<std::size_t>(I.workers.size());
   I.capacity = config.system_capacity > 0
                    ? static_cast<std::size_t>(config.system_capacity)
                    : std::clamp<std::size_t>((n + threads - 1) / threads, 1, 32);
@@ -162,7 +162,7 @@ void World::Impl::substep_once(double h) {
   }
   const double t = static_cast<double>(substep) * h;
   workers.run([&](int k) {
-    for (std::size_t a = static_cast<std::size_t>(k); a < active.size();
+    for (auto a = static_cast<std::size_t>(k); a < active.size();
          a += static_cast<std::size_t>(workers.size())) {
       auto& sys = *active[a];
       sys.step(t, h);

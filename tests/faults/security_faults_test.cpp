@@ -12,7 +12,7 @@
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/error.hpp"
 #include "smart/dds/wire.hpp"
-#include "smart/tools/security.hpp"
+#include "smart/security/keystore.hpp"
 #include "support/forged_samples.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
@@ -64,9 +64,9 @@ std::filesystem::path* SecureFaults::keystore_ = nullptr;
 
 TEST_F(SecureFaults, KeystoreHoldsEveryRoleAndItsPermissionsAreSigned) {
   for (const char* id : {"monitor", "sim", "viewer", "agent-0", "agent-1"}) {
-    EXPECT_NO_THROW((void)tools::identity_files(*keystore_, id)) << id;
+    EXPECT_NO_THROW((void)security::identity_files(*keystore_, id)) << id;
   }
-  EXPECT_THROW((void)tools::identity_files(*keystore_, "agent-7"), config::ConfigError);
+  EXPECT_THROW((void)security::identity_files(*keystore_, "agent-7"), config::ConfigError);
   const auto p7s = slurp(*keystore_ / "viewer" / "permissions.p7s");
   EXPECT_THAT(p7s, ::testing::HasSubstr("application/x-pkcs7-signature"));
   EXPECT_THAT(p7s, ::testing::HasSubstr("<subject_name>CN=viewer,O=SMART-DDS</subject_name>"));
@@ -127,7 +127,7 @@ TEST_F(SecureFaults, AParticipantWithoutIdentitySeesNothingAndChangesNothing) {
 TEST_F(SecureFaults, AViewerReadsTheFleetButCannotPublishActions) {
   const int d = kSecureViewer;
   auto config = loopback();
-  config.security = tools::identity_files(*keystore_, "viewer");
+  config.security = security::identity_files(*keystore_, "viewer");
   dds::Domain domain(d, config);
   dds::Participant viewer(domain);
   const auto qos = dds::find_qos_profile("lan");

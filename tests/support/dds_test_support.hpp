@@ -110,6 +110,8 @@ enum DomainId : int {
   kShardPeerWriters = 205,
   kShardPeerClaims = 206,
   kListenerThrows = 207,
+  kCommissioningDoctor = 208,
+  kCommissioningTrim = 209,
   kRos2Calibrate = 178,
 };
 

@@ -80,7 +80,7 @@ std::vector<uint32_t> robot_ids(const AgentOptions& o) {
     throw std::invalid_argument(
         "give the robots as --robot-id K or --robot-ids LIST (e.g. 0-9,12)");
   }
-  const auto ids = o.robot_id ? std::vector<uint32_t>{*o.robot_id} : parse_id_ranges(o.robot_ids);
+  auto ids = o.robot_id ? std::vector<uint32_t>{*o.robot_id} : parse_id_ranges(o.robot_ids);
   if (o.io.backend == Backend::kJetbot && ids.size() != 1) {
     throw std::invalid_argument("--backend jetbot drives one robot per process: use --robot-id");
   }

@@ -3,6 +3,7 @@
 // simulator and the agents, the part that scales with the fleet.
 // `smart bench run`: end to end, `smart run` (monitor + sim processes over loopback DDS) on the
 // first N robots of a plan for each N given; one JSON line per run, then a Markdown table.
+#include <cmath>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -62,7 +63,7 @@ int run_bench_sim(const BenchSimOptions& o) {
     }
     fleet.agent(r).on_window(1, w);
   }
-  const auto ticks = static_cast<uint64_t>(o.sim_seconds / cfg.control_period_s + 0.5);
+  const auto ticks = static_cast<uint64_t>(std::llround(o.sim_seconds / cfg.control_period_s));
   const auto t0 = std::chrono::steady_clock::now();
   for (uint64_t k = 0; k < ticks; ++k) fleet.step();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

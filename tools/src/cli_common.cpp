@@ -1,7 +1,7 @@
 #include "smart/tools/cli_common.hpp"
 
 #include <fmt/format.h>
-#include <signal.h>
+#include <signal.h>  // NOLINT(modernize-deprecated-headers): sigaction is POSIX, not <csignal>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -14,7 +14,7 @@
 #include <stdexcept>
 
 #include "smart/config/yaml_checks.hpp"
-#include "smart/tools/security.hpp"
+#include "smart/security/keystore.hpp"
 
 namespace smart::tools {
 
@@ -122,15 +122,11 @@ dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& prof
   auto c = profile.domain_config(o.network == Network::kNetwork ? dds::DomainConfig::network()
                                                                 : dds::DomainConfig::loopback());
   if (!o.security.empty())
-    c.security = identity_files(o.security, o.identity.empty() ? role : o.identity);
+    c.security = security::identity_files(o.security, o.identity.empty() ? role : o.identity);
   return c;
 }
 
 std::string exact(double value) { return fmt::format("{}", value); }
-
-double steady_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 namespace {
 uint32_t parse_id(const std::string& word, const std::string& text) {
@@ -166,18 +162,6 @@ std::vector<uint32_t> parse_id_ranges(const std::string& text) {
   }
   if (ids.empty()) throw std::invalid_argument("robot list is empty; write e.g. 0-9,12");
   return ids;
-}
-
-std::string find_config_file(const std::string& kind, const std::string& name) {
-  if (name.find('/') != std::string::npos || name.ends_with(".yaml")) return name;
-  std::string looked;
-  for (const auto& dir : dds::config_search_path()) {
-    const auto file = dir / kind / (name + ".yaml");
-    if (std::filesystem::exists(file)) return file.string();
-    looked += (looked.empty() ? "" : ", ") + file.string();
-  }
-  throw config::ConfigError(kind + " '" + name + "' not found (looked for " + looked +
-                            "); pass a path to a YAML file");
 }
 
 void install_stop_handlers() {

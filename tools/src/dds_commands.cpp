@@ -3,6 +3,7 @@
 // responder: it answers every action window with the progress (and a robot state) of having
 // finished it, and every sim clock tick with the same tick. dds-ping drives it and measures
 // round trips. dds-send publishes a numbered burst (delivery under the lossy profile).
+#include <cmath>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -97,7 +98,7 @@ int run_echo(const DdsOptions& o, double duration_s) {
 double percentile(std::vector<double> xs, double q) {
   if (xs.empty()) return 0.0;
   std::sort(xs.begin(), xs.end());
-  const auto i = static_cast<std::size_t>(q * static_cast<double>(xs.size() - 1) + 0.5);
+  const auto i = static_cast<std::size_t>(std::llround(q * static_cast<double>(xs.size() - 1)));
   return xs[std::min(i, xs.size() - 1)];
 }
 

@@ -22,7 +22,7 @@ std::string machine_description() {
   utsname u{};
   uname(&u);
   return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, " +
-         std::to_string(static_cast<long long>(pages) * page / (1024 * 1024 * 1024)) + " GiB, " +
+         std::to_string(static_cast<long long>(pages) * page / (1024LL * 1024 * 1024)) + " GiB, " +
          u.sysname + " " + u.release;
 }
 

@@ -42,12 +42,14 @@ int report(const std::exception_ptr& error) {
   } catch (const std::exception& e) {
     std::cerr << "smart: error: " << e.what() << "\n";
     return ExitCode::kExitSystem;
+  } catch (...) {
+    std::cerr << "smart: error: an exception of unknown type\n";
+    return ExitCode::kExitSystem;
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Every subcommand registered, the command line parsed and the chosen one run.
+int run(int argc, char** argv) {
   CLI::App app{"SMART-DDS: execute MAPF plans on simulated and physical robot fleets over DDS"};
   app.require_subcommand(1);
   std::string log_level = "info";
@@ -73,8 +75,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help and --version are "errors" with code 0; every other parse error is bad input.
     return app.exit(e) == 0 ? ExitCode::kExitSuccess : ExitCode::kExitBadInput;
+  }
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
   } catch (...) {
     return report(std::current_exception());
   }
-  return exit_code;
 }

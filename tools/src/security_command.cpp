@@ -1,9 +1,10 @@
-// `smart security init`: the DDS Security keystore (tools/security.hpp).
+// `smart security init`: flags into security::init_keystore (security/keystore.hpp).
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "smart/security/keystore.hpp"
+#include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
-#include "smart/tools/security.hpp"
 
 namespace smart::tools {
 
@@ -15,10 +16,10 @@ struct SecurityInitOptions {
 };
 
 int security_init(const SecurityInitOptions& o) {
-  const auto ids = parse_id_list(o.agent_ids);
-  init_keystore(o.out, ids, o.days);
+  const auto ids = parse_id_ranges(o.agent_ids);
+  security::init_keystore(o.out, ids, o.days);
   nlohmann::json identities = nlohmann::json::array();
-  for (const auto& g : role_grants(ids)) identities.push_back(g.identity);
+  for (const auto& g : security::role_grants(ids)) identities.push_back(g.identity);
   std::cout << nlohmann::json{{"keystore", o.out}, {"identities", identities}, {"days", o.days}}
             << "\n";
   return kExitSuccess;

@@ -52,6 +52,7 @@ E choice(const std::string& source, const YAML::Node& node, const std::string& k
   const auto it = options.find(v);
   if (it == options.end()) {
     std::vector<std::string> names;
+    names.reserve(options.size());
     for (const auto& [n, _] : options) names.push_back(n);
     fail(source, node, "'" + key + "' is '" + v + "'; use one of: " + join(names));
   }

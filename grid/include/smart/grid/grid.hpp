@@ -17,6 +17,7 @@ namespace smart::grid {
 struct Cell {
   int32_t x = 0;  // column
   int32_t y = 0;  // row
+  // NOLINTNEXTLINE(modernize-use-nullptr): clang-tidy 14 misreads a defaulted <=> (LLVM #46235)
   auto operator<=>(const Cell&) const = default;
 };
 

@@ -55,7 +55,7 @@ class EmulatedJetbot : public I2cBus {
  public:
   EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
                  std::string vicon_object, uint16_t vicon_port, double accel_mps2 = 2.0,
-                 EmulatedFlaws flaws = {});
+                 const EmulatedFlaws& flaws = {});
   ~EmulatedJetbot() override;
 
   void write(uint8_t address, const std::vector<uint8_t>& bytes) override;

@@ -57,7 +57,7 @@ class ViconReceiver {
  public:
   // Listens on `bind_address`:`port` (UDP). Throws std::runtime_error when it cannot bind.
   ViconReceiver(const std::string& bind_address, uint16_t port, geometry::FrameTransform transform,
-                std::vector<std::string> objects, std::function<double()> now_s);
+                const std::vector<std::string>& objects, std::function<double()> now_s);
   ~ViconReceiver();
   uint16_t port() const { return port_; }
   // Latest pose of the object (world frame), stamped with the receive time.

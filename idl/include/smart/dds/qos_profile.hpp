@@ -47,6 +47,11 @@ QosProfile load_qos_profile(const std::filesystem::path& file);
 // config/ (compiled in, so the build tree runs without installation).
 std::vector<std::filesystem::path> config_search_path();
 
+// A config file given by name ("footbot" -> <config dir>/<kind>/footbot.yaml, the first of
+// config_search_path() that has it) or by path (anything with '/' or ending in .yaml). Throws
+// ConfigError listing where it looked.
+std::string find_config_file(const std::string& kind, const std::string& name_or_path);
+
 // `name_or_path`: a profile name ("lan") looked up as qos/<name>.yaml in config_search_path(),
 // or a path to a YAML file (anything containing '/' or ending in .yaml/.yml).
 QosProfile find_qos_profile(const std::string& name_or_path);

@@ -24,6 +24,7 @@
 
 namespace smart::monitor {
 
+// NOLINTNEXTLINE(bugprone-exception-escape): clang-tidy 14 flags the implicit special members
 struct RunInfo {
   std::string map, scen, plan, robot, qos, clock;
   std::string run;  // the run name (its DDS partition, idl/smart.idl "Runs")

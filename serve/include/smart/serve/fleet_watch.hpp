@@ -29,7 +29,7 @@ struct WatchOptions {
 class FleetWatch {
  public:
   // Throws dds::Error when the participant or a reader cannot be made (names the domain).
-  explicit FleetWatch(WatchOptions options);
+  explicit FleetWatch(const WatchOptions& options);
   ~FleetWatch();
   nlohmann::json snapshot(uint64_t run_id = 0) const;
 

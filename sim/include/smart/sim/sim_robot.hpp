@@ -4,6 +4,8 @@
 // target is scaled by that robot's slip factor of the control period.
 #pragma once
 
+#include <cmath>
+
 #include "smart/agent/interfaces.hpp"
 #include "smart/agent/uncertainty.hpp"
 #include "smart/sim/world.hpp"
@@ -17,7 +19,7 @@ class SimRobot : public agent::DriveBackend, public agent::PoseSource {
       : world_(world), id_(id), u_(uncertainty), period_s_(control_period_s) {}
   void set_wheel_speeds(agent::WheelSpeeds speeds) override {
     if (u_.slip_sigma > 0) {
-      const auto tick = static_cast<uint64_t>(world_.time_s() / period_s_ + 0.5);
+      const auto tick = static_cast<uint64_t>(std::llround(world_.time_s() / period_s_));
       speeds.left_mps *= agent::slip_factor(u_, id_, tick, 0);
       speeds.right_mps *= agent::slip_factor(u_, id_, tick, 1);
     }

@@ -1,85 +1,20 @@
-// Contract: opening a physical robot's drive and pose source from command-line options, shared
-// by `smart agent` (driving robots in a run) and `smart calibrate` (trials before a run), so
-// both accept the same flags and build the same objects.
-// - jetbot: a PCA9685 board on i2c-dev (or the emulated JetBot, --i2c emulated, with optional
-//   flaws: a mismatched wheel, a mocap mounting), poses from Vicon UDP or a ROS 2 PoseStamped;
-// - ros2: a ROS 2 diff-drive base in namespace --ros-namespace ({id}), cmd_vel out, poses from
-//   its odometry or a ROS 2 PoseStamped.
-// Poses go through --pose-transform ({id}: one file per robot) into the grid frame.
-// Errors are std::invalid_argument or config::ConfigError saying which flag to fix.
+// Contract: the command-line flags of a physical robot's backend (jetbot or ros2), its pose
+// source and an emulated JetBot's flaws, bound to hw::RobotIoOptions (hw/robot_io.hpp opens the
+// robot), shared by `smart agent`, `smart doctor` and `smart calibrate` so all accept the same
+// flags.
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <memory>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include "smart/agent/interfaces.hpp"
-#include "smart/agent/robot_model.hpp"
-#include "smart/dds/participant.hpp"
-#include "smart/hw/emulated_jetbot.hpp"
-#include "smart/hw/jetbot_drive.hpp"
-#include "smart/hw/ros_pose.hpp"
-#include "smart/hw/ros_twist_drive.hpp"
-#include "smart/hw/vicon.hpp"
+#include "smart/hw/robot_io.hpp"
 
 namespace smart::tools {
 
-enum class Backend { kJetbot, kRos2 };
-enum class PoseKind { kDefault, kVicon, kRos, kOdom };
-
-struct BackendOptions {
-  Backend backend = Backend::kJetbot;
-  std::string config;  // default: jetbot, or turtlebot3-burger for ros2
-  std::string i2c;     // default: the robot file's hardware.i2c_device
-  PoseKind pose = PoseKind::kDefault;
-  std::string vicon_bind = "0.0.0.0";
-  std::optional<uint16_t> vicon_port;  // default: 51001, or any free port with --i2c emulated
-  std::string vicon_object;            // default: jetbot<id>
-  std::string ros_topic;               // --pose ros: PoseStamped topic; {id} is the robot's index
-  std::string ros_namespace;           // default dds::kRosNamespacePattern
-  double pose_max_age_s = 0.1;
-  std::string pose_transform;        // mocap/odometry frame -> grid frame (smart calibrate frame)
-  std::vector<double> emulate_pose;  // x, y, yaw for --i2c emulated
-  std::vector<double> emulate_wheel_gains;    // left, right: a mismatched wheel
-  std::string emulate_mounting;               // transform file: the emulated mocap's mounting
-  bool emulate_realistic = false;             // hw::realistic_flaws(): dead band, lag, Vicon
-  std::optional<double> emulate_motor_lag_s;  // overrides the flaws' motor time constant
-  uint64_t emulate_seed = 0;                  // its Vicon noise
-};
+using BackendOptions = hw::RobotIoOptions;
+using hw::Backend;
+using hw::PoseKind;
+using hw::RobotIo;
 
 void add_backend_options(CLI::App* cmd, BackendOptions& o);
-
-// The robot model file: --config, or the backend's default model.
-std::string robot_file(const BackendOptions& o);
-
-// "{id}" in a topic, namespace or file pattern is the robot's index (or a point's ID).
-std::string with_id(std::string pattern, const std::string& id);
-inline std::string with_id(const std::string& pattern, uint32_t robot) {
-  return with_id(pattern, std::to_string(robot));
-}
-
-// One robot's hardware. Members are destroyed in reverse order: the pose source and drive
-// before the receiver and the bus they use.
-struct RobotIo {
-  std::unique_ptr<hw::ViconReceiver> vicon;
-  std::unique_ptr<hw::I2cBus> bus;
-  std::unique_ptr<agent::DriveBackend> drive;
-  std::unique_ptr<agent::PoseSource> pose;
-  hw::JetbotDrive* jetbot = nullptr;      // drive, when a JetBot (command watchdog)
-  hw::RosTwistDrive* twist = nullptr;     // drive, when a ROS 2 base
-  hw::RosPoseSource* ros_pose = nullptr;  // pose, when from ROS 2
-  hw::JetbotConfig hardware;              // a JetBot's hardware section
-  std::string pose_name;                  // where poses come from, for logs
-};
-
-RobotIo open_robot(const BackendOptions& o, uint32_t id, const agent::RobotModel& model,
-                   const std::string& robot_file, const dds::Participant& participant);
-
-// For a JetBot, SIGINT/SIGTERM turn its outputs off at once from the handler (hw::SignalStop)
-// and set g_stop_requested; nullptr for other robots (their loops watch g_stop_requested, and
-// their drive's destructor stops them).
-std::unique_ptr<hw::SignalStop> stop_outputs_on_signal(const RobotIo& io);
 
 }  // namespace smart::tools

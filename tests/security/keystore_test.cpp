@@ -1,27 +1,14 @@
-// The keystore's pure parts: robot id lists and the policy documents.
-#include "smart/tools/security.hpp"
+// The keystore's pure parts: the policy documents.
+#include "smart/security/keystore.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace smart::tools {
+namespace smart::security {
 namespace {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-TEST(Security, IdListsTakeIdsAndRangesAndNameTheBadPart) {
-  EXPECT_EQ(parse_id_list("0-3,7"), (std::vector<uint32_t>{0, 1, 2, 3, 7}));
-  EXPECT_EQ(parse_id_list("5"), (std::vector<uint32_t>{5}));
-  for (const char* bad : {"", "3-1", "a", "1,,2", "-4", "2x", "0-4294967296"}) {
-    EXPECT_THROW(parse_id_list(bad), std::invalid_argument) << bad;
-  }
-  try {
-    parse_id_list("0-3,x");
-  } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("'x' in '0-3,x' is not a robot id or range"));
-  }
-}
 
 TEST(Security, AViewerMayReadEverythingAndPublishNothing) {
   const auto grants = role_grants({4});
@@ -47,4 +34,4 @@ TEST(Security, GovernanceRequiresAuthenticationAndEncryptsEveryTopic) {
 }
 
 }  // namespace
-}  // namespace smart::tools
+}  // namespace smart::security

@@ -24,11 +24,11 @@
 #include <string_view>
 #include <vector>
 
-namespace smart::tools {
+namespace smart::experiment {
 
 enum class PlanSource { kFile, kBuiltin, kCommand };
 
-struct ExperimentSpec {
+struct Spec {
   std::string name;
   std::vector<std::pair<std::string, std::string>> instances;  // (map, scen) as written
   std::vector<std::size_t> agents;
@@ -45,9 +45,9 @@ struct ExperimentSpec {
 };
 
 // Throws std::invalid_argument "<source>:<line>: <field>: what is wrong; what to write".
-ExperimentSpec parse_experiment_spec(std::string_view yaml_text, const std::string& source);
+Spec parse_spec(std::string_view yaml_text, const std::string& source);
 
-struct ExperimentCell {
+struct Cell {
   std::size_t instance = 0;  // index into spec.instances
   std::size_t agents = 0;
   std::string robot, qos;
@@ -57,17 +57,16 @@ struct ExperimentCell {
 };
 
 // The grid, in a fixed order (instance, agents, robot, qos, uncertainty, repeat).
-std::vector<ExperimentCell> expand(const ExperimentSpec& spec);
+std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
-std::vector<std::string> uncertainty_flags(const ExperimentSpec& spec, const ExperimentCell& cell);
+std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
 
 // One results row: the cell's parameters, then every summary.json field, nested objects
 // flattened with dots ("adg.type2"), arrays as JSON text.
-nlohmann::json result_row(const ExperimentSpec& spec, const ExperimentCell& cell,
-                          const nlohmann::json& summary);
+nlohmann::json result_row(const Spec& spec, const Cell& cell, const nlohmann::json& summary);
 // The rows as CSV: the union of their columns, parameters first, then summary fields sorted;
 // fields quoted when they hold a comma, a quote or a newline.
 std::string results_csv(const std::vector<nlohmann::json>& rows);
 
-}  // namespace smart::tools
+}  // namespace smart::experiment

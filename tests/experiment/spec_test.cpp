@@ -1,10 +1,10 @@
 // The experiment spec, its grid and the results table: pure, no runs.
-#include "smart/tools/experiment.hpp"
+#include "smart/experiment/spec.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace smart::tools {
+namespace smart::experiment {
 namespace {
 
 using nlohmann::json;
@@ -20,8 +20,8 @@ qos: lan
 repeats: 2
 )";
 
-TEST(ExperimentSpec, ReadsEveryAxisAndExpandsTheirProduct) {
-  const auto s = parse_experiment_spec(kSpec, "spec.yaml");
+TEST(Spec, ReadsEveryAxisAndExpandsTheirProduct) {
+  const auto s = parse_spec(kSpec, "spec.yaml");
   EXPECT_EQ(s.name, "scaling");
   ASSERT_EQ(s.instances.size(), 2u);  // one map for both scens
   EXPECT_EQ(s.instances[1], (std::pair<std::string, std::string>{"w.map", "w-2.scen"}));
@@ -37,18 +37,18 @@ TEST(ExperimentSpec, ReadsEveryAxisAndExpandsTheirProduct) {
   EXPECT_EQ(keys.size(), cells.size());  // a folder per cell
 }
 
-TEST(ExperimentSpec, PlannerAndCommandPlans) {
-  auto s = parse_experiment_spec(
-      "name: a\nmaps: [m]\nscens: [s]\nagents: 5\nplan: {planner: builtin}\n", "x.yaml");
+TEST(Spec, PlannerAndCommandPlans) {
+  auto s =
+      parse_spec("name: a\nmaps: [m]\nscens: [s]\nagents: 5\nplan: {planner: builtin}\n", "x.yaml");
   EXPECT_EQ(s.plan_source, PlanSource::kBuiltin);
   EXPECT_EQ(s.agents, std::vector<std::size_t>{5});
-  s = parse_experiment_spec(
+  s = parse_spec(
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {command: \"p {map} {plan}\"}\n", "x");
   EXPECT_EQ(s.plan_source, PlanSource::kCommand);
   EXPECT_EQ(s.plan, "p {map} {plan}");
 }
 
-TEST(ExperimentSpec, MistakesNameTheFileLineAndField) {
+TEST(Spec, MistakesNameTheFileLineAndField) {
   const std::pair<const char*, const char*> cases[] = {
       {"name: a b\n", "spec.yaml:1: name"},
       {"name: a\nmaps: [m]\nscens: [s]\nagents: [10, ten]\nplan: {file: p}\n",
@@ -68,7 +68,7 @@ TEST(ExperimentSpec, MistakesNameTheFileLineAndField) {
   };
   for (const auto& [yaml, expected] : cases) {
     try {
-      (void)parse_experiment_spec(yaml, "spec.yaml");
+      (void)parse_spec(yaml, "spec.yaml");
       ADD_FAILURE() << "accepted: " << yaml;
     } catch (const std::invalid_argument& e) {
       EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
@@ -76,8 +76,8 @@ TEST(ExperimentSpec, MistakesNameTheFileLineAndField) {
   }
 }
 
-TEST(ExperimentSpec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
-  const auto s = parse_experiment_spec(
+TEST(Spec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
+  const auto s = parse_spec(
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\nrepeats: 2\n"
       "uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]\n",
       "u.yaml");
@@ -93,7 +93,7 @@ TEST(ExperimentSpec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
         {"uncertainty: [{stall_probability: 3}]\n", "uncertainty.stall_probability: a number"},
         {"uncertainty: {}\n", "uncertainty: a list"}}) {
     try {
-      (void)parse_experiment_spec(
+      (void)parse_spec(
           std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n") +
               yaml,
           "u.yaml");
@@ -105,7 +105,7 @@ TEST(ExperimentSpec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
 }
 
 TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
-  const auto s = parse_experiment_spec(kSpec, "spec.yaml");
+  const auto s = parse_spec(kSpec, "spec.yaml");
   const auto cells = expand(s);
   const auto summary = json::parse(
       R"({"success": true, "aet_s": 12.5, "adg": {"type2": 7}, "robots_off_goal": [3, 4],
@@ -128,4 +128,4 @@ TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
 }
 
 }  // namespace
-}  // namespace smart::tools
+}  // namespace smart::experiment

@@ -1,5 +1,5 @@
-// Contract: the verdicts of `smart doctor` (pure): each check becomes a row with a level (OK,
-// WARN, FAIL), what was measured and, unless OK, how to fix it.
+// Contract: the verdicts of `smart doctor` (pure; doctor.hpp measures): each check becomes a row
+// with a level (OK, WARN, FAIL), what was measured and, unless OK, how to fix it.
 // - pose_stream_check(): a pose stream recorded for `seconds`: its rate, jitter (standard
 //   deviation of the gaps) and largest gap; FAIL without poses, WARN below min_rate_hz or with a
 //   gap longer than max_age_s (the agent would stop the robot then).
@@ -18,7 +18,7 @@
 #include "smart/agent/types.hpp"
 #include "smart/convert/validate.hpp"
 
-namespace smart::tools {
+namespace smart::commissioning {
 
 enum class Level { kOk, kWarn, kFail };
 
@@ -55,4 +55,4 @@ std::optional<CheckRow> rejected_row(const wire::Rejections& rejected);
 
 const char* level_name(Level level);
 
-}  // namespace smart::tools
+}  // namespace smart::commissioning

@@ -1,4 +1,4 @@
-#include "smart/tools/experiment.hpp"
+#include "smart/experiment/spec.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
-namespace smart::tools {
+namespace smart::experiment {
 
 namespace {
 using nlohmann::json;
@@ -68,7 +68,7 @@ std::vector<std::size_t> counts(const YAML::Node& root, const std::string& src) 
   return out;
 }
 
-void read_plan(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+void read_plan(const YAML::Node& root, const std::string& src, Spec& s) {
   const auto p = root["plan"];
   if (!p || !p.IsMap()) {
     fail(src, p ? p : root, "plan",
@@ -93,7 +93,7 @@ void read_plan(const YAML::Node& root, const std::string& src, ExperimentSpec& s
   if (s.axis != "xy" && s.axis != "rowcol") fail(src, p["axis"], "plan.axis", "xy or rowcol");
 }
 
-void read_instances(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+void read_instances(const YAML::Node& root, const std::string& src, Spec& s) {
   const auto maps = strings(root, "maps", src, {});
   const auto scens = strings(root, "scens", src, {});
   if (maps.size() != 1 && maps.size() != scens.size()) {
@@ -112,7 +112,7 @@ const std::vector<std::tuple<std::string, double, double>> kUncertaintyKeys{
     {"speed_sigma", 0.0, 1.0},
     {"slip_sigma", 0.0, 0.5}};
 
-void read_uncertainty(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   const auto list = root["uncertainty"];
   if (!list) return;
   if (!list.IsSequence() || list.size() == 0) {
@@ -146,7 +146,7 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Experiment
   }
 }
 
-void read_options(const YAML::Node& root, const std::string& src, ExperimentSpec& s) {
+void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   s.robots = strings(root, "robots", src, {"footbot"});
   s.qos = strings(root, "qos", src, {"lan"});
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
@@ -200,7 +200,7 @@ const std::vector<std::string> kParams{"cell",        "map",    "scen", "agents"
                                        "uncertainty", "repeat", "plan", "axis",   "clock"};
 }  // namespace
 
-ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& src) {
+Spec parse_spec(std::string_view text, const std::string& src) {
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));
@@ -209,7 +209,7 @@ ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& s
                                 ": not YAML: " + e.msg);
   }
   if (!root.IsMap()) throw std::invalid_argument(src + ": expected a YAML mapping (name: ...)");
-  ExperimentSpec s;
+  Spec s;
   s.name = root["name"] ? root["name"].as<std::string>() : "";
   if (!plain_name(s.name)) {
     fail(src, root["name"] ? root["name"] : root, "name", "1-64 of A-Z a-z 0-9 . _ -");
@@ -222,8 +222,8 @@ ExperimentSpec parse_experiment_spec(std::string_view text, const std::string& s
   return s;
 }
 
-std::vector<ExperimentCell> expand(const ExperimentSpec& s) {
-  std::vector<ExperimentCell> cells;
+std::vector<Cell> expand(const Spec& s) {
+  std::vector<Cell> cells;
   for (std::size_t i = 0; i < s.instances.size(); ++i) {
     for (const auto n : s.agents) {
       for (const auto& robot : s.robots) {
@@ -244,7 +244,7 @@ std::vector<ExperimentCell> expand(const ExperimentSpec& s) {
   return cells;
 }
 
-std::vector<std::string> uncertainty_flags(const ExperimentSpec& s, const ExperimentCell& c) {
+std::vector<std::string> uncertainty_flags(const Spec& s, const Cell& c) {
   std::vector<std::string> flags;
   for (const auto& [key, v] : s.uncertainty.at(c.uncertainty).items()) {
     std::string flag = "--" + key;
@@ -255,7 +255,7 @@ std::vector<std::string> uncertainty_flags(const ExperimentSpec& s, const Experi
   return flags;
 }
 
-json result_row(const ExperimentSpec& s, const ExperimentCell& c, const json& summary) {
+json result_row(const Spec& s, const Cell& c, const json& summary) {
   json row = {{"cell", c.key},
               {"map", stem(s.instances[c.instance].first)},
               {"scen", stem(s.instances[c.instance].second)},
@@ -298,4 +298,4 @@ std::string results_csv(const std::vector<json>& rows) {
   return out;
 }
 
-}  // namespace smart::tools
+}  // namespace smart::experiment

@@ -1,6 +1,5 @@
-#include "smart/tools/security.hpp"
+#include "smart/security/keystore.hpp"
 
-#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
@@ -13,7 +12,7 @@
 #include "smart/config/yaml_checks.hpp"
 #include "smart/dds/topics.hpp"
 
-namespace smart::tools {
+namespace smart::security {
 
 namespace fs = std::filesystem;
 
@@ -196,29 +195,4 @@ dds::SecurityFiles identity_files(const fs::path& dir, const std::string& identi
   return f;
 }
 
-std::vector<uint32_t> parse_id_list(const std::string& text) {
-  auto number = [](std::string_view s) -> std::optional<uint32_t> {
-    uint32_t v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || end != s.data() + s.size() || s.empty()) return std::nullopt;
-    return v;
-  };
-  std::vector<uint32_t> ids;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const auto end = std::min(text.find(',', start), text.size());
-    const std::string_view part = std::string_view(text).substr(start, end - start);
-    const auto dash = part.find('-');
-    const auto lo = number(part.substr(0, dash));
-    const auto hi = dash == std::string_view::npos ? lo : number(part.substr(dash + 1));
-    if (!lo || !hi || *hi < *lo || *hi - *lo > 100000) {
-      throw std::invalid_argument("'" + std::string(part) + "' in '" + text +
-                                  "' is not a robot id or range; write e.g. 0-9,12");
-    }
-    for (uint32_t i = *lo; i <= *hi; ++i) ids.push_back(i);
-    start = end + 1;
-  }
-  return ids;
-}
-
-}  // namespace smart::tools
+}  // namespace smart::security

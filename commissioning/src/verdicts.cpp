@@ -1,10 +1,10 @@
-#include "smart/tools/doctor.hpp"
+#include "smart/commissioning/verdicts.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-namespace smart::tools {
+namespace smart::commissioning {
 
 std::optional<CheckRow> rejected_row(const wire::Rejections& rejected) {
   if (rejected.total() == 0) return std::nullopt;
@@ -52,7 +52,7 @@ CheckRow pose_stream_check(const std::string& robot, const std::vector<agent::Po
     max_gap = std::max(max_gap, gap);
   }
   const double n = static_cast<double>(samples.size() - 1), mean = sum / n;
-  const double rate = samples.size() / seconds;
+  const double rate = static_cast<double>(samples.size()) / seconds;
   const double jitter = std::sqrt(std::max(0.0, sum_sq / n - mean * mean));
   std::ostringstream m;
   m.precision(3);
@@ -144,4 +144,4 @@ CheckRow wheel_check(const std::string& robot, Wheel wheel, const agent::Pose2D&
   return row;
 }
 
-}  // namespace smart::tools
+}  // namespace smart::commissioning

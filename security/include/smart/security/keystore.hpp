@@ -21,7 +21,7 @@
 
 #include "smart/dds/domain.hpp"
 
-namespace smart::tools {
+namespace smart::security {
 
 struct Grant {
   std::string identity;  // directory name and CN
@@ -44,7 +44,4 @@ void init_keystore(const std::filesystem::path& dir, const std::vector<uint32_t>
 // and how to make it.
 dds::SecurityFiles identity_files(const std::filesystem::path& dir, const std::string& identity);
 
-// "0-9,12" -> {0..9, 12}; throws std::invalid_argument naming the bad part.
-std::vector<uint32_t> parse_id_list(const std::string& text);
-
-}  // namespace smart::tools
+}  // namespace smart::security

@@ -1,10 +1,10 @@
-#include "smart/tools/doctor.hpp"
+#include "smart/commissioning/verdicts.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace smart::tools {
+namespace smart::commissioning {
 namespace {
 
 std::vector<agent::PoseSample> stream(double hz, double seconds, double gap_at = -1,
@@ -17,7 +17,7 @@ std::vector<agent::PoseSample> stream(double hz, double seconds, double gap_at =
   return out;
 }
 
-TEST(Doctor, PoseStreamRateAndGapsAreJudged) {
+TEST(Verdicts, PoseStreamRateAndGapsAreJudged) {
   const auto ok = pose_stream_check("1", stream(100, 2), 2, 20, 0.1);
   EXPECT_EQ(ok.level, Level::kOk) << ok.measured;
   EXPECT_NE(ok.measured.find("100 Hz"), std::string::npos) << ok.measured;
@@ -30,7 +30,7 @@ TEST(Doctor, PoseStreamRateAndGapsAreJudged) {
   EXPECT_NE(none.fix.find("--vicon-object"), std::string::npos);
 }
 
-TEST(Doctor, AHostsClockFarOffIsAWarning) {
+TEST(Verdicts, AHostsClockFarOffIsAWarning) {
   const auto ok = clock_check("a1b2", {0, 1, 2}, 0.002, 40, 0.02);
   EXPECT_EQ(ok.level, Level::kOk);
   EXPECT_NE(ok.measured.find("robots 0,1,2;"), std::string::npos) << ok.measured;
@@ -41,7 +41,7 @@ TEST(Doctor, AHostsClockFarOffIsAWarning) {
   EXPECT_NE(off.fix.find("chrony"), std::string::npos);
 }
 
-TEST(Doctor, AWheelAloneMustTurnTheRobotAwayFromIt) {
+TEST(Verdicts, AWheelAloneMustTurnTheRobotAwayFromIt) {
   const agent::Pose2D start{1, 1, M_PI / 2};  // facing +y
   // Left wheel forward: clockwise, ahead along +y.
   EXPECT_EQ(wheel_check("0", Wheel::kLeft, start, {1.02, 1.04, M_PI / 2 - 0.8}).level, Level::kOk);
@@ -55,7 +55,7 @@ TEST(Doctor, AWheelAloneMustTurnTheRobotAwayFromIt) {
   EXPECT_NE(still.fix.find("hardware.right.beta"), std::string::npos) << "a dead band is named";
 }
 
-TEST(Doctor, ASlowResponseToTheFirstCommandIsAWarningAndNoneAFailure) {
+TEST(Verdicts, ASlowResponseToTheFirstCommandIsAWarningAndNoneAFailure) {
   const auto ok = response_check("2", 0.12);
   EXPECT_EQ(ok.level, Level::kOk);
   EXPECT_NE(ok.measured.find("120 ms"), std::string::npos) << ok.measured;
@@ -65,7 +65,7 @@ TEST(Doctor, ASlowResponseToTheFirstCommandIsAWarningAndNoneAFailure) {
   EXPECT_EQ(response_check("2", std::nullopt).level, Level::kFail);
 }
 
-TEST(Doctor, SamplesThatFailTheWireChecksAreOneWarningNamingTopicCountAndReason) {
+TEST(Verdicts, SamplesThatFailTheWireChecksAreOneWarningNamingTopicCountAndReason) {
   wire::Rejections rejected;
   EXPECT_FALSE(rejected_row(rejected).has_value());
   rejected.count("monitor", "host name has a non-printable byte (27 at 2)");
@@ -83,4 +83,4 @@ TEST(Doctor, SamplesThatFailTheWireChecksAreOneWarningNamingTopicCountAndReason)
 }
 
 }  // namespace
-}  // namespace smart::tools
+}  // namespace smart::commissioning

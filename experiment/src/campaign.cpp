@@ -1,0 +1,297 @@
+#include "smart/experiment/campaign.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "smart/common/child_process.hpp"
+#include "smart/dds/qos_profile.hpp"
+#include "smart/experiment/spec.hpp"
+#include "smart/grid/text_file.hpp"
+#include "smart/monitor/results_format.hpp"
+
+namespace smart::experiment {
+
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// A file named in the spec: as given, next to the spec, or in $SMART_BENCHMARKS/<kind>/.
+fs::path resolve(const std::string& name, const fs::path& spec_dir, const char* kind) {
+  std::vector<fs::path> places{name, spec_dir / name};
+  if (const char* b = std::getenv("SMART_BENCHMARKS"); b && *b) {
+    places.push_back(fs::path(b) / kind / name);
+  }
+  std::string looked;
+  for (const auto& p : places) {
+    if (fs::is_regular_file(p)) return fs::absolute(p);
+    looked += (looked.empty() ? "" : ", ") + p.string();
+  }
+  throw std::invalid_argument("experiment: " + name + " not found (looked at " + looked +
+                              "); give a path, or set SMART_BENCHMARKS");
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Campaign {
+  Spec spec;
+  std::vector<Cell> cells;
+  std::vector<std::pair<fs::path, fs::path>> files;  // resolved (map, scen) per instance
+  fs::path out, plan_file, smart;
+  std::map<std::pair<std::size_t, std::size_t>, fs::path> plans;  // (instance, agents) -> plan
+
+  fs::path cell_dir(const Cell& c) const { return out / "cells" / c.key; }
+  bool done(const Cell& c) const {
+    std::ifstream in(cell_dir(c) / results::kSummaryJson);
+    return in && nlohmann::json::parse(in, nullptr, false).is_object();
+  }
+};
+
+// The words that make the plan of (map, scen, agents) into `plan`.
+std::vector<std::string> plan_argv(const Campaign& c, const fs::path& map, const fs::path& scen,
+                                   std::size_t agents, const fs::path& plan) {
+  if (c.spec.plan_source == PlanSource::kBuiltin) {
+    return {c.smart.string(), "plan",        "--map",    map.string(),
+            "--scen",         scen.string(), "--agents", std::to_string(agents),
+            "--out",          plan.string()};
+  }
+  std::string cmd = c.spec.plan;
+  for (const auto& [k, v] : {std::pair{"{map}", shell_quote(map.string())},
+                             {"{scen}", shell_quote(scen.string())},
+                             {"{agents}", std::to_string(agents)},
+                             {"{plan}", shell_quote(plan.string())}}) {
+    for (std::size_t at; (at = cmd.find(k)) != std::string::npos;) cmd.replace(at, strlen(k), v);
+  }
+  return {"/bin/sh", "-c", cmd};
+}
+
+// The plan of (instance, agents): the spec's file, or made once by the built-in planner or the
+// spec's command into <out>/plans/.
+fs::path make_plan(Campaign& c, std::size_t instance, std::size_t agents) {
+  if (c.spec.plan_source == PlanSource::kFile) return c.plan_file;
+  const auto key = std::make_pair(instance, agents);
+  if (auto it = c.plans.find(key); it != c.plans.end()) return it->second;
+  const auto plan =
+      c.out / "plans" / (std::to_string(instance) + "-n" + std::to_string(agents) + ".txt");
+  fs::create_directories(plan.parent_path());
+  const auto& [map, scen] = c.files[instance];
+  if (!fs::exists(plan)) {
+    const int rc =
+        common::ChildProcess(plan_argv(c, map, scen, agents, plan), plan.string() + ".log")
+            .wait(std::chrono::hours(24))
+            .value_or(-1);
+    if (rc != 0 || !fs::exists(plan)) {
+      throw std::runtime_error("experiment: planning " + std::to_string(agents) + " robots of " +
+                               scen.string() + " failed (exit code " + std::to_string(rc) +
+                               "); see " + plan.string() + ".log");
+    }
+  }
+  return c.plans[key] = plan;
+}
+
+std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
+  const auto& [map, scen] = c.files[cell.instance];
+  std::vector<std::string> argv{c.smart.string(), "--log-level",
+                                "error",          "run",
+                                "--map",          map.string(),
+                                "--scen",         scen.string(),
+                                "--plan",         make_plan(c, cell.instance, cell.agents).string(),
+                                "--axis",         c.spec.axis,
+                                "--agents",       std::to_string(cell.agents),
+                                "--robot",        cell.robot,
+                                "--qos",          cell.qos,
+                                "--clock",        c.spec.clock,
+                                "--domain",       std::to_string(domain),
+                                "--out",          c.cell_dir(cell).string(),
+                                "--no-progress"};
+  const auto flags = uncertainty_flags(c.spec, cell);
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  return argv;
+}
+
+std::string eta_text(double s) {
+  const auto m = static_cast<long>(s / 60);
+  return std::to_string(m) + "m" + std::to_string(static_cast<long>(s) % 60) + "s";
+}
+
+struct Slot {
+  std::optional<common::ChildProcess> child;
+  const Cell* cell = nullptr;
+  Clock::time_point started;
+};
+
+struct Tally {
+  std::size_t total = 0, finished = 0, errors = 0;
+  double busy_s = 0;  // wall seconds of finished runs
+};
+
+void progress_bar(std::ostream& log, const Tally& t, std::size_t running, int jobs) {
+  const std::size_t left = t.total - t.finished;
+  const double eta = t.finished ? t.busy_s / double(t.finished) * double(left) / jobs : 0;
+  std::string bar(20, '.');
+  for (std::size_t i = 0; i < 20 * t.finished / std::max<std::size_t>(t.total, 1); ++i)
+    bar[i] = '#';
+  log << "\rexperiment: [" << bar << "] " << t.finished << "/" << t.total << " runs, " << running
+      << " running" << (t.finished ? ", ETA " + eta_text(eta) : "") << "   " << std::flush;
+}
+
+// A slot's run ended: counted, and a failure to produce a summary is named with its log.
+void collect(const Campaign& c, Slot& s, int rc, Tally& t, bool bar, std::ostream& log) {
+  t.busy_s += std::chrono::duration<double>(Clock::now() - s.started).count();
+  ++t.finished;
+  if (!c.done(*s.cell)) {
+    ++t.errors;
+    log << (bar ? "\n" : "") << "experiment: " << s.cell->key << " wrote no summary (exit code "
+        << rc << "); see " << (c.cell_dir(*s.cell) / "run.log").string() << "\n";
+  } else if (!bar) {
+    log << "experiment: " << t.finished << "/" << t.total << " " << s.cell->key << "\n";
+  }
+  s.child.reset();
+}
+
+std::deque<const Cell*> cells_to_run(const Campaign& c, std::ostream& log) {
+  std::deque<const Cell*> todo;
+  for (const auto& cell : c.cells) {
+    if (!c.done(cell)) todo.push_back(&cell);
+  }
+  if (todo.size() < c.cells.size()) {
+    log << "experiment: " << c.cells.size() - todo.size() << " of " << c.cells.size()
+        << " runs already done (skipped)\n";
+  }
+  return todo;
+}
+
+Tally run_cells(Campaign& c, const CampaignOptions& o, std::ostream& log) {
+  auto todo = cells_to_run(c, log);
+  Tally t;
+  t.total = todo.size();
+  std::vector<Slot> slots(static_cast<std::size_t>(o.jobs));
+  const auto stopped = [&o] { return o.stop != nullptr && o.stop->load(); };
+  for (std::size_t running = 0; (!todo.empty() || running > 0) && !stopped();) {
+    running = 0;
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      auto& s = slots[i];
+      if (s.child) {
+        if (const auto rc = s.child->wait(std::chrono::milliseconds(0))) {
+          collect(c, s, *rc, t, o.progress_bar, log);
+        }
+      }
+      if (!s.child && !todo.empty()) {
+        s.cell = todo.front();
+        todo.pop_front();
+        fs::create_directories(c.cell_dir(*s.cell));
+        s.child.emplace(run_argv(c, *s.cell, o.first_domain + static_cast<int>(i)),
+                        c.cell_dir(*s.cell) / "run.log");
+        s.started = Clock::now();
+      }
+      running += s.child ? 1 : 0;
+    }
+    if (o.progress_bar) progress_bar(log, t, running, o.jobs);
+    // Children are polled: ChildProcess waits on one child at a time.
+    if (running > 0) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (o.progress_bar) log << "\n";
+  return t;
+}
+
+// results.csv and results.jsonl from every cell that has a summary.
+std::size_t write_results(const Campaign& c) {
+  std::vector<nlohmann::json> rows;
+  std::ofstream jsonl(c.out / "results.jsonl");
+  for (const auto& cell : c.cells) {
+    std::ifstream in(c.cell_dir(cell) / results::kSummaryJson);
+    const auto summary = nlohmann::json::parse(in, nullptr, false);
+    if (!in || !summary.is_object()) continue;
+    rows.push_back(result_row(c.spec, cell, summary));
+    jsonl << rows.back().dump() << "\n";
+  }
+  std::ofstream(c.out / "results.csv") << results_csv(rows);
+  return rows.size();
+}
+
+// Robot and QoS names as `smart run` looks them up; bad input named before anything runs.
+void check_names(const Spec& spec) {
+  try {
+    for (const auto& robot : spec.robots) (void)dds::find_config_file("robots", robot);
+    for (const auto& q : spec.qos) (void)dds::find_qos_profile(q);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(std::string("experiment: ") + e.what());
+  }
+}
+
+Campaign load_campaign(const CampaignOptions& o) {
+  if (o.jobs < 1 || o.first_domain < 0 || o.first_domain + o.jobs > 231) {
+    throw std::invalid_argument("experiment: domain " + std::to_string(o.first_domain) +
+                                " + jobs " + std::to_string(o.jobs) +
+                                " must stay within 0-230, the domain ids; lower either");
+  }
+  Campaign c;
+  c.smart = o.smart;
+  c.spec = parse_spec(grid::read_text_file(o.spec.string(), "experiment spec"), o.spec.string());
+  const auto spec_dir = o.spec.parent_path();
+  for (const auto& [map, scen] : c.spec.instances) {
+    auto map_file = resolve(map, spec_dir, "maps");  // named first when both are missing
+    c.files.emplace_back(std::move(map_file), resolve(scen, spec_dir, "scens"));
+  }
+  if (c.spec.plan_source == PlanSource::kFile) {
+    c.plan_file = resolve(c.spec.plan, spec_dir, "smart-examples");
+  }
+  check_names(c.spec);
+  c.out = o.out.empty() ? fs::path("experiments") / c.spec.name : o.out;
+  c.cells = expand(c.spec);
+  fs::create_directories(c.out);
+  fs::copy_file(o.spec, c.out / "spec.yaml", fs::copy_options::overwrite_existing);
+  return c;
+}
+}  // namespace
+
+nlohmann::json CampaignReport::to_json() const {
+  return {{"experiment", name},           {"runs", runs},     {"skipped", skipped},
+          {"with_results", with_results}, {"errors", errors}, {"stopped", stopped},
+          {"results", results.string()}};
+}
+
+CampaignReport run_campaign(const CampaignOptions& options, std::ostream& log) {
+  auto c = load_campaign(options);
+  const auto t = run_cells(c, options, log);
+  CampaignReport r;
+  r.name = c.spec.name;
+  r.runs = c.cells.size();
+  r.skipped = c.cells.size() - t.total;
+  r.with_results = write_results(c);
+  r.errors = t.errors;
+  r.stopped = options.stop != nullptr && options.stop->load();
+  r.results = c.out / "results.csv";
+  return r;
+}
+
+void plot_campaign(const fs::path& results_dir, fs::path out_dir) {
+  const fs::path script = fs::path(SMART_SOURCE_DIR) / "experiment" / "plot" / "experiment_plot.py";
+  if (!fs::is_regular_file(results_dir / "results.csv")) {
+    throw std::invalid_argument("experiment plot: no results.csv in " + results_dir.string() +
+                                "; give the folder `smart experiment` wrote");
+  }
+  if (out_dir.empty()) out_dir = results_dir / "figures";
+  const int rc = common::ChildProcess(
+                     {"/usr/bin/python3", script.string(), results_dir.string(), out_dir.string()})
+                     .wait(std::chrono::minutes(10))
+                     .value_or(-1);
+  if (rc != 0) {
+    throw std::runtime_error("experiment plot: " + script.string() + " failed (exit code " +
+                             std::to_string(rc) +
+                             "); is python3-matplotlib installed (scripts/install-deps.sh)?");
+  }
+}
+
+}  // namespace smart::experiment

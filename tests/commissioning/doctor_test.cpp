@@ -1,0 +1,86 @@
+// The doctor's measuring checks on in-process emulated JetBots (hw/emulated_jetbot.hpp runs the
+// real driver against a simulated PCA9685 and streams Vicon UDP to this process) and on an empty
+// DDS domain of their own.
+#include "smart/commissioning/doctor.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "smart/agent/robot_model.hpp"
+#include "support/dds_test_support.hpp"
+
+namespace smart::commissioning {
+namespace {
+
+using ::testing::HasSubstr;
+
+class DoctorChecks : public ::testing::Test {
+ protected:
+  // An emulated JetBot at (0.5, 0.5) on this host's own Vicon port.
+  hw::RobotIo open(std::vector<double> wheel_gains = {}) const {
+    hw::RobotIoOptions o;
+    o.i2c = "emulated";
+    o.emulate_pose = {0.5, 0.5, 0.0};
+    o.emulate_wheel_gains = std::move(wheel_gains);
+    const auto file = hw::robot_file(o);
+    return hw::open_robot(o, 0, agent::load_robot_model(file), file, participant_);
+  }
+  static std::map<std::string, CheckRow> by_check(const std::vector<CheckRow>& rows) {
+    std::map<std::string, CheckRow> out;
+    for (const auto& r : rows) out[r.check] = r;
+    return out;
+  }
+  static DoctorSettings quick_with_wheels() {
+    DoctorSettings s;
+    s.listen_s = 0.5;
+    s.wheels = true;
+    return s;
+  }
+  DoctorSettings settings_ = quick_with_wheels();
+  dds::Domain domain_{test::kCommissioningDoctor, test::loopback()};
+  dds::Participant participant_{domain_, "doctor"};
+};
+
+TEST_F(DoctorChecks, AHealthyEmulatedJetbotPassesEveryRobotCheck) {
+  const auto rows = by_check(robot_checks(settings_, "0", [&] { return open(); }));
+  for (const char* check :
+       {"motor board", "pose stream", "left wheel", "right wheel", "response"}) {
+    ASSERT_TRUE(rows.contains(check)) << check;
+    EXPECT_EQ(rows.at(check).level, Level::kOk) << check << ": " << rows.at(check).measured;
+  }
+}
+
+TEST_F(DoctorChecks, ALeftWheelWiredBackwardsFailsNamingTheSignToFlip) {
+  const auto rows = by_check(robot_checks(settings_, "0", [&] { return open({-1.0, 1.0}); }));
+  EXPECT_EQ(rows.at("left wheel").level, Level::kFail);
+  EXPECT_THAT(rows.at("left wheel").fix, HasSubstr("sign"));
+  EXPECT_EQ(rows.at("right wheel").level, Level::kOk);
+}
+
+TEST_F(DoctorChecks, NoYesNoWheelsAndARobotThatDoesNotOpenIsOneFailNamingIt) {
+  settings_.confirm = [](const std::string& robot) { return robot != "0"; };
+  auto rows = by_check(robot_checks(settings_, "0", [&] { return open(); }));
+  EXPECT_EQ(rows.at("wheels").level, Level::kWarn);
+  EXPECT_FALSE(rows.contains("left wheel"));
+  const auto failed = robot_checks(settings_, "1", []() -> hw::RobotIo {
+    throw std::invalid_argument("--i2c /dev/i2c-9: no such device");
+  });
+  ASSERT_EQ(failed.size(), 1u);
+  EXPECT_EQ(failed[0].check, "open");
+  EXPECT_EQ(failed[0].level, Level::kFail);
+  EXPECT_THAT(failed[0].measured, HasSubstr("/dev/i2c-9"));
+}
+
+TEST_F(DoctorChecks, AnEmptyDomainHasNoMonitorAndSaysWhereItListened) {
+  const auto rows = by_check(
+      domain_checks(settings_, dds::default_qos_profile(), participant_, "domain 208, run doctor"));
+  ASSERT_TRUE(rows.contains("monitor"));
+  EXPECT_EQ(rows.at("monitor").level, Level::kWarn);
+  EXPECT_THAT(rows.at("monitor").measured, HasSubstr("domain 208, run doctor"));
+  EXPECT_FALSE(rows.contains("qos"));
+}
+
+}  // namespace
+}  // namespace smart::commissioning

@@ -1,0 +1,142 @@
+// A campaign as a researcher runs it: a tiny spec of real runs (1 and 2 robots, two repeats), two
+// at once, each a real `smart run`; resumed after a cell's result is removed; then its figures.
+#include "smart/experiment/campaign.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+class Campaign : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    b_ = benchmarks_dir();
+    if (!fs::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    dir_ = temp_file("experiment");
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write_spec(const std::string& extra = "") const {
+    const auto spec = dir_ / "spec.yaml";
+    std::ofstream(spec) << "name: tiny\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
+                        << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
+                        << "]\nagents: [1, 2]\nplan: {file: "
+                        << (b_ / "smart-examples/example_paths_xy.txt").string()
+                        << ", axis: xy}\nrepeats: 2\n"
+                        << extra;
+    return spec;
+  }
+  experiment::CampaignReport run(const fs::path& spec, int domain = kExperiment) {
+    experiment::CampaignOptions o;
+    o.spec = spec;
+    o.out = dir_ / "out";
+    o.jobs = 2;
+    o.first_domain = domain;
+    o.smart = smart_exe();
+    log_.str("");
+    return experiment::run_campaign(o, log_);
+  }
+  std::ostringstream log_;
+  fs::path b_, dir_;
+};
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST_F(Campaign, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
+  const auto spec = write_spec();
+  auto r = run(spec);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.runs, 4u);
+  EXPECT_EQ(r.with_results, 4u);
+  EXPECT_EQ(r.skipped, 0u);
+  EXPECT_EQ(r.errors, 0u);
+  EXPECT_EQ(r.results, dir_ / "out" / "results.csv");
+  const auto rows = lines_of(dir_ / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_THAT(rows[0], ::testing::StartsWith("cell,map,scen,agents,robot,qos,uncertainty,repeat,"));
+  EXPECT_THAT(rows[0], HasSubstr("aet_s"));
+  EXPECT_THAT(rows[1], ::testing::StartsWith("0-random-32-32-20-random-1-n1-footbot-lan-r0,"));
+  EXPECT_THAT(rows[4], HasSubstr(",2,footbot,lan,{},1,"));
+  for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_THAT(rows[i], HasSubstr(",true,")) << i;
+  EXPECT_EQ(lines_of(dir_ / "out" / "results.jsonl").size(), 4u);
+  // Resume: a removed result is made again, the others are not touched.
+  const auto cells = dir_ / "out" / "cells";
+  const auto kept = cells / "0-random-32-32-20-random-1-n1-footbot-lan-r0" / "summary.json";
+  const auto kept_time = fs::last_write_time(kept);
+  fs::remove(cells / "0-random-32-32-20-random-1-n2-footbot-lan-r1" / "summary.json");
+  r = run(spec);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.skipped, 3u);
+  EXPECT_EQ(r.with_results, 4u);
+  EXPECT_EQ(fs::last_write_time(kept), kept_time);
+  EXPECT_EQ(lines_of(dir_ / "out" / "results.csv").size(), 5u);
+  // The figures, as PNG and SVG.
+  experiment::plot_campaign(dir_ / "out", {});
+  for (const char* name : {"sim_speed", "aet_makespan", "memory", "success"}) {
+    const auto png = slurp(dir_ / "out" / "figures" / (std::string(name) + ".png"));
+    ASSERT_GT(png.size(), 1000u) << name;
+    EXPECT_EQ(png.substr(1, 3), "PNG") << name;
+    EXPECT_THAT(slurp(dir_ / "out" / "figures" / (std::string(name) + ".svg")), HasSubstr("<svg"));
+  }
+  // The table: one row per fleet size, its two repeats folded into one (identical in lock-step).
+  const auto table = lines_of(dir_ / "out" / "figures" / "table.md");
+  ASSERT_EQ(table.size(), 4u);
+  EXPECT_THAT(table[2], HasSubstr("| 1 | footbot | lan |"));
+  EXPECT_THAT(table[2], HasSubstr("| 2 | 2/2 |"));
+}
+
+// Any planner as a command: {map} {scen} {agents} {plan} are filled in (quoted), the plan is
+// made once into <out>/plans/ and then executed.
+TEST_F(Campaign, APlannerCommandMakesThePlanThatIsRun) {
+  const auto spec = dir_ / "command.yaml";
+  std::ofstream(spec) << "name: cmd\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
+                      << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
+                      << "]\nagents: [2]\nplan: {command: \"test -f {map} && test -f {scen} && "
+                      << "test {agents} = 2 && cp "
+                      << (b_ / "smart-examples/example_paths_xy.txt").string()
+                      << " {plan}\", axis: xy}\n";
+  const auto r = run(spec, kExperimentCommand);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.with_results, 1u);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "plans" / "0-n2.txt"));
+  EXPECT_THAT(lines_of(dir_ / "out" / "results.csv").at(1), HasSubstr(",command,xy,"));
+}
+
+TEST_F(Campaign, BadInputIsNamedBeforeAnythingRuns) {
+  EXPECT_THAT([&] { run(write_spec("clock: fast\n")); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spec.yaml:")));
+  const auto missing = dir_ / "nope.yaml";
+  std::ofstream(missing) << "name: x\nmaps: [no-such.map]\nscens: [s]\nagents: [1]\n"
+                            "plan: {planner: builtin}\n";
+  EXPECT_THAT([&] { run(missing); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("no-such.map not found")));
+  EXPECT_THAT([&] { run(write_spec("robots: [no-such-robot]\n")); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("no-such-robot")));
+  EXPECT_THAT([&] { run(write_spec(), 230); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("0-230")));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "results.csv"));
+}
+
+TEST_F(Campaign, PlottingAFolderWithoutResultsIsBadInput) {
+  EXPECT_THAT([&] { experiment::plot_campaign(dir_, {}); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("no results.csv")));
+}
+
+}  // namespace
+}  // namespace smart::test
