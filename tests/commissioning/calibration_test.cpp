@@ -52,16 +52,26 @@ TEST(PlacePoints, BadTextsCellsOutsideTheMapAndRepeatedIdsAreNamed) {
       ThrowsMessage<std::invalid_argument>(HasSubstr("3 is already placed")));
 }
 
-TEST(Trim, AWeakRightWheelPullsRightAndItsAlphaIsProposedLower) {
-  dds::Domain domain(test::kCommissioningTrim, test::loopback());
-  dds::Participant participant(domain, "trim");
-  hw::RobotIoOptions o;
-  o.i2c = "emulated";
-  o.emulate_pose = {0.5, 0.5, 0.0};
-  o.emulate_wheel_gains = {1.0, 0.9};
-  const auto file = hw::robot_file(o);
-  const auto model = agent::load_robot_model(file);
-  auto io = hw::open_robot(o, 0, model, file, participant);
+// An emulated JetBot at (0.5, 0.5) with the given wheel gains, on its own Vicon port.
+class Trim : public ::testing::Test {
+ protected:
+  hw::RobotIo open(std::vector<double> wheel_gains = {}) {
+    hw::RobotIoOptions o;
+    o.i2c = "emulated";
+    o.emulate_pose = {0.5, 0.5, 0.0};
+    o.emulate_wheel_gains = std::move(wheel_gains);
+    const auto file = hw::robot_file(o);
+    model_ = agent::load_robot_model(file);
+    return hw::open_robot(o, 0, model_, file, participant_);
+  }
+  dds::Domain domain_{test::kCommissioningTrim, test::loopback()};
+  dds::Participant participant_{domain_, "trim"};
+  agent::RobotModel model_;
+};
+
+TEST_F(Trim, AWeakRightWheelPullsRightAndItsAlphaIsProposedLower) {
+  auto io = open({1.0, 0.9});
+  const auto& model = model_;
   const TrimTrial trial{.speed_mps = 0.15, .seconds = 2.0};
   const auto samples = drive_straight(trial, 0, io);
   ASSERT_GT(samples.size(), 20u);
@@ -76,14 +86,8 @@ TEST(Trim, AWeakRightWheelPullsRightAndItsAlphaIsProposedLower) {
   EXPECT_THAT(p.yaml, HasSubstr("hardware:\n  left: {alpha: "));
 }
 
-TEST(Trim, AStopFlagEndsTheTrialWithTheWheelsOff) {
-  dds::Domain domain(test::kCommissioningTrim, test::loopback());
-  dds::Participant participant(domain, "trim-stop");
-  hw::RobotIoOptions o;
-  o.i2c = "emulated";
-  o.emulate_pose = {0.5, 0.5, 0.0};
-  const auto file = hw::robot_file(o);
-  auto io = hw::open_robot(o, 0, agent::load_robot_model(file), file, participant);
+TEST_F(Trim, AStopFlagEndsTheTrialWithTheWheelsOff) {
+  auto io = open();
   const auto& board = dynamic_cast<const hw::EmulatedJetbot&>(*io.bus);
   std::atomic<bool> stop{false};
   // The stop comes once the wheels turn, as a Ctrl-C during the trial.
