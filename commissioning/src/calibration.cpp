@@ -45,6 +45,7 @@ RawSources open_raw_sources(const FrameSources& o, const std::vector<FramePoint>
   const geometry::FrameTransform identity;
   if (o.pose == hw::PoseKind::kVicon) {
     std::vector<std::string> objects;
+    objects.reserve(points.size());
     for (const auto& p : points) objects.push_back(hw::with_id(o.vicon_object, p.id));
     r.vicon = std::make_unique<hw::ViconReceiver>(o.vicon_bind, o.vicon_port, identity, objects,
                                                   steady_s);
@@ -92,7 +93,7 @@ std::vector<Eigen::Vector2d> record_means(const std::vector<FramePoint>& points,
       throw std::runtime_error("point " + points[i].id + ": " + std::to_string(n[i]) +
                                " poses in 10 s; check that its pose source is streaming");
     }
-    means.push_back(sum[i] / n[i]);
+    means.emplace_back(sum[i] / n[i]);
   }
   return means;
 }
@@ -127,6 +128,7 @@ FrameFit fit_frame(const FrameSources& sources, const std::vector<FramePoint>& p
   FrameFit f;
   f.source = record_means(points, record_s, raw);
   std::vector<Eigen::Vector2d> world;
+  world.reserve(points.size());
   for (const auto& p : points) world.push_back(p.world_m);
   f.fit = geometry::fit_similarity(f.source, world);
   f.accepted = f.fit.max_m <= tolerance_m;

@@ -45,7 +45,7 @@ HeardHost* heard_from(const Reader& reader, const dds_sample_info_t& info,
   const auto who = reader.participant_of(info.publication_handle);
   if (!who) return nullptr;
   auto& h = hosts[short_guid(*who)];
-  h.min_offset_s = std::min(h.min_offset_s, (dds_time() - info.source_timestamp) * 1e-9);
+  h.min_offset_s = std::min(h.min_offset_s, static_cast<double>(dds_time() - info.source_timestamp) * 1e-9);
   ++h.samples;
   return &h;
 }
@@ -65,6 +65,7 @@ void hear_states(dds::WireReader<smart_msg_RobotState>& states,
 
 std::vector<CheckRow> host_rows(const std::map<std::string, HeardHost>& hosts) {
   std::vector<CheckRow> rows;
+  rows.reserve(hosts.size());
   for (const auto& [name, h] : hosts) {
     rows.push_back(
         clock_check(name, {h.robots.begin(), h.robots.end()}, h.min_offset_s, h.samples, 0.02));

@@ -71,6 +71,7 @@ struct TrimTrial {
 std::vector<agent::PoseSample> drive_straight(const TrimTrial& trial, uint32_t robot,
                                               hw::RobotIo& io);
 
+// NOLINTNEXTLINE(bugprone-exception-escape): clang-tidy 14 flags the implicit special members
 struct TrimProposal {
   nlohmann::json report;  // measured speed, turn rate, gains, trims and the proposed keys
   std::string yaml;       // the keys to put in the robot file
