@@ -12,6 +12,7 @@
 #include "smart/grid/map_reader.hpp"
 #include "smart/hw/emulated_jetbot.hpp"
 #include "support/dds_test_support.hpp"
+#include "support/emulated_robot_io.hpp"
 
 namespace smart::commissioning {
 namespace {
@@ -56,13 +57,7 @@ TEST(PlacePoints, BadTextsCellsOutsideTheMapAndRepeatedIdsAreNamed) {
 class Trim : public ::testing::Test {
  protected:
   hw::RobotIo open(std::vector<double> wheel_gains = {}) {
-    hw::RobotIoOptions o;
-    o.i2c = "emulated";
-    o.emulate_pose = {0.5, 0.5, 0.0};
-    o.emulate_wheel_gains = std::move(wheel_gains);
-    const auto file = hw::robot_file(o);
-    model_ = agent::load_robot_model(file);
-    return hw::open_robot(o, 0, model_, file, participant_);
+    return test::open_emulated_jetbot(participant_, std::move(wheel_gains), &model_);
   }
   dds::Domain domain_{test::kCommissioningTrim, test::loopback()};
   dds::Participant participant_{domain_, "trim"};

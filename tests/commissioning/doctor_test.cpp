@@ -10,6 +10,7 @@
 
 #include "smart/agent/robot_model.hpp"
 #include "support/dds_test_support.hpp"
+#include "support/emulated_robot_io.hpp"
 
 namespace smart::commissioning {
 namespace {
@@ -20,12 +21,7 @@ class DoctorChecks : public ::testing::Test {
  protected:
   // An emulated JetBot at (0.5, 0.5) on this host's own Vicon port.
   hw::RobotIo open(std::vector<double> wheel_gains = {}) const {
-    hw::RobotIoOptions o;
-    o.i2c = "emulated";
-    o.emulate_pose = {0.5, 0.5, 0.0};
-    o.emulate_wheel_gains = std::move(wheel_gains);
-    const auto file = hw::robot_file(o);
-    return hw::open_robot(o, 0, agent::load_robot_model(file), file, participant_);
+    return test::open_emulated_jetbot(participant_, std::move(wheel_gains));
   }
   static std::map<std::string, CheckRow> by_check(const std::vector<CheckRow>& rows) {
     std::map<std::string, CheckRow> out;
