@@ -157,7 +157,7 @@ TEST(CrossProcess, AHundredProcessesJoinOneDomainOnOneHost) {
         "/dev/null");
   }
   int failed = 0;
-  for (auto& e : echoes) failed += e.wait(60s).value_or(-1) != 0;
+  for (auto& e : echoes) failed += e.wait(60s * test::kSlowdown).value_or(-1) != 0;
   EXPECT_EQ(failed, 0) << "processes that could not join the domain";
 }
 

@@ -119,6 +119,13 @@ inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
 
 inline std::filesystem::path smart_exe() { return SMART_EXE; }
 
+// How much slower this build's binaries run (4 under ASan + UBSan, tests/CMakeLists.txt): the
+// factor of guards that wait for a hung child process, never of what a test asserts.
+#ifndef SMART_SLOWDOWN
+#define SMART_SLOWDOWN 1
+#endif
+constexpr int kSlowdown = SMART_SLOWDOWN;
+
 inline std::filesystem::path temp_file(const std::string& name) {
   return std::filesystem::temp_directory_path() /
          ("smart_test_" + std::to_string(::getpid()) + "_" + name);
