@@ -1,6 +1,7 @@
 #include "smart/convert/validate.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
@@ -210,9 +211,35 @@ std::string check_monitor_info(const smart_msg_MonitorInfo& m) {
   return {};
 }
 
-bool Rejections::count(const std::string& topic, const std::string& reason) {
-  ++counts_[topic][reason];
-  ++total_;
+std::string reason_class(const std::string& reason) {
+  std::string out;
+  out.reserve(reason.size());
+  for (std::size_t i = 0; i < reason.size(); ++i) {
+    const bool digit = std::isdigit(static_cast<unsigned char>(reason[i])) != 0;
+    if (!digit) {
+      out += reason[i];
+    } else if (out.empty() || out.back() != '#') {
+      out += '#';
+    }
+  }
+  return out;
+}
+
+bool Rejections::count(const std::string& topic, const std::string& reason,
+                       const std::string& sender, uint64_t samples) {
+  auto& classes = counts_[topic];
+  auto cls = reason_class(reason);
+  if (!classes.count(cls) && classes.size() >= kMaxClasses) cls = "other reasons";
+  classes[cls] += samples;
+  auto& examples = examples_[topic][cls];
+  if (examples.size() < kExamples) examples.push_back(reason);
+  if (!sender.empty()) {
+    const bool known = senders_.count(sender) > 0;
+    auto& who = senders_[known || senders_.size() < kMaxSenders ? sender : "other senders"];
+    who.samples[topic] += samples;
+    if (who.first_reason.empty()) who.first_reason = topic + ": " + reason;
+  }
+  total_ += samples;
   const uint64_t n = ++per_topic_[topic];
   return n <= 5 || n % 1000 == 0;
 }

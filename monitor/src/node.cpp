@@ -3,12 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <map>
 #include <vector>
 
 #include "ownership_edge.hpp"
 #include "smart/convert/convert.hpp"
 #include "smart/convert/validate.hpp"
 #include "smart/dds/action_window.hpp"
+#include "smart/dds/participant_directory.hpp"
 #include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/monitor/ros_plan_view.hpp"
@@ -74,11 +76,16 @@ struct MonitorNode::Impl {
   dds::WireReader<smart_msg_Progress> progress;
   dds::WireReader<smart_msg_RobotState> states;
   dds::WireReader<smart_msg_Clock> clocks;
+  // The sim host's status, heard only from its writers once it is known (issue 25: a stronger
+  // or flooding writer hid the sim's status and bought a false success).
+  dds::WriterAdmission status_admission;
   dds::WireReader<smart_msg_SimStatus> status;
   // Anything received is checked before it becomes an event (wire/validate.hpp).
   const std::size_t robots;
   const wire::Bounds bounds;
   wire::Rejections rejections;
+  dds::ParticipantDirectory directory;
+  std::map<dds_instance_handle_t, std::string> senders_named;
   SenderGate senders;
   std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
   uint32_t status_writers_seen = 0;  // status writers matched so far (total_count)
@@ -99,21 +106,31 @@ struct MonitorNode::Impl {
         progress(p, qos),
         states(p, qos),
         clocks(p, qos),
-        status(p, qos),
+        status(p, qos, status_admission),
         robots(in.actions.robots()),
         bounds(wire::bounds_of(in.grid, o.cell_m)),
+        directory(p),
         senders(robots) {}
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.
   template <class Reader>
   bool valid(const char* topic, const std::string& why, const Reader& reader,
-             dds_instance_handle_t from) {
+             dds_instance_handle_t from, uint64_t samples = 1) {
     if (why.empty()) return true;
-    if (rejections.count(topic, why)) {
-      spdlog::warn("monitor: {} sample from {} rejected: {}", topic,
-                   describe_sender(reader.participant_of(from)), why);
+    const auto& who = sender(reader, from);
+    if (rejections.count(topic, why, who, samples)) {
+      spdlog::warn("monitor: {} sample from {} rejected: {}", topic, who, why);
     }
     return false;
+  }
+
+  // Who wrote a refused sample, looked up once per writer (a flood costs no discovery reads).
+  template <class Reader>
+  const std::string& sender(const Reader& reader, dds_instance_handle_t from) {
+    if (senders_named.size() > 4096) senders_named.clear();
+    auto [it, fresh] = senders_named.try_emplace(from);
+    if (fresh) it->second = directory.describe(reader.participant_of(from));
+    return it->second;
   }
 
   double now_s() const { return std::chrono::duration<double>(SteadyClock::now() - wall0).count(); }
@@ -151,9 +168,15 @@ struct MonitorNode::Impl {
       opt.on_state({t_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
-    if (const auto m = status.subscription_matched().total_count; m != status_writers_seen) {
+    if (const auto m = status.subscription_matched().total_count;
+        m != status_writers_seen || (senders.sim_known() && !status_admission.closed())) {
       status_writers_seen = m;
       senders.remember_status_writers(status);
+      admit_sim_status_writers();
+    }
+    for (const auto& [writer, n] : status_admission.take_refused()) {
+      valid("sim_status", "sim status from a participant that is not this run's sim host", status,
+            writer, n);
     }
     status.take_each_from([&](const smart_msg_SimStatus& s, dds_instance_handle_t from) {
       if (!valid("sim_status", wire::check_status(s, robots), status, from)) return;
@@ -170,10 +193,19 @@ struct MonitorNode::Impl {
     }
   }
 
+  // Once the sim host is known (its first tick), its status writers alone are heard.
+  void admit_sim_status_writers() {
+    if (!senders.sim_known()) return;
+    for (const auto h : status.matched_writers()) {
+      if (senders.status(h, status).empty()) status_admission.admit(h);
+    }
+    status_admission.close();
+  }
+
   void take_status(const smart_msg_SimStatus& s, dds_instance_handle_t from) {
     if (!valid("sim_status", senders.status(from, status), status, from)) return;
     sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
-                       s.first_contact_a, s.first_contact_b});
+                       s.first_contact_a, s.first_contact_b, s.sim_time_s});
   }
 
   void log_notes() {
@@ -251,8 +283,8 @@ struct MonitorNode::Impl {
     sup.finish(now_s());
     writer.flush();
     writer.wait_for_acks(milliseconds(1000));
-    const auto drain_until = SteadyClock::now() + milliseconds(300);
-    while (SteadyClock::now() < drain_until && sup.result().outcome != Outcome::kHostLost) {
+    const auto t0 = SteadyClock::now();
+    while (draining(SteadyClock::now() - t0)) {
       drain_waitset().wait(milliseconds(20));
       read_observations();
     }
@@ -261,7 +293,35 @@ struct MonitorNode::Impl {
     MonitorResult r = sup.result();
     r.wall_time_s = now_s();
     r.rejected_samples = rejections.counts();
+    r.rejected_examples = rejections.examples();
+    for (const auto& [who, what] : rejections.senders()) {
+      r.suspected_intruders.push_back({who, what.samples, what.first_reason});
+    }
+    name_suspects(r);
     return r;
+  }
+
+  // The final states and status follow the stop: take what comes for 0.3 s, and in a run that
+  // needs the sim's word, until its final status is in, while the sim host's clock writer is
+  // still matched (it leaves once it has written), at most timeout_s.
+  bool draining(SteadyClock::duration since) {
+    if (sup.result().outcome == Outcome::kHostLost) return false;
+    if (since < milliseconds(300)) return true;
+    if (!config.require_sim_status || sup.has_final_sim_status()) return false;
+    return since < std::chrono::duration<double>(config.timeout_s) &&
+           senders.sim_clock_matched(clocks);
+  }
+
+  // A failed run whose monitor refused samples names their senders: they may be the cause
+  // (issue 25: a stall blamed on "robots stuck against each other" hid the intruder).
+  static void name_suspects(MonitorResult& r) {
+    if (r.success() || r.outcome == Outcome::kRefused || r.suspected_intruders.empty()) return;
+    r.error += "; meanwhile samples were refused from ";
+    for (std::size_t i = 0; i < r.suspected_intruders.size() && i < 3; ++i) {
+      const auto& s = r.suspected_intruders[i];
+      r.error += (i ? ", " : "") + s.sender + " (first: " + s.first_reason + ")";
+    }
+    if (r.suspected_intruders.size() > 3) r.error += " and others (suspected_intruders)";
   }
 
   dds::WaitSet& drain_waitset() {
@@ -296,6 +356,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
     I.sup.refuse(*refusal);
     return I.finish();
   }
+  I.announcer.owned();  // from here on a later claim never stops this run (issue 25)
   if (I.opt.resume && !I.resume()) return I.sup.result();
   I.sup.start(I.now_s());
   I.writer.flush();

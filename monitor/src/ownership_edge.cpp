@@ -9,6 +9,8 @@
 #include <random>
 #include <thread>
 
+#include "smart/dds/participant_directory.hpp"
+
 namespace smart::monitor {
 
 namespace {
@@ -31,7 +33,11 @@ wire::MonitorClaim claim_of(const smart_msg_MonitorInfo& m) {
 
 MonitorAnnouncer::MonitorAnnouncer(const dds::Participant& p, const dds::QosProfile& qos,
                                    uint64_t run_id, bool resume)
-    : run_name_(p.run()), domain_id_(static_cast<int>(p.domain_id())), out_(p, qos), in_(p, qos) {
+    : run_name_(p.run()),
+      partition_(p.run_partition()),
+      domain_id_(static_cast<int>(p.domain_id())),
+      out_(p, qos),
+      in_(p, qos) {
   std::random_device rd;
   self_ = {(uint64_t{rd()} << 32) | rd(),
            run_id,
@@ -48,61 +54,83 @@ MonitorAnnouncer::MonitorAnnouncer(const dds::Participant& p, const dds::QosProf
   m.resume = resume;
   out_.write(m);
   announcement_ = m;
-  announced_ = std::chrono::steady_clock::now();
+  t0_ = announced_ = std::chrono::steady_clock::now();
+}
+
+double MonitorAnnouncer::now_s() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+void MonitorAnnouncer::read_claims(double now_s) {
+  for (;;) {
+    auto samples = in_.take();
+    if (samples.empty()) return;
+    for (auto s : samples) {
+      const auto& m = s.data();  // key fields are set in invalid samples too
+      if (!s.alive()) {
+        claims_.gone(m.monitor_id);
+      } else if (s.valid() && m.monitor_id != self_.monitor_id) {
+        take_claim(m, s.info().publication_handle, now_s);
+      }
+    }
+  }
+}
+
+void MonitorAnnouncer::take_claim(const smart_msg_MonitorInfo& m, dds_instance_handle_t from,
+                                  double now_s) {
+  auto why = wire::check_monitor_info(m);
+  const auto parts = in_.partitions_of(from);
+  if (why.empty() && parts && *parts != std::vector<std::string>{partition_}) {
+    why = "written to partitions other than exactly this run's '" + partition_ +
+          "' (a wildcard reaches every run)";
+  }
+  if (why.empty()) return claims_.heard(claim_of(m), now_s);
+  if (rejected_.count("monitor", why)) {
+    spdlog::warn("monitor: announcement on run '{}' from {} ignored: {}", run_name_,
+                 describe_sender(in_.participant_of(from)), why);
+  }
 }
 
 std::optional<std::string> MonitorAnnouncer::poll() {
-  // Written again each second: the same claim (keep-last), whose fresh source timestamps let
-  // `smart doctor` on any host measure this host's clock offset.
+  // Written again each second: the same claim (keep-last), this monitor's sign of life, whose
+  // fresh source timestamps also let `smart doctor` on any host measure this host's clock offset.
   if (const auto now = std::chrono::steady_clock::now();
       now - announced_ >= std::chrono::seconds(1)) {
     out_.write(announcement_);
     announced_ = now;
   }
-  for (auto s : in_.take()) {
-    const auto& m = s.data();  // key fields are set in invalid samples too
-    if (!s.alive()) {
-      others_.erase(m.monitor_id);
-    } else if (s.valid() && m.monitor_id != self_.monitor_id) {
-      if (auto why = wire::check_monitor_info(m); !why.empty()) {
-        if (rejected_.count("monitor", why)) {
-          spdlog::warn("monitor: announcement on run '{}' rejected: {}", run_name_, why);
-        }
-        continue;
-      }
-      others_[m.monitor_id] = claim_of(m);
-    }
-  }
-  std::vector<wire::MonitorClaim> others;
-  for (const auto& [id, c] : others_) {
-    others.push_back(c);
-    if (wire::outranks(self_, c) && warned_.insert(id).second) {
+  const double now = now_s();
+  read_claims(now);
+  const auto others = claims_.live(now);
+  for (const auto& c : others) {
+    if ((owned_ || wire::outranks(self_, c)) && warned_.insert(c.monitor_id).second) {
       spdlog::warn(
           "monitor: a second {} joined run '{}'; it is refused, this monitor keeps the "
           "fleet",
           wire::describe(c), run_name_);
     }
   }
-  const auto owner = wire::owner_over(self_, others);
+  const auto owner = owned_ ? std::nullopt : wire::owner_over(self_, others);
   if (!owner) return std::nullopt;
   return "refused: run '" + run_name_ + "' on domain " + std::to_string(domain_id_) +
          " is already owned by the " + wire::describe(*owner) +
-         "; stop that monitor, start this one with another --run, or take the run over with "
-         "--resume";
+         (self_.resume ? ", which is alive; --resume takes over only a run whose monitor stopped"
+                       : "; stop that monitor, start this one with another --run, or take the "
+                         "run over with --resume once it has stopped");
 }
 
 std::optional<std::string> MonitorAnnouncer::settle(const std::function<bool()>& hosts_matched,
                                                     double max_s) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  auto since = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   // Discovery of another monitor takes about as long as that of the hosts: once a host is
-  // matched, a short grace suffices.
+  // matched, a short grace suffices; a claim heard once is waited for until it repeats or is
+  // known to be stale (wire::kClaimLiveS).
   double matched_at = -1;
-  while (since() < max_s) {
+  for (;;) {
     if (auto refusal = poll()) return refusal;
-    if (matched_at < 0 && hosts_matched()) matched_at = since();
-    if (matched_at >= 0 && since() - matched_at > 0.2) break;
+    const double t = now_s();
+    if (matched_at < 0 && hosts_matched()) matched_at = t;
+    const bool discovered = t >= max_s || (matched_at >= 0 && t - matched_at > 0.2);
+    if (discovered && !claims_.pending(t)) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return poll();
@@ -110,14 +138,7 @@ std::optional<std::string> MonitorAnnouncer::settle(const std::function<bool()>&
 
 std::string describe_sender(const std::optional<dds_guid_t>& participant) {
   if (!participant) return "a writer that left";
-  std::string out = "participant ";
-  char hex[3];
-  for (std::size_t i = 0; i < 12; ++i) {  // the GUID prefix; the rest names the entity
-    std::snprintf(hex, sizeof(hex), "%02x", participant->v[i]);
-    out += hex;
-    if (i % 4 == 3 && i < 11) out += ':';
-  }
-  return out;
+  return "participant " + dds::guid_prefix(*participant);
 }
 
 bool SenderGate::same(const dds_guid_t& a, const dds_guid_t& b) {

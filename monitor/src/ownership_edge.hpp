@@ -1,8 +1,10 @@
 // The monitor's side of run ownership (idl/smart.idl, "Ownership"), at the DDS edge:
 // - MonitorAnnouncer: announces this monitor on the run's MonitorInfo topic (kept while it
-//   lives; again each second from poll(), for other hosts' clock checks) and watches the
-//   others; poll() returns why this monitor must give way, naming the
-//   monitor that owns the run (wire/ownership.hpp decides), or nothing.
+//   lives; again each second from poll(), for other hosts' clock checks and as its sign of
+//   life) and watches the others; poll() returns why this monitor must give way, naming the
+//   live monitor that owns the run (wire/ownership.hpp decides), or nothing. Announcements
+//   from a writer outside exactly this run's partition (the "smart.run.*" wildcard reaches
+//   every run) are refused, and a claim counts only once repeated (wire::ClaimBook).
 // - SenderGate: who may report what: progress for a robot only from the writer that first
 //   reported it (until that writer leaves: a restarted host takes over, and its newest refused
 //   sample is taken then, as its progress is cumulative), clock ticks only from
@@ -13,6 +15,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -36,22 +39,30 @@ class MonitorAnnouncer {
                    bool resume);
   int32_t strength() const { return self_.strength; }
   // A refusal naming the owner, or nothing; logs (once per monitor) monitors this one outranks.
+  // Once this monitor owns the run (owned()), it never refuses: a later claim is logged only.
   std::optional<std::string> poll();
-  // Before start(): give another monitor of the run time to be discovered (up to max, less once
-  // hosts are matched); returns poll()'s verdict.
+  // Before start(): give another monitor of the run time to be discovered and a claim heard
+  // once time to repeat (up to max, less once hosts are matched); returns poll()'s verdict.
   std::optional<std::string> settle(const std::function<bool()>& hosts_matched, double max_s);
+  void owned() { owned_ = true; }
 
  private:
+  void read_claims(double now_s);
+  void take_claim(const smart_msg_MonitorInfo& m, dds_instance_handle_t from, double now_s);
+  double now_s() const;
+
   wire::MonitorClaim self_;
   std::string run_name_;
+  std::string partition_;
   int domain_id_;
   dds::WireWriter<smart_msg_MonitorInfo> out_;
   dds::WireReader<smart_msg_MonitorInfo> in_;
-  std::map<uint64_t, wire::MonitorClaim> others_;  // alive, by monitor_id
+  wire::ClaimBook claims_;
   std::set<uint64_t> warned_;
   wire::Rejections rejected_;  // announcements that fail wire::check_monitor_info
   smart_msg_MonitorInfo announcement_{};
-  std::chrono::steady_clock::time_point announced_;
+  std::chrono::steady_clock::time_point t0_, announced_;
+  bool owned_ = false;
 };
 
 class SenderGate {
@@ -102,6 +113,10 @@ class SenderGate {
   }
   // Before the sim host's first tick its status cannot be placed: keep it until then.
   bool sim_known() const { return sim_participant_.has_value(); }
+  template <class Reader>
+  bool sim_clock_matched(const Reader& reader) const {
+    return sim_clock_ != 0 && reader.writer_matched(sim_clock_);
+  }
   // The sim host's final status is often read after it left, and in a short run it may be its
   // first status sample: every status writer's participant is remembered while it is matched
   // (call when the matched count changed), and from earlier samples.

@@ -123,6 +123,15 @@ void create_out_dir(const std::filesystem::path& dir) {
 
 // What the robots' reported poses showed (real time): contacts, closest approach, the first
 // contact (or null).
+// Who sent the samples the monitor refused (issue 25): the sender's participant and what it sent.
+nlohmann::json suspects_json(const MonitorResult& r) {
+  auto out = nlohmann::json::array();
+  for (const auto& s : r.suspected_intruders) {
+    out.push_back({{"sender", s.sender}, {"samples", s.samples}, {"first_reason", s.first_reason}});
+  }
+  return out;
+}
+
 nlohmann::json pose_contacts_json(const MonitorResult& r) {
   const auto opt = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -220,6 +229,8 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"total_actions", r.total_actions},
       {"rejected_progress", r.rejected_progress},
       {"rejected_samples", r.rejected_samples},
+      {"rejected_examples", r.rejected_examples},
+      {"suspected_intruders", suspects_json(r)},
       {"run_id", r.run_id},
       {"run", info.run},
       {"seed", info.seed},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <type_traits>
 
@@ -13,6 +14,42 @@ bool is_results_file(std::string_view name) {
 }
 
 std::string sim_report_name(uint32_t shard) { return "sim-" + std::to_string(shard) + ".json"; }
+
+SimReport parse_sim_report(std::string_view text, const std::string& source) {
+  std::string_view last;
+  for (std::size_t at = 0; at < text.size();) {
+    const auto end = std::min(text.find('\n', at), text.size());
+    if (end > at) last = text.substr(at, end - at);
+    at = end + 1;
+  }
+  const auto j = nlohmann::json::parse(last, nullptr, false);
+  if (!j.is_object()) {
+    throw std::invalid_argument(source +
+                                ": no sim report (its last line is not a JSON object); "
+                                "the sim host stopped before it could write one");
+  }
+  auto field = [&](const char* key, auto fallback, bool required) {
+    using T = decltype(fallback);
+    const auto it = j.find(key);
+    if (it == j.end() && !required) return fallback;
+    const bool fits = it != j.end() && (std::is_same_v<T, bool>          ? it->is_boolean()
+                                        : std::is_same_v<T, std::string> ? it->is_string()
+                                        : std::is_floating_point_v<T>    ? it->is_number()
+                                                                      : it->is_number_unsigned());
+    if (!fits) {
+      throw std::invalid_argument(source + ": sim report key \"" + key +
+                                  "\" is missing or of the wrong type");
+    }
+    return it->template get<T>();
+  };
+  using namespace sim_report_key;
+  return {field(kOk, false, true),
+          field(kError, std::string(), false),
+          field(kSimTimeS, 0.0, true),
+          field(kRobotContacts, uint64_t{0}, true),
+          field(kWallContacts, uint64_t{0}, true),
+          field(kHandoversIn, uint64_t{0}, false)};
+}
 
 namespace {
 

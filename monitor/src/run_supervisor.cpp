@@ -27,6 +27,8 @@ std::string_view to_string(Outcome o) {
       return "not at goal";
     case Outcome::kRefused:
       return "refused";
+    case Outcome::kUnverified:
+      return "unverified";
   }
   return "unknown";
 }
@@ -198,6 +200,7 @@ bool RunSupervisor::on_state(const StateEvent& s, double now_s) {
 void RunSupervisor::on_sim_status(const SimStatusEvent& s) {
   if (s.run_id != res_.run_id && s.run_id != 0) return;
   res_.have_sim_status = true;
+  status_sim_time_s_ = std::max(status_sim_time_s_, s.sim_time_s);
   res_.robot_contacts = s.robot_contacts;
   if (s.first_contact_a >= 0 && s.first_contact_b >= 0) {
     res_.first_collision = {static_cast<uint32_t>(s.first_contact_a),
@@ -208,6 +211,11 @@ void RunSupervisor::on_sim_status(const SimStatusEvent& s) {
   if (s.peak_rss_mb > 0) {
     res_.host_peak_rss_mb = std::max(res_.host_peak_rss_mb.value_or(0.0), s.peak_rss_mb);
   }
+}
+
+bool RunSupervisor::has_final_sim_status() const {
+  if (!res_.have_sim_status) return false;
+  return !config_.lockstep || status_sim_time_s_ >= res_.sim_time_s;
 }
 
 void RunSupervisor::on_hosts_matched(uint32_t count, double now_s) {
@@ -305,21 +313,40 @@ void RunSupervisor::conclude() {
     const double d = std::hypot(last_pose_[r].x_m - goal_[r].x_m, last_pose_[r].y_m - goal_[r].y_m);
     if (d > tol) res_.off_goal.push_back(r);
   }
-  if (res_.robot_contacts > 0) {
-    const auto names = res_.first_collision
-                           ? "robots " + std::to_string(res_.first_collision->first) + " and " +
-                                 std::to_string(res_.first_collision->second)
-                           : std::string("unknown robots");
-    return end(Outcome::kCollision,
-               "collision: every action finished, but the sim host saw " +
-                   std::to_string(res_.robot_contacts) + " robot-robot collisions, first " + names +
-                   "; a host executed actions out of order or something forged progress");
+  if (auto why = collision_seen()) return end(Outcome::kCollision, std::move(*why));
+  if (config_.require_sim_status && !has_final_sim_status()) {
+    return end(Outcome::kUnverified,
+               std::string("unverified: every action finished, but ") +
+                   (res_.have_sim_status ? "the sim host's status at the run's end"
+                                         : "no status from the run's sim host") +
+                   " came in, so its collision counts are unknown; if samples were rejected "
+                   "(rejected_samples), a participant that is not the sim host wrote them");
   }
   if (!res_.off_goal.empty()) {
     end(Outcome::kOffGoal, "not at goal: every action finished, but robots " +
                                robot_list(res_.off_goal) + " were last seen more than " +
                                std::to_string(tol) + " m from their goals");
   }
+}
+
+std::optional<std::string> RunSupervisor::collision_seen() const {
+  if (res_.robot_contacts > 0) {
+    const auto names = res_.first_collision
+                           ? "robots " + std::to_string(res_.first_collision->first) + " and " +
+                                 std::to_string(res_.first_collision->second)
+                           : std::string("unknown robots");
+    return "collision: every action finished, but the sim host saw " +
+           std::to_string(res_.robot_contacts) + " robot-robot collisions, first " + names +
+           "; a host executed actions out of order or something forged progress";
+  }
+  if (const auto& c = res_.first_pose_contact) {
+    return "collision: every action finished, but the robots' reported poses show " +
+           std::to_string(res_.pose_contacts) + " contact(s), first robots " +
+           std::to_string(c->a) + " and " + std::to_string(c->b) + " at " + std::to_string(c->t_s) +
+           " s; check the robots' sizes, pose calibration and the "
+           "plan's spacing";
+  }
+  return std::nullopt;
 }
 
 std::size_t RunSupervisor::robots_done() const {

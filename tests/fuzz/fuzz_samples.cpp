@@ -129,7 +129,7 @@ void one_sample(fuzz::Bytes& in, monitor::RunSupervisor& sup, agent::ActionQueue
       const auto s = in.take<smart_msg_SimStatus>();
       if (wire::check_status(s, kRobots).empty()) {
         sup.on_sim_status({s.run_id, s.robot_contacts, s.wall_contacts, s.min_gap_m, s.peak_rss_mb,
-                           s.first_contact_a, s.first_contact_b});
+                           s.first_contact_a, s.first_contact_b, s.sim_time_s});
       }
       return;
     }

@@ -32,5 +32,51 @@ TEST(Ownership, TheStrongestOtherMonitorOwnsEqualStrengthsGoToTheSmallerId) {
   EXPECT_EQ(describe(*owner), "monitor on host a (pid 4, run id 9)");
 }
 
+// `smart monitor --resume` of another plan ended both runs (issue 25): resume now takes over only
+// a run whose monitor stopped; a live resumed monitor still outranks a later fresh one.
+TEST(Ownership, AResumingMonitorNeverOutranksALiveMonitorThatIsNotResuming) {
+  const MonitorClaim running{5, 1, "a", 2, 1500, false}, resuming{6, 1, "b", 3, 2147483647, true};
+  EXPECT_TRUE(outranks(running, resuming));
+  EXPECT_FALSE(outranks(resuming, running));
+  ASSERT_TRUE(owner_over(resuming, {running}).has_value());
+  EXPECT_FALSE(owner_over(running, {resuming}).has_value());
+  const MonitorClaim weaker_resume{7, 1, "c", 4, 1400, true};
+  EXPECT_TRUE(outranks(resuming, {7, 1, "c", 4, 2147483647, true}));  // equal: smaller id
+  EXPECT_FALSE(outranks(weaker_resume, resuming));
+}
+
+// One MonitorInfo written once (issue 25) made every run refuse itself.
+TEST(ClaimBook, AClaimIsLiveOnlyOnceRepeatedAndUntilItGoesQuiet) {
+  ClaimBook book;
+  const MonitorClaim c{9, 1, "h", 1, 1600, false};
+  book.heard(c, 0.0);
+  EXPECT_TRUE(book.live(0.0).empty());
+  EXPECT_TRUE(book.pending(1.0));
+  EXPECT_FALSE(book.pending(0.1 + kClaimLiveS));  // never repeated: stale, not waited for
+  EXPECT_TRUE(book.live(3.0).empty());
+  book.heard(c, 3.0);
+  book.heard(c, 4.0);
+  ASSERT_EQ(book.live(4.0).size(), 1u);
+  EXPECT_EQ(book.live(4.0)[0].monitor_id, 9u);
+  EXPECT_FALSE(book.pending(4.0));
+  EXPECT_TRUE(book.live(4.1 + kClaimLiveS).empty());  // it stopped announcing
+  book.heard(c, 10.0);
+  book.gone(9);
+  EXPECT_TRUE(book.live(10.0).empty());
+}
+
+TEST(ClaimBook, AFloodOfMadeUpMonitorsKeepsAtMostTheCapAndEvictsTheQuietest) {
+  ClaimBook book;
+  const MonitorClaim real{1, 1, "real", 1, 1600, false};
+  book.heard(real, 0.0);
+  for (uint64_t id = 100; id < 100 + 10 * kMaxClaims; ++id) {
+    book.heard({id, 1, "x", 1, 1600, false}, 0.5);
+    book.heard(real, 1.0);  // the real monitor keeps announcing
+  }
+  const auto live = book.live(1.0);
+  ASSERT_EQ(live.size(), 1u);
+  EXPECT_EQ(live[0].monitor_id, 1u);
+}
+
 }  // namespace
 }  // namespace smart::wire

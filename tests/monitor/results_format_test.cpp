@@ -15,6 +15,17 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// What a reader throws, or "accepted".
+template <class Read>
+std::string message(Read read) {
+  try {
+    read();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
 std::string with_header(std::string_view header, const std::string& rows) {
   return std::string(header) + "\n" + rows;
 }
@@ -77,14 +88,6 @@ TEST(ResultsFormat, StateRowsRoundTripAndOlderFilesWithoutTheLastColumnsRead) {
 }
 
 TEST(ResultsFormat, BadRowsNameTheFileTheLineAndWhatARowHolds) {
-  const auto message = [](auto read) {
-    try {
-      read();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
   EXPECT_THAT(message([] { parse_robots_csv("h\n0,1,2,3,4,5\n1,soon,2,3,4,5\n"); }),
               HasSubstr("robots.csv line 3: expected robot,finish_time_s,waiting_time_s"));
   EXPECT_THAT(message([] { parse_robots_csv("h\n0,1,2,3,4,5,6\n"); }), HasSubstr("line 2"));
@@ -103,6 +106,28 @@ TEST(ResultsFormat, OnlyTheFolderFilesAreResultsFiles) {
   EXPECT_FALSE(is_results_file("run.out"));
   EXPECT_FALSE(is_results_file("../summary.json"));
   EXPECT_EQ(sim_report_name(3), "sim-3.json");
+}
+
+TEST(ResultsFormat, ASimReportIsItsLastJsonLineAndABadOneNamesTheFileAndKey) {
+  const auto r = parse_sim_report(
+      "{\"ok\":false}\n{\"ok\":true,\"error\":\"\",\"sim_time_s\":12.5,"
+      "\"robot_contacts\":7,\"wall_contacts\":1,\"handovers_in\":3}\n\n",
+      "sim-0.json");
+  EXPECT_TRUE(r.ok);
+  EXPECT_DOUBLE_EQ(r.sim_time_s, 12.5);
+  EXPECT_EQ(r.robot_contacts, 7u);
+  EXPECT_EQ(r.wall_contacts, 1u);
+  EXPECT_EQ(r.handovers_in, 3u);
+  EXPECT_THAT(message([] { parse_sim_report("", "sim-1.json"); }),
+              HasSubstr("sim-1.json: no sim report"));
+  EXPECT_THAT(message([] { parse_sim_report("{\"ok\":true,\"sim_time_s\":1}", "s.json"); }),
+              HasSubstr("s.json: sim report key \"robot_contacts\" is missing"));
+  EXPECT_THAT(message([] {
+                parse_sim_report(
+                    R"({"ok":true,"sim_time_s":1,"robot_contacts":-2,"wall_contacts":0})",
+                    "s.json");
+              }),
+              HasSubstr("\"robot_contacts\" is missing or of the wrong type"));
 }
 
 }  // namespace

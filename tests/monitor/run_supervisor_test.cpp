@@ -413,6 +413,60 @@ TEST(RunSupervisor, ACollisionMakesACompleteRunFailAndNamesTheRobots) {
   EXPECT_THAT(r.sup.result().error, HasSubstr("1 robot-robot collisions, first robots 1 and 0"));
 }
 
+// Issue 25, "a false success": an intruder's stronger SimStatus writer hid the sim's status and
+// the run ended `success: true` while the sim counted 7 collisions.
+TEST(RunSupervisor, ASimulatedRunWithoutTheSimsFinalStatusIsUnverifiedNotASuccess) {
+  auto c = lockstep_config();
+  c.require_sim_status = true;
+  Scripted none(c);
+  drive_to_success(none, true);
+  none.sup.finish(1);
+  EXPECT_FALSE(none.sup.has_final_sim_status());
+  none.sup.conclude();
+  EXPECT_EQ(none.sup.result().outcome, Outcome::kUnverified);
+  EXPECT_FALSE(none.sup.result().success());
+  EXPECT_THAT(none.sup.result().error, HasSubstr("no status from the run's sim host"));
+  // A status from before the last tick (0.9 s) is not the sim's last word: a contact may follow.
+  Scripted early(c);
+  drive_to_success(early, true);
+  early.sup.on_sim_status({kRun, 0, 0, 0.5, 10, -1, -1, 0.5});
+  early.sup.finish(1);
+  EXPECT_FALSE(early.sup.has_final_sim_status());
+  early.sup.conclude();
+  EXPECT_EQ(early.sup.result().outcome, Outcome::kUnverified);
+  EXPECT_THAT(early.sup.result().error, HasSubstr("the sim host's status at the run's end"));
+  Scripted final_word(c);
+  drive_to_success(final_word, true);
+  final_word.sup.finish(1);
+  final_word.sup.on_sim_status({kRun, 0, 0, 0.5, 10, -1, -1, 0.9});
+  EXPECT_TRUE(final_word.sup.has_final_sim_status());
+  final_word.sup.conclude();
+  EXPECT_EQ(final_word.sup.result().outcome, Outcome::kSuccess);
+}
+
+TEST(RunSupervisor, RealTimePoseContactsFailACompleteRunNamingTheRobots) {
+  auto c = lockstep_config();
+  c.lockstep = false;
+  c.robot_radius_m = 0.09;
+  c.timeout_s = 100;
+  Scripted r(c);
+  r.sup.start(0);
+  r.sup.on_hosts_matched(1, 0);
+  r.sup.on_state({0, kRun, 1.0, 0.0}, 1.0);
+  r.sup.on_state({1, kRun, 1.1, 0.0}, 1.02);  // 0.08 m overlap
+  r.sup.on_progress({0, kRun, 1}, 2);
+  r.sup.on_progress({1, kRun, 1}, 3);
+  r.sup.poll(3);
+  ASSERT_EQ(r.sup.result().outcome, Outcome::kSuccess);
+  r.sup.finish(3);
+  r.sup.on_state({0, kRun, 2.0, 0.0}, 3);
+  r.sup.on_state({1, kRun, 1.0, 0.0}, 3);
+  r.sup.conclude();
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kCollision);
+  EXPECT_THAT(r.sup.result().error,
+              HasSubstr("reported poses show 1 contact(s), first robots 0 and 1 at 1.02"));
+}
+
 TEST(RunSupervisor, ConcludeLeavesAFailedRunAsItIs) {
   Scripted r;
   r.sup.start(0);
@@ -430,6 +484,7 @@ TEST(RunSupervisor, OutcomeNames) {
   EXPECT_EQ(to_string(Outcome::kSuccess), "success");
   EXPECT_EQ(to_string(Outcome::kHostLost), "host lost");
   EXPECT_EQ(to_string(Outcome::kTimeLimit), "time limit");
+  EXPECT_EQ(to_string(Outcome::kUnverified), "unverified");
 }
 
 }  // namespace

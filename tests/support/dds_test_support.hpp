@@ -113,6 +113,13 @@ enum DomainId : int {
   kCommissioningDoctor = 208,
   kCommissioningTrim = 209,
   kRos2Calibrate = 178,
+  kIntruderSimStatus = 210,
+  kIntruderMonitorInfo = 211,
+  kIntruderMidRun = 212,
+  kIntruderResume = 213,
+  kAdmissionFlood = 214,
+  kParticipantDirectory = 215,
+  kAdmissionOwnership = 216,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

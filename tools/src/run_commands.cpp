@@ -12,6 +12,7 @@
 #include <optional>
 #include <thread>
 #include <tuple>
+#include <variant>
 
 #include "smart/agent/robot_model.hpp"
 #include "smart/common/child_process.hpp"
@@ -21,6 +22,7 @@
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/results.hpp"
 #include "smart/monitor/results_format.hpp"
+#include "smart/monitor/sim_reports.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/run_options.hpp"
@@ -29,19 +31,21 @@ namespace smart::tools {
 
 namespace {
 
+// The JSON line `smart sim` prints last; others read its keys through results_format.hpp.
 nlohmann::json sim_report(const sim::SimHostResult& r) {
-  return {{"ok", r.ok},
-          {"error", r.error},
+  using namespace results::sim_report_key;
+  return {{kOk, r.ok},
+          {kError, r.error},
           {"stopped_by_monitor", r.stopped_by_monitor},
           {"ticks", r.ticks},
-          {"sim_time_s", r.sim_time_s},
+          {kSimTimeS, r.sim_time_s},
           {"wall_time_s", r.wall_time_s},
           {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0},
-          {"robot_contacts", r.contacts.robot_robot_events},
-          {"wall_contacts", r.contacts.robot_wall_events},
+          {kRobotContacts, r.contacts.robot_robot_events},
+          {kWallContacts, r.contacts.robot_wall_events},
           {"mean_awake_robots", r.mean_awake_robots},
           {"mean_active_systems", r.mean_active_systems},
-          {"handovers_in", r.handovers_in},
+          {kHandoversIn, r.handovers_in},
           {"rejected_samples", r.rejected_samples},
           {"peak_rss_mb", peak_rss_mb()}};
 }
@@ -89,8 +93,13 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
   }
 }
 
+// A sim child's report: sim-<shard>.json in the results folder, or a file of this process's
+// own in the temp folder (removed once read): the verdict is checked against it either way.
 std::filesystem::path sim_report_file(const MonitorCliOptions& o, uint32_t shard) {
-  if (o.out.empty()) return "/dev/null";
+  if (o.out.empty()) {
+    return std::filesystem::temp_directory_path() /
+           ("smart-" + std::to_string(getpid()) + "-" + results::sim_report_name(shard));
+  }
   return std::filesystem::path(o.out) / results::sim_report_name(shard);
 }
 
@@ -117,18 +126,29 @@ std::vector<common::ChildProcess> spawn_sims(const MonitorCliOptions& o, std::si
   return out;
 }
 
-// Robots handed between shards, from the shards' reports (nothing when one is missing).
-std::optional<uint64_t> sim_handovers(const MonitorCliOptions& o) {
-  uint64_t sum = 0;
+// What each sim child reported, or why its report cannot be read.
+std::vector<monitor::SimWord> sim_words(const MonitorCliOptions& o) {
+  std::vector<monitor::SimWord> out;
   for (uint32_t s = 0; s < o.sim.shards; ++s) {
-    std::ifstream in(sim_report_file(o, s));
-    std::string line, last;
-    while (std::getline(in, line)) {
-      if (!line.empty()) last = line;
+    const auto file = sim_report_file(o, s);
+    try {
+      out.emplace_back(
+          results::parse_sim_report(grid::read_text_file(file, "sim report"), file.string()));
+    } catch (const std::exception& e) {
+      out.emplace_back(std::string(e.what()));
     }
-    const auto j = nlohmann::json::parse(last, nullptr, false);
-    if (j.is_discarded() || !j.contains("handovers_in")) return std::nullopt;
-    sum += j["handovers_in"].get<uint64_t>();
+    if (o.out.empty()) std::filesystem::remove(file);
+  }
+  return out;
+}
+
+// Robots handed between shards, from the shards' reports (nothing when one is missing).
+std::optional<uint64_t> sim_handovers(const std::vector<monitor::SimWord>& words) {
+  uint64_t sum = 0;
+  for (const auto& w : words) {
+    const auto* report = std::get_if<results::SimReport>(&w);
+    if (!report) return std::nullopt;
+    sum += report->handovers_in;
   }
   return sum;
 }
@@ -209,6 +229,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         "an edge holds both cells, so following robots keep a cell apart",
         model.radius_m, model.name, o.sim.world.cell_m);
   }
+  mo.run.require_sim_status = mo.run.require_sim_status || spawn_sim_child;
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);
@@ -219,15 +240,19 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const bool tty = o.progress && isatty(STDERR_FILENO);
   monitor::ProgressCallback cb;
   if (tty) cb = [](const monitor::MonitorResult& r, std::size_t d) { print_progress(r, d, false); };
-  const auto result = node.run(g_stop_requested, cb);
+  auto result = node.run(g_stop_requested, cb);
   if (tty) print_progress(result, result.success() ? result.robots.size() : 0, true);
   for (auto& sim : sims) {
     if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
   }
   auto info = run_info(o, robot_file);
   info.monitor_cpu_s = common::cpu_seconds_self();
-  if (!sims.empty()) info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim hosts
-  if (!sims.empty() && !o.out.empty()) info.sim_handovers = sim_handovers(o);
+  if (!sims.empty()) {
+    info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim hosts
+    const auto words = sim_words(o);
+    if (!o.out.empty()) info.sim_handovers = sim_handovers(words);
+    monitor::apply_sim_reports(result, words);
+  }
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
@@ -278,6 +303,9 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   mon->add_flag("--resume", mo->resume,
                 "take over a run whose monitor died: its run id and finished actions come from "
                 "the sim hosts' progress (same plan, --agents and --initial-heading)");
+  mon->add_flag("--require-sim-status", mo->require_sim_status,
+                "real time: succeed only with a `smart sim` host's final status (its collision "
+                "counts); lock-step runs always need it");
   mon->callback([&exit_code, mo] {
     install_stop_handlers();
     exit_code = run_monitor(*mo, false);

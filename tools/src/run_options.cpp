@@ -209,6 +209,7 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   mo.run.max_sim_time_s = o.max_sim_time_s;
   mo.cell_m = o.sim.world.cell_m;
   mo.resume = o.resume;
+  mo.run.require_sim_status = mo.run.lockstep || o.require_sim_status;
   mo.ros_plan_hz = o.ros_plan_hz;
   return mo;
 }

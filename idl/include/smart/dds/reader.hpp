@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "smart/dds/entity.hpp"
@@ -170,6 +171,24 @@ class Reader {
     if (e->qos != nullptr && !dds_qget_ownership_strength(e->qos, &p.strength)) p.strength = 0;
     dds_builtintopic_free_endpoint(e);
     return p;
+  }
+  // The partitions of a matched writer's publisher (none: it left); a writer in the wildcard
+  // "smart.run.*" reaches every run's readers and shows that pattern here.
+  std::optional<std::vector<std::string>> partitions_of(dds_instance_handle_t handle) const {
+    dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(entity_.handle(), handle);
+    if (e == nullptr) return std::nullopt;
+    std::vector<std::string> out;
+    uint32_t n = 0;
+    char** ps = nullptr;
+    if (e->qos != nullptr && dds_qget_partition(e->qos, &n, &ps)) {
+      for (uint32_t i = 0; i < n; ++i) {
+        out.emplace_back(ps[i]);
+        dds_free(ps[i]);
+      }
+      dds_free(ps);
+    }
+    dds_builtintopic_free_endpoint(e);
+    return out;
   }
   std::optional<dds_guid_t> participant_of(dds_instance_handle_t handle) const {
     const auto p = publication(handle);

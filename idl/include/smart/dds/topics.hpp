@@ -40,7 +40,9 @@ SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction, tr
 SMART_DDS_WIRE_TOPIC(smart_msg_Progress, smart_msg_TOPIC_PROGRESS, kProgress, true);
 SMART_DDS_WIRE_TOPIC(smart_msg_RobotState, smart_msg_TOPIC_STATE, kState, true);
 SMART_DDS_WIRE_TOPIC(smart_msg_Clock, smart_msg_TOPIC_CLOCK, kClock, true);
-SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, true);
+// Shared: the monitor hears the sim host's status through a writer admission (admission.hpp),
+// which a stronger stranger cannot seize as it could an exclusively owned instance (issue 25).
+SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, false);
 // Latest per monitor, kept for late joiners: the status role's QoS; shared, every monitor is
 // seen.
 SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false);

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "smart/dds/admission.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/dds/reader.hpp"
 #include "smart/dds/topics.hpp"
@@ -15,9 +16,19 @@ namespace smart::dds {
 
 namespace detail {
 // Base-from-member: the topic must exist before the Writer/Reader base is built on it.
+// A topic entity of its own per endpoint, so that a reader's filter is its own.
 template <class T>
 struct WireTopicHolder {
   explicit WireTopicHolder(const Participant& p) : topic_(p, std::string(WireTopic<T>::name)) {}
+  WireTopicHolder(const Participant& p, WriterAdmission& admission)
+      : topic_(p, std::string(WireTopic<T>::name)) {
+    dds_topic_filter f{};
+    f.mode = DDS_TOPIC_FILTER_SAMPLEINFO_ARG;
+    f.f.sampleinfo_arg = &WriterAdmission::filter;
+    f.arg = &admission;
+    check(dds_set_topic_filter_extended(topic_.handle(), &f),
+          "setting the writer admission filter on '" + topic_.name() + "'");
+  }
   Topic<T> topic_;
 };
 }  // namespace detail
@@ -42,6 +53,8 @@ class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
         Writer<T>(p, this->topic_, wire_qos<T>(p, profile, strength)) {}
 };
 
+// With an admission (admission.hpp), it hears only the writers admitted there once closed; the
+// admission must outlive the reader.
 template <class T>
 class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
  public:
@@ -49,6 +62,9 @@ class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
              typename Reader<T>::Callback on_data_available = nullptr)
       : detail::WireTopicHolder<T>(p),
         Reader<T>(p, this->topic_, wire_qos<T>(p, profile), std::move(on_data_available)) {}
+  WireReader(const Participant& p, const QosProfile& profile, WriterAdmission& admission)
+      : detail::WireTopicHolder<T>(p, admission),
+        Reader<T>(p, this->topic_, wire_qos<T>(p, profile)) {}
 };
 
 }  // namespace smart::dds

@@ -5,10 +5,17 @@
 //   MONITOR_STRENGTH_RESUME - 1]; it wraps every ~124 days, then for one instant a later
 //   monitor would rank first), so the monitor that came first keeps the fleet; --resume takes
 //   MONITOR_STRENGTH_RESUME.
-// - Among announced monitors the strongest owns; equal strengths: the smaller monitor_id.
+// - Among announced monitors the strongest owns; equal strengths: the smaller monitor_id; but a
+//   --resume monitor never outranks a live monitor that is not resuming (resume takes over only
+//   a run whose monitor is gone).
+// - ClaimBook (issue 25, "one sample stops every run"): the announcements heard. A claim is live
+//   once heard twice (a monitor re-announces every second: one sample, replayed or forged, is
+//   not a monitor) and last heard within kClaimLiveS; a claim gone quiet is dropped. At most
+//   kMaxClaims are kept (a flood of made-up monitors evicts the longest quiet).
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,5 +39,25 @@ std::optional<MonitorClaim> owner_over(const MonitorClaim& self,
                                        const std::vector<MonitorClaim>& others);
 // "monitor on host H (pid P, run R)"
 std::string describe(const MonitorClaim& claim);
+
+inline constexpr double kClaimLiveS = 2.5;
+inline constexpr std::size_t kMaxClaims = 64;
+
+class ClaimBook {
+ public:
+  void heard(const MonitorClaim& claim, double now_s);
+  void gone(uint64_t monitor_id) { heard_.erase(monitor_id); }
+  std::vector<MonitorClaim> live(double now_s) const;
+  // A claim heard once, recently: worth waiting for (it repeats if its monitor is alive).
+  bool pending(double now_s) const;
+
+ private:
+  struct Heard {
+    MonitorClaim claim;
+    int times = 0;
+    double last_s = 0;
+  };
+  std::map<uint64_t, Heard> heard_;
+};
 
 }  // namespace smart::wire

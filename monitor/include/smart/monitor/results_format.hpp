@@ -31,8 +31,27 @@ inline constexpr std::string_view kStatesCsv = "states.csv";
 inline constexpr std::array<std::string_view, 5> kFiles = {kSummaryJson, kStatsCsv, kRobotsCsv,
                                                            kActionsCsv, kStatesCsv};
 bool is_results_file(std::string_view name);
-// A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json.
+// A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json,
+// the JSON line `smart sim` prints last on its standard output. Its keys that others read:
 std::string sim_report_name(uint32_t shard);
+namespace sim_report_key {
+inline constexpr const char* kOk = "ok";
+inline constexpr const char* kError = "error";
+inline constexpr const char* kSimTimeS = "sim_time_s";
+inline constexpr const char* kRobotContacts = "robot_contacts";  // this host's robots' episodes
+inline constexpr const char* kWallContacts = "wall_contacts";
+inline constexpr const char* kHandoversIn = "handovers_in";
+}  // namespace sim_report_key
+struct SimReport {
+  bool ok = false;
+  std::string error;
+  double sim_time_s = 0;
+  uint64_t robot_contacts = 0, wall_contacts = 0;
+  uint64_t handovers_in = 0;
+};
+// The last non-empty line of the text as a report; throws std::invalid_argument naming `source`
+// and the key that is missing or of the wrong type.
+SimReport parse_sim_report(std::string_view text, const std::string& source);
 
 // summary.json keys that programs other than a person read (every key: monitor/results.hpp and
 // the README's paragraph on results).

@@ -24,9 +24,12 @@
 //   after its last action finished lies within goal_tolerance_m of its goal; otherwise the
 //   outcome is collision or not-at-goal and the error names the robots. A robot whose pose was
 //   not seen after it finished (a lost sample) is listed as unverified, not failed.
+// - A run with require_sim_status (every simulated run) is a success only with the sim host's
+//   final status (lock-step: one stamped at the run's last tick), else it is unverified: an
+//   intruder that hides the sim's status must not buy a success (issue 25).
 // - Real time with robot_radius_m: the robots' reported poses are watched for contacts
-//   (separation_watch.hpp); counted in the result (pose_contacts), not a failure: sampled poses
-//   with their noise and latency are evidence, a sim host's physics is proof.
+//   (separation_watch.hpp); a contact they show fails a complete run as a collision: sampled
+//   poses are evidence, not proof, but a success must not hide evidence of a collision.
 // - Progress of another run is ignored; progress the tracker rejects (out of range, never
 //   enqueued) is counted and described in notes(); stale (duplicate, older) progress is harmless.
 // - resume(): rebuild the tracker from the hosts' last progress (a fixpoint: what robot A
@@ -57,9 +60,10 @@ enum class Outcome {
   kTimeLimit,
   kHostLost,
   kStopped,
-  kCollision,  // every action finished, but robots collided
-  kOffGoal,    // every action finished, but a robot is not at its goal
-  kRefused,    // another monitor owns the run
+  kCollision,   // every action finished, but robots collided
+  kOffGoal,     // every action finished, but a robot is not at its goal
+  kRefused,     // another monitor owns the run
+  kUnverified,  // every action finished, but the run's sim host never gave its final word
 };
 std::string_view to_string(Outcome outcome);
 
@@ -107,9 +111,16 @@ struct MonitorResult {
   std::vector<uint32_t> off_goal;         // robots seen away from their goal after finishing
   std::vector<uint32_t> goal_unverified;  // robots not seen after finishing
   uint64_t rejected_progress = 0;
-  // Samples the edge dropped before they became events (convert/validate.hpp): topic -> reason ->
-  // count.
+  // Samples the edge dropped before they became events (convert/validate.hpp): topic -> reason
+  // class -> count, a few verbatim reasons per class, and who sent them (bounded).
   std::map<std::string, std::map<std::string, uint64_t>> rejected_samples;
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> rejected_examples;
+  struct Suspect {
+    std::string sender;                       // participant GUID prefix (host, pid, process)
+    std::map<std::string, uint64_t> samples;  // topic -> refused samples
+    std::string first_reason;
+  };
+  std::vector<Suspect> suspected_intruders;
 };
 
 struct SupervisorConfig {
@@ -127,6 +138,8 @@ struct SupervisorConfig {
   double goal_tolerance_m = 0;
   // Real time: the robots' radius, to watch their reported poses for contacts; 0: not watched.
   double robot_radius_m = 0;
+  // A simulated run: success needs the sim host's final status (results: sim_status_received).
+  bool require_sim_status = false;
 };
 
 // Samples as the supervisor sees them (the edge converts the wire types).
@@ -147,6 +160,7 @@ struct SimStatusEvent {
   double min_gap_m = 0;
   double peak_rss_mb = 0;
   int64_t first_contact_a = -1, first_contact_b = -1;  // -1: no collision
+  double sim_time_s = 0;                               // when the sim host wrote it
 };
 
 // Where the supervisor's decisions go (the DDS edge; a recording fake in tests).
@@ -184,6 +198,9 @@ class RunSupervisor {
   void conclude();
 
   bool over() const { return res_.outcome != Outcome::kRunning; }
+  // The sim host's last word is in: a status of this run (lock-step: stamped at or after the last
+  // tick, so no contact can follow it). The edge drains until it is, or the sim host left.
+  bool has_final_sim_status() const;
   // Lock-step: nothing to do with progress until a tick is pending (the edge may sleep on ticks).
   bool wants_progress() const { return !config_.lockstep || handshake_.pending().has_value(); }
   const MonitorResult& result() const { return res_; }
@@ -204,6 +221,7 @@ class RunSupervisor {
                            uint64_t& run) const;
   void resume_fixpoint(const std::vector<int64_t>& target);
   void mark_done(uint32_t robot, double sim_time_s);
+  std::optional<std::string> collision_seen() const;
 
   const Instance& in_;
   SupervisorConfig config_;
@@ -224,6 +242,7 @@ class RunSupervisor {
   double last_sim_sign_s_ = 0;
   uint32_t max_matched_ = 0;
   bool sim_seen_ = false;
+  double status_sim_time_s_ = -1;              // of the newest sim status of this run
   std::optional<SeparationWatch> separation_;  // real time with robot_radius_m
 };
 

@@ -62,6 +62,8 @@ struct MonitorCliOptions {
   uint32_t window_cap = 32;
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
+  // Success needs a sim host's final status: lock-step, `smart run`, or --require-sim-status.
+  bool require_sim_status = false;
   bool progress = true;
   double ros_plan_hz = 0;  // the rviz2 plan view; 0: off
 };

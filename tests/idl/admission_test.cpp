@@ -1,0 +1,123 @@
+// A reader that hears only admitted writers (smart/dds/admission.hpp): the decision itself, and
+// over real DDS a stranger's flood that never displaces the admitted writer's keep-last sample.
+#include "smart/dds/admission.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+#include "smart/dds/wire.hpp"
+#include "support/dds_test_support.hpp"
+
+namespace smart::dds {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(WriterAdmission, OpenItHearsEveryoneClosedOnlyTheAdmittedAndCountsTheRest) {
+  WriterAdmission a;
+  EXPECT_TRUE(a.hear(7));
+  a.admit(5);
+  a.close();
+  EXPECT_TRUE(a.closed());
+  EXPECT_TRUE(a.hear(5));
+  EXPECT_FALSE(a.hear(7));
+  EXPECT_FALSE(a.hear(7));
+  for (dds_instance_handle_t h = 100; h < 100 + 2 * WriterAdmission::kMaxWriters; ++h) a.hear(h);
+  const auto refused = a.take_refused();
+  EXPECT_EQ(refused.at(7), 2u);
+  EXPECT_EQ(refused.size(), WriterAdmission::kMaxWriters + 1);  // the rest under handle 0
+  EXPECT_EQ(refused.at(0), WriterAdmission::kMaxWriters + 1);
+  EXPECT_TRUE(a.take_refused().empty());
+}
+
+bool same(const dds_guid_t& a, const dds_guid_t& b) { return std::memcmp(a.v, b.v, 16) == 0; }
+
+// Issue 25: exclusive ownership handed an instance to the strongest writer even when every
+// sample it sent was refused, and a flood displaced the real writer's keep-last sample.
+TEST(WriterAdmission, AStrangersFloodNeverDisplacesTheAdmittedWritersSample) {
+  Domain domain(test::kAdmissionFlood, test::loopback());
+  Participant admitted_p(domain), stranger_p(domain), reader_p(domain);
+  const auto qos = find_qos_profile("lan");
+  WireWriter<smart_msg_SimStatus> real(admitted_p, qos);
+  WireWriter<smart_msg_SimStatus> stranger(stranger_p, qos, 2147483647);
+  WriterAdmission admission;
+  WireReader<smart_msg_SimStatus> reader(reader_p, qos, admission);
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (reader.matched_writers().size() < 2) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the writers never matched";
+    std::this_thread::sleep_for(5ms);
+  }
+  dds_guid_t real_guid;
+  ASSERT_EQ(dds_get_guid(admitted_p.handle(), &real_guid), DDS_RETCODE_OK);
+  for (const auto h : reader.matched_writers()) {
+    if (const auto who = reader.participant_of(h); who && same(*who, real_guid)) admission.admit(h);
+  }
+  admission.close();
+  real.write(smart_msg_SimStatus{0, 1, 2.0, 20, 1, 0, 0.5, 0.1, 10.0, -1, -1});
+  uint64_t refused = 0;
+  int real_samples = 0;
+  for (int i = 0; refused < 1000; ++i) {
+    if (i < 1000) stranger.write(smart_msg_SimStatus{0, 1, 3.0, 20, 99, 0, 0.5, 0.1, 1, 2, 3});
+    reader.take_each([&](const smart_msg_SimStatus& s) {
+      EXPECT_EQ(s.robot_contacts, 1u) << "a stranger's sample reached the reader";
+      ++real_samples;
+    });
+    for (const auto& [writer, n] : admission.take_refused()) refused += n;
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << refused << " refused so far";
+    if (i >= 1000) std::this_thread::sleep_for(1ms);
+  }
+  while (real_samples == 0) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the admitted sample was lost";
+    reader.take_each([&](const smart_msg_SimStatus& s) {
+      EXPECT_EQ(s.robot_contacts, 1u);
+      ++real_samples;
+    });
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(real_samples, 1);
+  EXPECT_EQ(refused, 1000u);
+}
+
+// On an exclusively owned topic, a stronger stranger whose samples the admission refuses owns
+// nothing: the filter runs before ownership is decided.
+TEST(WriterAdmission, AStrongerStrangerRefusedByTheFilterOwnsNothingOnAnExclusiveTopic) {
+  Domain domain(test::kAdmissionOwnership, test::loopback());
+  Participant admitted_p(domain), stranger_p(domain), reader_p(domain);
+  const auto qos = find_qos_profile("lan");
+  WireWriter<smart_msg_Progress> real(admitted_p, qos);  // host strength
+  WireWriter<smart_msg_Progress> stranger(stranger_p, qos, 2147483647);
+  WriterAdmission admission;
+  WireReader<smart_msg_Progress> reader(reader_p, qos, admission);
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (reader.matched_writers().size() < 2) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the writers never matched";
+    std::this_thread::sleep_for(5ms);
+  }
+  dds_guid_t real_guid;
+  ASSERT_EQ(dds_get_guid(admitted_p.handle(), &real_guid), DDS_RETCODE_OK);
+  for (const auto h : reader.matched_writers()) {
+    if (const auto who = reader.participant_of(h); who && same(*who, real_guid)) admission.admit(h);
+  }
+  admission.close();
+  uint64_t refused = 0;
+  for (int i = 0; i < 100; ++i) stranger.write(smart_msg_Progress{3, 1, 50, -1});
+  while (refused < 100) {
+    for (const auto& [writer, n] : admission.take_refused()) refused += n;
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << refused << " refused so far";
+    std::this_thread::sleep_for(1ms);
+  }
+  int32_t last = -2;
+  for (int32_t seq = 0; last != 9; seq = std::min(seq + 1, 9)) {
+    if (seq <= 9) real.write(smart_msg_Progress{3, 1, seq, -1});
+    reader.take_each([&](const smart_msg_Progress& p) { last = p.finished_seq; });
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the admitted writer went unheard";
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(last, 9);
+}
+
+}  // namespace
+}  // namespace smart::dds
