@@ -75,11 +75,13 @@ struct MonitorNode::Impl {
   RunSupervisor sup;
   dds::WireReader<smart_msg_Progress> progress;
   dds::WireReader<smart_msg_RobotState> states;
-  dds::WireReader<smart_msg_Clock> clocks;
-  // The sim host's status, heard only from its writers once it is known (issue 25: a stronger
-  // or flooding writer hid the sim's status and bought a false success).
-  dds::WriterAdmission status_admission;
-  dds::WireReader<smart_msg_SimStatus> status;
+  // Ticks and the sim host's status, heard only from its writers once it is known (issue 25: a
+  // stronger or flooding writer hid the sim's status and bought a false success; a second sim's
+  // ticks silenced the real one).
+  SimBoundReader<smart_msg_Clock> clock_in;
+  dds::WireReader<smart_msg_Clock>& clocks;
+  SimBoundReader<smart_msg_SimStatus> status_in;
+  dds::WireReader<smart_msg_SimStatus>& status;
   // Anything received is checked before it becomes an event (wire/validate.hpp).
   const std::size_t robots;
   const wire::Bounds bounds;
@@ -89,6 +91,8 @@ struct MonitorNode::Impl {
   SenderGate senders;
   std::optional<std::pair<smart_msg_SimStatus, dds_instance_handle_t>> early_status;
   uint32_t status_writers_seen = 0;  // status writers matched so far (total_count)
+  uint32_t clock_writers_now = 0;    // hosts_matched(): clock writers matched now
+  bool sim_was_known = false, sim_here = false;
   const SteadyClock::time_point wall0 = SteadyClock::now();
   std::optional<RosPlanView> plan_view;              // --ros-plan-hz
   std::vector<std::optional<common::Pose2D>> poses;  // last reported, for the plan view
@@ -105,8 +109,10 @@ struct MonitorNode::Impl {
         sup(in, config, writer),
         progress(p, qos),
         states(p, qos),
-        clocks(p, qos),
-        status(p, qos, status_admission),
+        clock_in(p, qos),
+        clocks(clock_in.reader()),
+        status_in(p, qos),
+        status(status_in.reader()),
         robots(in.actions.robots()),
         bounds(wire::bounds_of(in.grid, o.cell_m)),
         directory(p),
@@ -136,6 +142,10 @@ struct MonitorNode::Impl {
   double now_s() const { return std::chrono::duration<double>(SteadyClock::now() - wall0).count(); }
 
   void read_clocks() {
+    clock_in.refresh(senders, [&](dds_instance_handle_t writer, uint64_t n) {
+      valid("clock", "clock ticks from a participant that is not this run's sim host", clocks,
+            writer, n);
+    });
     clocks.take_each_from([&](const smart_msg_Clock& c, dds_instance_handle_t from) {
       if (!valid("clock", wire::check_clock(c), clocks, from) ||
           c.source_id != dds::kSimClockSource)
@@ -168,16 +178,14 @@ struct MonitorNode::Impl {
       opt.on_state({t_s, s.robot_id, s.pose.x_m, s.pose.y_m, s.pose.yaw_rad, s.linear_mps,
                     s.angular_radps, s.wheel_left_mps, s.wheel_right_mps, s.queue_length});
     });
-    if (const auto m = status.subscription_matched().total_count;
-        m != status_writers_seen || (senders.sim_known() && !status_admission.closed())) {
+    if (const auto m = status.subscription_matched().total_count; m != status_writers_seen) {
       status_writers_seen = m;
       senders.remember_status_writers(status);
-      admit_sim_status_writers();
     }
-    for (const auto& [writer, n] : status_admission.take_refused()) {
+    status_in.refresh(senders, [&](dds_instance_handle_t writer, uint64_t n) {
       valid("sim_status", "sim status from a participant that is not this run's sim host", status,
             writer, n);
-    }
+    });
     status.take_each_from([&](const smart_msg_SimStatus& s, dds_instance_handle_t from) {
       if (!valid("sim_status", wire::check_status(s, robots), status, from)) return;
       if (!senders.sim_known()) {
@@ -191,15 +199,6 @@ struct MonitorNode::Impl {
       early_status.reset();
       take_status(s, from);
     }
-  }
-
-  // Once the sim host is known (its first tick), its status writers alone are heard.
-  void admit_sim_status_writers() {
-    if (!senders.sim_known()) return;
-    for (const auto h : status.matched_writers()) {
-      if (senders.status(h, status).empty()) status_admission.admit(h);
-    }
-    status_admission.close();
   }
 
   void take_status(const smart_msg_SimStatus& s, dds_instance_handle_t from) {
@@ -250,6 +249,20 @@ struct MonitorNode::Impl {
     }
   }
 
+  // Real time: every host's progress writers. Lock-step: the sim host is there while its clock
+  // writer is (issue 25: any writer that matched and left ended the run as "the sim host left");
+  // looked up again only when a clock writer came or went.
+  uint32_t hosts_matched() {
+    if (!config.lockstep) return progress.subscription_matched().current_count;
+    const auto now = clocks.subscription_matched().current_count;
+    if (now != clock_writers_now || senders.sim_known() != sim_was_known) {
+      clock_writers_now = now;
+      sim_was_known = senders.sim_known();
+      sim_here = senders.sim_clock_matched(clocks);
+    }
+    return sim_here ? 1 : 0;
+  }
+
   // One turn of the pump: read everything that came, let the supervisor decide.
   void pump() {
     read_clocks();
@@ -258,7 +271,7 @@ struct MonitorNode::Impl {
     if (sup.wants_progress()) read_progress();
     const double now = now_s();
     sup.poll(now);
-    sup.on_hosts_matched(progress.subscription_matched().current_count, now);
+    sup.on_hosts_matched(hosts_matched(), now);
     if (auto refusal = announcer.poll()) sup.refuse(*refusal);
     writer.flush();  // the windows decided in this turn
     log_notes();

@@ -141,7 +141,7 @@ std::string describe_sender(const std::optional<dds_guid_t>& participant) {
   return "participant " + dds::guid_prefix(*participant);
 }
 
-bool SenderGate::same(const dds_guid_t& a, const dds_guid_t& b) {
+bool same_guid(const dds_guid_t& a, const dds_guid_t& b) {
   return std::memcmp(a.v, b.v, sizeof(a.v)) == 0;
 }
 

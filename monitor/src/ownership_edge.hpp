@@ -65,6 +65,8 @@ class MonitorAnnouncer {
   bool owned_ = false;
 };
 
+bool same_guid(const dds_guid_t& a, const dds_guid_t& b);
+
 class SenderGate {
  public:
   explicit SenderGate(std::size_t robots) : progress_holder_(robots, 0), held_back_(robots) {}
@@ -117,6 +119,12 @@ class SenderGate {
   bool sim_clock_matched(const Reader& reader) const {
     return sim_clock_ != 0 && reader.writer_matched(sim_clock_);
   }
+  // The writer belongs to the sim host's participant (once known).
+  template <class Reader>
+  bool from_sim(dds_instance_handle_t writer, const Reader& reader) const {
+    const auto who = reader.participant_of(writer);
+    return sim_participant_ && who && same_guid(*who, *sim_participant_);
+  }
   // The sim host's final status is often read after it left, and in a short run it may be its
   // first status sample: every status writer's participant is remembered while it is matched
   // (call when the matched count changed), and from earlier samples.
@@ -135,7 +143,7 @@ class SenderGate {
     } else if (auto it = status_writers_.find(from); it != status_writers_.end()) {
       who = it->second;
     }
-    if (!sim_participant_ || !who || !same(*who, *sim_participant_)) {
+    if (!sim_participant_ || !who || !same_guid(*who, *sim_participant_)) {
       return "sim status from a participant that is not this run's sim host";
     }
     return {};
@@ -144,12 +152,47 @@ class SenderGate {
  private:
   static constexpr const char* kWeakWriter =
       "from a writer weaker than a SMART host's (not a sim host or agent of this version)";
-  static bool same(const dds_guid_t& a, const dds_guid_t& b);
   std::vector<dds_instance_handle_t> progress_holder_;
   std::vector<std::optional<std::pair<dds_instance_handle_t, smart_msg_Progress>>> held_back_;
   dds_instance_handle_t sim_clock_ = 0;
   std::optional<dds_guid_t> sim_participant_;
   std::map<dds_instance_handle_t, dds_guid_t> status_writers_;
+};
+
+// A reader bound to the run's sim host once the gate knows it (its first tick): from then on
+// Cyclone hands it only the samples of that participant's writers, and of this process's own
+// (dds::WriterAdmission, inside the receive path), so no stronger or flooding stranger can hide
+// or delay them (issue 25: a tick from a second sim silenced the real one). refresh() each
+// turn: cheap unless a writer matched or the sim host just became known.
+template <class T>
+class SimBoundReader {
+ public:
+  SimBoundReader(const dds::Participant& p, const dds::QosProfile& qos)
+      : reader_(p, qos, admission_) {
+    dds_get_guid(p.handle(), &self_);
+  }
+  dds::WireReader<T>& reader() { return reader_; }
+  const dds::WireReader<T>& reader() const { return reader_; }
+  // Admits the sim host's writers when due; refused(writer, samples) for what was filtered out.
+  template <class Fn>
+  void refresh(const SenderGate& gate, Fn&& refused) {
+    const auto matched = reader_.subscription_matched().total_count;
+    if (gate.sim_known() && (matched != matched_seen_ || !admission_.closed())) {
+      matched_seen_ = matched;
+      for (const auto h : reader_.matched_writers()) {
+        const auto who = reader_.participant_of(h);
+        if (gate.from_sim(h, reader_) || (who && same_guid(*who, self_))) admission_.admit(h);
+      }
+      admission_.close();
+    }
+    for (const auto& [writer, n] : admission_.take_refused()) refused(writer, n);
+  }
+
+ private:
+  dds::WriterAdmission admission_;  // before the reader: its filter points here
+  dds::WireReader<T> reader_;
+  dds_guid_t self_{};
+  uint32_t matched_seen_ = 0;
 };
 
 }  // namespace smart::monitor

@@ -153,5 +153,56 @@ TEST_F(Intrusion, AResumeWhileTheRunsMonitorLivesIsRefusedAndTheRunGoesOn) {
   EXPECT_EQ(sim.wait(30s).value_or(-1), 0);
 }
 
+// A tick from a second sim at the strongest strength took the clock's instance: the real sim
+// went unheard and the run stalled, blamed on "the sim host went silent".
+TEST_F(Intrusion, ASecondSimsStrongestTicksSilenceNothingAndAreNamed) {
+  const int d = kIntruderTicks;
+  dds::Domain domain(d, loopback());
+  Intruder in(domain);
+  dds::WireReader<smart_msg_Clock> answers(in.participant(), in.qos());
+  dds::WireWriter<smart_msg_Clock> ticks(in.participant(), in.qos(), Intruder::kStrongest);
+  bool answered = false;  // the monitor answered the real sim's first tick: it is the run's sim
+  uint64_t tick = 1;
+  in.start([&](Intruder& i) {
+    answers.take_each([&](const smart_msg_Clock& c) {
+      answered = answered || c.source_id == dds::kMonitorClockSource;
+    });
+    if (!answered) return;
+    ticks.write(smart_msg_Clock{dds::kSimClockSource, i.run_id(), tick++, 0.1, 0, false});
+  });
+  const auto r =
+      run_smart(args("run", d, {"--real-time-factor", "40"}), 120s, "intruder_ticks", true);
+  in.stop();
+  EXPECT_EQ(r.code, 0) << r.out;
+  const auto j = last_json_line(r.out);
+  EXPECT_TRUE(j["success"].get<bool>()) << j["error"];
+  EXPECT_GT(tick, 1u) << "the intruder never ticked";
+  ASSERT_EQ(j["suspected_intruders"].size(), 1u) << j.dump();
+  EXPECT_THAT(j["suspected_intruders"][0]["sender"].get<std::string>(), HasSubstr(guid_of(in)));
+  EXPECT_GT(j["suspected_intruders"][0]["samples"]["clock"].get<int>(), 0);
+}
+
+// A strength-0 progress writer that matched and left ended a lock-step run ("the sim host
+// left").
+TEST_F(Intrusion, AWriterThatMatchesAndLeavesEndsNoLockstepRun) {
+  const int d = kIntruderLeaves;
+  dds::Domain domain(d, loopback());
+  Intruder spy(domain);
+  auto run =
+      start_smart(args("run", d, {"--real-time-factor", "40"}), temp_file("intruder_leaves.out"));
+  while (spy.run_id() == 0) {
+    ASSERT_TRUE(run.running()) << "the run ended before its first window";
+    std::this_thread::sleep_for(10ms);
+  }
+  {
+    Intruder passer(domain);
+    dds::WireWriter<smart_msg_Progress> writer(passer.participant(), passer.qos(), 0);
+    ASSERT_TRUE(writer.wait_for_readers(1, 30s)) << "the monitor's progress reader never matched";
+  }  // it leaves
+  ASSERT_EQ(run.wait(120s).value_or(-1), 0) << slurp(temp_file("intruder_leaves.out"));
+  const auto j = summary_in(slurp(temp_file("intruder_leaves.out")));
+  EXPECT_TRUE(j["success"].get<bool>()) << j["error"];
+}
+
 }  // namespace
 }  // namespace smart::test

@@ -120,6 +120,8 @@ enum DomainId : int {
   kAdmissionFlood = 214,
   kParticipantDirectory = 215,
   kAdmissionOwnership = 216,
+  kIntruderTicks = 217,
+  kIntruderLeaves = 218,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
