@@ -13,7 +13,7 @@ packages=(
   libi2c-dev
   libfastrtps-dev
   clang-tidy clang
-  openssl libddsc0debian
+  openssl libssl-dev libddsc0debian
   libcpp-httplib-dev
   chromium
   python3-matplotlib

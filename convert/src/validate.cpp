@@ -214,10 +214,10 @@ std::string check_monitor_info(const smart_msg_MonitorInfo& m) {
 std::string reason_class(const std::string& reason) {
   std::string out;
   out.reserve(reason.size());
-  for (std::size_t i = 0; i < reason.size(); ++i) {
-    const bool digit = std::isdigit(static_cast<unsigned char>(reason[i])) != 0;
+  for (const char c : reason) {
+    const bool digit = std::isdigit(static_cast<unsigned char>(c)) != 0;
     if (!digit) {
-      out += reason[i];
+      out += c;
     } else if (out.empty() || out.back() != '#') {
       out += '#';
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "smart/monitor/results_format.hpp"
@@ -38,6 +39,33 @@ std::vector<PoseRow> parse_states_csv(std::string_view text) {
     rows.push_back({s.t_s, s.robot, s.x_m, s.y_m, s.yaw_rad, s.queue});
   });
   return rows;
+}
+
+namespace {
+constexpr std::size_t kHeaderBytes = 4 + 3 * 4 + 3 * 8, kPoseBytes = 2 + 2 + 2 + 1;
+}  // namespace
+
+std::size_t recording_bytes(const std::vector<PoseRow>& rows) {
+  uint32_t robots = 0;
+  std::set<double> times;
+  for (const auto& r : rows) {
+    robots = std::max(robots, r.robot + 1);
+    times.insert(r.t_s);
+  }
+  return kHeaderBytes + times.size() * (4 + std::size_t{robots} * kPoseBytes);
+}
+
+void check_recording_size(const std::vector<PoseRow>& rows, std::size_t csv_bytes) {
+  const std::size_t limit =
+      std::min(kMaxRecordingBytes, kRecordingPerCsvByte * csv_bytes + (1 << 20));
+  const std::size_t bytes = recording_bytes(rows);
+  if (bytes <= limit) return;
+  throw std::invalid_argument(
+      "states.csv would make a recording of " + std::to_string(bytes >> 20) +
+      " MB (every robot "
+      "in every one of its time stamps), more than the " +
+      std::to_string(limit >> 20) +
+      " MB allowed for its size: give the states.csv `smart run --out` wrote");
 }
 
 std::string encode_recording(const std::vector<PoseRow>& rows) {

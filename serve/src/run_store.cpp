@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -54,6 +55,13 @@ std::string RunStore::add_done(const fs::path& staged, const std::string& map_na
 std::optional<RunEntry> RunStore::entry(const std::string& id) const {
   std::lock_guard lock(m_);
   return is_run_id(id) ? registry_.get(id) : std::nullopt;
+}
+
+std::size_t RunStore::queued() const {
+  std::lock_guard lock(m_);
+  const auto all = registry_.list();
+  return static_cast<std::size_t>(std::count_if(
+      all.begin(), all.end(), [](const RunEntry& e) { return e.state == RunState::kQueued; }));
 }
 
 std::vector<RunEntry> RunStore::list() const {

@@ -14,6 +14,8 @@
 #include "slurp.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/monitor/results_format.hpp"
+#include "smart/serve/bounded_json.hpp"
+#include "smart/serve/content_policy.hpp"
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
@@ -31,6 +33,34 @@ void reply(httplib::Response& res, int status, const json& body) {
   res.status = status;
   res.set_content(body.dump(), "application/json");
 }
+
+// An upload's scratch folder, removed unless it became a run (also when a check throws).
+class Staged {
+ public:
+  explicit Staged(fs::path p) : path_(std::move(p)) {}
+  Staged(const Staged&) = delete;
+  Staged& operator=(const Staged&) = delete;
+  ~Staged() {
+    std::error_code ec;
+    if (!kept_) fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  void keep() { kept_ = true; }
+
+ private:
+  fs::path path_;
+  bool kept_ = false;
+};
+
+bool loopback(const std::string& address) {
+  return address == "127.0.0.1" || address == "::1" || address == "localhost";
+}
+
+// Live streams open now; the guard counts one while its stream lives.
+struct StreamSlot {
+  std::shared_ptr<std::atomic<std::size_t>> open;
+  bool taken = false;
+};
 }  // namespace
 
 // The routes: each reads the request, asks the run store or the upload checks, and answers.
@@ -39,26 +69,49 @@ struct Server::Impl {
   httplib::Server http;
   RunStore store;
   std::atomic<bool> stopping{false};
+  std::shared_ptr<std::atomic<std::size_t>> streams = std::make_shared<std::atomic<std::size_t>>(0);
 
   explicit Impl(ServeOptions o) : opt(std::move(o)), store(opt.data_dir) {}
 
   fs::path dir(const std::string& id) const { return store.dir(id); }
   std::optional<RunEntry> entry(const std::string& id) const { return store.entry(id); }
 
+  // Write endpoints: with --token, only with it; bound beyond loopback without one, never.
+  bool may_write(const httplib::Request& req, httplib::Response& res) const {
+    if (opt.token.empty() && !loopback(opt.bind)) {
+      reply(res, 403,
+            {{"error", "uploads are off: this server listens on " + opt.bind +
+                           " without --token; restart it with --token SECRET"}});
+      return false;
+    }
+    if (!opt.token.empty() && req.get_header_value("Authorization") != "Bearer " + opt.token) {
+      reply(res, 401,
+            {{"error",
+              "this server needs its token: send \"Authorization: Bearer "
+              "TOKEN\" (the viewer: open it with #token=TOKEN)"}});
+      return false;
+    }
+    return true;
+  }
+
   void post_run(const httplib::Request& req, httplib::Response& res) {
+    if (!may_write(req, res)) return;
     const auto r = upload::read_fields(req, opt.config_dir / "robots");
     if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
-    const fs::path staged = store.stage();
-    auto bad = upload::write_robot(staged, opt.config_dir, r);  // first: checked with its robot
-    if (!bad) bad = upload::check_run(req, staged, r);
-    if (bad) {
-      fs::remove_all(staged);
-      return reply(res, 400, *bad);
+    if (store.queued() >= opt.max_queued) {
+      return reply(res, 503,
+                   {{"error", std::to_string(store.queued()) +
+                                  " runs are queued already; upload again later"}});
     }
-    std::ofstream(staged / "request.json") << upload::request_json(r).dump();
+    Staged staged(store.stage());
+    auto bad = upload::write_robot(staged.path(), opt.config_dir, r);  // first: with its robot
+    if (!bad) bad = upload::check_run(req, staged.path(), r);
+    if (bad) return reply(res, 400, *bad);
+    std::ofstream(staged.path() / "request.json") << upload::request_json(r).dump();
     const auto id = store.add_queued(
-        staged, req.get_file_value("map").filename, r.agents,
+        staged.path(), req.get_file_value("map").filename, r.agents,
         [&](const std::string& run) { return upload::run_argv(opt, dir(run), r); });
+    staged.keep();
     reply(res, 200, {{"id", id}});
   }
 
@@ -71,7 +124,9 @@ struct Server::Impl {
   // POST /api/results: a results folder (fields "files", many) with the run's map (and scen and
   // plan for the robot panel), replayed like --open.
   void post_results(const httplib::Request& req, httplib::Response& res) {
-    const fs::path staged = store.stage();
+    if (!may_write(req, res)) return;
+    Staged guard(store.stage());
+    const fs::path& staged = guard.path();
     fs::create_directories(staged / "results");
     const auto [first, last] = req.files.equal_range("files");
     for (auto it = first; it != last; ++it) {
@@ -83,11 +138,10 @@ struct Server::Impl {
     for (const auto& [field, name] : kRunFiles) {
       if (req.has_file(field)) std::ofstream(staged / name) << req.get_file_value(field).content;
     }
-    if (auto bad = upload::check_results(staged)) {
-      fs::remove_all(staged);
-      return reply(res, 400, *bad);
-    }
-    reply(res, 200, {{"id", adopt(staged)}});
+    if (auto bad = upload::check_results(staged)) return reply(res, 400, *bad);
+    const auto id = adopt(staged);
+    guard.keep();
+    reply(res, 200, {{"id", id}});
   }
 
   // GET /api/runs/{id}/results/{name}: a results file as a download, streamed from disk.
@@ -121,8 +175,13 @@ struct Server::Impl {
     if (!e) return reply(res, 404, {{"error", "no run " + id}});
     json j = entry_json(*e);
     const auto summary = store.results_file(id, results::kSummaryJson);
-    if (e->state == RunState::kDone && fs::exists(summary))
-      j["summary"] = json::parse(slurp(summary));
+    if (e->state == RunState::kDone && fs::exists(summary)) {
+      try {
+        j["summary"] = parse_bounded_json(slurp(summary), "summary.json of " + id);
+      } catch (const std::invalid_argument& ex) {
+        j["summary_error"] = ex.what();
+      }
+    }
     j["files"] = json::array();
     for (const auto f : results::kFiles) {
       if (e->state == RunState::kDone && fs::exists(store.results_file(id, f)))
@@ -139,7 +198,14 @@ struct Server::Impl {
     }
     const auto cached = dir(id) / "recording-v2.smrc";
     if (!fs::exists(cached)) {
-      std::ofstream(cached, std::ios::binary) << encode_recording(parse_states_csv(slurp(states)));
+      const auto text = slurp(states);
+      const auto rows = parse_states_csv(text);
+      try {
+        check_recording_size(rows, text.size());
+      } catch (const std::invalid_argument& ex) {
+        return reply(res, 413, {{"error", ex.what()}});
+      }
+      std::ofstream(cached, std::ios::binary) << encode_recording(rows);
     }
     res.set_content(slurp(cached), "application/octet-stream");
   }
@@ -169,14 +235,26 @@ struct Server::Impl {
     return true;
   }
 
+  // A live stream holds a request thread while it is open: at most max_live_streams at once.
+  template <class Provider>
+  void stream(httplib::Response& res, Provider provider) {
+    if (streams->fetch_add(1) >= opt.max_live_streams) {
+      streams->fetch_sub(1);
+      return reply(res, 503,
+                   {{"error", std::to_string(opt.max_live_streams) +
+                                  " live streams are open; close one (another tab)"}});
+    }
+    res.set_chunked_content_provider("text/event-stream", std::move(provider),
+                                     [open = streams](bool) { open->fetch_sub(1); });
+  }
+
   void get_live(const std::string& id, httplib::Response& res) {
     if (!entry(id)) return reply(res, 404, {{"error", "no run " + id}});
     auto tail = std::make_shared<PoseTail>();
     auto offset = std::make_shared<std::uintmax_t>(0);
-    res.set_chunked_content_provider("text/event-stream",
-                                     [this, id, tail, offset](size_t, httplib::DataSink& sink) {
-                                       return live_event(id, *tail, *offset, sink);
-                                     });
+    stream(res, [this, id, tail, offset](size_t, httplib::DataSink& sink) {
+      return live_event(id, *tail, *offset, sink);
+    });
   }
 
   // The run's instance (plan, actions, ADG) and its actions' finish times, loaded once.
@@ -235,7 +313,13 @@ struct Server::Impl {
 
   double summary_cell_m(const std::string& id) const {
     const auto s = store.results_file(id, results::kSummaryJson);
-    return fs::exists(s) ? json::parse(slurp(s)).value(key::kCellM, 1.0) : 1.0;
+    if (!fs::exists(s)) return 1.0;
+    try {
+      const auto j = parse_bounded_json(slurp(s), "summary.json");
+      return j.is_object() && j[key::kCellM].is_number() ? j[key::kCellM].get<double>() : 1.0;
+    } catch (const std::invalid_argument&) {
+      return 1.0;
+    }
   }
 
   // GET /api/robots: the robot models an upload may name, with their limits (the form's
@@ -286,7 +370,7 @@ struct Server::Impl {
       if (!opt.watch)
         return reply(res, 404, {{"error", "not watching: start smart serve --watch"}});
       const uint64_t run = run_of(req);
-      res.set_chunked_content_provider("text/event-stream", [this, run](size_t, auto& sink) {
+      stream(res, [this, run](size_t, httplib::DataSink& sink) {
         if (stopping.load()) return false;  // the server is going down: end the stream
         const auto msg = "data: " + opt.watch(run).dump() + "\n\n";
         if (!sink.write(msg.data(), msg.size())) return false;
@@ -296,7 +380,33 @@ struct Server::Impl {
     });
   }
 
+  // What no client may take: threads (slow or streaming clients each hold one), time to send a
+  // request, an answer's exception text; and what no page may run (issue 25).
+  void limits() {
+    http.new_task_queue = [n = opt.threads] { return new httplib::ThreadPool(n); };
+    http.set_read_timeout(opt.read_timeout_s, 0);
+    http.set_write_timeout(opt.read_timeout_s, 0);
+    http.set_keep_alive_timeout(2);
+    http.set_keep_alive_max_count(100);
+    http.set_exception_handler([](const auto& req, auto& res, const std::exception_ptr& ep) {
+      try {
+        std::rethrow_exception(ep);
+      } catch (const std::exception& e) {
+        spdlog::error("serve: {} {} failed: {}", req.method, req.path, e.what());
+      } catch (...) {
+        spdlog::error("serve: {} {} failed", req.method, req.path);
+      }
+      reply(res, 500, {{"error", "internal error; the server's log says more"}});
+    });
+    // Data is shown as text (web/src/page.js setRows); the policy forbids scripts that are not
+    // the app's own (content_policy.hpp), so markup smuggled into data could not run either.
+    const auto index = opt.web_dir.empty() ? std::string() : slurp(opt.web_dir / "index.html");
+    http.set_default_headers({{"Content-Security-Policy", content_security_policy(index)},
+                              {"X-Content-Type-Options", "nosniff"}});
+  }
+
   void routes() {
+    limits();
     // Without TCP_NODELAY (cpp-httplib's default is off) Nagle's algorithm and delayed ACKs held
     // static files back: three.js (0.7 MB) took 1.9 s over loopback, 0.1 s with it.
     http.set_tcp_nodelay(true);
@@ -351,8 +461,13 @@ std::string Server::open_results(const fs::path& folder) {
   // The files the run was made on, when still where summary.json says (for the robot panel).
   json files = json::object();
   if (fs::is_regular_file(folder / results::kSummaryJson)) {
-    files = json::parse(slurp(folder / results::kSummaryJson), nullptr, false)
-                .value(key::kFiles, files);
+    try {
+      const auto summary = parse_bounded_json(slurp(folder / results::kSummaryJson),
+                                              (folder / results::kSummaryJson).string());
+      if (summary.is_object()) files = summary.value(key::kFiles, files);
+    } catch (const std::invalid_argument&) {
+      // check_results below names what is wrong with it
+    }
   }
   for (const auto& [field, name] : kRunFiles) {
     const fs::path src = files.is_object() ? files.value(field, std::string()) : std::string();

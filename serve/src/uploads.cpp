@@ -13,6 +13,7 @@
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/results_format.hpp"
+#include "smart/serve/bounded_json.hpp"
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
@@ -197,7 +198,12 @@ std::optional<json> check_results(const fs::path& staged) {
   for (const auto f : {results::kSummaryJson, results::kStatesCsv}) {
     if (!fs::is_regular_file(r / f)) return bad("no " + std::string(f) + " in the results");
   }
-  const auto summary = json::parse(slurp(r / results::kSummaryJson), nullptr, false);
+  json summary;
+  try {
+    summary = parse_bounded_json(slurp(r / results::kSummaryJson), "summary.json");
+  } catch (const std::invalid_argument& e) {
+    return bad(e.what());
+  }
   if (!summary.is_object() || !summary[key::kRobots].is_number_unsigned() ||
       summary[key::kRobots].get<uint64_t>() > kMaxReplayRobots) {
     return bad(
@@ -213,7 +219,8 @@ std::optional<json> check_results(const fs::path& staged) {
   }
   try {
     (void)grid::parse_map(slurp(staged / "map.map"), "the map");
-    const auto rows = parse_states_csv(slurp(r / results::kStatesCsv));
+    const auto states = slurp(r / results::kStatesCsv);
+    const auto rows = parse_states_csv(states);
     // The recording holds every robot in every frame: a forged robot id would size it.
     const auto robots = summary[key::kRobots].get<uint64_t>();
     for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -223,6 +230,7 @@ std::optional<json> check_results(const fs::path& staged) {
                    std::to_string(robots) + " robots; give the files of one run");
       }
     }
+    check_recording_size(rows, states.size());
     std::ofstream(staged / "recording-v2.smrc", std::ios::binary) << encode_recording(rows);
     if (fs::is_regular_file(staged / "scen.scen") && fs::is_regular_file(staged / "plan.txt")) {
       write_request(staged, summary);
@@ -278,7 +286,8 @@ std::vector<std::string> run_argv(const ServeOptions& opt, const fs::path& d, co
 json request_json(const RunRequest& r) { return {{"axis", r.axis}, {"agents", r.agents}}; }
 
 std::pair<std::string, std::size_t> replay_entry(const fs::path& staged) {
-  const auto summary = json::parse(slurp(staged / "results" / results::kSummaryJson));
+  const auto summary =
+      parse_bounded_json(slurp(staged / "results" / results::kSummaryJson), "summary.json");
   const auto files = summary.value(key::kFiles, json::object());
   const std::string map = files.is_object() ? files.value(key::kMap, "?") : "?";
   return {fs::path(map).filename().string(), summary.value(key::kRobots, std::size_t{0})};

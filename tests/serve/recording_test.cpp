@@ -34,6 +34,24 @@ TEST(Recording, RoundTripsPosesFrameByFrameAndCarriesMissingRobotsForward) {
   EXPECT_EQ(rec.poses[3].queue, 1u);    // carried forward with the pose
 }
 
+// Issue 25: a 16 KB results upload became a 668 MB recording (a few rows of a large fleet at many
+// time stamps: every robot is in every frame).
+TEST(Recording, ItsSizeIsKnownBeforehandAndBoundedByTheStatesItComesFrom) {
+  const auto rows = parse_states_csv(kCsv);
+  EXPECT_EQ(recording_bytes(rows), encode_recording(rows).size());
+  EXPECT_NO_THROW(check_recording_size(rows, std::string(kCsv).size()));
+  std::string forged = "t_s,robot,x_m,y_m,yaw_rad\n";
+  for (int t = 0; t < 500; ++t) forged += std::to_string(t) + ",99999,1,1,0\n";
+  const auto sparse = parse_states_csv(forged);
+  EXPECT_EQ(recording_bytes(sparse), 40u + 500u * (4 + 100000u * 7));  // 350 MB
+  try {
+    check_recording_size(sparse, forged.size());
+    FAIL() << "a " << forged.size() << "-byte states.csv was allowed a 350 MB recording";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("would make a recording of 333 MB"));
+  }
+}
+
 TEST(Recording, BadInputIsAnErrorNamingWhatIsWrong) {
   EXPECT_THROW(decode_recording("SMRX"), std::invalid_argument);
   auto bytes = encode_recording(parse_states_csv(kCsv));

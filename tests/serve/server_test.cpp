@@ -1,10 +1,16 @@
 // `smart serve` as a user meets it: a real server process on a free loopback port, real runs
 // (`smart run` children over DDS), driven with an HTTP client (cpp-httplib).
+#include <arpa/inet.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <fstream>
 #include <set>
 #include <thread>
 
@@ -335,6 +341,129 @@ TEST_F(Serve, WatchShowsAMixedRunOnTheDomainLive) {
   (void)agent.wait(10s);
   (void)sim.wait(10s);
   std::filesystem::remove(monitor_out);
+}
+
+// Issue 25, a server an attacker can't take down: a summary.json nested 100 000 deep crashed it
+// on the next GET; a 16 KB results upload became a 668 MB recording; a refused upload left its
+// staging folder.
+TEST_F(Serve, AResultsUploadNestedDeepOrMakingAHugeRecordingIsRefusedAndLeavesNothing) {
+  start();
+  const auto post = [&](const std::string& summary, const std::string& states) {
+    httplib::MultipartFormDataItems items{
+        {"files", summary, "summary.json", ""},
+        {"files", states, "states.csv", ""},
+        {"map", slurp(b_ / "maps/random-32-32-20.map"), "random-32-32-20.map", ""}};
+    return client().Post("/api/results", items);
+  };
+  const auto nested = post(std::string(100000, '[') + std::string(100000, ']'),
+                           "t_s,robot,x_m,y_m,yaw_rad\n0,0,1,1,0\n");
+  ASSERT_TRUE(nested);
+  EXPECT_EQ(nested->status, 400);
+  EXPECT_THAT(nested->body, HasSubstr("summary.json nests deeper than 32 levels"));
+  std::string states = "t_s,robot,x_m,y_m,yaw_rad\n";
+  for (int t = 0; t < 500; ++t) states += std::to_string(t) + ",99999,1,1,0\n";
+  const auto huge = post(R"({"robots": 100000})", states);
+  ASSERT_TRUE(huge);
+  EXPECT_EQ(huge->status, 400);
+  EXPECT_THAT(huge->body, HasSubstr("would make a recording of 333 MB"));
+  const auto list = client().Get("/api/runs");
+  ASSERT_TRUE(list) << "the server went down";
+  EXPECT_EQ(json::parse(list->body).size(), 0u);
+  for (const auto& e : std::filesystem::directory_iterator(data_)) {
+    EXPECT_EQ(e.path().filename().string().rfind("upload-", 0), std::string::npos)
+        << "a refused upload left " << e.path();
+  }
+}
+
+// A 500 put the exception's text in a header; now it says where to look, and the log says more.
+TEST_F(Serve, AnInternalErrorAnswersWithoutItsExceptionText) {
+  const auto results = temp_file("serve_error_results");
+  std::filesystem::remove_all(results);
+  const auto r = run_smart(
+      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "20",
+       "--domain", std::to_string(kServeHardening), "--out", results.string(), "--no-progress"},
+      120s, "serve_error_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  start({"--open", results.string()});
+  // Its recording is gone and its states.csv damaged behind the server's back.
+  std::filesystem::remove(data_ / "run-000001" / "recording-v2.smrc");
+  std::ofstream(data_ / "run-000001" / "results" / "states.csv") << "t_s,robot\n0,zero\n";
+  const auto got = client().Get("/api/runs/run-000001/recording");
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->status, 500);
+  EXPECT_EQ(json::parse(got->body)["error"], "internal error; the server's log says more");
+  EXPECT_FALSE(got->has_header("EXCEPTION_WHAT"));
+  EXPECT_THAT(got->body, ::testing::Not(HasSubstr("states.csv")));
+  std::filesystem::remove_all(results);
+}
+
+TEST_F(Serve, WithATokenUploadsNeedItAndEveryAnswerCarriesTheContentPolicy) {
+  start({"--token", "s3cret"});
+  httplib::MultipartFormDataItems items{{"files", "{}", "summary.json", ""}};
+  const auto without = client().Post("/api/results", items);
+  ASSERT_TRUE(without);
+  EXPECT_EQ(without->status, 401);
+  EXPECT_THAT(without->body, HasSubstr("Authorization: Bearer TOKEN"));
+  const auto with = client().Post("/api/results", {{"Authorization", "Bearer s3cret"}}, items);
+  ASSERT_TRUE(with);
+  EXPECT_EQ(with->status, 400);  // past the token: the upload's own problem
+  const auto list = client().Get("/api/runs");
+  EXPECT_THAT(list->get_header_value("Content-Security-Policy"), HasSubstr("script-src 'self'"));
+  EXPECT_EQ(list->get_header_value("X-Content-Type-Options"), "nosniff");
+}
+
+// Eight slow connections or eight open live streams froze the API (a thread each, 8 threads).
+TEST_F(Serve, SlowClientsAndOpenLiveStreamsLeaveTheApiAnswering) {
+  start();
+  std::atomic<bool> done{false};
+  std::vector<std::thread> clients;
+  for (int i = 0; i < 12; ++i) {  // a request one byte at a time, never finished
+    clients.emplace_back([&] {
+      const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_port = htons(static_cast<uint16_t>(port_));
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0) {
+        const std::string req = "GET /api/runs HTTP/1.1\r\nHost: x\r\nX-Slow: ";
+        for (std::size_t k = 0; !done; ++k) {
+          const char c = k < req.size() ? req[k] : 'a';
+          if (::send(fd, &c, 1, MSG_NOSIGNAL) != 1) break;
+          std::this_thread::sleep_for(200ms);
+        }
+      }
+      ::close(fd);
+    });
+  }
+  const auto up = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20", "1");
+  ASSERT_TRUE(up);
+  const auto id = json::parse(up->body)["id"].get<std::string>();
+  std::atomic<int> open{0};
+  for (int i = 0; i < 16; ++i) {
+    clients.emplace_back([&, id] {
+      bool first = true;
+      client().Get("/api/runs/" + id + "/live", [&](const char*, size_t) {
+        if (first) ++open;
+        first = false;
+        return !done.load();
+      });
+    });
+  }
+  const auto deadline = std::chrono::steady_clock::now() + 60s;
+  while (open < 16 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(open.load(), 16) << "live streams that never started";
+  const auto extra = client().Get("/api/runs/" + id + "/live");
+  ASSERT_TRUE(extra) << "the API froze";
+  EXPECT_EQ(extra->status, 503);
+  EXPECT_THAT(extra->body, HasSubstr("16 live streams are open"));
+  const auto list = client().Get("/api/runs");
+  ASSERT_TRUE(list) << "the API froze";
+  EXPECT_EQ(list->status, 200);
+  done = true;
+  for (auto& t : clients) t.join();
 }
 
 TEST_F(Serve, WithoutWatchTheWatchApiSaysHowToTurnItOn) {

@@ -122,6 +122,7 @@ enum DomainId : int {
   kAdmissionOwnership = 216,
   kIntruderTicks = 217,
   kIntruderLeaves = 218,
+  kServeHardening = 219,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

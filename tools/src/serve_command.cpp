@@ -103,6 +103,10 @@ void register_serve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--cell-m", o->serve.watch_cell_m, "the watched run's cell size (--watch)")
       ->check(finite_in(0.01, 100))
       ->capture_default_str();
+  cmd->add_option("--token", o->serve.token,
+                  "secret that uploads must send (\"Authorization: Bearer TOKEN\"; the viewer: "
+                  "open it with #token=TOKEN); needed for uploads when --bind is not loopback")
+      ->envname("SMART_SERVE_TOKEN");
   add_dds_options(cmd, o->dds);
   cmd->callback([o, &exit_code] { exit_code = serve_runs(*o); });
 }

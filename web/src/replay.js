@@ -5,7 +5,7 @@ import * as THREE from 'three';
 import { firstFrameBytes, readMap, readRecording } from './recording.js';
 import { robotList, robotStatus } from './panel.js';
 import { drawProgress } from './plot.js';
-import { $, fetchJson, viewer } from './page.js';
+import { $, fetchJson, setRows, viewer } from './page.js';
 import { COLORS, buildMap, buildRobots, controls, onRobotClick, placeRobot, pngDataUrl, renderOnce,
          resize, robotsMoved, scene, startLoop } from './view.js';
 
@@ -55,42 +55,42 @@ function findCollision() {
   viewer.collided = [...state.collided];
 }
 
-const row = (cls, text) => `<div class="${cls}">${text}</div>`;
+const row = (cls, text) => [[cls, text]];  // a panel line, shown as text (page.js setRows)
 
 // The panel's lines from the robot's detail (GET /api/runs/{id}/robots/{robot}) at frame f.
 function detailRows(d, s) {
-  let html = row('path', `path: ${d.path.length - 1} cells, ${d.actions} actions`);
+  let rows = row('path', `path: ${d.path.length - 1} cells, ${d.actions} actions`);
   if (s.timed) {
-    html += row('progress', `finished: ${s.finished} / ${s.total}`) +
-      row('current', s.current >= 0 ? `current: #${s.current} ${s.type}` : 'current: none (done)') +
-      row('waits-now', `waits now for: ${robotList(s.waitsNow)}`) +
-      row('waited-now', `waited for now by: ${robotList(s.waitedByNow)}`);
+    rows = rows.concat(row('progress', `finished: ${s.finished} / ${s.total}`),
+      row('current', s.current >= 0 ? `current: #${s.current} ${s.type}` : 'current: none (done)'),
+      row('waits-now', `waits now for: ${robotList(s.waitsNow)}`),
+      row('waited-now', `waited for now by: ${robotList(s.waitedByNow)}`));
   }
   const res = d.results;
   if (typeof res.finish_time_s === 'number') {
-    html += row('finish', `finished at ${res.finish_time_s.toFixed(1)} s, waited ${res.waiting_time_s.toFixed(1)} s`);
-    if (typeof res.lower_bound_s === 'number') html += row('bound', `alone it needs at least ${res.lower_bound_s.toFixed(1)} s`);
+    rows = rows.concat(row('finish', `finished at ${res.finish_time_s.toFixed(1)} s, waited ${res.waiting_time_s.toFixed(1)} s`));
+    if (typeof res.lower_bound_s === 'number') rows = rows.concat(row('bound', `alone it needs at least ${res.lower_bound_s.toFixed(1)} s`));
   } else if (res.finish_time_s === null) {
-    html += row('finish', 'did not finish');
+    rows = rows.concat(row('finish', 'did not finish'));
   }
   const list = (xs) => xs.map((x) => `${x.robot}${x.edges > 1 ? ` (${x.edges})` : ''}`).join(', ') || 'none';
-  return html + row('waits', `in the run waits for: ${list(d.waits_for)}`) + row('waited', `in the run waited by: ${list(d.waited_by)}`);
+  return rows.concat(row('waits', `in the run waits for: ${list(d.waits_for)}`), row('waited', `in the run waited by: ${list(d.waited_by)}`));
 }
 
 function showRobot(id, f) {
   const p = state.rec.pose(f, id, new Float64Array(3));
   const offGoal = (state.summary && state.summary.robots_off_goal || []).includes(id);
   const d = state.detail && state.detail.robot === id ? state.detail : null;
-  let html = row('id', `robot ${id}`) + row('pose', `x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m`) +
-    row('heading', `heading ${(p[2] * 180 / Math.PI).toFixed(0)}°`) + row('queue', `queue: ${state.rec.queue(f, id)}`) +
-    (offGoal ? row('off-goal', 'NOT AT GOAL') : '') + (state.collided.has(id) ? row('collided', 'COLLIDED') : '');
+  let rows = [].concat(row('id', `robot ${id}`), row('pose', `x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m`),
+    row('heading', `heading ${(p[2] * 180 / Math.PI).toFixed(0)}°`), row('queue', `queue: ${state.rec.queue(f, id)}`),
+    offGoal ? row('off-goal', 'NOT AT GOAL') : [], state.collided.has(id) ? row('collided', 'COLLIDED') : []);
   if (d) {
     const s = robotStatus(d, state.rec.times[f]);
     viewer.status = s;
-    html += detailRows(d, s);
+    rows = rows.concat(detailRows(d, s));
     drawEdges(id, f, d, s);
   }
-  $('robot').innerHTML = html;
+  setRows($('robot'), rows);
   drawTrail(id, f);
   if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
 }
@@ -157,15 +157,15 @@ function select(id) {
 const seek = (t) => { state.t = Math.max(0, Math.min(t, state.rec.times[state.rec.frames - 1])); showFrame(state.t); };
 
 function showStats(s) {
-  const line = (k, v) => `<div>${k}: ${v}</div>`;
-  $('stats').innerHTML = line('success', s.success) + line('robots', s.robots) + line('AET', `${(s.aet_s ?? NaN).toFixed(1)} s`) +
-    line('makespan', `${(s.makespan_s ?? NaN).toFixed(1)} s`) + line('sim speed', `${(s.sim_speed ?? 0).toFixed(1)}×`) +
-    line('actions', `${s.finished_actions} / ${s.total_actions}`) + line('collisions', s.collisions);
+  const num = (v, unit) => `${(typeof v === 'number' ? v : NaN).toFixed(1)}${unit}`;
+  setRows($('stats'), [['', `success: ${s.success}`], ['', `robots: ${s.robots}`], ['', `AET: ${num(s.aet_s, ' s')}`],
+    ['', `makespan: ${num(s.makespan_s, ' s')}`], ['', `sim speed: ${num(s.sim_speed ?? 0, '×')}`],
+    ['', `actions: ${s.finished_actions} / ${s.total_actions}`], ['', `collisions: ${s.collisions}`]]);
 }
 
 // Export: every results file of the run as a download (GET /api/runs/{id}/results/{name}).
 function showFiles(id, files) {
-  $('files').innerHTML = '';
+  $('files').replaceChildren();
   for (const name of files || []) {
     const a = document.createElement('a');
     a.href = `/api/runs/${id}/results/${name}`;

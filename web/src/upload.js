@@ -1,14 +1,14 @@
 // The upload forms: a new run (POST /api/runs) or a results folder to replay (POST
 // /api/results); problems are listed as `smart check-plan` prints them; an accepted upload is
 // shown (a new run live until it ended, then replayed).
-import { $, fetchJson } from './page.js';
+import { $, authHeaders, fetchJson } from './page.js';
 
 function wireForm(form, url, status, problems) {
   $(form).onsubmit = async (e) => {
     e.preventDefault();
-    $(problems).innerHTML = '';
+    $(problems).replaceChildren();
     $(status).textContent = 'uploading...';
-    const r = await fetch(url, { method: 'POST', body: new FormData($(form)) });
+    const r = await fetch(url, { method: 'POST', body: new FormData($(form)), headers: authHeaders() });
     const body = await r.json();
     if (!r.ok) {
       $(status).textContent = body.error;
@@ -28,7 +28,7 @@ function wireForm(form, url, status, problems) {
 async function wireSliders() {
   const models = await fetchJson('/api/robots').catch(() => []);
   if (!models.length) return;
-  $('up-robot').innerHTML = '';
+  $('up-robot').replaceChildren();
   for (const m of models) $('up-robot').add(new Option(m.name, m.name, false, m.name === 'footbot'));
   const field = (key) => $('upload').querySelector(`input[name=${key}]`);
   const reset = () => {

@@ -3,14 +3,14 @@
 // a floor under the robots.
 import { readMap } from './recording.js';
 import { WATCH_COLORS, extentOf, robotPanel, statusCounts } from './watch_board.js';
-import { $, fetchJson, viewer } from './page.js';
+import { $, fetchJson, setRows, viewer } from './page.js';
 import { buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, scene, startLoop } from './view.js';
 
 function showStats(ev) {
   const n = statusCounts(ev.robots), m = ev.monitor;
-  $('stats').innerHTML = `<div>watching run ${ev.run_id || '(none yet)'}</div>` +
-    `<div>monitor: ${m ? `${m.host} pid ${m.pid}` : 'not seen'}</div><div>robots: ${ev.robots.length}</div>` +
-    `<div>moving ${n.moving}, idle ${n.idle}, stale ${n.stale}</div><div>dropped samples: ${ev.rejected_samples}</div>`;
+  setRows($('stats'), [['', `watching run ${ev.run_id || '(none yet)'}`],
+    ['', `monitor: ${m ? `${m.host} pid ${m.pid}` : 'not seen'}`], ['', `robots: ${ev.robots.length}`],
+    ['', `moving ${n.moving}, idle ${n.idle}, stale ${n.stale}`], ['', `dropped samples: ${ev.rejected_samples}`]]);
   $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
 }
 
@@ -39,7 +39,7 @@ export async function startWatch(runId) {
       r.id === viewer.selected ? WATCH_COLORS.selected : WATCH_COLORS[r.status]));
     if (mesh) robotsMoved(mesh);
     const picked = ev.robots.find((r) => r.id === viewer.selected);
-    if (picked) $('robot').innerHTML = robotPanel(picked);
+    if (picked) setRows($('robot'), robotPanel(picked));
     showStats(ev);
     Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, watched: ev.robots, liveEvents: viewer.liveEvents + 1 });
   };

@@ -18,10 +18,9 @@ export function extentOf(robots, margin) {
 }
 
 export function robotPanel(r) {
-  const row = (cls, text) => `<div class="${cls}">${text}</div>`;
-  return row('id', `robot ${r.id}`) + row('pose', `x ${r.x_m.toFixed(2)} m, y ${r.y_m.toFixed(2)} m`) +
-    row('heading', `heading ${(r.yaw_rad * 180 / Math.PI).toFixed(0)}°`) + row('status', `status: ${r.status}`) +
-    row('speed', `speed: ${r.linear_mps.toFixed(2)} m/s`) + row('queue', `queue: ${r.queue}`) +
-    row('finished', `finished actions: ${r.finished_seq + 1}`) +
-    row('current', r.executing_seq >= 0 ? `executing: #${r.executing_seq}` : 'executing: nothing');
+  return [['id', `robot ${r.id}`], ['pose', `x ${r.x_m.toFixed(2)} m, y ${r.y_m.toFixed(2)} m`],
+    ['heading', `heading ${(r.yaw_rad * 180 / Math.PI).toFixed(0)}°`], ['status', `status: ${r.status}`],
+    ['speed', `speed: ${r.linear_mps.toFixed(2)} m/s`], ['queue', `queue: ${r.queue}`],
+    ['finished', `finished actions: ${r.finished_seq + 1}`],
+    ['current', r.executing_seq >= 0 ? `executing: #${r.executing_seq}` : 'executing: nothing']];
 }

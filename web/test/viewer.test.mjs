@@ -159,7 +159,9 @@ async function checkResultsUpload(page, out, summary) {
   const forged = path.join(work, 'forged');
   mkdirSync(forged, { recursive: true });
   for (const f of ['states.csv', 'robots.csv', 'actions.csv', 'stats.csv']) copyFileSync(path.join(out, f), path.join(forged, f));
-  writeFileSync(path.join(forged, 'summary.json'), JSON.stringify({ ...summary, success: false, collisions: 1, first_collision: [0, 1] }));
+  // Its finished_actions is markup (issue 25: an uploaded summary.json's markup ran as script).
+  writeFileSync(path.join(forged, 'summary.json'), JSON.stringify({ ...summary, success: false, collisions: 1, first_collision: [0, 1],
+    finished_actions: '<img src=x onerror="window.__pwned=1">' }));
   await page.goto(`${url}/?run=run-000001`);
   await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 20000 });
   await (await page.$('#rp-files')).uploadFile(...['summary.json', 'states.csv', 'robots.csv', 'actions.csv', 'stats.csv'].map((f) => path.join(forged, f)));
@@ -179,6 +181,15 @@ async function checkResultsUpload(page, out, summary) {
   await page.screenshot({ path: path.join(artifacts, 'viewer-collided.png') });
   const magenta = await robotPixels(page, 'collided');
   assert.ok(magenta > 20, `collided robots not drawn in their colour (${magenta} pixels)`);
+  // The markup is shown as text, never run, and the page's policy would not let it run anyway.
+  const shown = await page.evaluate(() => ({ pwned: window.__pwned, imgs: document.querySelectorAll('#stats img').length,
+    text: document.querySelector('#stats').textContent }));
+  assert.equal(shown.pwned, undefined, 'markup from an uploaded summary.json ran as script');
+  assert.equal(shown.imgs, 0);
+  assert.ok(shown.text.includes('<img src=x onerror='), shown.text);
+  const csp = await page.evaluate(async () => (await fetch('/')).headers.get('Content-Security-Policy'));
+  assert.match(csp || '', /script-src 'self' 'sha256-/);
+  assert.ok(!/unsafe-inline/.test(csp), csp);
 }
 
 // `smart serve --watch`: a run going on the domain (real time, 20 robots) is shown live,

@@ -13,6 +13,7 @@
 // 1000 robots at 2 Hz for 1218 s: 2437 frames of 7 kB, 17.1 MB.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -29,6 +30,18 @@ struct PoseRow {
 
 // Rows of states.csv; throws std::invalid_argument naming the line of a malformed row.
 std::vector<PoseRow> parse_states_csv(std::string_view text);
+// The size encode_recording gives these rows (every robot in every frame: a few rows at many
+// time stamps of a large fleet make a huge recording, issue 25: 16 KB became 668 MB).
+std::size_t recording_bytes(const std::vector<PoseRow>& rows);
+// At most this much, and at most kRecordingPerCsvByte times the states.csv it comes from (+1 MB):
+// a lock-step run's recording is smaller than its states.csv (7 bytes per pose against ~60); a
+// real-time run's states each have their own time stamp, a frame of the whole fleet each
+// (100 robots: 12 times the states.csv).
+inline constexpr std::size_t kMaxRecordingBytes = std::size_t{1} << 30;
+inline constexpr std::size_t kRecordingPerCsvByte = 64;
+// Throws std::invalid_argument naming the frames and robots when the rows' recording would be
+// larger than those bounds allow for a states.csv of `csv_bytes`.
+void check_recording_size(const std::vector<PoseRow>& rows, std::size_t csv_bytes);
 std::string encode_recording(const std::vector<PoseRow>& rows);
 
 struct Recording {

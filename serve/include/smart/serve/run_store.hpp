@@ -48,6 +48,7 @@ class RunStore {
                        std::size_t robots);
 
   std::optional<RunEntry> entry(const std::string& id) const;  // none: not a run here
+  std::size_t queued() const;                                  // runs waiting to start
   std::vector<RunEntry> list() const;
 
   // The run's instance, loaded once by `load` from its folder.

@@ -53,6 +53,15 @@ struct ServeOptions {
   std::filesystem::path config_dir;  // robot models offered (config/robots)
   std::size_t max_running = 1;
   std::size_t max_upload_bytes = 64u << 20;
+  // Bounds no client may exceed (issue 25: 8 slow connections or 8 open live streams froze the
+  // API; the run queue was unbounded): request threads, live streams open at once, runs queued.
+  std::size_t threads = 64;
+  std::size_t max_live_streams = 16;
+  std::size_t max_queued = 32;
+  int read_timeout_s = 5;
+  // Write endpoints (uploads) need "Authorization: Bearer <token>" when set; bound beyond
+  // loopback without one, they are refused.
+  std::string token;
   int domain = 0;
   std::string qos = "lan";
   // --watch: what is live on the domain (run_id 0: the newest), and the map to draw it on.
