@@ -68,6 +68,7 @@ struct FleetWatch::Pump {
       board.on_progress({p.robot_id, p.run_id, p.finished_seq, p.executing_seq}, now);
     });
     monitors.take_each([&](const smart_msg_MonitorInfo& mi) {
+      if (auto why = wire::check_monitor_info(mi); !why.empty()) return reject("monitor", why);
       const std::string host(mi.host, strnlen(mi.host, sizeof(mi.host)));
       board.on_monitor({mi.run_id, host, mi.pid}, now);
     });

@@ -73,6 +73,16 @@ async function robotPixels(page, kind = 'robots') {
   }, kind);
 }
 
+// Robot pixels once at least `min` are seen (the live views render on their own schedule, and a
+// WebGL canvas read between frames may be blank: under load a single read found none).
+async function waitForPixels(page, min, kind = 'robots') {
+  let n = 0;
+  for (const until = Date.now() + 20000; Date.now() < until; await new Promise((r) => setTimeout(r, 100))) {
+    if ((n = await robotPixels(page, kind)) >= min) break;
+  }
+  return n;
+}
+
 // actions.csv and states.csv of the run, read here (not through the server): robot -> finish
 // times in order; robot -> [[t, queue]].
 function readResults(out) {
@@ -206,6 +216,7 @@ async function checkWatch(browser) {
   const run = spawn(exe, ['run', '--map', files.map, '--scen', files.scen, '--plan', files.plan, '--axis', 'xy',
     '--agents', '20', '--clock', 'realtime', '--domain', domain, '--no-progress'], { stdio: 'ignore' });
   const page = await browser.newPage();
+  let intruder = null;
   try {
     await page.setViewport({ width: 1280, height: 800 });
     await page.goto(`${watchUrl}/?watch`);
@@ -215,10 +226,16 @@ async function checkWatch(browser) {
     await page.evaluate(() => window.__viewer.select(5));
     await page.waitForFunction(() => /robot 5.*status: (moving|idle)/.test(document.querySelector('#robot').textContent), { timeout: 5000 });
     await page.screenshot({ path: path.join(artifacts, 'viewer-watch.png') });
-    const pixels = await robotPixels(page);
+    const pixels = await waitForPixels(page, 20 * 10 + 1);
     assert.ok(pixels > 20 * 10, `watched robots not drawn: ${pixels} robot-coloured pixels`);
+    // A monitor announced with a host name of markup (issue 25: it ran as script): shown as text.
+    intruder = spawn(process.env.SMART_ANNOUNCE_MONITOR, [domain, '<img src=x onerror="window.__pwned=1">'], { stdio: 'ignore' });
+    await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('monitor: <img src=x'), { timeout: 30000 });
+    assert.equal(await page.evaluate(() => window.__pwned), undefined, 'a host name from DDS ran as script');
+    assert.equal(await page.$$eval('#stats img', (xs) => xs.length), 0);
   } finally {
     await page.close();
+    if (intruder) intruder.kill('SIGTERM');
     run.kill('SIGTERM');
     watcher.kill('SIGTERM');
   }
