@@ -151,6 +151,7 @@ struct MonitorNode::Impl {
           c.source_id != dds::kSimClockSource)
         return;
       if (!valid("clock", senders.clock(from, clocks), clocks, from)) return;
+      clock_in.admit(senders);  // bound before the answer, which tells the world the sim is known
       sup.on_clock(wire::from_wire(c), now_s());
     });
   }

@@ -173,18 +173,21 @@ class SimBoundReader {
   }
   dds::WireReader<T>& reader() { return reader_; }
   const dds::WireReader<T>& reader() const { return reader_; }
-  // Admits the sim host's writers when due; refused(writer, samples) for what was filtered out.
+  // Admits the sim host's writers when due (the sim host just became known, or a writer matched).
+  void admit(const SenderGate& gate) {
+    const auto matched = reader_.subscription_matched().total_count;
+    if (!gate.sim_known() || (matched == matched_seen_ && admission_.closed())) return;
+    matched_seen_ = matched;
+    for (const auto h : reader_.matched_writers()) {
+      const auto who = reader_.participant_of(h);
+      if (gate.from_sim(h, reader_) || (who && same_guid(*who, self_))) admission_.admit(h);
+    }
+    admission_.close();
+  }
+  // admit(), then refused(writer, samples) for what was filtered out since the last call.
   template <class Fn>
   void refresh(const SenderGate& gate, Fn&& refused) {
-    const auto matched = reader_.subscription_matched().total_count;
-    if (gate.sim_known() && (matched != matched_seen_ || !admission_.closed())) {
-      matched_seen_ = matched;
-      for (const auto h : reader_.matched_writers()) {
-        const auto who = reader_.participant_of(h);
-        if (gate.from_sim(h, reader_) || (who && same_guid(*who, self_))) admission_.admit(h);
-      }
-      admission_.close();
-    }
+    admit(gate);
     for (const auto& [writer, n] : admission_.take_refused()) refused(writer, n);
   }
 
