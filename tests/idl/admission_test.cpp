@@ -35,6 +35,23 @@ TEST(WriterAdmission, OpenItHearsEveryoneClosedOnlyTheAdmittedAndCountsTheRest) 
 
 bool same(const dds_guid_t& a, const dds_guid_t& b) { return std::memcmp(a.v, b.v, 16) == 0; }
 
+// Once both writers matched, admits only `admitted`'s and closes; false if they never matched.
+template <class Reader>
+bool admit_only(const Reader& reader, WriterAdmission& admission, const Participant& admitted,
+                std::chrono::steady_clock::time_point deadline) {
+  while (reader.matched_writers().size() < 2) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(5ms);
+  }
+  dds_guid_t guid;
+  if (dds_get_guid(admitted.handle(), &guid) != DDS_RETCODE_OK) return false;
+  for (const auto h : reader.matched_writers()) {
+    if (const auto who = reader.participant_of(h); who && same(*who, guid)) admission.admit(h);
+  }
+  admission.close();
+  return true;
+}
+
 // Issue 25: exclusive ownership handed an instance to the strongest writer even when every
 // sample it sent was refused, and a flood displaced the real writer's keep-last sample.
 TEST(WriterAdmission, AStrangersFloodNeverDisplacesTheAdmittedWritersSample) {
@@ -46,16 +63,7 @@ TEST(WriterAdmission, AStrangersFloodNeverDisplacesTheAdmittedWritersSample) {
   WriterAdmission admission;
   WireReader<smart_msg_SimStatus> reader(reader_p, qos, admission);
   const auto deadline = std::chrono::steady_clock::now() + 30s;
-  while (reader.matched_writers().size() < 2) {
-    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the writers never matched";
-    std::this_thread::sleep_for(5ms);
-  }
-  dds_guid_t real_guid;
-  ASSERT_EQ(dds_get_guid(admitted_p.handle(), &real_guid), DDS_RETCODE_OK);
-  for (const auto h : reader.matched_writers()) {
-    if (const auto who = reader.participant_of(h); who && same(*who, real_guid)) admission.admit(h);
-  }
-  admission.close();
+  ASSERT_TRUE(admit_only(reader, admission, admitted_p, deadline)) << "the writers never matched";
   real.write(smart_msg_SimStatus{0, 1, 2.0, 20, 1, 0, 0.5, 0.1, 10.0, -1, -1});
   uint64_t refused = 0;
   int real_samples = 0;
@@ -92,16 +100,7 @@ TEST(WriterAdmission, AStrongerStrangerRefusedByTheFilterOwnsNothingOnAnExclusiv
   WriterAdmission admission;
   WireReader<smart_msg_Progress> reader(reader_p, qos, admission);
   const auto deadline = std::chrono::steady_clock::now() + 30s;
-  while (reader.matched_writers().size() < 2) {
-    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the writers never matched";
-    std::this_thread::sleep_for(5ms);
-  }
-  dds_guid_t real_guid;
-  ASSERT_EQ(dds_get_guid(admitted_p.handle(), &real_guid), DDS_RETCODE_OK);
-  for (const auto h : reader.matched_writers()) {
-    if (const auto who = reader.participant_of(h); who && same(*who, real_guid)) admission.admit(h);
-  }
-  admission.close();
+  ASSERT_TRUE(admit_only(reader, admission, admitted_p, deadline)) << "the writers never matched";
   uint64_t refused = 0;
   for (int i = 0; i < 100; ++i) stranger.write(smart_msg_Progress{3, 1, 50, -1});
   while (refused < 100) {
