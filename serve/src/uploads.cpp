@@ -188,6 +188,22 @@ std::optional<json> check_run(const httplib::Request& req, const fs::path& scrat
   }
 }
 
+namespace {
+// robots.csv, when given, as the robot panel reads it: rows of this run's robots (a malformed
+// one used to make the panel answer 404 later). Throws std::invalid_argument naming the line.
+std::optional<std::string> check_robots_csv(const fs::path& csv, uint64_t robots) {
+  if (!fs::is_regular_file(csv)) return std::nullopt;
+  for (const auto& row : results::parse_robots_csv(slurp(csv))) {
+    if (row.robot >= robots) {
+      return "robots.csv has a row for robot " + std::to_string(row.robot) +
+             " but summary.json has " + std::to_string(robots) +
+             " robots; give the files of one run";
+    }
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 // A staged replay (results/ and the run's files) checked as the viewer will read it; the
 // recording is made here once. An error naming the file and line, or nothing.
 std::optional<json> check_results(const fs::path& staged) {
@@ -231,6 +247,7 @@ std::optional<json> check_results(const fs::path& staged) {
       }
     }
     check_recording_size(rows, states.size());
+    if (auto wrong = check_robots_csv(r / results::kRobotsCsv, robots)) return bad(*wrong);
     std::ofstream(staged / "recording-v2.smrc", std::ios::binary) << encode_recording(rows);
     if (fs::is_regular_file(staged / "scen.scen") && fs::is_regular_file(staged / "plan.txt")) {
       write_request(staged, summary);

@@ -287,6 +287,13 @@ TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {
   got = client().Post("/api/results", forged);
   ASSERT_EQ(got->status, 400);
   EXPECT_THAT(got->body, HasSubstr("names robot 9999999 but summary.json has 5 robots"));
+  // A malformed robots.csv is refused naming its line (the robot panel answered 404 later).
+  auto robots = items(slurp(results / "states.csv"));
+  robots.insert(robots.begin(),
+                {"files", slurp(results / "robots.csv") + "7,soon,0,0,1,\n", "out/robots.csv", ""});
+  got = client().Post("/api/results", robots);
+  ASSERT_EQ(got->status, 400);
+  EXPECT_THAT(got->body, HasSubstr("robots.csv line 7"));
   bad.pop_back();  // no map
   got = client().Post("/api/results", bad);
   EXPECT_THAT(got->body, HasSubstr("no map"));
