@@ -66,6 +66,17 @@ class Serve : public ::testing::Test {
     return client().Post("/api/runs", items);
   }
   httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
+  // `smart run --out results` of the 20-robot example's first `agents` robots (a fresh folder).
+  SmartRun run_to_folder(const std::filesystem::path& results, const std::string& agents,
+                         int domain, const std::string& tag) const {
+    std::filesystem::remove_all(results);
+    return run_smart(
+        {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+         (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+         (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", agents,
+         "--domain", std::to_string(domain), "--out", results.string(), "--no-progress"},
+        120s, tag);
+  }
   std::filesystem::path b_, data_, out_;
   std::optional<common::ChildProcess> server_;
   int port_ = 0;
@@ -225,13 +236,7 @@ TEST_F(Serve, ALiveStreamFollowsTheRunUntilItEnds) {
 // served.
 TEST_F(Serve, OpenReplaysASmartRunOutFolder) {
   const auto results = temp_file("serve_open_results");
-  std::filesystem::remove_all(results);
-  const auto r = run_smart(
-      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
-       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "20",
-       "--domain", std::to_string(kServeOpen), "--out", results.string(), "--no-progress"},
-      120s, "serve_open_run");
+  const auto r = run_to_folder(results, "20", kServeOpen, "serve_open_run");
   ASSERT_EQ(r.code, 0) << r.out;
   start({"--open", results.string()});
   const auto run = json::parse(client().Get("/api/runs/run-000001")->body);
@@ -261,13 +266,7 @@ TEST_F(Serve, OpenReplaysASmartRunOutFolder) {
 // is not a results file is ignored; bad files are refused naming the file and line.
 TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {
   const auto results = temp_file("serve_upload_results");
-  std::filesystem::remove_all(results);
-  const auto r = run_smart(
-      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
-       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "5",
-       "--domain", std::to_string(kServeUpload), "--out", results.string(), "--no-progress"},
-      120s, "serve_upload_results_run");
+  const auto r = run_to_folder(results, "5", kServeUpload, "serve_upload_results_run");
   ASSERT_EQ(r.code, 0) << r.out;
   start();
   auto items = [&](const std::string& states) {
@@ -385,13 +384,7 @@ TEST_F(Serve, AResultsUploadNestedDeepOrMakingAHugeRecordingIsRefusedAndLeavesNo
 // A 500 put the exception's text in a header; now it says where to look, and the log says more.
 TEST_F(Serve, AnInternalErrorAnswersWithoutItsExceptionText) {
   const auto results = temp_file("serve_error_results");
-  std::filesystem::remove_all(results);
-  const auto r = run_smart(
-      {"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
-       (b_ / "scens/random-32-32-20-random-1.scen").string(), "--plan",
-       (b_ / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "20",
-       "--domain", std::to_string(kServeHardening), "--out", results.string(), "--no-progress"},
-      120s, "serve_error_run");
+  const auto r = run_to_folder(results, "20", kServeHardening, "serve_error_run");
   ASSERT_EQ(r.code, 0) << r.out;
   start({"--open", results.string()});
   // Its recording is gone and its states.csv damaged behind the server's back.
