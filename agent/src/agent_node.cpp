@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "smart/convert/convert.hpp"
+#include "smart/dds/participant_directory.hpp"
 
 namespace smart::agent {
 
@@ -13,8 +14,10 @@ AgentNode::AgentNode(const dds::Participant& p, const dds::QosProfile& qos, std:
                      std::optional<wire::Bounds> bounds)
     : robots_(robots),
       bounds_(bounds),
-      actions_(p, qos),
-      clocks_(p, qos),
+      from_monitor_windows_(dds::admit_roles(p, {"monitor"})),
+      from_monitor_clock_(dds::admit_roles(p, {"monitor"})),
+      actions_(p, qos, from_monitor_windows_),
+      clocks_(p, qos, from_monitor_clock_),
       progress_(p, qos),
       states_(p, qos) {}
 
@@ -57,6 +60,20 @@ bool AgentNode::from_monitor(const char* topic, dds_instance_handle_t from, bool
   return false;
 }
 
+// Samples the run's admission kept out of a reader since the last call: counted by sender.
+template <class Reader>
+void AgentNode::count_refused(const char* topic, dds::WriterAdmission& admission,
+                              const Reader& reader) {
+  for (const auto& [writer, n] : admission.take_refused()) {
+    const auto who = reader.participant_of(writer);
+    const std::string sender =
+        who ? "participant " + dds::guid_prefix(*who) : std::string("a writer that left");
+    if (rejections_.count(topic, dds::kNotRunMember, sender, n)) {
+      spdlog::warn("{} samples from {} refused: {}", topic, sender, dds::kNotRunMember);
+    }
+  }
+}
+
 void AgentNode::set_link(const wire::LinkModel& link) {
   to_host_.reset();
   to_monitor_.reset();
@@ -96,6 +113,7 @@ void AgentNode::deliver_windows(double now_s) {
 
 std::size_t AgentNode::take_windows(const Accept& accept, double now_s, const Unhosted& unhosted) {
   deliver_windows(now_s);
+  count_refused("action", from_monitor_windows_, actions_);
   return actions_.take_each_from([&](const smart_msg_ActionWindow& m, dds_instance_handle_t from) {
     if (!from_monitor("action", from, true)) return;
     if (auto why = wire::check_window(m, robots_, bounds_); !why.empty()) {
@@ -200,6 +218,7 @@ void AgentNode::flush_states() { states_.flush(); }
 
 std::optional<wire::Tick> AgentNode::take_monitor_clock() {
   std::optional<wire::Tick> newest;
+  count_refused("clock", from_monitor_clock_, clocks_);
   clocks_.take_each_from([&](const smart_msg_Clock& c, dds_instance_handle_t from) {
     if (c.source_id != dds::kMonitorClockSource || !from_monitor("clock", from, false)) return;
     if (!newest || c.tick >= newest->tick) newest = wire::from_wire(c);

@@ -1,5 +1,6 @@
 #include "smart/dds/participant.hpp"
 
+#include <cstring>
 #include <string>
 
 #include "smart/dds/error.hpp"
@@ -25,5 +26,18 @@ Participant::Participant(const Domain& domain, std::string run)
     : domain_(domain),
       entity_(check(dds_create_participant(domain.id(), nullptr, nullptr), what_failed(domain))),
       run_(std::move(run)) {}
+
+wire::GuidPrefix Participant::guid_prefix() const {
+  dds_guid_t guid{};
+  check(dds_get_guid(handle(), &guid), "reading the participant's GUID");
+  wire::GuidPrefix prefix{};
+  std::memcpy(prefix.data(), guid.v, prefix.size());
+  return prefix;
+}
+
+void Participant::prove(const wire::RunKey& key, const std::string& role) {
+  run_key_ = key;
+  proof_ = wire::run_proof(key, role, run_, guid_prefix());
+}
 
 }  // namespace smart::dds

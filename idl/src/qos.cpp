@@ -93,6 +93,10 @@ Qos& Qos::partition(const std::string& name) {
   dds_qset_partition1(qos_, name.c_str());
   return *this;
 }
+Qos& Qos::user_data(const std::string& data) {
+  dds_qset_userdata(qos_, data.data(), data.size());
+  return *this;
+}
 Qos& Qos::resource_limits(int32_t max_samples, int32_t max_instances, int32_t max_per_instance) {
   dds_qset_resource_limits(qos_, max_samples, max_instances, max_per_instance);
   return *this;

@@ -73,6 +73,9 @@ struct MonitorNode::Impl {
   MonitorAnnouncer announcer;  // before the writers: they take its ownership strength
   DdsRunWriter writer;
   RunSupervisor sup;
+  // With a run key, progress and states only from the run's proven sim hosts and agents
+  // (dds/admission.hpp): a stranger's samples never reach the readers nor an instance.
+  dds::WriterAdmission from_hosts_progress, from_hosts_states;
   dds::WireReader<smart_msg_Progress> progress;
   dds::WireReader<smart_msg_RobotState> states;
   // Ticks and the sim host's status, heard only from its writers once it is known (issue 25: a
@@ -107,8 +110,10 @@ struct MonitorNode::Impl {
         announcer(p, qos, config.run_id, o.resume),
         writer(p, qos, in, o.cell_m, announcer.strength()),
         sup(in, config, writer),
-        progress(p, qos),
-        states(p, qos),
+        from_hosts_progress(dds::admit_roles(p, {"sim", "agent"})),
+        from_hosts_states(dds::admit_roles(p, {"sim", "agent"})),
+        progress(p, qos, from_hosts_progress),
+        states(p, qos, from_hosts_states),
         clock_in(p, qos),
         clocks(clock_in.reader()),
         status_in(p, qos),
@@ -156,7 +161,16 @@ struct MonitorNode::Impl {
     });
   }
 
+  // Samples a run-key admission kept out, counted against their senders.
+  template <class Reader>
+  void count_refused(const char* topic, dds::WriterAdmission& admission, const Reader& reader) {
+    for (const auto& [writer, n] : admission.take_refused()) {
+      valid(topic, dds::kNotRunMember, reader, writer, n);
+    }
+  }
+
   void read_progress() {
+    count_refused("progress", from_hosts_progress, progress);
     progress.take_each_from([&](const smart_msg_Progress& p, dds_instance_handle_t from) {
       if (!valid("progress", wire::check_progress(p, robots), progress, from)) return;
       if (!valid("progress", senders.progress(p, from, progress), progress, from)) return;
@@ -168,6 +182,7 @@ struct MonitorNode::Impl {
   }
 
   void read_observations() {
+    count_refused("state", from_hosts_states, states);
     states.take_each_from([&](const smart_msg_RobotState& s, dds_instance_handle_t from) {
       if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
       if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s())) return;
@@ -254,7 +269,13 @@ struct MonitorNode::Impl {
   // writer is (issue 25: any writer that matched and left ended the run as "the sim host left");
   // looked up again only when a clock writer came or went.
   uint32_t hosts_matched() {
-    if (!config.lockstep) return progress.subscription_matched().current_count;
+    if (!config.lockstep) {
+      if (!from_hosts_progress.has_rule()) return progress.subscription_matched().current_count;
+      const auto writers = progress.matched_writers();  // a stranger's writer is no host
+      return static_cast<uint32_t>(std::count_if(writers.begin(), writers.end(), [&](auto h) {
+        return from_hosts_progress.admitted(h);
+      }));
+    }
     const auto now = clocks.subscription_matched().current_count;
     if (now != clock_writers_now || senders.sim_known() != sim_was_known) {
       clock_writers_now = now;

@@ -37,7 +37,8 @@ MonitorAnnouncer::MonitorAnnouncer(const dds::Participant& p, const dds::QosProf
       partition_(p.run_partition()),
       domain_id_(static_cast<int>(p.domain_id())),
       out_(p, qos),
-      in_(p, qos) {
+      from_monitors_(dds::admit_roles(p, {"monitor"})),
+      in_(p, qos, from_monitors_) {
   std::random_device rd;
   self_ = {(uint64_t{rd()} << 32) | rd(),
            run_id,
@@ -62,6 +63,12 @@ double MonitorAnnouncer::now_s() const {
 }
 
 void MonitorAnnouncer::read_claims(double now_s) {
+  for (const auto& [writer, n] : from_monitors_.take_refused()) {
+    if (rejected_.count("monitor", dds::kNotRunMember, {}, n)) {
+      spdlog::warn("monitor: {} announcement(s) on run '{}' from {} ignored: {}", n, run_name_,
+                   describe_sender(in_.participant_of(writer)), dds::kNotRunMember);
+    }
+  }
   for (;;) {
     auto samples = in_.take();
     if (samples.empty()) return;

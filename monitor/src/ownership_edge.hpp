@@ -4,7 +4,8 @@
 //   life) and watches the others; poll() returns why this monitor must give way, naming the
 //   live monitor that owns the run (wire/ownership.hpp decides), or nothing. Announcements
 //   from a writer outside exactly this run's partition (the "smart.run.*" wildcard reaches
-//   every run) are refused, and a claim counts only once repeated (wire::ClaimBook).
+//   every run) are refused, and a claim counts only once repeated (wire::ClaimBook); with a run
+//   key only monitors proven with it are heard (--resume needs the run's key).
 // - SenderGate: who may report what: progress for a robot only from the writer that first
 //   reported it (until that writer leaves: a restarted host takes over, and its newest refused
 //   sample is taken then, as its progress is cumulative), clock ticks only from
@@ -56,6 +57,7 @@ class MonitorAnnouncer {
   std::string partition_;
   int domain_id_;
   dds::WireWriter<smart_msg_MonitorInfo> out_;
+  dds::WriterAdmission from_monitors_;  // before in_: with a run key, proven monitors only
   dds::WireReader<smart_msg_MonitorInfo> in_;
   wire::ClaimBook claims_;
   std::set<uint64_t> warned_;
@@ -159,7 +161,8 @@ class SenderGate {
   std::map<dds_instance_handle_t, dds_guid_t> status_writers_;
 };
 
-// A reader bound to the run's sim host once the gate knows it (its first tick): from then on
+// A reader bound to the run's sim host once the gate knows it (its first tick; with a run key
+// only proven sim hosts are heard at all, so that first tick is a sim host's): from then on
 // Cyclone hands it only the samples of that participant's writers, and of this process's own
 // (dds::WriterAdmission, inside the receive path), so no stronger or flooding stranger can hide
 // or delay them (issue 25: a tick from a second sim silenced the real one). refresh() each
@@ -168,7 +171,7 @@ template <class T>
 class SimBoundReader {
  public:
   SimBoundReader(const dds::Participant& p, const dds::QosProfile& qos)
-      : reader_(p, qos, admission_) {
+      : admission_(dds::admit_roles(p, {"sim"})), reader_(p, qos, admission_) {
     dds_get_guid(p.handle(), &self_);
   }
   dds::WireReader<T>& reader() { return reader_; }

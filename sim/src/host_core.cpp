@@ -29,7 +29,8 @@ HostCore::HostCore(const dds::Participant& p, const dds::QosProfile& qos, const 
       node(p, qos, starts.size(), bounds),
       clock_out(p, qos),
       status_out(p, qos),
-      states_in(p, qos),
+      from_agents(dds::admit_roles(p, {"agent"})),
+      states_in(p, qos, from_agents),
       pacer(o.clock == ClockMode::kLockstep ? o.real_time_factor : 0, o.sim.control_period_s),
       windows(starts.size()) {
   node.set_link(qos.link);  // windows and progress travel over the modelled link
@@ -69,6 +70,11 @@ bool HostCore::stop_of_this_run(const wire::Tick& answer) const {
 }
 
 void HostCore::track_external_robots() {
+  for (const auto& [writer, n] : from_agents.take_refused()) {
+    if (rejected_states.count("state", dds::kNotRunMember, {}, n)) {
+      spdlog::warn("sim host: {} state samples refused: {}", n, dds::kNotRunMember);
+    }
+  }
   states_in.take_each([&](const smart_msg_RobotState& s) {
     if (auto why = wire::check_state(s, fleet.robots(), bounds); !why.empty()) {
       if (rejected_states.count("state", why)) spdlog::warn("sim host: state rejected: {}", why);

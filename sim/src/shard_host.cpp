@@ -9,7 +9,13 @@ namespace smart::sim::detail {
 
 ShardPeer::ShardPeer(const dds::Participant& p, const dds::QosProfile& qos, uint32_t shard,
                      uint32_t shards, std::size_t robots, wire::Bounds bounds)
-    : shard_(shard), shards_(shards), robots_(robots), bounds_(bounds), out_(p, qos), in_(p, qos) {
+    : shard_(shard),
+      shards_(shards),
+      robots_(robots),
+      bounds_(bounds),
+      out_(p, qos),
+      from_sims_(dds::admit_roles(p, {"sim"})),
+      in_(p, qos, from_sims_) {
   if (dds_get_instance_handle(out_.handle(), &self_) < 0) {
     throw std::runtime_error("sim shard " + std::to_string(shard) +
                              ": cannot read the handle of its own exchange writer");
@@ -22,6 +28,11 @@ void ShardPeer::publish(const Exchange& e) {
 }
 
 void ShardPeer::take(const std::function<void(const Exchange&)>& on_receipt) {
+  for (const auto& [writer, n] : from_sims_.take_refused()) {
+    if (rejected_.count("shard", dds::kNotRunMember, {}, n)) {
+      spdlog::warn("sim shard: {} exchanges refused: {}", n, dds::kNotRunMember);
+    }
+  }
   in_.take_each_from([&](const smart_msg_ShardExchange& m, dds_instance_handle_t from) {
     if (from == self_) return;  // our own
     std::string why = wire::check_exchange(m, robots_, bounds_);

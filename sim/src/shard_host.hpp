@@ -8,7 +8,8 @@
 // claiming a held shard, a writer claiming a second shard number, or any writer but this one's
 // claiming this shard's number (a second process started with the same --shard I/N) is refused
 // and counted. Without --security the first writer of a shard number wins, whoever it is; under
-// --security only the `sim` identity may write on smart/shard (security/keystore.hpp).
+// --security only the `sim` identity may write on smart/shard (security/keystore.hpp); with a
+// run key only participants proven as the run's sim hosts are heard at all (dds/admission.hpp).
 #pragma once
 
 #include <cstdint>
@@ -48,6 +49,7 @@ class ShardPeer {
   std::size_t robots_;
   wire::Bounds bounds_;
   dds::WireWriter<smart_msg_ShardExchange> out_;
+  dds::WriterAdmission from_sims_;  // before in_: its filter (sim shards proven with the key)
   dds::WireReader<smart_msg_ShardExchange> in_;
   std::map<uint64_t, std::map<uint32_t, Exchange>> by_tick_;
   std::map<uint32_t, Exchange> last_;

@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <cstring>
+#include <map>
+#include <set>
 #include <thread>
 
 #include "smart/dds/wire.hpp"
@@ -116,6 +118,64 @@ TEST(WriterAdmission, AStrongerStrangerRefusedByTheFilterOwnsNothingOnAnExclusiv
     std::this_thread::sleep_for(1ms);
   }
   EXPECT_EQ(last, 9);
+}
+
+// By rule (issue 25, "bind every stream to the participant the run admitted"): writers proven
+// with the run's key are heard from their very first sample, whether they matched while the
+// reader was being made or later; a stranger that copies a member's proof into its own writer is
+// refused (the proof names the member's participant) and, though strongest, owns nothing; a
+// member of another role is ignored without being counted as a stranger.
+TEST(WriterAdmission, ByRuleProvenWritersAreHeardFromTheirFirstSampleACopiedProofIsNot) {
+  Domain domain(test::kAdmissionProof, test::loopback());
+  const auto key = wire::parse_run_key("00112233445566778899aabbccddeeff", "test key");
+  Participant early_p(domain), late_p(domain), copy_p(domain), sim_p(domain), reader_p(domain);
+  early_p.prove(key, "monitor");
+  late_p.prove(key, "monitor");
+  sim_p.prove(key, "sim");
+  reader_p.prove(key, "agent");
+  const auto qos = find_qos_profile("lan");
+  WireWriter<smart_msg_Progress> early(early_p, qos);  // matched while the reader is made
+  auto copied_qos = wire_qos<smart_msg_Progress>(copy_p, qos, 2147483647);
+  copied_qos.user_data(early_p.proof());
+  Topic<smart_msg_Progress> copy_topic(copy_p, std::string(WireTopic<smart_msg_Progress>::name));
+  Writer<smart_msg_Progress> copy(copy_p, copy_topic, copied_qos);
+  WireWriter<smart_msg_Progress> sim(sim_p, qos);
+  WriterAdmission admission(admit_roles(reader_p, {"monitor"}));
+  ASSERT_TRUE(admission.has_rule());
+  WireReader<smart_msg_Progress> reader(reader_p, qos, admission);
+  WireWriter<smart_msg_Progress> late(late_p, qos);  // matched after: the listener decides
+  for (auto* w : {&early, &late}) ASSERT_TRUE(w->wait_for_readers(1, 30s));
+  early.write(smart_msg_Progress{1, 1, 0, -1});  // each member's very first sample
+  late.write(smart_msg_Progress{2, 1, 0, -1});
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (reader.matched_writers().size() < 4) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the writers never matched";
+    std::this_thread::sleep_for(5ms);
+  }
+  for (int i = 0; i < 100; ++i) {
+    copy.write(smart_msg_Progress{3, 1, 50, -1});
+    sim.write(smart_msg_Progress{3, 1, 60, -1});
+  }
+  uint64_t refused = 0;
+  std::set<dds_instance_handle_t> refused_writers;
+  std::map<uint32_t, int32_t> heard;
+  for (int32_t seq = 0; heard[3] != 9 || refused < 100; seq = std::min(seq + 1, 9)) {
+    early.write(smart_msg_Progress{3, 1, seq, -1});
+    reader.take_each([&](const smart_msg_Progress& p) {
+      EXPECT_LT(p.finished_seq, 50) << "a stranger's or another role's sample was heard";
+      heard[p.robot_id] = p.finished_seq;
+    });
+    for (const auto& [writer, n] : admission.take_refused()) {
+      refused += n;
+      refused_writers.insert(writer);
+    }
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << refused << " refused so far";
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(heard.count(1), 1u) << "the first sample of a writer matched at creation was lost";
+  EXPECT_EQ(heard.count(2), 1u) << "the first sample of a writer matched later was lost";
+  EXPECT_EQ(refused, 100u);  // the copy's; the sim's samples are ignored, not counted
+  EXPECT_EQ(refused_writers.size(), 1u);
 }
 
 }  // namespace

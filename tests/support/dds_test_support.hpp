@@ -123,6 +123,10 @@ enum DomainId : int {
   kIntruderTicks = 217,
   kIntruderLeaves = 218,
   kServeHardening = 219,
+  kIntruderWindows = 220,
+  kIntruderProgress = 221,
+  kAdmissionProof = 222,
+  kRunKeyProve = 223,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

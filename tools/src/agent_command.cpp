@@ -21,6 +21,7 @@
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/robot_backends.hpp"
+#include "smart/tools/run_key.hpp"
 
 namespace smart::tools {
 
@@ -173,6 +174,7 @@ int run_agent(const AgentOptions& o) {
   dds::Domain domain(o.dds.domain,
                      domain_config(o.dds, profile, "agent-" + std::to_string(ids.front())));
   dds::Participant participant(domain, o.dds.run);
+  prove_member(participant, o.dds, "agent");
   std::vector<Robot> robots;
   for (const uint32_t id : ids) {
     Robot r{open_robot(o.io, id, model, file, participant), nullptr};

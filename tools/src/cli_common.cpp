@@ -57,6 +57,12 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   cmd->add_option("--identity", o.identity,
                   "identity in the --security keystore (default: this command's role: monitor, "
                   "sim, agent-<robot id>)");
+  cmd->add_option("--run-key", o.run_key,
+                  "the run's shared key file: monitor, sim hosts and agents prove their "
+                  "membership with it and hear only each other (`smart run` makes a private one "
+                  "for the processes it starts, or this file when missing; give it to every "
+                  "`smart agent` of a mixed run)")
+      ->envname("SMART_RUN_KEY");
   cmd->add_option("--link-delay-ms", o.link_delay_ms,
                   "link model: delay of windows and progress, each way (over the profile's)")
       ->check(finite_in(0, 60000));
@@ -90,6 +96,7 @@ std::vector<std::string> dds_argv(const DdsOptions& o) {
                                 "--network", enum_name(o.network, kNetworkNames),
                                 "--run",     o.run};
   if (!o.security.empty()) argv.insert(argv.end(), {"--security", o.security});
+  if (!o.run_key.empty()) argv.insert(argv.end(), {"--run-key", o.run_key});
   for (const auto& [flag, v] : {std::pair{"--link-delay-ms", o.link_delay_ms},
                                 {"--link-jitter-ms", o.link_jitter_ms},
                                 {"--link-loss-per-mille", o.link_loss_per_mille}}) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "smart/monitor/sim_reports.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
+#include "smart/tools/run_key.hpp"
 #include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
@@ -59,6 +61,7 @@ int run_sim(const SimCliOptions& o) {
   const auto profile = run_qos_profile(o.dds);
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
   dds::Participant participant(domain, o.dds.run);
+  prove_member(participant, o.dds, "sim");
   std::vector<grid::Cell> starts;
   for (const auto& a : scen.agents) starts.push_back(a.start);
   sim::SimHost host(participant, profile, grid, model,
@@ -197,6 +200,26 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   return info;
 }
 
+// `smart run` owns its run's key (issue 25: the run's processes hear only each other): a
+// --run-key file is made when missing; without one, a private key for the processes it starts,
+// unless robots run elsewhere (a mixed run: its agents need the file, so the user names it).
+std::unique_ptr<PrivateRunKey> own_run_key(SimCliOptions& o) {
+  if (!o.dds.run_key.empty()) {
+    if (!std::filesystem::exists(o.dds.run_key)) make_run_key(o.dds.run_key);
+    return nullptr;
+  }
+  if (!o.external.empty()) {
+    spdlog::warn(
+        "a mixed run without --run-key: any participant that learns the run's partition can "
+        "speak for a robot or the monitor; give `smart run` and every `smart agent` the same "
+        "--run-key FILE (README, \"Running safely\")");
+    return nullptr;
+  }
+  auto key = std::make_unique<PrivateRunKey>();
+  o.dds.run_key = key->file().string();
+  return key;
+}
+
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
 int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   // A run this process starts whole gets a run (partition) of its own unless one was named.
@@ -214,10 +237,13 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
         "--qos lan or wifi, or --sim-hosts 1");
   }
+  std::unique_ptr<PrivateRunKey> private_key;
+  if (spawn_sim_child) private_key = own_run_key(o.sim);
   std::vector<common::ChildProcess> sims;
   if (spawn_sim_child) sims = spawn_sims(o, in.plan.paths.size(), robot_file);
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
+  prove_member(participant, o.sim.dds, "monitor");
   auto mo = monitor_options(o);
   mo.robot_radius_m = model.radius_m;
   mo.run.robot_radius_m = model.radius_m;  // real time: reported poses watched for contacts

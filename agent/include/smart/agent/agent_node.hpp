@@ -14,11 +14,16 @@
 //   many robots sends a period's states in a few messages: Writer::write_batched); progress is
 //   sent before publish_progress() and republish_progress() return; take_monitor_clock() the
 //   monitor's newest clock sample (its answers and its stop).
-// - Only the run's monitor is heard (idl/smart.idl, "Ownership"): windows and clock answers
-//   from writers weaker than MONITOR_STRENGTH_MIN are dropped (counted, reason "not a
-//   monitor's writer"); DDS exclusive ownership delivers the strongest monitor's windows, and
-//   clock answers count only from the participant whose windows were taken last (or, before any
-//   window, the first monitor heard).
+// - Only the run's monitor is heard (idl/smart.idl, "Ownership"): with a run key (the
+//   participant is proven, smart/wire/run_proof.hpp) windows and clock answers are taken only
+//   from writers proven as the run's monitor, decided as they match and before their first
+//   sample (dds/admission.hpp): a stranger's samples never enter the readers, so it can neither
+//   seize a window instance nor stop the run (refused samples counted, reason "not a member of
+//   this run", with the sender's GUID prefix). Without a key, and in any case: writers weaker
+//   than MONITOR_STRENGTH_MIN are dropped (counted, reason "not a monitor's writer"); DDS
+//   exclusive ownership delivers the strongest monitor's windows, and clock answers count only
+//   from the participant whose windows were taken last (or, before any window, the first
+//   monitor heard).
 // - The link model (set_link, wire/link.hpp): a received window reaches its agent only at its
 //   arrival time, and progress is written only at its arrival time; `now_s` is the caller's
 //   clock (the sim host's sim time, an agent's wall time). Windows still count for `accept` on
@@ -106,6 +111,8 @@ class AgentNode {
   Hosted* hosted(uint32_t robot);
 
   bool from_monitor(const char* topic, dds_instance_handle_t from, bool window);
+  template <class Reader>
+  void count_refused(const char* topic, dds::WriterAdmission& admission, const Reader& reader);
   void deliver_windows(double now_s);
   double window_arrival_s(uint32_t robot, double now_s);
   uint64_t write_progress(double now_s);
@@ -127,6 +134,7 @@ class AgentNode {
   std::size_t robots_;
   std::optional<wire::Bounds> bounds_;
   wire::Rejections rejections_;
+  dds::WriterAdmission from_monitor_windows_, from_monitor_clock_;  // before their readers
   dds::WireReader<smart_msg_ActionWindow> actions_;
   dds::WireReader<smart_msg_Clock> clocks_;
   dds::WireWriter<smart_msg_Progress> progress_;

@@ -1,26 +1,55 @@
 // Contract: a reader that hears only admitted writers (issue 25: "a rejected sample must never
 // hide an accepted one"). Cyclone DDS runs a topic filter with each arriving sample's info
 // (dds.h, "Topic filters": publication_handle is its writer) before the sample enters the
-// reader's history, so a sample from a writer that is not admitted can neither displace an
-// admitted writer's sample from a keep-last history nor delay it. Open (every writer heard)
-// until close(); from then on only the publication handles admit()ted. Refused samples are
-// counted per writer (at most kMaxWriters writers; then under handle 0) for the edge to name.
-// The filter runs on Cyclone's receive threads: the state is behind a mutex.
+// reader's history and before exclusive ownership picks an owner, so a sample from a writer that
+// is not admitted can neither displace an admitted writer's sample from a keep-last history,
+// nor seize an instance, nor delay it. Refused samples are counted per writer (at most
+// kMaxWriters writers; then under handle 0) for the edge to name.
+// Two ways to admit:
+// - by hand: open (every writer heard) until close(); from then on only the publication handles
+//   admit()ted (the monitor binds its clock to the sim host this way);
+// - by rule (admit_roles(): the run proof in the writer's USER_DATA, smart/wire/run_proof.hpp):
+//   closed from the start; the reader (reader.hpp) asks decide() for each writer from its
+//   subscription-matched listener, which Cyclone calls when the writer is matched and before
+//   that writer's first sample can reach the reader (ddsi_entity_match.c, reader_add_connection
+//   runs before proxy_writer_add_connection), and once after creation for the writers matched
+//   while the reader was being made. A proven writer of another role is ignored uncounted (the
+//   sim's own ticks on the clock topic an agent reads); everyone else is refused.
+// The filter and the listener run on Cyclone's threads: the state is behind a mutex.
 #pragma once
 
 #include <dds/dds.h>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
+#include <string>
+#include <vector>
+
+#include "smart/dds/participant.hpp"
 
 namespace smart::dds {
+
+enum class Verdict { kAdmit, kIgnore, kRefuse };
+
+// Why a rule refused a writer, for the edges' rejection counts.
+inline constexpr const char* kNotRunMember =
+    "not a member of this run (its writer carries no valid proof of the run's key; every "
+    "process of the run needs the same --run-key)";
+using AdmitRule = std::function<Verdict(const dds_builtintopic_endpoint_t& writer)>;
+
+// Writers proven (with `participant`'s run key, in its run) in one of `roles` are admitted; a
+// proven writer of another role is ignored. Empty (no rule: every writer heard) when the
+// participant has no run key.
+AdmitRule admit_roles(const Participant& participant, std::vector<std::string> roles);
 
 class WriterAdmission {
  public:
   static constexpr std::size_t kMaxWriters = 64;
   WriterAdmission() = default;
+  explicit WriterAdmission(AdmitRule rule);
   WriterAdmission(const WriterAdmission&) = delete;
   WriterAdmission& operator=(const WriterAdmission&) = delete;
 
@@ -28,17 +57,26 @@ class WriterAdmission {
   void close();
   bool closed() const;
   bool admitted(dds_instance_handle_t writer) const;
+  bool has_rule() const { return static_cast<bool>(rule_); }
+  // By rule: decides `writer`, matched on `reader` (once; a writer no longer matched is left).
+  void decide(dds_entity_t reader, dds_instance_handle_t writer);
+  // By rule: decides every writer matched on `reader` now.
+  void decide_matched(dds_entity_t reader);
   // The filter's decision for one sample (counted when refused).
   bool hear(dds_instance_handle_t writer);
   // Samples refused since the last call, by writer.
   std::map<dds_instance_handle_t, uint64_t> take_refused();
   // For dds_set_topic_filter_extended (arg: this).
   static bool filter(const dds_sample_info_t* info, void* self);
+  // For dds_lset_subscription_matched_arg (arg: this).
+  static void on_matched(dds_entity_t reader, dds_subscription_matched_status_t status,
+                         void* self);
 
  private:
+  AdmitRule rule_;
   mutable std::mutex mutex_;
   bool closed_ = false;
-  std::set<dds_instance_handle_t> admitted_;
+  std::set<dds_instance_handle_t> admitted_, ignored_;
   std::map<dds_instance_handle_t, uint64_t> refused_;
 };
 

@@ -49,6 +49,9 @@ class Qos {
   // The one partition this reader or writer is in (on a reader/writer made directly on the
   // participant, Cyclone applies it to the implicit publisher/subscriber).
   Qos& partition(const std::string& name);
+  // USER_DATA (DDS 1.4, 2.2.3.1): opaque bytes discovery delivers with the endpoint (a writer's
+  // run proof, smart/wire/run_proof.hpp).
+  Qos& user_data(const std::string& data);
   // Resource limits bound the reader/writer cache when keep_all is used.
   Qos& resource_limits(int32_t max_samples, int32_t max_instances, int32_t max_per_instance);
 

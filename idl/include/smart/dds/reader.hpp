@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "smart/dds/admission.hpp"
 #include "smart/dds/entity.hpp"
 #include "smart/dds/error.hpp"
 #include "smart/dds/participant.hpp"
@@ -109,10 +110,21 @@ class Reader {
       listener = dds_create_listener(callback_.get());
       dds_lset_data_available(listener, &Reader::trampoline);
     }
-    const dds_entity_t h =
-        dds_create_reader(participant.handle(), topic.handle(), qos.get(), listener);
-    if (listener != nullptr) dds_delete_listener(listener);
-    entity_ = Entity(check(h, "creating a reader on '" + topic.name() + "'"));
+    create(participant, topic, qos, listener);
+  }
+  // A reader whose writers `admission` decides by its rule (admission.hpp) as they match; the
+  // admission must outlive the reader.
+  Reader(const Participant& participant, const Topic<T>& topic, const Qos& qos,
+         WriterAdmission& admission)
+      : topic_name_(topic.name()) {
+    dds_listener_t* listener = nullptr;
+    if (admission.has_rule()) {
+      listener = dds_create_listener(nullptr);
+      dds_lset_subscription_matched_arg(listener, &WriterAdmission::on_matched, &admission,
+                                        false);
+    }
+    create(participant, topic, qos, listener);
+    admission.decide_matched(entity_.handle());
   }
   Reader(Reader&& o) noexcept = default;
   Reader& operator=(Reader&& o) noexcept {
@@ -265,6 +277,14 @@ class Reader {
       spdlog::warn("DDS listener of reader {}: {} (the callback failed; this sample is dropped)",
                    reader, e.what());
     }
+  }
+
+  void create(const Participant& participant, const Topic<T>& topic, const Qos& qos,
+              dds_listener_t* listener) {
+    const dds_entity_t h =
+        dds_create_reader(participant.handle(), topic.handle(), qos.get(), listener);
+    if (listener != nullptr) dds_delete_listener(listener);
+    entity_ = Entity(check(h, "creating a reader on '" + topic.name() + "'"));
   }
 
   LoanedSamples<T> get(std::size_t max, bool take) {

@@ -1,7 +1,8 @@
 // Contract: endpoints on the SMART topics made from the one table in topics.hpp: a
 // WireWriter<T> / WireReader<T> owns its topic and takes name and QoS (by the topic's role in
 // the QosProfile) from there, so no caller repeats either, and put it in the participant's run
-// partition. They are a Writer<T> / Reader<T> in every other respect.
+// partition. Writers carry the participant's run proof (participant.hpp). They are a Writer<T> /
+// Reader<T> in every other respect.
 #pragma once
 
 #include <string>
@@ -41,6 +42,7 @@ Qos wire_qos(const Participant& participant, const QosProfile& profile,
   Qos q = profile.topic(WireTopic<T>::role).to_dds();
   q.partition(participant.run_partition());
   if constexpr (WireTopic<T>::exclusive) q.exclusive_ownership(strength);
+  if (!participant.proof().empty()) q.user_data(participant.proof());  // readers ignore it
   return q;
 }
 
@@ -53,8 +55,8 @@ class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
         Writer<T>(p, this->topic_, wire_qos<T>(p, profile, strength)) {}
 };
 
-// With an admission (admission.hpp), it hears only the writers admitted there once closed; the
-// admission must outlive the reader.
+// With an admission (admission.hpp), it hears only the writers admitted there (by hand once
+// closed, or by its rule as they match); the admission must outlive the reader.
 template <class T>
 class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
  public:
@@ -64,7 +66,7 @@ class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
         Reader<T>(p, this->topic_, wire_qos<T>(p, profile), std::move(on_data_available)) {}
   WireReader(const Participant& p, const QosProfile& profile, WriterAdmission& admission)
       : detail::WireTopicHolder<T>(p, admission),
-        Reader<T>(p, this->topic_, wire_qos<T>(p, profile)) {}
+        Reader<T>(p, this->topic_, wire_qos<T>(p, profile), admission) {}
 };
 
 }  // namespace smart::dds

@@ -36,6 +36,7 @@ struct DdsOptions {
   bool run_given = false;                   // --run / SMART_RUN was set
   std::string security;  // keystore of `smart security init` (empty: no DDS Security)
   std::string identity;  // identity in the keystore (empty: the command's own role)
+  std::string run_key;   // --run-key: the run's shared key file (run_key.hpp; empty: none)
   // Link model overrides (smart/wire/link.hpp), both directions, over the profile's `link:`.
   std::optional<double> link_delay_ms, link_jitter_ms, link_loss_per_mille;
   std::optional<uint64_t> link_seed;
