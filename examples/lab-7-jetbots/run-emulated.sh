@@ -11,6 +11,10 @@ OUT=${2:-lab-results}
 DOMAIN=${3:-40}
 CELL=0.3
 mkdir -p "$OUT"
+# One key for every process of the lab's runs (README, "Running safely"): only they hear each
+# other. SMART_RUN_KEY is --run-key for every command below.
+[ -f "$OUT/run.key" ] || (umask 077 && python3 -c 'import secrets; print(secrets.token_hex(32))' > "$OUT/run.key")
+export SMART_RUN_KEY="$OUT/run.key"
 "$SMART" plan --map "$HERE/lab.map" --scen "$HERE/lab.scen" --out "$OUT/lab.plan" > /dev/null
 echo "trial,aet_s,makespan_s,success,finished_actions,total_actions,pose_contacts,pose_min_separation_m" > "$OUT/trials.csv"
 summary() {  # FILE -> the csv fields of a run summary

@@ -31,7 +31,8 @@ AdmitRule admit_roles(const Participant& participant, std::vector<std::string> r
   };
 }
 
-WriterAdmission::WriterAdmission(AdmitRule rule) : rule_(std::move(rule)), closed_(rule_ != nullptr) {}
+WriterAdmission::WriterAdmission(AdmitRule rule)
+    : rule_(std::move(rule)), closed_(rule_ != nullptr) {}
 
 void WriterAdmission::admit(dds_instance_handle_t writer) {
   std::lock_guard lock(mutex_);

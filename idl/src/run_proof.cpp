@@ -62,7 +62,8 @@ RunKey parse_run_key(std::string_view text, const std::string& source) {
   };
   if (digits.size() % 2 != 0 || digits.size() < 2 * kRunKeyMinBytes ||
       digits.size() > 2 * kRunKeyMaxBytes) {
-    throw fail(std::to_string(digits.size()) + " characters where 32 to 128 hex digits (an even "
+    throw fail(std::to_string(digits.size()) +
+               " characters where 32 to 128 hex digits (an even "
                "number) are expected");
   }
   RunKey key;

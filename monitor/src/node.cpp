@@ -272,9 +272,8 @@ struct MonitorNode::Impl {
     if (!config.lockstep) {
       if (!from_hosts_progress.has_rule()) return progress.subscription_matched().current_count;
       const auto writers = progress.matched_writers();  // a stranger's writer is no host
-      return static_cast<uint32_t>(std::count_if(writers.begin(), writers.end(), [&](auto h) {
-        return from_hosts_progress.admitted(h);
-      }));
+      return static_cast<uint32_t>(std::count_if(
+          writers.begin(), writers.end(), [&](auto h) { return from_hosts_progress.admitted(h); }));
     }
     const auto now = clocks.subscription_matched().current_count;
     if (now != clock_writers_now || senders.sim_known() != sim_was_known) {

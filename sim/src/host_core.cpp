@@ -1,9 +1,9 @@
 #include "host_core.hpp"
 
-#include <cmath>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <thread>
 
 #include "smart/convert/convert.hpp"
@@ -37,11 +37,10 @@ HostCore::HostCore(const dds::Participant& p, const dds::QosProfile& qos, const 
   for (const uint32_t e : o.external_robots) fleet.set_external(e);
   // 0 Hz: no periodic states (states.csv stays empty); the final states still go out, so the
   // monitor can verify every robot at its goal.
-  state_every =
-      o.state_rate_hz <= 0
-          ? 0
-          : std::max<uint64_t>(
-                1, static_cast<uint64_t>(std::llround(1.0 / (o.state_rate_hz * o.sim.control_period_s))));
+  state_every = o.state_rate_hz <= 0
+                    ? 0
+                    : std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(
+                                                1.0 / (o.state_rate_hz * o.sim.control_period_s))));
 }
 
 void HostCore::host_robots(const RobotFilter& steps) {

@@ -73,7 +73,7 @@ struct HostCore {
   agent::AgentNode node;  // drops windows that fail the wire checks (robot ids, NaN, off-map)
   dds::WireWriter<smart_msg_Clock> clock_out;
   dds::WireWriter<smart_msg_SimStatus> status_out;
-  dds::WriterAdmission from_agents;                  // before states_in: its filter
+  dds::WriterAdmission from_agents;                 // before states_in: its filter
   dds::WireReader<smart_msg_RobotState> states_in;  // external robots' poses (agents only)
   Pacer pacer;                // lock-step: periods no faster than opt.real_time_factor x real time
   wire::SyncCounter windows;  // per robot, the end of the latest window received

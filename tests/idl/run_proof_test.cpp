@@ -32,10 +32,10 @@ TEST(RunProof, VerifiesForItsParticipantRoleAndRunOnly) {
 
 TEST(RunProof, AnythingButAProofProvesNothing) {
   const auto proof = run_proof(kKey, "sim", "r", kMember);
-  for (const std::string& bad : {std::string(), std::string("smart-run-proof/1"),
-                                std::string("smart-run-proof/1 sim"), proof.substr(0, 40),
-                                proof + "0", std::string("smart-run-proof/1  ") + proof.substr(22),
-                                std::string(5000, 'x')}) {
+  for (const std::string& bad :
+       {std::string(), std::string("smart-run-proof/1"), std::string("smart-run-proof/1 sim"),
+        proof.substr(0, 40), proof + "0", std::string("smart-run-proof/1  ") + proof.substr(22),
+        std::string(5000, 'x')}) {
     EXPECT_FALSE(proven_role(kKey, bad, "r", kMember)) << bad;
   }
   EXPECT_EQ(proven_role(kKey, proof, "r", kMember), "sim");

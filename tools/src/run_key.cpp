@@ -52,7 +52,8 @@ void make_run_key(const std::filesystem::path& file) {
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) {
     throw std::invalid_argument(file.string() + ": cannot make a run key file (" +
-                                std::strerror(errno) + "); name a new file in a folder you can "
+                                std::strerror(errno) +
+                                "); name a new file in a folder you can "
                                 "write to");
   }
   write_key(fd, file);
@@ -67,8 +68,8 @@ bool prove_member(dds::Participant& participant, const DdsOptions& options,
 
 PrivateRunKey::PrivateRunKey() {
   const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") +
-                        "/smart-run-key-XXXXXX";
+  std::string pattern =
+      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") + "/smart-run-key-XXXXXX";
   const int fd = ::mkstemp(pattern.data());  // mode 0600
   if (fd < 0) {
     throw std::system_error(errno, std::generic_category(),

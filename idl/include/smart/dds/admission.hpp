@@ -69,8 +69,7 @@ class WriterAdmission {
   // For dds_set_topic_filter_extended (arg: this).
   static bool filter(const dds_sample_info_t* info, void* self);
   // For dds_lset_subscription_matched_arg (arg: this).
-  static void on_matched(dds_entity_t reader, dds_subscription_matched_status_t status,
-                         void* self);
+  static void on_matched(dds_entity_t reader, dds_subscription_matched_status_t status, void* self);
 
  private:
   AdmitRule rule_;

@@ -120,8 +120,7 @@ class Reader {
     dds_listener_t* listener = nullptr;
     if (admission.has_rule()) {
       listener = dds_create_listener(nullptr);
-      dds_lset_subscription_matched_arg(listener, &WriterAdmission::on_matched, &admission,
-                                        false);
+      dds_lset_subscription_matched_arg(listener, &WriterAdmission::on_matched, &admission, false);
     }
     create(participant, topic, qos, listener);
     admission.decide_matched(entity_.handle());

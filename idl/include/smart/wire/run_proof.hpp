@@ -22,8 +22,8 @@ struct RunKey {
   std::vector<uint8_t> bytes;
 };
 
-inline constexpr std::size_t kRunKeyMinBytes = 16;   // 128 bits
-inline constexpr std::size_t kRunKeyMaxBytes = 64;   // HMAC-SHA256's block
+inline constexpr std::size_t kRunKeyMinBytes = 16;  // 128 bits
+inline constexpr std::size_t kRunKeyMaxBytes = 64;  // HMAC-SHA256's block
 inline constexpr std::string_view kRunProofTag = "smart-run-proof/1";
 
 // The key file's text: 32 to 128 hex digits, surrounding whitespace allowed. Throws
