@@ -11,15 +11,15 @@
 namespace smart::agent {
 
 AgentNode::AgentNode(const dds::Participant& p, const dds::QosProfile& qos, std::size_t robots,
-                     std::optional<wire::Bounds> bounds)
+                     std::optional<wire::Bounds> bounds, const std::vector<uint32_t>& speaks_for)
     : robots_(robots),
       bounds_(bounds),
       from_monitor_windows_(dds::admit_roles(p, {"monitor"})),
       from_monitor_clock_(dds::admit_roles(p, {"monitor"})),
       actions_(p, qos, from_monitor_windows_),
       clocks_(p, qos, from_monitor_clock_),
-      progress_(p, qos),
-      states_(p, qos) {}
+      progress_(p, qos, speaks_for),
+      states_(p, qos, speaks_for) {}
 
 void AgentNode::host(Agent& agent, int64_t reported_finished, int64_t reported_executing) {
   const uint32_t robot = agent.robot_id();

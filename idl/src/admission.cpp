@@ -16,6 +16,20 @@ std::string user_data_of(const dds_qos_t* qos) {
   dds_free(data);
   return out;
 }
+
+std::vector<std::string> partitions_of(const dds_qos_t* qos) {
+  std::vector<std::string> out;
+  uint32_t n = 0;
+  char** ps = nullptr;
+  if (qos != nullptr && dds_qget_partition(qos, &n, &ps)) {
+    for (uint32_t i = 0; i < n; ++i) {
+      out.emplace_back(ps[i]);
+      dds_free(ps[i]);
+    }
+    dds_free(ps);
+  }
+  return out;
+}
 }  // namespace
 
 AdmitRule admit_roles(const Participant& participant, std::vector<std::string> roles) {
@@ -33,6 +47,15 @@ AdmitRule admit_roles(const Participant& participant, std::vector<std::string> r
 
 WriterAdmission::WriterAdmission(AdmitRule rule)
     : rule_(std::move(rule)), closed_(rule_ != nullptr) {}
+
+std::unique_ptr<WriterAdmission> WriterAdmission::per_robot(const Participant& participant,
+                                                            std::vector<std::string> roles) {
+  AdmitRule rule = admit_roles(participant, std::move(roles));
+  if (!rule) rule = [](const dds_builtintopic_endpoint_t&) { return Verdict::kAdmit; };
+  auto a = std::make_unique<WriterAdmission>(std::move(rule));
+  a->run_partition_ = participant.run_partition();
+  return a;
+}
 
 void WriterAdmission::admit(dds_instance_handle_t writer) {
   std::lock_guard lock(mutex_);
@@ -57,17 +80,34 @@ bool WriterAdmission::admitted(dds_instance_handle_t writer) const {
 
 void WriterAdmission::decide(dds_entity_t reader, dds_instance_handle_t writer) {
   if (!rule_ || writer == 0) return;
+  dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(reader, writer);
+  if (e == nullptr) {  // it left (or the reader is still being made: decide_matched follows)
+    forget(writer);
+    return;
+  }
+  bool known = false;
   {
     std::lock_guard lock(mutex_);
-    if (admitted_.count(writer) || ignored_.count(writer)) return;
+    known = admitted_.count(writer) > 0 || ignored_.count(writer) > 0;
   }
-  dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(reader, writer);
-  if (e == nullptr) return;  // left already, or the reader is still being made (decide_matched)
-  const Verdict v = rule_(*e);
+  const Verdict v = known ? Verdict::kRefuse : rule_(*e);
+  std::optional<Speaks> speaks;
+  if (!known && v == Verdict::kAdmit && !run_partition_.empty()) {
+    speaks = speaks_for(run_partition_, partitions_of(e->qos));
+  }
   dds_builtintopic_free_endpoint(e);
+  if (known) return;
   std::lock_guard lock(mutex_);
   if (v == Verdict::kAdmit) admitted_.insert(writer);
   if (v == Verdict::kIgnore) ignored_.insert(writer);
+  if (speaks) speaks_[writer] = *speaks;
+}
+
+void WriterAdmission::forget(dds_instance_handle_t writer) {
+  std::lock_guard lock(mutex_);
+  admitted_.erase(writer);
+  ignored_.erase(writer);
+  speaks_.erase(writer);
 }
 
 void WriterAdmission::decide_matched(dds_entity_t reader) {
@@ -85,12 +125,30 @@ void WriterAdmission::decide_matched(dds_entity_t reader) {
   for (const auto h : handles) decide(reader, h);
 }
 
+void WriterAdmission::count(std::map<dds_instance_handle_t, uint64_t>& m,
+                            dds_instance_handle_t writer) {
+  const bool known = m.count(writer) > 0;
+  ++m[known || m.size() < kMaxWriters ? writer : 0];
+}
+
 bool WriterAdmission::hear(dds_instance_handle_t writer) {
   std::lock_guard lock(mutex_);
   if (!closed_ || admitted_.count(writer)) return true;
   if (ignored_.count(writer)) return false;
-  const bool known = refused_.count(writer) > 0;
-  ++refused_[known || refused_.size() < kMaxWriters ? writer : 0];
+  count(refused_, writer);
+  return false;
+}
+
+bool WriterAdmission::hear(dds_instance_handle_t writer, uint32_t robot) {
+  std::lock_guard lock(mutex_);
+  if (!closed_) return true;
+  if (!admitted_.count(writer)) {
+    if (!ignored_.count(writer)) count(refused_, writer);
+    return false;
+  }
+  const auto it = speaks_.find(writer);
+  if (it == speaks_.end() || may_speak(it->second, robot)) return true;
+  count(misspoken_, writer);
   return false;
 }
 
@@ -99,6 +157,19 @@ std::map<dds_instance_handle_t, uint64_t> WriterAdmission::take_refused() {
   std::map<dds_instance_handle_t, uint64_t> out;
   out.swap(refused_);
   return out;
+}
+
+std::map<dds_instance_handle_t, uint64_t> WriterAdmission::take_misspoken() {
+  std::lock_guard lock(mutex_);
+  std::map<dds_instance_handle_t, uint64_t> out;
+  out.swap(misspoken_);
+  return out;
+}
+
+std::optional<Speaks> WriterAdmission::speaks(dds_instance_handle_t writer) const {
+  std::lock_guard lock(mutex_);
+  const auto it = speaks_.find(writer);
+  return it == speaks_.end() ? std::nullopt : std::optional<Speaks>(it->second);
 }
 
 bool WriterAdmission::filter(const dds_sample_info_t* info, void* self) {

@@ -93,6 +93,12 @@ Qos& Qos::partition(const std::string& name) {
   dds_qset_partition1(qos_, name.c_str());
   return *this;
 }
+Qos& Qos::partitions(const std::vector<std::string>& names) {
+  std::vector<const char*> ps;
+  for (const auto& n : names) ps.push_back(n.c_str());
+  dds_qset_partition(qos_, static_cast<uint32_t>(ps.size()), ps.data());
+  return *this;
+}
 Qos& Qos::user_data(const std::string& data) {
   dds_qset_userdata(qos_, data.data(), data.size());
   return *this;

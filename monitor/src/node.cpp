@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "ownership_edge.hpp"
@@ -73,9 +74,10 @@ struct MonitorNode::Impl {
   MonitorAnnouncer announcer;  // before the writers: they take its ownership strength
   DdsRunWriter writer;
   RunSupervisor sup;
-  // With a run key, progress and states only from the run's proven sim hosts and agents
-  // (dds/admission.hpp): a stranger's samples never reach the readers nor an instance.
-  dds::WriterAdmission from_hosts_progress, from_hosts_states;
+  // Progress and states only from the run's proven sim hosts and agents (with a run key), each
+  // for the robots it speaks for (dds/admission.hpp, per robot): a stranger's or an insider's
+  // samples for another robot never reach the readers nor seize an instance.
+  std::unique_ptr<dds::WriterAdmission> from_hosts_progress, from_hosts_states;
   dds::WireReader<smart_msg_Progress> progress;
   dds::WireReader<smart_msg_RobotState> states;
   // Ticks and the sim host's status, heard only from its writers once it is known (issue 25: a
@@ -110,10 +112,10 @@ struct MonitorNode::Impl {
         announcer(p, qos, config.run_id, o.resume),
         writer(p, qos, in, o.cell_m, announcer.strength()),
         sup(in, config, writer),
-        from_hosts_progress(dds::admit_roles(p, {"sim", "agent"})),
-        from_hosts_states(dds::admit_roles(p, {"sim", "agent"})),
-        progress(p, qos, from_hosts_progress),
-        states(p, qos, from_hosts_states),
+        from_hosts_progress(dds::WriterAdmission::per_robot(p, {"sim", "agent"})),
+        from_hosts_states(dds::WriterAdmission::per_robot(p, {"sim", "agent"})),
+        progress(p, qos, *from_hosts_progress),
+        states(p, qos, *from_hosts_states),
         clock_in(p, qos),
         clocks(clock_in.reader()),
         status_in(p, qos),
@@ -161,16 +163,22 @@ struct MonitorNode::Impl {
     });
   }
 
-  // Samples a run-key admission kept out, counted against their senders.
+  // Samples an admission kept out, counted against their senders: non-members, and members
+  // writing for robots they do not speak for.
   template <class Reader>
   void count_refused(const char* topic, dds::WriterAdmission& admission, const Reader& reader) {
     for (const auto& [writer, n] : admission.take_refused()) {
       valid(topic, dds::kNotRunMember, reader, writer, n);
     }
+    for (const auto& [writer, n] : admission.take_misspoken()) {
+      const auto speaks = admission.speaks(writer);
+      valid(topic, speaks ? dds::speaks_only(*speaks) : "for a robot it does not speak for", reader,
+            writer, n);
+    }
   }
 
   void read_progress() {
-    count_refused("progress", from_hosts_progress, progress);
+    count_refused("progress", *from_hosts_progress, progress);
     progress.take_each_from([&](const smart_msg_Progress& p, dds_instance_handle_t from) {
       if (!valid("progress", wire::check_progress(p, robots), progress, from)) return;
       if (!valid("progress", senders.progress(p, from, progress), progress, from)) return;
@@ -182,7 +190,7 @@ struct MonitorNode::Impl {
   }
 
   void read_observations() {
-    count_refused("state", from_hosts_states, states);
+    count_refused("state", *from_hosts_states, states);
     states.take_each_from([&](const smart_msg_RobotState& s, dds_instance_handle_t from) {
       if (!valid("state", wire::check_state(s, robots, bounds), states, from)) return;
       if (!sup.on_state({s.robot_id, s.run_id, s.pose.x_m, s.pose.y_m}, now_s())) return;
@@ -270,10 +278,10 @@ struct MonitorNode::Impl {
   // looked up again only when a clock writer came or went.
   uint32_t hosts_matched() {
     if (!config.lockstep) {
-      if (!from_hosts_progress.has_rule()) return progress.subscription_matched().current_count;
       const auto writers = progress.matched_writers();  // a stranger's writer is no host
-      return static_cast<uint32_t>(std::count_if(
-          writers.begin(), writers.end(), [&](auto h) { return from_hosts_progress.admitted(h); }));
+      return static_cast<uint32_t>(std::count_if(writers.begin(), writers.end(), [&](auto h) {
+        return from_hosts_progress->admitted(h);
+      }));
     }
     const auto now = clocks.subscription_matched().current_count;
     if (now != clock_writers_now || senders.sim_known() != sim_was_known) {

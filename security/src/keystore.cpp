@@ -19,10 +19,13 @@ namespace fs = std::filesystem;
 namespace {
 const std::string kSchema = "http://www.omg.org/spec/DDS-SECURITY/20170901/";
 
-std::string topics_xml(const std::vector<std::string>& topics) {
+std::string topics_xml(const std::vector<std::string>& topics,
+                       const std::vector<std::string>& partitions = {"*"}) {
   std::string x = "<topics>";
   for (const auto& t : topics) x += "<topic>" + t + "</topic>";
-  return x + "</topics><partitions><partition>*</partition></partitions>";
+  x += "</topics><partitions>";
+  for (const auto& p : partitions) x += "<partition>" + p + "</partition>";
+  return x + "</partitions>";
 }
 
 std::string t(std::string_view name) { return std::string(name); }
@@ -101,17 +104,21 @@ std::vector<Grant> role_grants(const std::vector<uint32_t>& agent_ids) {
   std::vector<Grant> g{
       {"monitor",
        {t(kActionTopic), t(kClockTopic), monitor_info},
-       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info}},
+       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info},
+       {}},
       {"sim",
        {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), t(kShardTopic),
         "rt/*"},
-       {t(kActionTopic), t(kClockTopic), t(kStateTopic), t(kShardTopic)}},
-      {"viewer", {}, {"*"}},
+       {t(kActionTopic), t(kClockTopic), t(kStateTopic), t(kShardTopic)},
+       {}},
+      {"viewer", {}, {"*"}, {}},
   };
   for (const uint32_t id : agent_ids) {
     g.push_back({"agent-" + std::to_string(id),
                  {t(kProgressTopic), t(kStateTopic)},
-                 {t(kActionTopic), t(kClockTopic)}});
+                 {t(kActionTopic), t(kClockTopic)},
+                 {std::string(smart_msg_RUN_PARTITION_PREFIX) + "*" +
+                  smart_msg_ROBOT_PARTITION_INFIX + std::to_string(id)}});
   }
   return g;
 }
@@ -153,7 +160,11 @@ std::string permissions_xml(const Grant& g, const std::string& not_before,
       not_before + "</not_before><not_after>" + not_after + "</not_after></validity>\n";
   if (!g.publish.empty() || !g.subscribe.empty()) {
     x += "<allow_rule>\n<domains><id_range><min>0</min><max>230</max></id_range></domains>\n";
-    if (!g.publish.empty()) x += "<publish>" + topics_xml(g.publish) + "</publish>\n";
+    if (!g.publish.empty()) {
+      const auto& parts =
+          g.publish_partitions.empty() ? std::vector<std::string>{"*"} : g.publish_partitions;
+      x += "<publish>" + topics_xml(g.publish, parts) + "</publish>\n";
+    }
     if (!g.subscribe.empty()) x += "<subscribe>" + topics_xml(g.subscribe) + "</subscribe>\n";
     x += "</allow_rule>\n";
   }

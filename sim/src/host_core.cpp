@@ -29,8 +29,8 @@ HostCore::HostCore(const dds::Participant& p, const dds::QosProfile& qos, const 
       node(p, qos, starts.size(), bounds),
       clock_out(p, qos),
       status_out(p, qos),
-      from_agents(dds::admit_roles(p, {"agent"})),
-      states_in(p, qos, from_agents),
+      from_agents(dds::WriterAdmission::per_robot(p, {"agent"})),
+      states_in(p, qos, *from_agents),
       pacer(o.clock == ClockMode::kLockstep ? o.real_time_factor : 0, o.sim.control_period_s),
       windows(starts.size()) {
   node.set_link(qos.link);  // windows and progress travel over the modelled link
@@ -69,10 +69,16 @@ bool HostCore::stop_of_this_run(const wire::Tick& answer) const {
 }
 
 void HostCore::track_external_robots() {
-  for (const auto& [writer, n] : from_agents.take_refused()) {
+  for (const auto& [writer, n] : from_agents->take_refused()) {
     if (rejected_states.count("state", dds::kNotRunMember, {}, n)) {
       spdlog::warn("sim host: {} state samples refused: {}", n, dds::kNotRunMember);
     }
+  }
+  for (const auto& [writer, n] : from_agents->take_misspoken()) {
+    const auto speaks = from_agents->speaks(writer);
+    const auto why = speaks ? dds::speaks_only(*speaks) : std::string("for another robot");
+    if (rejected_states.count("state", why, {}, n))
+      spdlog::warn("sim host: state refused: {}", why);
   }
   states_in.take_each([&](const smart_msg_RobotState& s) {
     if (auto why = wire::check_state(s, fleet.robots(), bounds); !why.empty()) {

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,8 +74,9 @@ struct HostCore {
   agent::AgentNode node;  // drops windows that fail the wire checks (robot ids, NaN, off-map)
   dds::WireWriter<smart_msg_Clock> clock_out;
   dds::WireWriter<smart_msg_SimStatus> status_out;
-  dds::WriterAdmission from_agents;                 // before states_in: its filter
-  dds::WireReader<smart_msg_RobotState> states_in;  // external robots' poses (agents only)
+  // External robots' poses: agents only (with a run key), each for its own robots.
+  std::unique_ptr<dds::WriterAdmission> from_agents;  // before states_in: its filter
+  dds::WireReader<smart_msg_RobotState> states_in;
   Pacer pacer;                // lock-step: periods no faster than opt.real_time_factor x real time
   wire::SyncCounter windows;  // per robot, the end of the latest window received
   uint64_t finished_total = 0;  // actions this host reported finished (sum over robots)

@@ -7,12 +7,16 @@
 #include <httplib.h>
 
 #include <atomic>
+#include <fstream>
+#include <memory>
 #include <thread>
 
 #include "smart/dds/action_window.hpp"
 #include "smart/dds/error.hpp"
+#include "smart/dds/participant_directory.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/security/keystore.hpp"
+#include "smart/wire/run_proof.hpp"
 #include "support/forged_samples.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
@@ -21,6 +25,7 @@ namespace smart::test {
 namespace {
 
 using namespace std::chrono_literals;
+using ::testing::HasSubstr;
 
 class SecureFaults : public ::testing::Test {
  protected:
@@ -171,6 +176,70 @@ TEST_F(SecureFaults, TheWatchSeesASecuredRunAsTheViewer) {
   EXPECT_EQ(seen, 20u) << slurp(out);
   EXPECT_TRUE(monitor.wait(60s).has_value());
   std::filesystem::remove_all(data);
+}
+
+// Under --security the keystore's agent-1 identity drove the progress and states of every robot
+// (7 collisions). Its permissions now grant robot 1's partition only: it cannot write in the
+// run's own partition nor in another robot's, and what it writes in its own partition for other
+// robots, at the strongest strength, is refused in the monitor's receive path without seizing
+// their instances. It holds the run key too (an insider of a mixed run): nothing else stops it.
+TEST_F(SecureFaults, AnAgentKeyWritesOnlyItsOwnRobotsProgressAndStates) {
+  const int d = kSecureInsider;
+  const auto key_file = temp_file("insider.key");
+  std::ofstream(key_file) << "00112233445566778899aabbccddeeff00112233445566778899aabbccddeeff\n";
+  auto config = loopback();
+  config.security = security::identity_files(*keystore_, "agent-1");
+  dds::Domain domain(d, config);
+  dds::Participant insider(domain, "insider");
+  insider.prove(wire::parse_run_key(slurp(key_file), key_file.string()), "agent");
+  const auto qos = dds::find_qos_profile("lan");
+  EXPECT_THROW(dds::WireWriter<smart_msg_Progress>(insider, qos), dds::Error);
+  EXPECT_THROW((dds::WireWriter<smart_msg_Progress>(insider, qos, std::vector<uint32_t>{0})),
+               dds::Error);
+  const auto own = [&](auto sample) {  // a writer in robot 1's partition, strongest
+    using T = decltype(sample);
+    auto q = dds::wire_qos<T>(insider, qos, 2147483647);
+    q.partitions({insider.robot_partition(1)});
+    return std::make_pair(
+        std::make_unique<dds::Topic<T>>(insider, std::string(dds::WireTopic<T>::name)), q);
+  };
+  auto [progress_topic, progress_qos] = own(smart_msg_Progress{});
+  dds::Writer<smart_msg_Progress> progress(insider, *progress_topic, progress_qos);
+  auto [state_topic, state_qos] = own(smart_msg_RobotState{});
+  dds::Writer<smart_msg_RobotState> states(insider, *state_topic, state_qos);
+  std::atomic<bool> done{false};
+  std::thread attack([&] {
+    while (!done) {
+      for (uint32_t r = 0; r < 20; ++r) {
+        if (r == 1) continue;  // its own robot it may speak for
+        progress.write(smart_msg_Progress{r, 0, 10000, -1});
+        smart_msg_RobotState s{};
+        s.robot_id = r;
+        s.pose = {1.0, 1.0, 0.0};
+        states.write(s);
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+  });
+  auto a = args("run", d, true, true);
+  a.insert(a.end(),
+           {"--run", "insider", "--run-key", key_file.string(), "--real-time-factor", "40"});
+  const auto r = run_smart(a, 120s, "secure_insider", true);
+  done = true;
+  attack.join();
+  std::filesystem::remove(key_file);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = r.last_json();
+  EXPECT_TRUE(j["success"].get<bool>()) << j["error"];
+  EXPECT_EQ(j["collisions"], 0);
+  dds_guid_t g;
+  ASSERT_EQ(dds_get_guid(insider.handle(), &g), DDS_RETCODE_OK);
+  ASSERT_EQ(j["suspected_intruders"].size(), 1u) << j.dump();
+  const auto& suspect = j["suspected_intruders"][0];
+  EXPECT_THAT(suspect["sender"].get<std::string>(), HasSubstr(dds::guid_prefix(g)));
+  EXPECT_GT(suspect["samples"]["progress"].get<int>(), 0) << suspect.dump();
+  EXPECT_GT(suspect["samples"]["state"].get<int>(), 0) << suspect.dump();
+  EXPECT_THAT(suspect["first_reason"].get<std::string>(), HasSubstr("robot(s) 1 only"));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // over real DDS a stranger's flood that never displaces the admitted writer's keep-last sample.
 #include "smart/dds/admission.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -17,6 +18,7 @@ namespace smart::dds {
 namespace {
 
 using namespace std::chrono_literals;
+using ::testing::HasSubstr;
 
 TEST(WriterAdmission, OpenItHearsEveryoneClosedOnlyTheAdmittedAndCountsTheRest) {
   WriterAdmission a;
@@ -176,6 +178,64 @@ TEST(WriterAdmission, ByRuleProvenWritersAreHeardFromTheirFirstSampleACopiedProo
   EXPECT_EQ(heard.count(2), 1u) << "the first sample of a writer matched later was lost";
   EXPECT_EQ(refused, 100u);  // the copy's; the sim's samples are ignored, not counted
   EXPECT_EQ(refused_writers.size(), 1u);
+}
+
+// Per robot (issue 25: "an insider key is its robot's only"): a writer in robot 3's partition is
+// heard for robot 3 only, and though strongest it seizes no other robot's instance: the sim
+// host's samples for robot 4 still arrive; a sim host's writer speaks for any robot, a wildcard
+// writer's for none. Without a run key every writer is a member.
+TEST(WriterAdmission, PerRobotAWriterIsHeardOnlyForItsRobotsAndSeizesNoOtherInstance) {
+  Domain domain(test::kRobotSpeakers, test::loopback());
+  Participant agent_p(domain, "r1"), sim_p(domain, "r1"), stranger_p(domain, "*"),
+      reader_p(domain, "r1");
+  const auto qos = find_qos_profile("lan");
+  auto agent_qos = wire_qos<smart_msg_Progress>(agent_p, qos, 2147483647);
+  agent_qos.partitions({agent_p.robot_partition(3)});
+  Topic<smart_msg_Progress> agent_topic(agent_p, std::string(WireTopic<smart_msg_Progress>::name));
+  Writer<smart_msg_Progress> agent(agent_p, agent_topic, agent_qos);
+  WireWriter<smart_msg_Progress> sim(sim_p, qos);
+  WireWriter<smart_msg_Progress> stranger(stranger_p, qos);
+  const auto admission = WriterAdmission::per_robot(reader_p, {"sim", "agent"});
+  WireReader<smart_msg_Progress> reader(reader_p, qos, *admission);
+  for (auto* w : {&agent, static_cast<Writer<smart_msg_Progress>*>(&sim),
+                  static_cast<Writer<smart_msg_Progress>*>(&stranger)}) {
+    ASSERT_TRUE(w->wait_for_readers(1, 30s));
+  }
+  for (int i = 0; i < 100; ++i) {
+    agent.write(smart_msg_Progress{4, 1, 50, -1});  // not its robot, strongest
+    stranger.write(smart_msg_Progress{6, 1, 50, -1});
+  }
+  agent.write(smart_msg_Progress{3, 1, 7, -1});  // its own robot
+  std::map<uint32_t, int32_t> heard;
+  std::map<std::string, uint64_t> misspoken;  // by reason
+  uint64_t refused = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  const auto done = [&] {
+    uint64_t n = 0;
+    for (const auto& [why, k] : misspoken) n += k;
+    return heard[4] == 9 && heard[3] == 7 && n >= 200;
+  };
+  for (int32_t seq = 0; !done(); seq = std::min(seq + 1, 9)) {
+    sim.write(smart_msg_Progress{4, 1, seq, -1});
+    reader.take_each([&](const smart_msg_Progress& p) {
+      EXPECT_NE(p.finished_seq, 50) << "robot " << p.robot_id << ": a sample it may not speak for";
+      heard[p.robot_id] = p.finished_seq;
+    });
+    for (const auto& [writer, n] : admission->take_misspoken()) {
+      ASSERT_TRUE(admission->speaks(writer));
+      misspoken[speaks_only(*admission->speaks(writer))] += n;
+    }
+    for (const auto& [writer, n] : admission->take_refused()) refused += n;
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "robot 4 at " << heard[4];
+    std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_EQ(misspoken.size(), 2u);
+  for (const auto& [why, n] : misspoken) {
+    EXPECT_EQ(n, 100u) << why;
+    EXPECT_THAT(why, ::testing::AnyOf(HasSubstr("speaks for robot(s) 3 only"),
+                                      HasSubstr("outside this run's partition")));
+  }
+  EXPECT_EQ(refused, 0u);  // no run key: every writer is a member
 }
 
 }  // namespace

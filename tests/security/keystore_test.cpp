@@ -25,6 +25,22 @@ TEST(Security, AViewerMayReadEverythingAndPublishNothing) {
                                    "</partition></partitions></publish>")));
 }
 
+// Issue 25: an agent-<id> key spoke for every robot. It may publish in its robot's partitions
+// only (idl/smart.idl, "Runs"); subscribing stays open (windows and clock are the run's).
+TEST(Security, AnAgentPublishesOnlyInItsOwnRobotsPartitions) {
+  const auto grants = role_grants({4, 12});
+  const auto agent = permissions_xml(grants[4], "a", "b");
+  EXPECT_THAT(agent, HasSubstr("CN=agent-12"));
+  EXPECT_THAT(agent, HasSubstr("<topic>smart/state</topic></topics><partitions><partition>"
+                               "smart.run.*.robot.12</partition></partitions></publish>"));
+  EXPECT_THAT(agent, Not(HasSubstr("robot.4<")));
+  EXPECT_THAT(agent, HasSubstr("</topics><partitions><partition>*</partition></partitions>"
+                               "</subscribe>"));
+  const auto sim = permissions_xml(grants[1], "a", "b");
+  EXPECT_THAT(sim, HasSubstr("</topics><partitions><partition>*</partition></partitions>"
+                             "</publish>"));
+}
+
 TEST(Security, GovernanceRequiresAuthenticationAndEncryptsEveryTopic) {
   const auto g = governance_xml();
   EXPECT_THAT(g, HasSubstr("<allow_unauthenticated_participants>false"));

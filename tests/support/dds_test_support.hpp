@@ -127,6 +127,8 @@ enum DomainId : int {
   kIntruderProgress = 221,
   kAdmissionProof = 222,
   kRunKeyProve = 223,
+  kRobotSpeakers = 224,
+  kSecureInsider = 225,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

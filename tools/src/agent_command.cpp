@@ -152,7 +152,9 @@ agent::LifecycleResult deactivate_all(std::vector<Robot>& robots) {
 // activate or stop ends the command (the others stopped first): exit 3 with its message.
 bool execute(const dds::QosProfile& profile, const dds::Participant& participant,
              std::vector<Robot>& robots, double period_s) {
-  agent::AgentNode node(participant, profile);
+  std::vector<uint32_t> ids;  // it speaks for these robots only (their partitions)
+  for (const auto& r : robots) ids.push_back(r.agent->robot_id());
+  agent::AgentNode node(participant, profile, 0, std::nullopt, ids);
   node.set_link(profile.link);
   for (auto& r : robots) {
     node.host(*r.agent);
@@ -171,6 +173,13 @@ int run_agent(const AgentOptions& o) {
   const auto file = robot_file(o.io);
   const auto model = agent::load_robot_model(file);
   const auto profile = run_qos_profile(o.dds);
+  if (!o.dds.security.empty() && ids.size() > 1) {
+    // Its identity's permissions grant one robot's partition (security/keystore.hpp).
+    throw std::invalid_argument(
+        "--security with " + std::to_string(ids.size()) +
+        " robots: an agent identity speaks for its own robot only; start one `smart agent` per "
+        "robot, each with its agent-<id> identity");
+  }
   dds::Domain domain(o.dds.domain,
                      domain_config(o.dds, profile, "agent-" + std::to_string(ids.front())));
   dds::Participant participant(domain, o.dds.run);

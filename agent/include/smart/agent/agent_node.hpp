@@ -61,9 +61,12 @@ struct WindowInfo {
 class AgentNode {
  public:
   // robots: the fleet size when known (0: not known here); bounds: the map's, when known.
-  // Windows that fail wire::check_window never reach an agent nor `accept`.
+  // Windows that fail wire::check_window never reach an agent nor `accept`. speaks_for: the
+  // robots whose partitions progress and states are written in (`smart agent`: its robots;
+  // idl/smart.idl, "Runs"); empty: the run's partition (a sim host, which speaks for any robot).
   AgentNode(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots = 0,
-            std::optional<wire::Bounds> bounds = std::nullopt);
+            std::optional<wire::Bounds> bounds = std::nullopt,
+            const std::vector<uint32_t>& speaks_for = {});
 
   // Hosts `agent` (robot agent.robot_id()); the agent must outlive the node. A robot arriving
   // from another host (a sim shard) comes with what its previous host last reported (progress is

@@ -15,6 +15,11 @@
 //   runs before proxy_writer_add_connection), and once after creation for the writers matched
 //   while the reader was being made. A proven writer of another role is ignored uncounted (the
 //   sim's own ticks on the clock topic an agent reads); everyone else is refused.
+// On a per-robot topic (progress, states; idl/smart.idl "Runs") the admission also holds each
+// admitted writer to the robots its partitions name (robot_speakers.hpp), sample by sample in
+// the same filter, so an insider's key (an agent-<id> identity, the run key) neither moves
+// another robot nor seizes its instance; there every writer is decided at match, with the run
+// key's rule or, without a key, admitting all.
 // The filter and the listener run on Cyclone's threads: the state is behind a mutex.
 #pragma once
 
@@ -23,12 +28,15 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "smart/dds/participant.hpp"
+#include "smart/dds/robot_speakers.hpp"
 
 namespace smart::dds {
 
@@ -50,6 +58,10 @@ class WriterAdmission {
   static constexpr std::size_t kMaxWriters = 64;
   WriterAdmission() = default;
   explicit WriterAdmission(AdmitRule rule);
+  // For a per-robot topic of `participant`'s run: members with `roles` (every writer without a
+  // run key), each heard only for the robots its partitions name.
+  static std::unique_ptr<WriterAdmission> per_robot(const Participant& participant,
+                                                    std::vector<std::string> roles);
   WriterAdmission(const WriterAdmission&) = delete;
   WriterAdmission& operator=(const WriterAdmission&) = delete;
 
@@ -62,21 +74,37 @@ class WriterAdmission {
   void decide(dds_entity_t reader, dds_instance_handle_t writer);
   // By rule: decides every writer matched on `reader` now.
   void decide_matched(dds_entity_t reader);
-  // The filter's decision for one sample (counted when refused).
+  // The filter's decision for one sample (counted when refused); with the sample's robot on a
+  // per-robot topic.
   bool hear(dds_instance_handle_t writer);
-  // Samples refused since the last call, by writer.
+  bool hear(dds_instance_handle_t writer, uint32_t robot);
+  // Samples refused since the last call, by writer: from non-members; from members for robots
+  // they do not speak for.
   std::map<dds_instance_handle_t, uint64_t> take_refused();
+  std::map<dds_instance_handle_t, uint64_t> take_misspoken();
+  // Whom an admitted writer speaks for (per-robot topics; nothing: unknown or any).
+  std::optional<Speaks> speaks(dds_instance_handle_t writer) const;
   // For dds_set_topic_filter_extended (arg: this).
   static bool filter(const dds_sample_info_t* info, void* self);
+  template <class T>
+  static bool filter_robot(const void* sample, const dds_sample_info_t* info, void* self) {
+    return static_cast<WriterAdmission*>(self)->hear(info->publication_handle,
+                                                     static_cast<const T*>(sample)->robot_id);
+  }
   // For dds_lset_subscription_matched_arg (arg: this).
   static void on_matched(dds_entity_t reader, dds_subscription_matched_status_t status, void* self);
 
  private:
+  static void count(std::map<dds_instance_handle_t, uint64_t>& m, dds_instance_handle_t writer);
+  void forget(dds_instance_handle_t writer);
+
   AdmitRule rule_;
+  std::string run_partition_;  // per-robot topics: the run whose robot partitions count
   mutable std::mutex mutex_;
   bool closed_ = false;
   std::set<dds_instance_handle_t> admitted_, ignored_;
-  std::map<dds_instance_handle_t, uint64_t> refused_;
+  std::map<dds_instance_handle_t, Speaks> speaks_;
+  std::map<dds_instance_handle_t, uint64_t> refused_, misspoken_;
 };
 
 }  // namespace smart::dds

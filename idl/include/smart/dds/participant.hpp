@@ -6,6 +6,7 @@
 
 #include <dds/dds.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -25,6 +26,13 @@ class Participant {
   const std::string& run() const { return run_; }
   // The DDS partition of the run's SMART topics.
   std::string run_partition() const { return smart_msg_RUN_PARTITION_PREFIX + run_; }
+  // A robot's own partition in the run (idl/smart.idl, "Runs"), and the pattern of all of them.
+  std::string robot_partition(uint32_t robot) const {
+    return run_partition() + smart_msg_ROBOT_PARTITION_INFIX + std::to_string(robot);
+  }
+  std::string robot_partitions() const {
+    return run_partition() + smart_msg_ROBOT_PARTITION_INFIX + "*";
+  }
   // Proves this participant a member of its run in `role` (monitor, sim, agent): call before
   // making writers. Without it (no run key) nothing is proven and nothing is checked.
   void prove(const wire::RunKey& key, const std::string& role);

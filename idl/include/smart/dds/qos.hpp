@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace smart::dds {
 
@@ -49,6 +50,7 @@ class Qos {
   // The one partition this reader or writer is in (on a reader/writer made directly on the
   // participant, Cyclone applies it to the implicit publisher/subscriber).
   Qos& partition(const std::string& name);
+  Qos& partitions(const std::vector<std::string>& names);
   // USER_DATA (DDS 1.4, 2.2.3.1): opaque bytes discovery delivers with the endpoint (a writer's
   // run proof, smart/wire/run_proof.hpp).
   Qos& user_data(const std::string& data);

@@ -24,30 +24,32 @@ SMART_DDS_TOPIC_TYPE(smart_msg_ShardExchange)
 namespace smart::dds {
 
 // static constexpr std::string_view name; static constexpr TopicRole role; static constexpr bool
-// exclusive (ownership, idl/smart.idl "Ownership").
+// exclusive (ownership, idl/smart.idl "Ownership"); static constexpr bool per_robot (written in
+// robot partitions by agents, idl/smart.idl "Runs").
 template <class T>
 struct WireTopic;
 
-#define SMART_DDS_WIRE_TOPIC(CType, Name, Role, Exclusive) \
-  template <>                                              \
-  struct WireTopic<CType> {                                \
-    static constexpr std::string_view name = Name;         \
-    static constexpr TopicRole role = TopicRole::Role;     \
-    static constexpr bool exclusive = Exclusive;           \
+#define SMART_DDS_WIRE_TOPIC(CType, Name, Role, Exclusive, PerRobot) \
+  template <>                                                        \
+  struct WireTopic<CType> {                                          \
+    static constexpr std::string_view name = Name;                   \
+    static constexpr TopicRole role = TopicRole::Role;               \
+    static constexpr bool exclusive = Exclusive;                     \
+    static constexpr bool per_robot = PerRobot;                      \
   }
 
-SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction, true);
-SMART_DDS_WIRE_TOPIC(smart_msg_Progress, smart_msg_TOPIC_PROGRESS, kProgress, true);
-SMART_DDS_WIRE_TOPIC(smart_msg_RobotState, smart_msg_TOPIC_STATE, kState, true);
-SMART_DDS_WIRE_TOPIC(smart_msg_Clock, smart_msg_TOPIC_CLOCK, kClock, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_ActionWindow, smart_msg_TOPIC_ACTION, kAction, true, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_Progress, smart_msg_TOPIC_PROGRESS, kProgress, true, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_RobotState, smart_msg_TOPIC_STATE, kState, true, true);
+SMART_DDS_WIRE_TOPIC(smart_msg_Clock, smart_msg_TOPIC_CLOCK, kClock, true, false);
 // Shared: the monitor hears the sim host's status through a writer admission (admission.hpp),
 // which a stronger stranger cannot seize as it could an exclusively owned instance (issue 25).
-SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, false, false);
 // Latest per monitor, kept for late joiners: the status role's QoS; shared, every monitor is
 // seen.
-SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false, false);
 // Between the shards of one sim; keyed by shard, shared: every shard hears every other.
-SMART_DDS_WIRE_TOPIC(smart_msg_ShardExchange, smart_msg_TOPIC_SHARD, kShard, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_ShardExchange, smart_msg_TOPIC_SHARD, kShard, false, false);
 #undef SMART_DDS_WIRE_TOPIC
 
 inline constexpr std::string_view kActionTopic = WireTopic<smart_msg_ActionWindow>::name;

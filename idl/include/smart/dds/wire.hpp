@@ -5,7 +5,9 @@
 // Reader<T> in every other respect.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "smart/dds/admission.hpp"
 #include "smart/dds/qos_profile.hpp"
@@ -24,8 +26,13 @@ struct WireTopicHolder {
   WireTopicHolder(const Participant& p, WriterAdmission& admission)
       : topic_(p, std::string(WireTopic<T>::name)) {
     dds_topic_filter f{};
-    f.mode = DDS_TOPIC_FILTER_SAMPLEINFO_ARG;
-    f.f.sampleinfo_arg = &WriterAdmission::filter;
+    if constexpr (WireTopic<T>::per_robot) {  // the sample's robot too (admission.hpp)
+      f.mode = DDS_TOPIC_FILTER_SAMPLE_SAMPLEINFO_ARG;
+      f.f.sample_sampleinfo_arg = &WriterAdmission::filter_robot<T>;
+    } else {
+      f.mode = DDS_TOPIC_FILTER_SAMPLEINFO_ARG;
+      f.f.sampleinfo_arg = &WriterAdmission::filter;
+    }
     f.arg = &admission;
     check(dds_set_topic_filter_extended(topic_.handle(), &f),
           "setting the writer admission filter on '" + topic_.name() + "'");
@@ -46,13 +53,38 @@ Qos wire_qos(const Participant& participant, const QosProfile& profile,
   return q;
 }
 
-// Writes with the hosts' ownership strength unless given another (a monitor's).
+// A reader's: a per-robot topic is read in the run's partition and in its robots' partitions.
+template <class T>
+Qos wire_reader_qos(const Participant& participant, const QosProfile& profile) {
+  Qos q = wire_qos<T>(participant, profile);
+  if constexpr (WireTopic<T>::per_robot) {
+    q.partitions({participant.run_partition(), participant.robot_partitions()});
+  }
+  return q;
+}
+
+// Writes with the hosts' ownership strength unless given another (a monitor's); in the run's
+// partition, or for a per-robot topic in the partitions of the robots it speaks for.
 template <class T>
 class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
  public:
   WireWriter(const Participant& p, const QosProfile& profile, int32_t strength = kHostStrength)
       : detail::WireTopicHolder<T>(p),
         Writer<T>(p, this->topic_, wire_qos<T>(p, profile, strength)) {}
+  WireWriter(const Participant& p, const QosProfile& profile, const std::vector<uint32_t>& robots)
+      : detail::WireTopicHolder<T>(p), Writer<T>(p, this->topic_, robots_qos(p, profile, robots)) {}
+
+ private:
+  static Qos robots_qos(const Participant& p, const QosProfile& profile,
+                        const std::vector<uint32_t>& robots) {
+    static_assert(WireTopic<T>::per_robot, "only per-robot topics are written per robot");
+    Qos q = wire_qos<T>(p, profile);
+    if (robots.empty()) return q;
+    std::vector<std::string> names;
+    for (const uint32_t r : robots) names.push_back(p.robot_partition(r));
+    q.partitions(names);
+    return q;
+  }
 };
 
 // With an admission (admission.hpp), it hears only the writers admitted there (by hand once
@@ -63,10 +95,10 @@ class WireReader : private detail::WireTopicHolder<T>, public Reader<T> {
   WireReader(const Participant& p, const QosProfile& profile,
              typename Reader<T>::Callback on_data_available = nullptr)
       : detail::WireTopicHolder<T>(p),
-        Reader<T>(p, this->topic_, wire_qos<T>(p, profile), std::move(on_data_available)) {}
+        Reader<T>(p, this->topic_, wire_reader_qos<T>(p, profile), std::move(on_data_available)) {}
   WireReader(const Participant& p, const QosProfile& profile, WriterAdmission& admission)
       : detail::WireTopicHolder<T>(p, admission),
-        Reader<T>(p, this->topic_, wire_qos<T>(p, profile), admission) {}
+        Reader<T>(p, this->topic_, wire_reader_qos<T>(p, profile), admission) {}
 };
 
 }  // namespace smart::dds

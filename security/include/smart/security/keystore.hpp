@@ -27,6 +27,10 @@ struct Grant {
   std::string identity;  // directory name and CN
   std::vector<std::string> publish;
   std::vector<std::string> subscribe;
+  // Partitions (fnmatch patterns) it may publish in; empty: any. An agent-<id> gets only its
+  // robot's partitions "smart.run.*.robot.<id>" (idl/smart.idl, "Runs"), so its key speaks for
+  // its robot alone (issue 25).
+  std::vector<std::string> publish_partitions;
 };
 
 std::string subject_of(const std::string& identity);  // "CN=<identity>,O=SMART-DDS"
