@@ -19,6 +19,7 @@
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
+#include "smart/serve/upload_budget.hpp"
 #include "uploads.hpp"
 
 namespace smart::serve {
@@ -57,6 +58,16 @@ bool loopback(const std::string& address) {
 }
 
 // Live streams open now; the guard counts one while its stream lives.
+// The request's Content-Length, when it has a valid one.
+std::optional<std::size_t> content_length(const httplib::Request& req) {
+  const auto text = req.get_header_value("Content-Length");
+  if (text.empty() || text.size() > 18 ||
+      text.find_first_not_of("0123456789") != std::string::npos) {
+    return std::nullopt;
+  }
+  return static_cast<std::size_t>(std::stoull(text));
+}
+
 struct StreamSlot {
   std::shared_ptr<std::atomic<std::size_t>> open;
   bool taken = false;
@@ -70,8 +81,53 @@ struct Server::Impl {
   RunStore store;
   std::atomic<bool> stopping{false};
   std::shared_ptr<std::atomic<std::size_t>> streams = std::make_shared<std::atomic<std::size_t>>(0);
+  UploadBudget uploads;  // what all uploads being read hold at once
 
-  explicit Impl(ServeOptions o) : opt(std::move(o)), store(opt.data_dir) {}
+  explicit Impl(ServeOptions o)
+      : opt(std::move(o)), store(opt.data_dir), uploads(opt.max_upload_memory_bytes) {}
+
+  // An upload's multipart fields, read as they arrive within the upload budget (one copy, not
+  // cpp-httplib's body plus its parsed fields) and only once the writer may write: the request
+  // with its files, or nothing (answered: 400, 401/403, 503 when the budget is spent).
+  std::optional<httplib::Request> read_upload(const httplib::Request& req, httplib::Response& res,
+                                              const httplib::ContentReader& content) {
+    if (!may_write(req, res)) return std::nullopt;
+    if (!req.is_multipart_form_data()) {
+      reply(res, 400, {{"error", "expected a multipart/form-data upload (an HTML form's files)"}});
+      return std::nullopt;
+    }
+    httplib::Request out = req;
+    UploadBudget::Lease lease(uploads);
+    // The whole upload is reserved before its body is read, when its length is known: first come,
+    // first served (taking bit by bit, concurrent uploads starved each other); else as it comes.
+    const auto length = content_length(req);
+    bool over = length && !lease.take(*length);
+    auto field = out.files.end();
+    const bool read = content(
+        [&](const httplib::MultipartFormData& f) {
+          field = out.files.emplace(f.name, f);
+          return true;
+        },
+        [&](const char* data, std::size_t n) {
+          // Past the budget the rest is read and dropped (at most --max-upload-mb), so that the
+          // client is still listening for the 503.
+          over = over || (!length && !lease.take(n));
+          if (!over && field != out.files.end()) field->second.content.append(data, n);
+          return true;
+        });
+    if (over && read) {
+      reply(res, 503,
+            {{"error", "the server is reading other uploads (" +
+                           std::to_string(uploads.capacity() >> 20) +
+                           " MB at once); send it again in a moment"}});
+      return std::nullopt;
+    }
+    if (!read) {
+      reply(res, 400, {{"error", "the upload was cut off or is not valid multipart/form-data"}});
+      return std::nullopt;
+    }
+    return out;
+  }
 
   fs::path dir(const std::string& id) const { return store.dir(id); }
   std::optional<RunEntry> entry(const std::string& id) const { return store.entry(id); }
@@ -413,7 +469,10 @@ struct Server::Impl {
     watch_routes();
     http.Get("/api/robots", [this](const auto&, auto& res) { get_robots(res); });
     http.set_payload_max_length(opt.max_upload_bytes);
-    http.Post("/api/runs", [this](const auto& req, auto& res) { post_run(req, res); });
+    http.Post("/api/runs", [this](const httplib::Request& req, httplib::Response& res,
+                                  const httplib::ContentReader& content) {
+      if (const auto upload = read_upload(req, res, content)) post_run(*upload, res);
+    });
     http.Get("/api/runs", [this](const auto&, auto& res) {
       json list = json::array();
       for (const auto& e : store.list()) list.push_back(entry_json(e));
@@ -433,7 +492,10 @@ struct Server::Impl {
     http.Get(R"(/api/runs/([^/]+)/robots/([^/]+))", [this](const auto& req, auto& res) {
       get_robot(req.matches[1], req.matches[2], res);
     });
-    http.Post("/api/results", [this](const auto& req, auto& res) { post_results(req, res); });
+    http.Post("/api/results", [this](const httplib::Request& req, httplib::Response& res,
+                                     const httplib::ContentReader& content) {
+      if (const auto upload = read_upload(req, res, content)) post_results(*upload, res);
+    });
     http.Get(R"(/api/runs/([^/]+)/progress)",
              [this](const auto& req, auto& res) { get_progress(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/results/([^/]+))", [this](const auto& req, auto& res) {

@@ -381,6 +381,29 @@ TEST_F(Serve, AResultsUploadNestedDeepOrMakingAHugeRecordingIsRefusedAndLeavesNo
   }
 }
 
+// Eight concurrent 60 MB uploads took 1.4 GB: cpp-httplib held each body and then its parsed
+// fields. Uploads are now read field by field within one memory budget for all of them; past it
+// the server answers 503 (retry later), keeps nothing and stays up.
+TEST_F(Serve, UploadsPastTheMemoryBudgetGet503AndLeaveNothing) {
+  start({"--max-upload-memory-mb", "1"});
+  std::string states = "t_s,robot,x_m,y_m,yaw_rad\n";
+  while (states.size() < (3u << 19)) states += "0.5,0,1.25,1.25,0\n";  // 1.5 MB
+  httplib::MultipartFormDataItems big{{"files", R"({"robots": 1})", "summary.json", ""},
+                                      {"files", states, "states.csv", ""},
+                                      {"map", "type octile", "m.map", ""}};
+  const auto refused = client().Post("/api/results", big);
+  ASSERT_TRUE(refused) << "the server went down";
+  EXPECT_EQ(refused->status, 503);
+  EXPECT_THAT(refused->body, HasSubstr("reading other uploads (1 MB at once)"));
+  const auto small = client().Post("/api/results", {{"files", "{}", "summary.json", ""}});
+  ASSERT_TRUE(small);
+  EXPECT_EQ(small->status, 400);  // within the budget: read, and refused for what it is
+  for (const auto& e : std::filesystem::directory_iterator(data_)) {
+    EXPECT_EQ(e.path().filename().string().rfind("upload-", 0), std::string::npos)
+        << "a refused upload left " << e.path();
+  }
+}
+
 // A 500 put the exception's text in a header; now it says where to look, and the log says more.
 TEST_F(Serve, AnInternalErrorAnswersWithoutItsExceptionText) {
   const auto results = temp_file("serve_error_results");

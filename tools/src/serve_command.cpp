@@ -18,6 +18,7 @@ struct ServeCliOptions {
   serve::ServeOptions serve;
   DdsOptions dds;
   double max_upload_mb = 64;
+  double max_upload_memory_mb = 256;
   std::vector<std::filesystem::path> open;  // results folders to replay
   bool watch = false;
 };
@@ -57,6 +58,7 @@ int serve_runs(ServeCliOptions o) {
   s.config_dir =
       std::filesystem::path(find_config_file("robots", "footbot")).parent_path().parent_path();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mb * (1 << 20));
+  s.max_upload_memory_bytes = static_cast<std::size_t>(o.max_upload_memory_mb * (1 << 20));
   s.domain = o.dds.domain;
   s.qos = o.dds.qos;
   const auto watch = start_watch(o);
@@ -94,6 +96,11 @@ void register_serve_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-upload-mb", o->max_upload_mb, "largest upload accepted")
       ->check(finite_in(0.001, 4096))
+      ->capture_default_str();
+  cmd->add_option("--max-upload-memory-mb", o->max_upload_memory_mb,
+                  "memory all uploads being read at once may hold; past it uploads get 503 "
+                  "(retry later)")
+      ->check(finite_in(0.001, 65536))
       ->capture_default_str();
   cmd->add_flag("--watch", o->watch,
                 "also show what is live on the DDS domain (every run, or --run NAME), read-only: "

@@ -53,6 +53,8 @@ struct ServeOptions {
   std::filesystem::path config_dir;  // robot models offered (config/robots)
   std::size_t max_running = 1;
   std::size_t max_upload_bytes = 64u << 20;
+  // What all uploads being read at once may hold (upload_budget.hpp); past it: 503.
+  std::size_t max_upload_memory_bytes = 256u << 20;
   // Bounds no client may exceed (issue 25: 8 slow connections or 8 open live streams froze the
   // API; the run queue was unbounded): request threads, live streams open at once, runs queued.
   std::size_t threads = 64;
