@@ -83,6 +83,7 @@ TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
   EXPECT_EQ(csv.find("nan"), std::string::npos);
   EXPECT_EQ(csv.find(",4000,"), std::string::npos);
   EXPECT_EQ(sim.wait(30s).value_or(-1), 0);
+  std::filesystem::remove_all(out);  // it was left in the temporary folder after every run
 }
 
 }  // namespace
