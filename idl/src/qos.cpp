@@ -95,6 +95,7 @@ Qos& Qos::partition(const std::string& name) {
 }
 Qos& Qos::partitions(const std::vector<std::string>& names) {
   std::vector<const char*> ps;
+  ps.reserve(names.size());
   for (const auto& n : names) ps.push_back(n.c_str());
   dds_qset_partition(qos_, static_cast<uint32_t>(ps.size()), ps.data());
   return *this;

@@ -153,6 +153,7 @@ agent::LifecycleResult deactivate_all(std::vector<Robot>& robots) {
 bool execute(const dds::QosProfile& profile, const dds::Participant& participant,
              std::vector<Robot>& robots, double period_s) {
   std::vector<uint32_t> ids;  // it speaks for these robots only (their partitions)
+  ids.reserve(robots.size());
   for (const auto& r : robots) ids.push_back(r.agent->robot_id());
   agent::AgentNode node(participant, profile, 0, std::nullopt, ids);
   node.set_link(profile.link);

@@ -81,6 +81,7 @@ class WireWriter : private detail::WireTopicHolder<T>, public Writer<T> {
     Qos q = wire_qos<T>(p, profile);
     if (robots.empty()) return q;
     std::vector<std::string> names;
+    names.reserve(robots.size());
     for (const uint32_t r : robots) names.push_back(p.robot_partition(r));
     q.partitions(names);
     return q;
