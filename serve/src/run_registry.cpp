@@ -1,6 +1,8 @@
 #include "smart/serve/run_registry.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace smart::serve {
 
@@ -29,6 +31,14 @@ std::string RunRegistry::add_done(std::string map_name, std::size_t robots) {
   auto id = add(std::move(map_name), robots);
   runs_[id].state = RunState::kDone;
   return id;
+}
+
+bool RunRegistry::adopt(RunEntry entry) {
+  if (!is_run_id(entry.id) || entry.id.size() > 16 || runs_.count(entry.id)) return false;
+  const uint64_t n = std::stoull(entry.id.substr(4));  // at most 12 digits
+  next_ = std::max(next_, n + 1);
+  runs_[entry.id] = std::move(entry);
+  return true;
 }
 
 std::vector<std::string> RunRegistry::start_ready(std::size_t max_running) {

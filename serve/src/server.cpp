@@ -466,6 +466,12 @@ struct Server::Impl {
     // Without TCP_NODELAY (cpp-httplib's default is off) Nagle's algorithm and delayed ACKs held
     // static files back: three.js (0.7 MB) took 1.9 s over loopback, 0.1 s with it.
     http.set_tcp_nodelay(true);
+    // cpp-httplib's default sets SO_REUSEPORT too, and a second server on a port in use started
+    // and shared its requests (issue 26): only SO_REUSEADDR (a restart may bind at once).
+    http.set_socket_options([](int sock) {
+      int yes = 1;
+      ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
     watch_routes();
     http.Get("/api/robots", [this](const auto&, auto& res) { get_robots(res); });
     http.set_payload_max_length(opt.max_upload_bytes);
@@ -550,7 +556,8 @@ int Server::bind() {
                        : (I.http.bind_to_port(I.opt.bind, I.opt.port) ? I.opt.port : -1);
   if (port < 0) {
     throw std::runtime_error("cannot listen on " + I.opt.bind + ":" + std::to_string(I.opt.port) +
-                             "; is the port taken? choose another with --port");
+                             ": the port is in use (another `smart serve`?) or the address is "
+                             "not this host's; choose another with --port or --bind");
   }
   return port;
 }

@@ -31,5 +31,21 @@ TEST(RunRegistry, OnlyIdsItMakesAreRunIds) {
   }
 }
 
+// Issue 26: a restarted server listed none of the old runs and its first upload collided with
+// one. Adopted runs are listed as they were and new ids go on after the largest.
+TEST(RunRegistry, AdoptedRunsAreListedAndNewIdsGoOnAfterThem) {
+  RunRegistry r;
+  EXPECT_TRUE(r.adopt({"run-000007", RunState::kDone, {}, "w.map", 100}));
+  EXPECT_TRUE(r.adopt({"run-000003", RunState::kFailed, "interrupted", "?", 0}));
+  EXPECT_FALSE(r.adopt({"run-000003", RunState::kDone, {}, "again", 1}));  // held already
+  EXPECT_FALSE(r.adopt({"../run-000001", RunState::kDone, {}, "x", 1}));
+  EXPECT_FALSE(r.adopt({"run-99999999999999999999", RunState::kDone, {}, "x", 1}));
+  EXPECT_EQ(r.add("n.map", 5), "run-000008");
+  ASSERT_EQ(r.list().size(), 3u);
+  EXPECT_EQ(r.list()[0].id, "run-000003");
+  EXPECT_EQ(r.get("run-000007")->map_name, "w.map");
+  EXPECT_TRUE(r.start_ready(4) == std::vector<std::string>{"run-000008"});  // adopted never rerun
+}
+
 }  // namespace
 }  // namespace smart::serve

@@ -78,5 +78,48 @@ TEST(RunStore, AReplayIsDoneAtOnceAndOnlyRunIdsNameRuns) {
   EXPECT_FALSE(store.entry("upload-1").has_value()) << "a staging folder is not a run";
 }
 
+// Issue 26: a restarted `smart serve` listed none of the old runs, its first upload failed on an
+// existing folder, and two servers shared one data folder. The store locks its folder, adopts
+// what a previous store left (a finished replay done, a run cut off failed as interrupted),
+// removes half-written uploads, skips what is not a run, and never reuses a name.
+TEST(RunStore, ARestartedStoreAdoptsTheRunsContinuesTheIdsAndLocksTheFolder) {
+  TempDir d;
+  std::string done_id;
+  {
+    RunStore store(d.path);
+    EXPECT_THROW(RunStore second(d.path), std::runtime_error);  // one server per data folder
+    const auto staged = store.stage();
+    fs::create_directories(staged / "results");
+    std::ofstream(staged / "results" / "summary.json") << "{}";
+    done_id = store.add_done(staged, "warehouse.map", 12);
+    const auto cut = store.stage();
+    store.add_queued(cut, "cut.map", 3, [](const std::string&) {
+      return std::vector<std::string>{"/bin/sleep", "600"};
+    });
+    store.tend(1);  // it runs; the store ends under it
+  }
+  fs::create_directories(d.path / "upload-9" / "results");       // a half-written upload
+  std::ofstream(d.path / "run-000005") << "not a folder";        // a surprise
+  fs::create_directories(d.path / "run-000004");                 // no entry.json
+  std::ofstream(d.path / "run-000004" / "entry.json") << "[[[";  // and a damaged one
+  RunStore store(d.path);
+  const auto runs = store.list();
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].id, done_id);
+  EXPECT_EQ(runs[0].state, RunState::kDone);
+  EXPECT_EQ(runs[0].map_name, "warehouse.map");
+  EXPECT_EQ(runs[0].robots, 12u);
+  EXPECT_EQ(runs[1].state, RunState::kFailed);
+  EXPECT_THAT(runs[1].error, HasSubstr("interrupted"));
+  EXPECT_EQ(runs[2].id, "run-000004");
+  EXPECT_FALSE(fs::exists(d.path / "upload-9"));
+  const auto staged = store.stage();
+  fs::create_directories(staged / "results");
+  const auto next = store.add_done(staged, "next.map", 1);
+  EXPECT_EQ(next, "run-000006");  // after the largest run folder; run-000005 is someone's file
+  EXPECT_TRUE(fs::is_directory(d.path / next));
+  EXPECT_EQ(store.entry(next)->state, RunState::kDone);
+}
+
 }  // namespace
 }  // namespace smart::serve

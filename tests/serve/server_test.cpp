@@ -262,6 +262,39 @@ TEST_F(Serve, OpenReplaysASmartRunOutFolder) {
   std::filesystem::remove_all(results);
 }
 
+// Issue 26: `make demo`'s serve command failed on its second use, a restarted server listed none
+// of the old runs and aborted on its first upload, and a second server on a port in use started
+// anyway and shared one data folder. Now: refused naming the port or the folder; a restart
+// serves the old runs and continues their ids.
+TEST_F(Serve, ARestartedServerServesItsRunsAndASecondServerIsRefused) {
+  const auto results = temp_file("serve_restart_results");
+  const auto r = run_to_folder(results, "20", kServeRestart, "serve_restart_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  start({"--open", results.string()});
+  const auto other = temp_file("serve_restart_other");
+  const auto same_port =
+      run_smart({"serve", "--port", std::to_string(port_), "--data", other.string()}, 60s,
+                "serve_port", true);
+  EXPECT_EQ(same_port.code, 3) << same_port.out;
+  EXPECT_THAT(same_port.out, HasSubstr("the port is in use"));
+  const auto same_data =
+      run_smart({"serve", "--port", "0", "--data", data_.string()}, 60s, "serve_data", true);
+  EXPECT_EQ(same_data.code, 3) << same_data.out;
+  EXPECT_THAT(same_data.out, HasSubstr("is in use by another `smart serve`"));
+  server_.reset();  // stopped
+  port_ = 0;
+  start({"--open", results.string()});  // the same command again, as `make demo` prints it
+  const auto list = json::parse(client().Get("/api/runs")->body);
+  ASSERT_EQ(list.size(), 2u) << list.dump();
+  EXPECT_EQ(list[0]["id"], "run-000001");
+  EXPECT_EQ(list[0]["state"], "done");
+  EXPECT_EQ(list[1]["id"], "run-000002");
+  EXPECT_EQ(serve::decode_recording(client().Get("/api/runs/run-000001/recording")->body).robots,
+            20u);
+  std::filesystem::remove_all(results);
+  std::filesystem::remove_all(other);
+}
+
 // POST /api/results: a results folder (and the run's map) uploaded over HTTP is replayed; what
 // is not a results file is ignored; bad files are refused naming the file and line.
 TEST_F(Serve, AnUploadedResultsFolderIsReplayedAndBadOnesAreRefused) {

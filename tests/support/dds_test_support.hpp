@@ -129,6 +129,7 @@ enum DomainId : int {
   kRunKeyProve = 223,
   kRobotSpeakers = 224,
   kSecureInsider = 225,
+  kServeRestart = 226,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -31,6 +31,11 @@ class RunRegistry {
   std::string add(std::string map_name, std::size_t robots);
   // A run that already happened (a `smart run --out` folder to replay): done at once.
   std::string add_done(std::string map_name, std::size_t robots);
+  // A run a previous server left (its id must be a run id, not held here yet): ids go on after
+  // the largest adopted. False when the entry cannot be adopted.
+  bool adopt(RunEntry entry);
+  // Forgets a run just added whose folder turned out taken (its id is not used again).
+  void drop(const std::string& id) { runs_.erase(id); }
   std::vector<std::string> start_ready(std::size_t max_running);
   void finish(const std::string& id, bool ok, std::string error);
   std::optional<RunEntry> get(const std::string& id) const;

@@ -7,6 +7,12 @@
 // naming run.out). What the robot panel needs (a run's instance, its actions' finish times) is
 // loaded once and kept. Ids come from RunRegistry: a URL's text is a path here only after
 // is_run_id(). Thread-safe: HTTP handlers and the tending loop call it concurrently.
+// Restarts (issue 26): one server per data folder (an exclusive lock on <data>/.lock, held while
+// the store lives; a second server is refused naming the folder); the store adopts the runs a
+// previous server left (entry.json beside each run: map name and robots; done when its
+// summary.json is there, else failed as interrupted), continues their ids, and removes half-
+// written uploads. A surprise in the folder (a file where a run folder should be, an unreadable
+// entry) is skipped with a warning, never fatal; a new run never lands on an existing name.
 #pragma once
 
 #include <filesystem>
@@ -31,6 +37,7 @@ inline constexpr std::pair<const char*, const char*> kRunFiles[] = {
 
 class RunStore {
  public:
+  // Throws std::runtime_error when another server holds the data folder or it cannot be made.
   explicit RunStore(std::filesystem::path data_dir);
   ~RunStore();  // stops the runs still going
 
@@ -64,7 +71,13 @@ class RunStore {
   void stop_all();
 
  private:
+  void lock_data_dir();
+  void adopt_previous();
+  // A fresh id whose folder does not exist yet (registry_.add or add_done); under m_.
+  std::string fresh_id(const std::string& map_name, std::size_t robots, bool done);
+
   std::filesystem::path data_dir_;
+  int lock_fd_ = -1;
   mutable std::mutex m_;
   RunRegistry registry_;
   uint64_t staged_ = 0;
