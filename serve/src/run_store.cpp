@@ -190,8 +190,13 @@ std::shared_ptr<const std::vector<double>> RunStore::action_times(const std::str
 void RunStore::tend(std::size_t max_running) {
   std::lock_guard lock(m_);
   for (const auto& id : registry_.start_ready(max_running)) {
-    children_.emplace(id, common::ChildProcess(argv_.at(id), dir(id) / "run.out"));
-    spdlog::info("serve: {} started", id);
+    try {  // a run that cannot start fails alone (it used to end the server: std::terminate)
+      children_.emplace(id, common::ChildProcess(argv_.at(id), dir(id) / "run.out"));
+      spdlog::info("serve: {} started", id);
+    } catch (const std::exception& e) {
+      registry_.finish(id, false, std::string("could not start: ") + e.what());
+      spdlog::error("serve: {} could not start: {}", id, e.what());
+    }
   }
   for (auto it = children_.begin(); it != children_.end();) {
     const auto rc = it->second.wait(std::chrono::milliseconds(0));

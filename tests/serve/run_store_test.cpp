@@ -121,5 +121,20 @@ TEST(RunStore, ARestartedStoreAdoptsTheRunsContinuesTheIdsAndLocksTheFolder) {
   EXPECT_EQ(store.entry(next)->state, RunState::kDone);
 }
 
+// A run whose command cannot start (its program gone, the process table full) threw out of the
+// tending loop and ended the server (terminate, exit 134). It fails alone, saying why.
+TEST(RunStore, ARunThatCannotStartFailsAloneNamingWhy) {
+  TempDir d;
+  RunStore store(d.path);
+  const auto id = store.add_queued(store.stage(), "m.map", 1, [](const std::string&) {
+    return std::vector<std::string>{"/nonexistent/smart", "run"};
+  });
+  EXPECT_NO_THROW(store.tend(1));
+  const auto e = store.entry(id);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->state, RunState::kFailed);
+  EXPECT_THAT(e->error, HasSubstr("could not start: cannot start '/nonexistent/smart'"));
+}
+
 }  // namespace
 }  // namespace smart::serve
