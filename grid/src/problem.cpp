@@ -1,5 +1,8 @@
 #include "smart/grid/problem.hpp"
 
+#include <algorithm>
+#include <map>
+
 namespace smart::grid {
 
 std::string Problem::to_string() const {
@@ -11,8 +14,36 @@ std::string Problem::to_string() const {
 }
 
 namespace {
+// A message with its numbers as '#': problems of one kind share it.
+std::string kind_of(const std::string& message) {
+  std::string k;
+  for (const char c : message) {
+    const bool digit = c >= '0' && c <= '9';
+    if (!digit) {
+      k += c;
+    } else if (k.empty() || k.back() != '#') {
+      k += '#';
+    }
+  }
+  return k;
+}
+
+// Many problems of one kind are one mistake (a plan of another instance, a wrong --axis): a line
+// saying so comes first (issue 26: 247 problems and no summary line).
+std::string diagnosis(const std::vector<Problem>& problems) {
+  constexpr std::size_t kMany = 10;
+  if (problems.size() < kMany) return {};
+  std::map<std::string, std::size_t> kinds;
+  for (const auto& p : problems) ++kinds[kind_of(p.message)];
+  const auto top = std::max_element(
+      kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (top->second * 2 < problems.size()) return {};
+  return std::to_string(top->second) + " of " + std::to_string(problems.size()) +
+         " problems are one kind, most likely one mistake: " + top->first + "\n";
+}
+
 std::string summarize(const std::vector<Problem>& problems) {
-  std::string s;
+  std::string s = diagnosis(problems);
   constexpr std::size_t kShown = 50;
   for (std::size_t i = 0; i < problems.size() && i < kShown; ++i) {
     if (i > 0) s += "\n";

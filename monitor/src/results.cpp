@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #ifndef SMART_VERSION
-#define SMART_VERSION "0.1.0"
+#error "SMART_VERSION comes from the project's version (monitor/CMakeLists.txt)"
 #endif
 
 namespace smart::monitor {

@@ -78,6 +78,21 @@ TEST(CheckPlanCommand, MissingAxisAndBadArgumentsAreRejected) {
   for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
 }
 
+// Issue 26: a missing file made check-plan exit 1 (an invalid plan) where `smart run` exits 2
+// (input to fix); both now say 2, naming the file.
+TEST(CheckPlanCommand, AFileThatCannotBeReadIsBadInputExitTwo) {
+  const auto map = write_temp("m3.map", "type octile\nheight 1\nwidth 2\nmap\n..\n");
+  const auto scen = write_temp("s3.scen", "version 1\n0\tm.map\t2\t1\t0\t0\t1\t0\t1\n");
+  const auto missing = test::temp_file("no_such_plan.txt").string();
+  const auto r = run({"--map", map, "--scen", scen, "--plan", missing, "--axis", "xy"}, true);
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_THAT(r.out, HasSubstr(missing + ": cannot open the plan file; check the path"));
+  const auto via_run = test::run_smart(
+      {"run", "--map", map, "--scen", scen, "--plan", missing, "--axis", "xy"}, 60s, "run_missing");
+  EXPECT_EQ(via_run.code, 2);
+  for (const auto& f : {map, scen}) std::filesystem::remove(f);
+}
+
 // Four robots turning round a 2x2 block together: fine for footbots on 1 m cells (half-cell
 // locations), a deadlock for JetBots on 0.3 m cells (a robot crossing an edge holds both cells),
 // refused outright on cells less than two radii wide.

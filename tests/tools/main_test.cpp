@@ -28,6 +28,20 @@ TEST(SmartMain, HelpIsSuccess) {
   EXPECT_THAT(r.out, HasSubstr("lockstep|realtime"));
 }
 
+// Issue 26: no `--version`, and a typo said only "A subcommand is required".
+TEST(SmartMain, VersionAndAMistypedCommandSayWhatTheyShould) {
+  const auto v = smart_with_stderr("--version", "version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_THAT(v.out, ::testing::ContainsRegex("^smart [0-9]+\\.[0-9]+\\.[0-9]+ \\(Cyclone DDS "
+                                              "0\\.10\\.[0-9]+\\)"));
+  const auto typo = smart_with_stderr("--log-level warn rnu --map x", "typo");
+  EXPECT_EQ(typo.code, 2);
+  EXPECT_THAT(typo.out, HasSubstr("'rnu' is not a smart command; did you mean 'run'?"));
+  const auto far = smart_with_stderr("xyzzy", "unknown");
+  EXPECT_EQ(far.code, 2);
+  EXPECT_THAT(far.out, HasSubstr("'xyzzy' is not a smart command (`smart --help` lists them)"));
+}
+
 TEST(SmartMain, CommandLineErrorsAreBadInput) {
   auto r = smart_with_stderr("run --map a.map --scen a.scen --plan p --clock sometimes", "clock");
   EXPECT_EQ(r.code, 2) << r.out;

@@ -1,7 +1,10 @@
 // `smart check-plan`: validate a plan against its map and scenario and report plan and ADG
-// statistics as JSON (exit 0), or list every problem (exit 1).
+// statistics as JSON (exit 0), or list every problem (exit 1); a file it cannot read: exit 2.
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <utility>
 
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/instance.hpp"
@@ -33,6 +36,13 @@ nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
 }
 
 int run_check_plan(const CheckPlanOptions& o) {
+  // A file that cannot be read is input to fix (exit 2, as `smart run` says), not an invalid plan.
+  for (const auto& [path, what] :
+       {std::pair{o.world.map, "map"}, {o.world.scen, "scenario"}, {o.plan, "plan"}}) {
+    if (!std::ifstream(path)) {
+      throw std::invalid_argument(path + ": cannot open the " + what + " file; check the path");
+    }
+  }
   const auto io = instance_options(o.world, o.plan, o.axis, o.format);
   try {
     const auto in = monitor::load_instance(io);

@@ -20,7 +20,10 @@ void register_demo_command(CLI::App& app, int& exit_code) {
   auto* demo = app.add_subcommand("demo",
                                   "Generate a warehouse, plan ~100 robots, execute the "
                                   "plan on the simulated fleet, print the summary");
-  demo->add_option("--domain", o->domain, "DDS domain id")->capture_default_str();
+  demo->add_option("--domain", o->domain, "DDS domain id (0-230)")
+      ->envname("SMART_DOMAIN")  // as every other command (it ignored it: issue 26)
+      ->check(CLI::Range(0, 230))
+      ->capture_default_str();
   demo->add_option("--robots", o->robots, "robots in the generated scenario")
       ->capture_default_str();
   demo->add_option("--out", o->out, "folder for the generated files and results")
