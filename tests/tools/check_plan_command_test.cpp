@@ -93,6 +93,21 @@ TEST(CheckPlanCommand, AFileThatCannotBeReadIsBadInputExitTwo) {
   for (const auto& f : {map, scen}) std::filesystem::remove(f);
 }
 
+// Issue 26: `--agents` and `--robots` named one count in different commands; each takes both.
+TEST(CheckPlanCommand, TheRobotCountIsNamedEitherWay) {
+  const auto map = write_temp("m4.map", "type octile\nheight 1\nwidth 3\nmap\n...\n");
+  const auto scen = write_temp("s4.scen",
+                               "version 1\n0\tm.map\t3\t1\t0\t0\t1\t0\t1\n"
+                               "0\tm.map\t3\t1\t2\t0\t2\t0\t0\n");
+  const auto plan = write_temp("p4.txt", "Agent 0:(0,0)->(1,0)->\nAgent 1:(2,0)->(2,0)->\n");
+  for (const char* flag : {"--agents", "--robots"}) {
+    const auto r = run({"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy", flag, "1"});
+    ASSERT_EQ(r.code, 0) << flag << ": " << r.out;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["robots"], 1) << flag;
+  }
+  for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
+}
+
 // Four robots turning round a 2x2 block together: fine for footbots on 1 m cells (half-cell
 // locations), a deadlock for JetBots on 0.3 m cells (a robot crossing an edge holds both cells),
 // refused outright on cells less than two radii wide.

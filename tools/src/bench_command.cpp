@@ -3,8 +3,8 @@
 // simulator and the agents, the part that scales with the fleet.
 // `smart bench run`: end to end, `smart run` (monitor + sim processes over loopback DDS) on the
 // first N robots of a plan for each N given; one JSON line per run, then a Markdown table.
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -184,7 +184,9 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   auto* sim = bench->add_subcommand(
       "sim", "Sim speed of the Simbody world + agents, every robot on a random walk");
   sim->add_option("--map", o->map, "MovingAI .map file")->required();
-  sim->add_option("--robots", o->robots)->check(CLI::Range(1ul, 100000ul))->capture_default_str();
+  sim->add_option("--robots,--agents", o->robots, "robots in the simulated fleet")
+      ->check(CLI::Range(1ul, 100000ul))
+      ->capture_default_str();
   sim->add_option("--sim-seconds", o->sim_seconds)
       ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
@@ -208,7 +210,7 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   run->add_option("--plan", r->plan, "plan file")->required();
   run->add_option("--axis", r->axis, "xy or rowcol (SMART path files)")
       ->check(CLI::IsMember({"xy", "rowcol"}));
-  run->add_option("--agents", r->agents, "fleet sizes: first N robots of the plan")
+  run->add_option("--agents,--robots", r->agents, "fleet sizes: first N robots of the plan")
       ->delimiter(',')
       ->capture_default_str();
   run->add_option("--robot", r->robot)->capture_default_str();

@@ -24,7 +24,7 @@ void register_demo_command(CLI::App& app, int& exit_code) {
       ->envname("SMART_DOMAIN")  // as every other command (it ignored it: issue 26)
       ->check(CLI::Range(0, 230))
       ->capture_default_str();
-  demo->add_option("--robots", o->robots, "robots in the generated scenario")
+  demo->add_option("--robots,--agents", o->robots, "robots in the generated scenario")
       ->capture_default_str();
   demo->add_option("--out", o->out, "folder for the generated files and results")
       ->capture_default_str();

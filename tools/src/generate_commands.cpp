@@ -55,7 +55,7 @@ void register_walk_command(CLI::App& app, int& exit_code) {
       "Generate conflict-free random walks of N robots on a map (seeded; any size at once): a "
       "SMART timed plan (axis xy) and its scenario, for scaling runs");
   w->add_option("--map", o->map, "MovingAI .map file")->required();
-  w->add_option("--robots", o->walk.robots, "number of robots")
+  w->add_option("--robots,--agents", o->walk.robots, "number of robots")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
       ->required();
   w->add_option("--steps", o->walk.steps, "timesteps of every walk")
@@ -201,7 +201,7 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   auto so = std::make_shared<PlanOptions>();
   auto* gs = app.add_subcommand("gen-scen", "Generate a MovingAI scenario for a map (seeded)");
   gs->add_option("--map", so->map, "the MovingAI .map the agents stand on")->required();
-  gs->add_option("--agents", so->agents, "number of agents (distinct starts and goals)")
+  gs->add_option("--agents,--robots", so->agents, "number of robots (distinct starts and goals)")
       ->required()
       ->check(CLI::Range(1ul, 1000000ul));
   gs->add_option("--seed", so->seed, "random seed: the same seed makes the same scenario")
@@ -217,7 +217,7 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
       "timed plan (axis xy) that passes `smart check-plan`");
   pl->add_option("--map", po->map, "MovingAI .map file")->required();
   pl->add_option("--scen", po->scen, "MovingAI .scen file (starts and goals)")->required();
-  pl->add_option("--agents", po->agents, "first N agents (default: all)")
+  pl->add_option("--agents,--robots", po->agents, "first N robots (default: all)")
       ->check(CLI::PositiveNumber);
   pl->add_option("--seed", po->seed, "seed for priority orders after a failure")
       ->capture_default_str();

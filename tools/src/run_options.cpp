@@ -22,7 +22,8 @@ const EnumNames<grid::PlanFormat> kFormatNames{{"auto", grid::PlanFormat::kAuto}
 void add_world_options(CLI::App* cmd, WorldCliOptions& o) {
   cmd->add_option("--map", o.map, "MovingAI .map file")->required();
   cmd->add_option("--scen", o.scen, "MovingAI .scen file (robot starts)")->required();
-  cmd->add_option("--agents", o.agents, "number of robots (first N of the scenario / plan)")
+  cmd->add_option("--agents,--robots", o.agents,
+                  "number of robots (first N of the scenario / plan)")
       ->check(CLI::PositiveNumber);
   add_enum_option(cmd, "--initial-heading", o.heading, kHeadingNames,
                   "heading every robot starts with (default east)");
