@@ -118,7 +118,7 @@ fs::path RunStore::results_file(const std::string& id, std::string_view name) co
 fs::path RunStore::stage() {
   std::lock_guard lock(m_);
   for (;;) {  // a fresh folder, whatever the data folder holds
-    const auto p = data_dir_ / ("upload-" + std::to_string(++staged_));
+    auto p = data_dir_ / ("upload-" + std::to_string(++staged_));
     if (fs::create_directory(p)) return p;
   }
 }
