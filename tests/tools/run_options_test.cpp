@@ -129,6 +129,23 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   EXPECT_TRUE(back.dds.run_given);
 }
 
+// Issue 26: --qos wifi added an invented delay and loss on top of a real network, silently.
+TEST(RunOptions, ARealTimeRunWithALinkModelIsWarnedThatTheDelayIsAdded) {
+  SimCliOptions o;
+  o.dds.qos = "wifi";
+  const auto wifi = dds::find_qos_profile("wifi");
+  ASSERT_TRUE(wifi.link.active());
+  o.clock = sim::ClockMode::kRealtime;
+  const auto warning = link_model_warning(o.clock, o.dds, wifi);
+  ASSERT_TRUE(warning);
+  EXPECT_THAT(*warning, HasSubstr("--qos wifi models a link ("));
+  EXPECT_THAT(*warning, HasSubstr("added to the real network's own delay and loss"));
+  o.clock = sim::ClockMode::kLockstep;  // the model is the only link: nothing to warn of
+  EXPECT_FALSE(link_model_warning(o.clock, o.dds, wifi));
+  o.clock = sim::ClockMode::kRealtime;
+  EXPECT_FALSE(link_model_warning(o.clock, o.dds, dds::find_qos_profile("lan")));
+}
+
 TEST(RunOptions, ARealTimeFactorPacesLockstepAndIsRefusedWithTheRealtimeClock) {
   SimCliOptions o;
   parse_sim(o, {"--map", "m", "--scen", "s", "--real-time-factor", "10"});
