@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "smart/agent/kinematics.hpp"
 
@@ -64,7 +66,8 @@ std::optional<ViconFrame> parse_vicon_datagram(const uint8_t* d, std::size_t n,
     const char* name = reinterpret_cast<const char*>(d + at);
     o.name.assign(name, strnlen(name, 24));
     for (int k = 0; k < 3; ++k) o.position_mm[k] = get<double>(d + at + 24 + std::ptrdiff_t{8} * k);
-    for (int k = 0; k < 3; ++k) o.rotation_rad[k] = get<double>(d + at + 48 + std::ptrdiff_t{8} * k);
+    for (int k = 0; k < 3; ++k)
+      o.rotation_rad[k] = get<double>(d + at + 48 + std::ptrdiff_t{8} * k);
     for (int k = 0; k < 3; ++k) {
       if (!std::isfinite(o.position_mm[k]) || !std::isfinite(o.rotation_rad[k])) {
         *error = "object '" + o.name + "' has a non-finite value (occluded?)";
@@ -101,31 +104,61 @@ std::vector<uint8_t> make_vicon_datagram(uint32_t frame, const std::vector<Vicon
   return d;
 }
 
+bool rtps_may_use_port(uint16_t port) {
+  constexpr int kBase = 7400, kDomainGain = 250;
+  if (port < kBase) return false;
+  const int offset = (port - kBase) % kDomainGain;
+  return offset < 2 || offset >= 10;
+}
+
+namespace {
+
+// A UDP socket bound to address:port, and the port it got; throws with the reason.
+std::pair<int, uint16_t> bind_udp(const std::string& address, uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw std::runtime_error(std::string("vicon: socket: ") + std::strerror(errno));
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  if (::inet_pton(AF_INET, address.c_str(), &a.sin_addr) != 1) {
+    ::close(fd);
+    throw std::invalid_argument("vicon: '" + address +
+                                "' is not an IPv4 address; give --vicon-bind as a.b.c.d");
+  }
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) < 0) {
+    const std::string err = std::strerror(errno);
+    ::close(fd);
+    throw std::runtime_error("vicon: cannot listen on UDP " + address + ":" + std::to_string(port) +
+                             ": " + err + "; is another program using the port?");
+  }
+  socklen_t len = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  return {fd, ntohs(a.sin_port)};
+}
+
+// Port 0: the first free port below the RTPS ports (DDS never sends there).
+std::pair<int, uint16_t> bind_vicon_socket(const std::string& address, uint16_t port) {
+  if (port != 0) return bind_udp(address, port);
+  constexpr uint16_t kFirst = 7399, kLast = 1024;
+  for (uint16_t p = kFirst; p >= kLast; --p) {
+    try {
+      return bind_udp(address, p);
+    } catch (const std::runtime_error&) {
+      // in use: the next one down
+    }
+  }
+  throw std::runtime_error("vicon: no free UDP port in " + std::to_string(kLast) + "-" +
+                           std::to_string(kFirst) + " on " + address + "; give --vicon-port");
+}
+
+}  // namespace
+
 ViconReceiver::ViconReceiver(const std::string& bind_address, uint16_t port,
                              geometry::FrameTransform t, const std::vector<std::string>& objects,
                              std::function<double()> now_s)
     : transform_(std::move(t)), now_s_(std::move(now_s)) {
   for (auto& o : objects) latest_[o] = std::nullopt;
-  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) throw std::runtime_error(std::string("vicon: socket: ") + std::strerror(errno));
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(port);
-  if (::inet_pton(AF_INET, bind_address.c_str(), &a.sin_addr) != 1) {
-    ::close(fd_);
-    throw std::invalid_argument("vicon: '" + bind_address +
-                                "' is not an IPv4 address; give --vicon-bind as a.b.c.d");
-  }
-  if (::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) < 0) {
-    const std::string err = std::strerror(errno);
-    ::close(fd_);
-    throw std::runtime_error("vicon: cannot listen on UDP " + bind_address + ":" +
-                             std::to_string(port) + ": " + err +
-                             "; is another program using the port?");
-  }
-  socklen_t len = sizeof a;
-  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
-  port_ = ntohs(a.sin_port);
+  std::tie(fd_, port_) = bind_vicon_socket(bind_address, port);
   thread_ = std::thread([this] { loop(); });
 }
 

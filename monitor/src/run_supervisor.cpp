@@ -271,11 +271,14 @@ void RunSupervisor::check_liveness(double now_s) {
                                          " s; the process stopped or lost the network");
     }
   }
-  if (now_s - (sim_seen_ ? last_sim_sign_s_ : 0.0) <= config_.timeout_s) return;
+  const double join_s = config_.join_timeout_s > 0 ? config_.join_timeout_s : config_.timeout_s;
+  if (now_s - (sim_seen_ ? last_sim_sign_s_ : 0.0) <= (sim_seen_ ? config_.timeout_s : join_s)) {
+    return;
+  }
   end(Outcome::kHostLost,
       sim_seen_ ? "the sim host went silent for " + std::to_string(config_.timeout_s) + " s"
                 : "no sim host joined domain " + std::to_string(config_.domain_id) + " within " +
-                      std::to_string(config_.timeout_s) +
+                      std::to_string(join_s) +
                       " s; start `smart sim` with the same --domain, --qos, --network");
 }
 

@@ -79,6 +79,23 @@ void send_udp(uint16_t port, const std::vector<uint8_t>& d) {
   ::close(fd);
 }
 
+// Regression (issue 25 follow-up): an agent with --vicon-port 0 got an ephemeral port that
+// another test's DDS domain used for discovery, and counted RTPS packets as malformed frames.
+TEST(ViconReceiver, MalformedFramesFromDdsDiscoveryOnAnEphemeralPort) {
+  EXPECT_TRUE(rtps_may_use_port(7400));  // domain 0 discovery multicast
+  EXPECT_TRUE(rtps_may_use_port(7411));  // domain 0, participant 0 user unicast
+  EXPECT_TRUE(rtps_may_use_port(7400 + 250 * 154 + 10 + 2 * 119 + 1));
+  EXPECT_FALSE(rtps_may_use_port(7402));
+  EXPECT_FALSE(rtps_may_use_port(7400 + 250 * 154 + 9));
+  EXPECT_FALSE(rtps_may_use_port(7399));
+  // Two receivers at once get two ports, neither a DDS one.
+  ViconReceiver a("127.0.0.1", 0, vicon_millimetres(), {"jetbot1"}, now_s);
+  ViconReceiver b("127.0.0.1", 0, vicon_millimetres(), {"jetbot1"}, now_s);
+  EXPECT_NE(a.port(), b.port());
+  EXPECT_FALSE(rtps_may_use_port(a.port())) << a.port();
+  EXPECT_FALSE(rtps_may_use_port(b.port())) << b.port();
+}
+
 TEST(ViconReceiver, LoopbackUdpPosesAreTransformedCountedAndGoStale) {
   geometry::FrameTransform t = vicon_millimetres();
   t.yaw_rad = M_PI / 2;

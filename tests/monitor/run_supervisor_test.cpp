@@ -229,6 +229,21 @@ TEST(RunSupervisor, NoSimHostWithinTimeoutNamesTheDomain) {
   EXPECT_THAT(r.sup.result().error, HasSubstr("no sim host joined domain 42"));
 }
 
+TEST(RunSupervisor, ASimHostStartedHereHasTheJoinTimeoutThenTheUsualOne) {
+  auto c = lockstep_config();
+  c.join_timeout_s = 20;
+  Scripted r(c);
+  r.sup.start(0);
+  r.sup.poll(19.9);
+  EXPECT_FALSE(r.sup.over());
+  r.sup.on_clock(tick(0, 0), 19.9);
+  r.sup.poll(24.8);
+  EXPECT_FALSE(r.sup.over());
+  r.sup.poll(25.0);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("went silent for 5"));
+}
+
 TEST(RunSupervisor, LockstepSimThatGoesSilentOrLeavesIsLost) {
   Scripted silent;
   silent.sup.start(0);

@@ -131,8 +131,12 @@ void add_frame_command(CLI::App* parent, int& exit_code) {
       {"vicon", PoseKind::kVicon}, {"odom", PoseKind::kOdom}, {"ros", PoseKind::kRos}};
   add_enum_option(cmd, "--pose", o->sources.pose, kinds,
                   "vicon (Tracker UDP; default), odom (<ns>/odom) or ros (PoseStamped)");
-  cmd->add_option("--vicon-bind", o->sources.vicon_bind)->capture_default_str();
-  cmd->add_option("--vicon-port", o->sources.vicon_port)->capture_default_str();
+  cmd->add_option("--vicon-bind", o->sources.vicon_bind,
+                  "local IPv4 address the Vicon socket listens on")
+      ->capture_default_str();
+  cmd->add_option("--vicon-port", o->sources.vicon_port,
+                  "UDP port of the Vicon stream (0: the first free port below 7400)")
+      ->capture_default_str();
   cmd->add_option("--vicon-object", o->sources.vicon_object,
                   "Vicon object of a point; {id} is its ID")
       ->capture_default_str();

@@ -21,10 +21,11 @@ void add_backend_options(CLI::App* cmd, BackendOptions& o) {
   add_enum_option(cmd, "--pose", o.pose, kPoseNames,
                   "vicon (Tracker UDP; JetBot default), odom (<ns>/odom; ros2 default) or ros "
                   "(a PoseStamped topic, --ros-topic)");
-  cmd->add_option("--vicon-bind", o.vicon_bind)->capture_default_str();
+  cmd->add_option("--vicon-bind", o.vicon_bind, "local IPv4 address the Vicon socket listens on")
+      ->capture_default_str();
   cmd->add_option("--vicon-port", o.vicon_port,
-                  "UDP port of the Vicon stream (default 51001; with --i2c emulated any free "
-                  "port; 0: any free port)");
+                  "UDP port of the Vicon stream (default 51001; with --i2c emulated or 0: the "
+                  "first free port below 7400, where DDS never sends)");
   cmd->add_option("--vicon-object", o.vicon_object, "Vicon object name (default jetbot<id>)");
   cmd->add_option("--ros-topic", o.ros_topic,
                   "PoseStamped topic for --pose ros; {id} is the robot's index");

@@ -259,6 +259,9 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         model.radius_m, model.name, o.sim.world.cell_m);
   }
   mo.run.require_sim_status = mo.run.require_sim_status || spawn_sim_child;
+  // Its own sim host's exit is seen at once (host_check); a slow start on a loaded machine is not
+  // a lost host.
+  if (spawn_sim_child) mo.run.join_timeout_s = 4 * mo.run.timeout_s;
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);

@@ -53,9 +53,18 @@ struct ViconStats {
   uint64_t poses = 0;
 };
 
+// Whether DDS may send to UDP `port`: the RTPS ports 7400 + 250 d + {0, 1, 10 + 2 i, 11 + 2 i}
+// for domain d and participant index i (DDSI-RTPS 2.5 §9.6.1.1); with our 120 participant
+// indices (dds::DomainConfig) they fill each domain's block but for offsets 2-9. Cyclone sends
+// discovery to every index's port of each configured peer, so a Vicon socket there hears RTPS
+// packets as malformed frames.
+bool rtps_may_use_port(uint16_t port);
+
 class ViconReceiver {
  public:
-  // Listens on `bind_address`:`port` (UDP). Throws std::runtime_error when it cannot bind.
+  // Listens on `bind_address`:`port` (UDP); port 0 picks the first free port below the DDS
+  // ports (7399, 7398, ...): an ephemeral port can be another domain's discovery port. Throws
+  // std::runtime_error when it cannot bind.
   ViconReceiver(const std::string& bind_address, uint16_t port, geometry::FrameTransform transform,
                 const std::vector<std::string>& objects, std::function<double()> now_s);
   ~ViconReceiver();

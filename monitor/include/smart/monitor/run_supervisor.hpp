@@ -128,6 +128,9 @@ struct SupervisorConfig {
   uint32_t window_cap = 32;  // look-ahead: most actions in one window
   // Wall time without any sign of the sim host (lock-step), or of a robot's host (real time).
   double timeout_s = 30.0;
+  // Wall time for the first sign of a sim host; 0: timeout_s. `smart run` gives the sim host it
+  // starts longer (a loaded machine starts it slowly; its exit is noticed at once anyway).
+  double join_timeout_s = 0;
   double stall_timeout_s = 300.0;  // sim time without any finished action
   double max_sim_time_s = 0;       // 0: no limit
   uint64_t run_id = 1;
