@@ -259,6 +259,11 @@ QosProfile find_qos_profile(const std::string& name_or_path) {
   const bool is_path = name_or_path.find('/') != std::string::npos ||
                        name_or_path.ends_with(".yaml") || name_or_path.ends_with(".yml");
   if (is_path) return load_qos_profile(name_or_path);
+  if (name_or_path == "lossy-wifi") {
+    throw ConfigError(
+        "QoS profile 'lossy-wifi' was split (issue 26): use sim-lossy-wifi to model a lossy link "
+        "on the sim clock, or protocol-loss-test to drop real packets and test the protocol");
+  }
   std::string looked;
   for (const auto& dir : config_search_path()) {
     const auto file = dir / "qos" / (name_or_path + ".yaml");
@@ -266,7 +271,8 @@ QosProfile find_qos_profile(const std::string& name_or_path) {
     looked += (looked.empty() ? "" : ", ") + file.string();
   }
   throw ConfigError("QoS profile '" + name_or_path + "' not found (looked for " + looked +
-                    "); use lan, wifi or lossy-wifi, or pass a path to a YAML file");
+                    "); use " + std::string(kShippedQosProfiles) +
+                    ", or pass a path to a YAML file");
 }
 
 }  // namespace smart::dds

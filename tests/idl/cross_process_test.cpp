@@ -120,7 +120,7 @@ std::set<uint32_t> receive_lossy_burst(int domain_id, const std::string& reliabi
   q.reliability = reliability == "reliable" ? Reliability::kReliable : Reliability::kBestEffort;
   q.history = HistoryKind::kKeepAll;
   Reader<smart_msg_Progress> r(p, t, q.to_dds().partition(p.run_partition()));
-  ChildProcess sender({test::smart_exe().string(), "dds-send", "--qos", "lossy-wifi", "--domain",
+  ChildProcess sender({test::smart_exe().string(), "dds-send", "--qos", "protocol-loss-test", "--domain",
                        std::to_string(domain_id), "--reliability", reliability, "--count",
                        std::to_string(count), "--interval-ms", "2"},
                       out);

@@ -34,8 +34,11 @@ TEST(QosProfile, ShippedProfilesLoadWithTheirDocumentedSettings) {
   EXPECT_EQ(wifi.transport.heartbeat_interval, Millis(50));
   EXPECT_EQ(wifi.transport.nack_delay, Millis(10));
 
-  const auto lossy = find_qos_profile("lossy-wifi");
+  EXPECT_FALSE(wifi.link.active());  // a real network's profile models nothing
+
+  const auto lossy = find_qos_profile("protocol-loss-test");
   EXPECT_EQ(lossy.transport.loss_per_mille, 200);
+  EXPECT_FALSE(lossy.link.active());
   EXPECT_EQ(lossy.transport.heartbeat_interval, Millis(20));
   EXPECT_EQ(lossy.topic(TopicRole::kState).reliability, Reliability::kBestEffort);
 }
@@ -52,15 +55,15 @@ TEST(QosProfile, TheLinkSectionSetsBothDirectionsAndEachItsOwn) {
   EXPECT_TRUE(p.link.to_monitor.reorder);
   EXPECT_FALSE(p.link.to_host.reorder);
   EXPECT_FALSE(find_qos_profile("lan").link.active());
-  EXPECT_TRUE(find_qos_profile("wifi").link.active());
-  EXPECT_DOUBLE_EQ(find_qos_profile("lossy-wifi").link.to_host.loss_per_mille, 200);
+  EXPECT_TRUE(find_qos_profile("sim-wifi").link.active());
+  EXPECT_DOUBLE_EQ(find_qos_profile("sim-lossy-wifi").link.to_host.loss_per_mille, 200);
   EXPECT_THAT(error_of("name: l\nlink:\n  delay_ms: -5\n"),
               HasSubstr("'link.delay_ms' must be from 0"));
   EXPECT_THAT(error_of("name: l\nlink:\n  to_host:\n    lag_ms: 5\n"), HasSubstr("lag_ms"));
 }
 
 TEST(QosProfile, SimStatusHasARoleOfItsOwn) {
-  for (const char* name : {"lan", "wifi", "lossy-wifi"}) {
+  for (const char* name : {"lan", "wifi", "sim-wifi", "sim-lossy-wifi", "protocol-loss-test"}) {
     const auto p = find_qos_profile(name);
     EXPECT_EQ(p.topic(TopicRole::kStatus).reliability, Reliability::kReliable) << name;
     EXPECT_EQ(p.topic(TopicRole::kStatus).durability, Durability::kTransientLocal) << name;
@@ -96,8 +99,26 @@ TEST(QosProfile, OmittedTopicsKeepDefaults) {
   EXPECT_EQ(p.state, default_qos_profile().state);
 }
 
+// Issue 26: lossy-wifi both modelled a link and dropped real packets; the old name says where
+// each half went.
+TEST(QosProfileErrors, TheSplitLossyWifiProfileNamesItsSuccessors) {
+  try {
+    (void)find_qos_profile("lossy-wifi");
+    FAIL() << "lossy-wifi must not load";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("sim-lossy-wifi"));
+    EXPECT_THAT(e.what(), HasSubstr("protocol-loss-test"));
+  }
+  try {
+    (void)find_qos_profile("wlan");
+    FAIL() << "an unknown profile must not load";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("sim-wifi"));
+  }
+}
+
 TEST(QosProfile, DomainConfigCarriesTransport) {
-  const auto p = find_qos_profile("lossy-wifi");
+  const auto p = find_qos_profile("protocol-loss-test");
   const auto d = p.domain_config();
   EXPECT_EQ(d.transport.loss_per_mille, 200);
   EXPECT_EQ(d.interfaces, std::vector<std::string>{"lo"});

@@ -1,7 +1,7 @@
-// A whole run over a lossy link (the lossy-wifi QoS profile drops 20 % of every process's sent
-// packets): no action is lost or duplicated, and in lock-step the transport's losses change no
-// number (the profile's link model, which puts the losses' cost on the sim clock, is turned off
-// for that comparison); with the link model on the run still succeeds, later.
+// A whole run over a lossy link (the protocol-loss-test QoS profile drops 20 % of every
+// process's sent packets): no action is lost or duplicated, and in lock-step the transport's
+// losses change no number; a modelled lossy link (sim-lossy-wifi), whose losses cost sim time,
+// still succeeds, later.
 #include <gtest/gtest.h>
 
 #include "support/smart_process.hpp"
@@ -25,7 +25,7 @@ TEST(LossyRun, TwentyPercentPacketLossChangesNothingInLockStep) {
             0);
   ASSERT_EQ(
       run_smart({"plan", "--map", map, "--scen", scen, "--out", plan}, 60s, "lossy_plan").code, 0);
-  auto run = [&](const std::string& qos, int domain, bool link) {
+  auto run = [&](const std::string& qos, int domain) {
     std::vector<std::string> args{"run",
                                   "--map",
                                   map,
@@ -40,16 +40,12 @@ TEST(LossyRun, TwentyPercentPacketLossChangesNothingInLockStep) {
                                   "--domain",
                                   std::to_string(domain),
                                   "--no-progress"};
-    if (!link) {
-      args.insert(args.end(),
-                  {"--link-delay-ms", "0", "--link-jitter-ms", "0", "--link-loss-per-mille", "0"});
-    }
     const auto r = run_smart(args, 120s, "lossy_run_" + qos);
     EXPECT_EQ(r.code, 0) << qos << ":\n" << r.out;
     return r.last_json();
   };
-  const auto clean = run("lan", kLossyRunClean, false);
-  const auto lossy = run("lossy-wifi", kLossyRun, false);
+  const auto clean = run("lan", kLossyRunClean);
+  const auto lossy = run("protocol-loss-test", kLossyRun);
   ASSERT_TRUE(lossy["success"].get<bool>()) << lossy.dump(2);
   EXPECT_EQ(lossy["finished_actions"], lossy["total_actions"]);
   EXPECT_EQ(lossy["rejected_progress"], 0);  // no duplicated or out-of-order progress accepted
@@ -58,8 +54,8 @@ TEST(LossyRun, TwentyPercentPacketLossChangesNothingInLockStep) {
                           "min_separation_m", "waiting_time_s"}) {
     EXPECT_EQ(lossy[key], clean[key]) << key;
   }
-  // The profile's link model: the same run, its losses and delays now on the sim clock.
-  const auto modelled = run("lossy-wifi", kLossyRun, true);
+  // The modelled link: the same run, its losses and delays now on the sim clock.
+  const auto modelled = run("sim-lossy-wifi", kLossyRun);
   EXPECT_TRUE(modelled["success"].get<bool>()) << modelled.dump(2);
   EXPECT_EQ(modelled["collisions"], 0);
   EXPECT_GT(modelled["makespan_s"].get<double>(), clean["makespan_s"].get<double>());

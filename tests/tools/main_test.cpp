@@ -3,6 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "support/smart_process.hpp"
 
 namespace smart::tools {
@@ -26,6 +30,57 @@ TEST(SmartMain, HelpIsSuccess) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_THAT(r.out, HasSubstr("--clock"));
   EXPECT_THAT(r.out, HasSubstr("lockstep|realtime"));
+}
+
+// CLI11's help: a heading line ends in ':'; an option line starts "  -", its text from column 30
+// or on the next line, indented 30.
+struct HelpPage {
+  std::vector<std::string> subcommands, headings, undescribed;
+};
+HelpPage read_help(const std::string& text) {
+  HelpPage page;
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  std::string heading;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const auto& l = lines[i];
+    if (!l.empty() && l[0] != ' ' && l.back() == ':') {
+      heading = l;
+      page.headings.push_back(l);
+    } else if (heading == "Subcommands:" && l.size() > 2 && l[2] != ' ') {
+      page.subcommands.push_back(l.substr(2, l.find(' ', 2) - 2));
+    } else if (l.rfind("  -", 0) == 0) {
+      const bool inline_text = l.size() > 30 && l.substr(28, 2) == "  " && l[30] != ' ';
+      const bool next_text =
+          i + 1 < lines.size() && lines[i + 1].rfind(std::string(30, ' '), 0) == 0;
+      if (!inline_text && !next_text) page.undescribed.push_back(l);
+    }
+  }
+  return page;
+}
+
+// Issue 26: options without help text, and `run --help` as 69 flat lines.
+TEST(SmartMain, EveryOptionOfEveryCommandSaysWhatItDoesAndRunsHelpIsGrouped) {
+  std::vector<std::string> todo{""};
+  std::size_t pages = 0;
+  while (!todo.empty()) {
+    const std::string command = todo.back();
+    todo.pop_back();
+    const auto r = smart_with_stderr(command + " --help", "help_walk");
+    ASSERT_EQ(r.code, 0) << command << ": " << r.out;
+    const auto page = read_help(r.out);
+    ++pages;
+    EXPECT_THAT(page.undescribed, ::testing::IsEmpty()) << "smart " << command << " --help";
+    for (const auto& sub : page.subcommands)
+      todo.push_back(command + (command.empty() ? "" : " ") + sub);
+  }
+  EXPECT_GT(pages, 25u);  // every command and sub-command was read
+  const auto run = read_help(smart_with_stderr("run --help", "help_run").out);
+  for (const char* heading : {"Problem:", "Robots and execution uncertainty:",
+                              "Network, DDS and trust:", "Run control:", "Outputs:", "Sim host:"}) {
+    EXPECT_THAT(run.headings, ::testing::Contains(heading));
+  }
 }
 
 // Issue 26: no `--version`, and a typo said only "A subcommand is required".

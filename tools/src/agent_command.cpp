@@ -231,6 +231,7 @@ void register_agent_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--period-s", o->period_s, "control period")
       ->check(finite_in(0.005, 10.0))
       ->capture_default_str();
+  group_options(cmd);
   cmd->callback([&exit_code, o] { exit_code = run_agent(*o); });
 }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -94,82 +95,105 @@ int run_bench_sim(const BenchSimOptions& o) {
 struct BenchRunOptions {
   std::string map, scen, plan, axis, robot = "footbot", clock = "lockstep", out = "build/bench-run";
   std::vector<std::size_t> agents{10, 100, 500, 1000};
+  std::vector<std::string> qos{"lan"};
   int domain = 90;
 };
 
 // The rows as the Markdown table of docs/performance.md.
 void print_table(const std::vector<nlohmann::json>& rows) {
   std::cout
-      << "\n| robots | success | sim time | wall time | sim speed | CPU s per sim s | AET | "
-         "collisions | closest approach | monitor RSS | sim RSS | ADG build | first report |\n"
-         "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      << "\n| robots | qos | success | sim time | wall time | sim speed | vs first qos | CPU s per "
+         "sim s | AET | collisions | closest approach | monitor RSS | sim RSS | ADG build | first "
+         "report |\n"
+         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   const auto num = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : 0.0; };
   for (const auto& r : rows) {
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "| %zu | %s | %.0f s | %.1f s | %.1fx | %.2f | %.0f s | %d | %.2f m | %.0f MB | "
-                  "%.0f MB | %.0f ms | %.1f s |",
-                  r["robots"].get<std::size_t>(), r["success"].get<bool>() ? "yes" : "no",
-                  num(r["sim_time_s"]), num(r["wall_time_s"]), num(r["sim_speed"]),
-                  num(r["cpu_s_per_sim_s"]), num(r["aet_s"]), r["collisions"].get<int>(),
-                  num(r["min_separation_m"]), num(r["monitor_peak_rss_mb"]),
-                  num(r["sim_peak_rss_mb"]), num(r["adg_build_ms"]), num(r["first_report_wall_s"]));
+    char line[400];
+    std::snprintf(
+        line, sizeof line,
+        "| %zu | %s | %s | %.0f s | %.1f s | %.1fx | %.2f | %.2f | %.0f s | %d | %.2f m | "
+        "%.0f MB | %.0f MB | %.0f ms | %.1f s |",
+        r["robots"].get<std::size_t>(), r["qos"].get<std::string>().c_str(),
+        r["success"].get<bool>() ? "yes" : "no", num(r["sim_time_s"]), num(r["wall_time_s"]),
+        num(r["sim_speed"]), num(r["speed_vs_first_qos"]), num(r["cpu_s_per_sim_s"]),
+        num(r["aet_s"]), r["collisions"].get<int>(), num(r["min_separation_m"]),
+        num(r["monitor_peak_rss_mb"]), num(r["sim_peak_rss_mb"]), num(r["adg_build_ms"]),
+        num(r["first_report_wall_s"]));
     std::cout << line << "\n";
   }
   std::cout << "\nmachine: " << machine_description() << std::endl;
 }
 
+// One `smart run` of the first n robots over `qos`: its row, or nullopt (said on stderr).
+std::optional<nlohmann::json> bench_one_run(const BenchRunOptions& o, std::size_t n,
+                                            const std::string& qos) {
+  const auto dir = std::filesystem::path(o.out) /
+                   (o.qos.size() > 1 ? std::to_string(n) + "-" + qos : std::to_string(n));
+  std::vector<std::string> argv{common::self_executable().string(),
+                                "run",
+                                "--map",
+                                o.map,
+                                "--scen",
+                                o.scen,
+                                "--plan",
+                                o.plan,
+                                "--agents",
+                                std::to_string(n),
+                                "--robot",
+                                o.robot,
+                                "--clock",
+                                o.clock,
+                                "--qos",
+                                qos,
+                                "--domain",
+                                std::to_string(o.domain),
+                                "--out",
+                                dir.string(),
+                                "--no-progress"};
+  if (!o.axis.empty()) argv.insert(argv.end(), {"--axis", o.axis});
+  common::ChildProcess run(argv, "/dev/null");
+  const int rc = run.wait(std::chrono::hours(4)).value_or(124);
+  std::ifstream in(dir / "summary.json");
+  if (rc != 0 || !in) {
+    std::cerr << "bench run: `smart run` with " << n << " robots over --qos " << qos
+              << " failed (exit code " << rc << "); see " << (dir / "summary.json").string()
+              << " or rerun that command by hand\n";
+    return std::nullopt;
+  }
+  const auto s = nlohmann::json::parse(in);
+  return nlohmann::json{{"robots", n},
+                        {"qos", qos},
+                        {"success", s["success"]},
+                        {"sim_time_s", s["sim_time_s"]},
+                        {"wall_time_s", s["wall_time_s"]},
+                        {"sim_speed", s["sim_speed"]},
+                        {"aet_s", s["aet_s"]},
+                        {"collisions", s["collisions"]},
+                        {"wall_contacts", s["wall_contacts"]},
+                        {"min_separation_m", s["min_separation_m"]},
+                        {"monitor_peak_rss_mb", s["peak_rss_mb"]["monitor"]},
+                        {"sim_peak_rss_mb", s["peak_rss_mb"]["sim"]},
+                        {"cpu_s_per_sim_s", s["cpu_s_per_sim_s"]},
+                        {"adg_build_ms", s["build_time_ms"]["adg_total"]},
+                        {"first_report_wall_s", s["first_report_wall_s"]},
+                        {"machine", machine_description()}};
+}
+
+// Each fleet size over each --qos profile; speed_vs_first_qos is a run's sim speed over the
+// first profile's at that size (issue 26: a modelled link must keep lock-step's wall speed).
 int run_bench_run(const BenchRunOptions& o) {
   std::vector<nlohmann::json> rows;
   for (const auto n : o.agents) {
-    const auto dir = std::filesystem::path(o.out) / std::to_string(n);
-    std::vector<std::string> argv{common::self_executable().string(),
-                                  "run",
-                                  "--map",
-                                  o.map,
-                                  "--scen",
-                                  o.scen,
-                                  "--plan",
-                                  o.plan,
-                                  "--agents",
-                                  std::to_string(n),
-                                  "--robot",
-                                  o.robot,
-                                  "--clock",
-                                  o.clock,
-                                  "--domain",
-                                  std::to_string(o.domain),
-                                  "--out",
-                                  dir.string(),
-                                  "--no-progress"};
-    if (!o.axis.empty()) argv.insert(argv.end(), {"--axis", o.axis});
-    common::ChildProcess run(argv, "/dev/null");
-    const int rc = run.wait(std::chrono::hours(4)).value_or(124);
-    std::ifstream in(dir / "summary.json");
-    if (rc != 0 || !in) {
-      std::cerr << "bench run: `smart run` with " << n << " robots failed (exit code " << rc
-                << "); see " << (dir / "summary.json").string()
-                << " or rerun that command by hand\n";
-      return kExitRunFailed;
+    double first_speed = 0;
+    for (const auto& qos : o.qos) {
+      auto row = bench_one_run(o, n, qos);
+      if (!row) return kExitRunFailed;
+      const double speed = (*row)["sim_speed"].is_number() ? (*row)["sim_speed"].get<double>() : 0;
+      if (first_speed == 0) first_speed = speed;
+      (*row)["speed_vs_first_qos"] = first_speed > 0 ? speed / first_speed : 0.0;
+      std::cout << row->dump() << std::endl;
+      rows.push_back(*row);
     }
-    const auto s = nlohmann::json::parse(in);
-    nlohmann::json row = {{"robots", n},
-                          {"success", s["success"]},
-                          {"sim_time_s", s["sim_time_s"]},
-                          {"wall_time_s", s["wall_time_s"]},
-                          {"sim_speed", s["sim_speed"]},
-                          {"aet_s", s["aet_s"]},
-                          {"collisions", s["collisions"]},
-                          {"wall_contacts", s["wall_contacts"]},
-                          {"min_separation_m", s["min_separation_m"]},
-                          {"monitor_peak_rss_mb", s["peak_rss_mb"]["monitor"]},
-                          {"sim_peak_rss_mb", s["peak_rss_mb"]["sim"]},
-                          {"cpu_s_per_sim_s", s["cpu_s_per_sim_s"]},
-                          {"adg_build_ms", s["build_time_ms"]["adg_total"]},
-                          {"first_report_wall_s", s["first_report_wall_s"]},
-                          {"machine", machine_description()}};
-    std::cout << row.dump() << std::endl;
-    rows.push_back(row);
   }
   print_table(rows);
   return kExitSuccess;
@@ -187,12 +211,14 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   sim->add_option("--robots,--agents", o->robots, "robots in the simulated fleet")
       ->check(CLI::Range(1ul, 100000ul))
       ->capture_default_str();
-  sim->add_option("--sim-seconds", o->sim_seconds)
+  sim->add_option("--sim-seconds", o->sim_seconds, "sim seconds to simulate")
       ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
   sim->add_option("--robot", o->robot, "robot model name or YAML file")->capture_default_str();
-  sim->add_option("--cell-m", o->cell_m)->check(finite_in(0.05, 100.0))->capture_default_str();
-  sim->add_option("--seed", o->seed)->capture_default_str();
+  sim->add_option("--cell-m", o->cell_m, "grid cell size in metres")
+      ->check(finite_in(0.05, 100.0))
+      ->capture_default_str();
+  sim->add_option("--seed", o->seed, "seed of the robots' random walks")->capture_default_str();
   sim->add_option("--system-capacity", o->system_capacity,
                   "robot bodies per Simbody system (0: automatic)")
       ->check(CLI::Range(0, 4096))
@@ -213,8 +239,13 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   run->add_option("--agents,--robots", r->agents, "fleet sizes: first N robots of the plan")
       ->delimiter(',')
       ->capture_default_str();
-  run->add_option("--robot", r->robot)->capture_default_str();
-  run->add_option("--clock", r->clock)
+  run->add_option("--qos", r->qos,
+                  "QoS profiles to compare at each size, the first the reference (e.g. "
+                  "lan,sim-lossy-wifi)")
+      ->delimiter(',')
+      ->capture_default_str();
+  run->add_option("--robot", r->robot, "robot model name or YAML file")->capture_default_str();
+  run->add_option("--clock", r->clock, "lockstep or realtime")
       ->check(CLI::IsMember({"lockstep", "realtime"}))
       ->capture_default_str();
   run->add_option("--domain", r->domain, "DDS domain id")

@@ -32,7 +32,8 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
       ->envname("SMART_DOMAIN")
       ->check(CLI::Range(0, 230))
       ->capture_default_str();
-  cmd->add_option("--qos", o.qos, "QoS profile: lan, wifi, lossy-wifi or a YAML file")
+  cmd->add_option("--qos", o.qos,
+                  "QoS profile: " + std::string(dds::kShippedQosProfiles) + ", or a YAML file")
       ->envname("SMART_QOS")
       ->capture_default_str();
   cmd->add_option("--run", o.run,
@@ -75,6 +76,32 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
+}
+
+void group_options(CLI::App* cmd) {
+  static const std::vector<std::pair<const char*, std::vector<const char*>>> kGroups{
+      {"Problem",
+       {"--map", "--scen", "--agents", "--plan", "--axis", "--format", "--initial-heading",
+        "--cell-m"}},
+      {"Robots and execution uncertainty",
+       {"--robot", "--stall-probability", "--stall-s", "--speed-sigma", "--slip-sigma", "--seed"}},
+      {"Network, DDS and trust",
+       {"--domain", "--qos", "--run", "--network", "--security", "--identity", "--run-key",
+        "--link-delay-ms", "--link-jitter-ms", "--link-loss-per-mille", "--link-seed"}},
+      {"Run control",
+       {"--clock", "--real-time-factor", "--timeout-s", "--window-cap", "--stall-timeout-s",
+        "--max-sim-time-s", "--resume", "--require-sim-status"}},
+      {"Outputs",
+       {"--out", "--stats", "--no-progress", "--state-rate-hz", "--ros-plan-hz",
+        "--ros-pose-robots"}},
+      {"Sim host",
+       {"--sim-hosts", "--shard", "--threads", "--system-capacity", "--external-robots"}},
+  };
+  for (const auto& [group, names] : kGroups) {
+    for (const char* name : names) {
+      if (auto* opt = cmd->get_option_no_throw(name)) opt->group(group);
+    }
+  }
 }
 
 CLI::Validator finite_in(double lo, double hi) {

@@ -3,11 +3,11 @@
 // responder: it answers every action window with the progress (and a robot state) of having
 // finished it, and every sim clock tick with the same tick. dds-ping drives it and measures
 // round trips. dds-send publishes a numbered burst (delivery under the lossy profile).
-#include <cmath>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -313,13 +313,15 @@ void register_dds_commands(CLI::App& app, int& exit_code) {
   auto* send = app.add_subcommand(
       "dds-send", "Publish COUNT progress samples (robot_id 0..COUNT-1) once a reader matched");
   add_dds_options(send, *send_dds);
-  send->add_option("--count", send_opts->count)->capture_default_str();
-  send->add_option("--reliability", send_opts->reliability)
+  send->add_option("--count", send_opts->count, "progress samples to publish")
+      ->capture_default_str();
+  send->add_option("--reliability", send_opts->reliability, "reliability of the writer")
       ->check(CLI::IsMember({"reliable", "best_effort"}))
       ->capture_default_str();
   send->add_option("--interval-ms", send_opts->interval_ms, "pause between samples")
       ->capture_default_str();
-  send->add_option("--timeout-s", send_opts->timeout_s)->capture_default_str();
+  send->add_option("--timeout-s", send_opts->timeout_s, "give up when no reader matched by then")
+      ->capture_default_str();
   send->callback([&exit_code, send_dds, send_opts] {
     install_stop_handlers();
     exit_code = run_send(*send_dds, *send_opts);

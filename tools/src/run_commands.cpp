@@ -322,6 +322,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
          "host shard I of N of a sharded sim (map strips; every shard with the same world "
          "options); `smart run --sim-hosts N` starts them all")
       ->type_name("I/N");
+  group_options(sim);
   sim->callback([&exit_code, so] {
     install_stop_handlers();
     exit_code = run_sim(*so);
@@ -338,6 +339,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   mon->add_flag("--require-sim-status", mo->require_sim_status,
                 "real time: succeed only with a `smart sim` host's final status (its collision "
                 "counts); lock-step runs always need it");
+  group_options(mon);
   mon->callback([&exit_code, mo] {
     install_stop_handlers();
     exit_code = run_monitor(*mo, false);
@@ -354,6 +356,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                   "(map strips, lock-step; docs/simulation.md \"Sharded sim\")")
       ->check(CLI::Range(1u, dds::kMaxShards))
       ->capture_default_str();
+  group_options(run);
   run->callback([&exit_code, ro] {
     install_stop_handlers();
     exit_code = run_monitor(*ro, true);

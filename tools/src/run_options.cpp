@@ -167,6 +167,12 @@ void check_real_time_factor(const SimCliOptions& o) {
 
 std::optional<std::string> link_model_warning(sim::ClockMode clock, const DdsOptions& dds,
                                               const dds::QosProfile& profile) {
+  if (clock == sim::ClockMode::kLockstep && profile.transport.loss_per_mille > 0) {
+    return "--qos " + dds.qos + " drops " + std::to_string(profile.transport.loss_per_mille) +
+           " per mille of the real packets: a lock-step tick waits for their retransmissions, "
+           "so the run is slower in wall time and no different on the sim clock; use --qos "
+           "sim-lossy-wifi to model a lossy link at full speed";
+  }
   if (clock != sim::ClockMode::kRealtime || !profile.link.active()) return std::nullopt;
   const auto& d = profile.link.to_host;
   return "--qos " + dds.qos + " models a link (" + exact(d.delay_ms) + " ms delay, " +

@@ -11,7 +11,7 @@
 //   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin}, or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
 //   robots: [footbot, footbot-smart]  # default [footbot]
-//   qos: [lan, lossy-wifi]            # default [lan]
+//   qos: [lan, sim-lossy-wifi]            # default [lan]
 //   clock: lockstep                   # or realtime
 //   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
 //   repeats: 3                        # repeat r of every cell, seed r; default 1

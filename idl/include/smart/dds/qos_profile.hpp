@@ -1,8 +1,10 @@
 // Contract: a QosProfile names the QoS of every SMART-DDS topic plus the Cyclone transport
-// settings of a link type. Profiles are YAML files (config/qos/<name>.yaml; shipped: lan, wifi,
-// lossy-wifi). Parsing is strict: an unknown key, a wrong type or an out-of-range value throws
-// ConfigError naming file:line:column, the key and the accepted values. Topics a file leaves out
-// keep the defaults of default_qos_profile() (docs/architecture.md, "Topics").
+// settings of a link type. Profiles are YAML files (config/qos/<name>.yaml; kShippedQosProfiles).
+// A real network's profile (lan, wifi) sets timers only; a modelled link's (sim-*) adds a link
+// model on the sim clock; transport loss is for testing the protocol (protocol-loss-test). Parsing
+// is strict: an unknown key, a wrong type or an out-of-range value throws ConfigError naming
+// file:line:column, the key and the accepted values. Topics a file leaves out keep the defaults of
+// default_qos_profile() (docs/architecture.md, "Topics").
 #pragma once
 
 #include <filesystem>
@@ -14,6 +16,9 @@
 #include "smart/wire/link.hpp"
 
 namespace smart::dds {
+
+inline constexpr const char* kShippedQosProfiles =
+    "lan, wifi (real networks), sim-wifi, sim-lossy-wifi (modelled links) or protocol-loss-test";
 
 // Which QoS of a profile a topic uses; each topic's role is in the table of topics.hpp.
 enum class TopicRole { kAction, kProgress, kState, kClock, kStatus, kShard };
