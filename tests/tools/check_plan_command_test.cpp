@@ -63,6 +63,14 @@ TEST(CheckPlanCommand, InvalidPlanListsEveryProblemAndExitsOne) {
   EXPECT_THAT(all, HasSubstr("jumps from (x=1,y=1) to (x=2,y=0)"));
   EXPECT_EQ(j["problems"][0]["robot"], 0);
   EXPECT_EQ(j["problems"][0]["line"], 1);
+  // Issue 26: the JSON buried stderr's hint; on a terminal the problems now come last.
+  const auto both = run({"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"}, true);
+  EXPECT_EQ(both.code, 1);
+  const auto json_end = both.out.find("\n}\n");
+  const auto said = both.out.find("obstacle at (x=1,y=1)", json_end);
+  ASSERT_NE(json_end, std::string::npos) << both.out;
+  EXPECT_NE(said, std::string::npos) << "the problems must follow the JSON:\n" << both.out;
+  EXPECT_THAT(both.out, ::testing::EndsWith("problem(s) found\n"));
   for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
 }
 

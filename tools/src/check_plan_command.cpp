@@ -58,13 +58,14 @@ int run_check_plan(const CheckPlanOptions& o) {
     std::cout << report.dump(2) << std::endl;
     return kExitSuccess;
   } catch (const grid::InputError& e) {
-    // The first 50 (a wrong --axis hint first), then a count; the JSON has them all.
-    std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
+    // The JSON has them all; then, last on a terminal (issue 26: the JSON buried the hint), the
+    // diagnosis line and the first 50, then a count.
     std::cout << nlohmann::json{{"valid", false},
                                 {"problem_count", e.problems().size()},
                                 {"problems", problems_json(e.problems())}}
                      .dump(2)
               << std::endl;
+    std::cerr << e.what() << "\n" << e.problems().size() << " problem(s) found\n";
     return kExitRunFailed;
   }
 }

@@ -287,6 +287,8 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   }
   if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
+  // The summary first, the verdict and warnings last: on a terminal the JSON buried them.
+  std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   if (const auto& c = result.first_pose_contact) {
     spdlog::warn(
@@ -294,7 +296,6 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         "({:.3f} m overlap): check the robots' sizes, pose calibration and the plan's spacing",
         result.pose_contacts, c->a, c->b, c->t_s, -c->gap_m);
   }
-  std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
   return result.success() ? kExitSuccess : kExitRunFailed;
 }
 
