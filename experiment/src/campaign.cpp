@@ -9,6 +9,8 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "smart/common/child_process.hpp"
@@ -48,8 +50,10 @@ struct Campaign {
   Spec spec;
   std::vector<Cell> cells;
   std::vector<std::pair<fs::path, fs::path>> files;  // resolved (map, scen) per instance
-  fs::path out, plan_file, smart;
-  std::map<std::pair<std::size_t, std::size_t>, fs::path> plans;  // (instance, agents) -> plan
+  fs::path out, smart;
+  std::vector<fs::path> plan_files;  // resolved, per spec.plans entry (empty: made here)
+  // (instance, agents, plan source) -> the plan file made, and its planner's wall seconds
+  std::map<std::tuple<std::size_t, std::size_t, std::size_t>, std::pair<fs::path, double>> plans;
 
   fs::path cell_dir(const Cell& c) const { return out / "cells" / c.key; }
   bool done(const Cell& c) const {
@@ -59,14 +63,14 @@ struct Campaign {
 };
 
 // The words that make the plan of (map, scen, agents) into `plan`.
-std::vector<std::string> plan_argv(const Campaign& c, const fs::path& map, const fs::path& scen,
-                                   std::size_t agents, const fs::path& plan) {
-  if (c.spec.plan_source == PlanSource::kBuiltin) {
+std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, const fs::path& map,
+                                   const fs::path& scen, std::size_t agents, const fs::path& plan) {
+  if (source.source == PlanSource::kBuiltin) {
     return {c.smart.string(), "plan",        "--map",    map.string(),
             "--scen",         scen.string(), "--agents", std::to_string(agents),
             "--out",          plan.string()};
   }
-  std::string cmd = c.spec.plan;
+  std::string cmd = source.text;
   for (const auto& [k, v] : {std::pair{"{map}", shell_quote(map.string())},
                              {"{scen}", shell_quote(scen.string())},
                              {"{agents}", std::to_string(agents)},
@@ -76,28 +80,41 @@ std::vector<std::string> plan_argv(const Campaign& c, const fs::path& map, const
   return {"/bin/sh", "-c", cmd};
 }
 
-// The plan of (instance, agents): the spec's file, or made once by the built-in planner or the
-// spec's command into <out>/plans/.
-fs::path make_plan(Campaign& c, std::size_t instance, std::size_t agents) {
-  if (c.spec.plan_source == PlanSource::kFile) return c.plan_file;
-  const auto key = std::make_pair(instance, agents);
+// The planner's wall seconds, kept beside its plan so a resumed campaign reports them too.
+std::optional<double> read_runtime(const fs::path& plan) {
+  std::ifstream in(plan.string() + ".runtime_s");
+  double s = 0;
+  return in >> s ? std::optional<double>(s) : std::nullopt;
+}
+
+// The plan of (instance, agents, plan source): the spec's file, or made once by the built-in
+// planner or the spec's command into <out>/plans/, timed.
+std::pair<fs::path, std::optional<double>> make_plan(Campaign& c, const Cell& cell) {
+  const auto& source = c.spec.plans.at(cell.plan);
+  if (source.source == PlanSource::kFile) return {c.plan_files.at(cell.plan), std::nullopt};
+  const auto key = std::make_tuple(cell.instance, cell.agents, cell.plan);
   if (auto it = c.plans.find(key); it != c.plans.end()) return it->second;
-  const auto plan =
-      c.out / "plans" / (std::to_string(instance) + "-n" + std::to_string(agents) + ".txt");
+  const auto plan = c.out / "plans" /
+                    (std::to_string(cell.instance) + "-n" + std::to_string(cell.agents) +
+                     (c.spec.plans.size() > 1 ? "-" + source.name : "") + ".txt");
   fs::create_directories(plan.parent_path());
-  const auto& [map, scen] = c.files[instance];
-  if (!fs::exists(plan)) {
-    const int rc =
-        common::ChildProcess(plan_argv(c, map, scen, agents, plan), plan.string() + ".log")
-            .wait(std::chrono::hours(24))
-            .value_or(-1);
+  const auto& [map, scen] = c.files[cell.instance];
+  if (!fs::exists(plan) || !read_runtime(plan)) {
+    const auto t0 = Clock::now();
+    const int rc = common::ChildProcess(plan_argv(c, source, map, scen, cell.agents, plan),
+                                        plan.string() + ".log")
+                       .wait(std::chrono::hours(24))
+                       .value_or(-1);
     if (rc != 0 || !fs::exists(plan)) {
-      throw std::runtime_error("experiment: planning " + std::to_string(agents) + " robots of " +
-                               scen.string() + " failed (exit code " + std::to_string(rc) +
-                               "); see " + plan.string() + ".log");
+      throw std::runtime_error("experiment: planner " + source.name + " on " +
+                               std::to_string(cell.agents) + " robots of " + scen.string() +
+                               " failed (exit code " + std::to_string(rc) + "); see " +
+                               plan.string() + ".log");
     }
+    std::ofstream(plan.string() + ".runtime_s")
+        << std::chrono::duration<double>(Clock::now() - t0).count() << "\n";
   }
-  return c.plans[key] = plan;
+  return c.plans[key] = {plan, *read_runtime(plan)};
 }
 
 std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
@@ -106,8 +123,8 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
                                 "error",          "run",
                                 "--map",          map.string(),
                                 "--scen",         scen.string(),
-                                "--plan",         make_plan(c, cell.instance, cell.agents).string(),
-                                "--axis",         c.spec.axis,
+                                "--plan",         make_plan(c, cell).first.string(),
+                                "--axis",         c.spec.plans.at(cell.plan).axis,
                                 "--agents",       std::to_string(cell.agents),
                                 "--robot",        cell.robot,
                                 "--qos",          cell.qos,
@@ -206,14 +223,14 @@ Tally run_cells(Campaign& c, const CampaignOptions& o, std::ostream& log) {
 }
 
 // results.csv and results.jsonl from every cell that has a summary.
-std::size_t write_results(const Campaign& c) {
+std::size_t write_results(Campaign& c) {
   std::vector<nlohmann::json> rows;
   std::ofstream jsonl(c.out / "results.jsonl");
   for (const auto& cell : c.cells) {
     std::ifstream in(c.cell_dir(cell) / results::kSummaryJson);
     const auto summary = nlohmann::json::parse(in, nullptr, false);
     if (!in || !summary.is_object()) continue;
-    rows.push_back(result_row(c.spec, cell, summary));
+    rows.push_back(result_row(c.spec, cell, summary, make_plan(c, cell).second));
     jsonl << rows.back().dump() << "\n";
   }
   std::ofstream(c.out / "results.csv") << results_csv(rows);
@@ -244,8 +261,9 @@ Campaign load_campaign(const CampaignOptions& o) {
     auto map_file = resolve(map, spec_dir, "maps");  // named first when both are missing
     c.files.emplace_back(std::move(map_file), resolve(scen, spec_dir, "scens"));
   }
-  if (c.spec.plan_source == PlanSource::kFile) {
-    c.plan_file = resolve(c.spec.plan, spec_dir, "smart-examples");
+  for (const auto& p : c.spec.plans) {
+    c.plan_files.push_back(
+        p.source == PlanSource::kFile ? resolve(p.text, spec_dir, "smart-examples") : fs::path());
   }
   check_names(c.spec);
   c.out = o.out.empty() ? fs::path("experiments") / c.spec.name : o.out;

@@ -68,29 +68,62 @@ std::vector<std::size_t> counts(const YAML::Node& root, const std::string& src) 
   return out;
 }
 
-void read_plan(const YAML::Node& root, const std::string& src, Spec& s) {
-  const auto p = root["plan"];
+PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::string& field,
+                       std::size_t index) {
   if (!p || !p.IsMap()) {
-    fail(src, p ? p : root, "plan",
+    fail(src, p, field,
          "give {file: paths.txt, axis: xy}, {planner: builtin} or {command: \"... {plan}\"}");
   }
   const int given = (p["file"] ? 1 : 0) + (p["planner"] ? 1 : 0) + (p["command"] ? 1 : 0);
-  if (given != 1) fail(src, p, "plan", "give exactly one of file, planner and command");
+  if (given != 1) fail(src, p, field, "give exactly one of file, planner and command");
+  PlanSpec plan;
   if (p["file"]) {
-    s.plan_source = PlanSource::kFile, s.plan = p["file"].as<std::string>();
+    plan.source = PlanSource::kFile, plan.text = p["file"].as<std::string>();
+    plan.name = std::filesystem::path(plan.text).stem().string();
   } else if (p["planner"]) {
     if (p["planner"].as<std::string>() != "builtin") {
-      fail(src, p["planner"], "plan.planner", "the only planner inside is 'builtin'");
+      fail(src, p["planner"], field + ".planner", "the only planner inside is 'builtin'");
     }
-    s.plan_source = PlanSource::kBuiltin;
+    plan.source = PlanSource::kBuiltin, plan.name = "builtin";
   } else {
-    s.plan_source = PlanSource::kCommand, s.plan = p["command"].as<std::string>();
-    if (s.plan.find("{plan}") == std::string::npos) {
-      fail(src, p["command"], "plan.command", "must write {plan} (the file it is given)");
+    plan.source = PlanSource::kCommand, plan.text = p["command"].as<std::string>();
+    plan.name = field == "plan" ? "command" : "command" + std::to_string(index);
+    if (plan.text.find("{plan}") == std::string::npos) {
+      fail(src, p["command"], field + ".command", "must write {plan} (the file it is given)");
     }
   }
-  s.axis = p["axis"] ? p["axis"].as<std::string>() : "xy";
-  if (s.axis != "xy" && s.axis != "rowcol") fail(src, p["axis"], "plan.axis", "xy or rowcol");
+  if (p["name"]) plan.name = p["name"].as<std::string>();
+  if (!plain_name(plan.name)) {
+    fail(src, p["name"] ? p["name"] : p, field + ".name", "1-64 of A-Z a-z 0-9 . _ -");
+  }
+  plan.axis = p["axis"] ? p["axis"].as<std::string>() : "xy";
+  if (plan.axis != "xy" && plan.axis != "rowcol") {
+    fail(src, p["axis"], field + ".axis", "xy or rowcol");
+  }
+  return plan;
+}
+
+// plan: one source, or plans: a planner axis of several, each named once.
+void read_plan(const YAML::Node& root, const std::string& src, Spec& s) {
+  if (root["plan"] && root["plans"]) {
+    fail(src, root["plans"], "plans", "give plan (one) or plans (a list), not both");
+  }
+  if (!root["plans"]) {
+    s.plans = {read_one_plan(root["plan"], src, "plan", 0)};
+    return;
+  }
+  const auto list = root["plans"];
+  if (!list.IsSequence() || list.size() == 0) {
+    fail(src, list, "plans", "a list of plan sources, e.g. [{planner: builtin}]");
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    s.plans.push_back(read_one_plan(list[i], src, "plans[" + std::to_string(i) + "]", i));
+    if (!names.insert(s.plans.back().name).second) {
+      fail(src, list[i], "plans[" + std::to_string(i) + "].name",
+           "'" + s.plans.back().name + "' names two plan sources; give each its own name");
+    }
+  }
 }
 
 void read_instances(const YAML::Node& root, const std::string& src, Spec& s) {
@@ -164,12 +197,14 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     s.repeats = static_cast<std::size_t>(k);
   }
   for (const auto& kv : root) {
-    static const std::set<std::string> known{"name",   "maps", "scens", "agents",  "plan",
-                                             "robots", "qos",  "clock", "repeats", "uncertainty"};
+    static const std::set<std::string> known{"name",  "maps",    "scens",      "agents",
+                                             "plan",  "plans",   "robots",     "qos",
+                                             "clock", "repeats", "uncertainty"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
-           "unknown field; the fields are name, maps, scens, agents, plan, robots, qos, clock, "
+           "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
+           "clock, "
            "uncertainty, repeats");
     }
   }
@@ -196,8 +231,9 @@ std::string csv_field(const json& v) {
   return q + "\"";
 }
 
-const std::vector<std::string> kParams{"cell",        "map",    "scen", "agents", "robot", "qos",
-                                       "uncertainty", "repeat", "plan", "axis",   "clock"};
+const std::vector<std::string> kParams{"cell",  "map",  "scen",        "agents",
+                                       "robot", "qos",  "uncertainty", "repeat",
+                                       "plan",  "axis", "clock",       "planner_runtime_s"};
 }  // namespace
 
 Spec parse_spec(std::string_view text, const std::string& src) {
@@ -226,15 +262,18 @@ std::vector<Cell> expand(const Spec& s) {
   std::vector<Cell> cells;
   for (std::size_t i = 0; i < s.instances.size(); ++i) {
     for (const auto n : s.agents) {
-      for (const auto& robot : s.robots) {
-        for (const auto& qos : s.qos) {
-          for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
-            for (std::size_t r = 0; r < s.repeats; ++r) {
-              auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
-                         std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
-              if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
-              key += "-r" + std::to_string(r);
-              cells.push_back({i, n, robot, qos, u, r, key});
+      for (std::size_t p = 0; p < s.plans.size(); ++p) {
+        for (const auto& robot : s.robots) {
+          for (const auto& qos : s.qos) {
+            for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
+              for (std::size_t r = 0; r < s.repeats; ++r) {
+                auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
+                           std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+                if (s.plans.size() > 1) key += "-" + s.plans[p].name;
+                if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+                key += "-r" + std::to_string(r);
+                cells.push_back({i, n, p, robot, qos, u, r, key});
+              }
             }
           }
         }
@@ -255,7 +294,8 @@ std::vector<std::string> uncertainty_flags(const Spec& s, const Cell& c) {
   return flags;
 }
 
-json result_row(const Spec& s, const Cell& c, const json& summary) {
+json result_row(const Spec& s, const Cell& c, const json& summary,
+                std::optional<double> planner_runtime_s) {
   json row = {{"cell", c.key},
               {"map", stem(s.instances[c.instance].first)},
               {"scen", stem(s.instances[c.instance].second)},
@@ -264,11 +304,10 @@ json result_row(const Spec& s, const Cell& c, const json& summary) {
               {"qos", stem(c.qos)},
               {"uncertainty", s.uncertainty.at(c.uncertainty).dump()},
               {"repeat", c.repeat},
-              {"plan", s.plan_source == PlanSource::kFile      ? stem(s.plan)
-                       : s.plan_source == PlanSource::kBuiltin ? "builtin"
-                                                               : "command"},
-              {"axis", s.axis},
+              {"plan", s.plans.at(c.plan).name},
+              {"axis", s.plans.at(c.plan).axis},
               {"clock", s.clock}};
+  if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   json fields = json::object();
   flatten(summary, "", fields);
   for (const auto& [k, v] : fields.items()) {

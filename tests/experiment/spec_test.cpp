@@ -25,8 +25,10 @@ TEST(Spec, ReadsEveryAxisAndExpandsTheirProduct) {
   EXPECT_EQ(s.name, "scaling");
   ASSERT_EQ(s.instances.size(), 2u);  // one map for both scens
   EXPECT_EQ(s.instances[1], (std::pair<std::string, std::string>{"w.map", "w-2.scen"}));
-  EXPECT_EQ(s.plan_source, PlanSource::kFile);
-  EXPECT_EQ(s.axis, "rowcol");
+  ASSERT_EQ(s.plans.size(), 1u);
+  EXPECT_EQ(s.plans[0].source, PlanSource::kFile);
+  EXPECT_EQ(s.plans[0].axis, "rowcol");
+  EXPECT_EQ(s.plans[0].name, "paths");
   EXPECT_EQ(s.qos, std::vector<std::string>{"lan"});
   const auto cells = expand(s);
   ASSERT_EQ(cells.size(), 2u * 2 * 2 * 1 * 2);
@@ -40,12 +42,47 @@ TEST(Spec, ReadsEveryAxisAndExpandsTheirProduct) {
 TEST(Spec, PlannerAndCommandPlans) {
   auto s =
       parse_spec("name: a\nmaps: [m]\nscens: [s]\nagents: 5\nplan: {planner: builtin}\n", "x.yaml");
-  EXPECT_EQ(s.plan_source, PlanSource::kBuiltin);
+  EXPECT_EQ(s.plans.at(0).source, PlanSource::kBuiltin);
   EXPECT_EQ(s.agents, std::vector<std::size_t>{5});
   s = parse_spec(
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {command: \"p {map} {plan}\"}\n", "x");
-  EXPECT_EQ(s.plan_source, PlanSource::kCommand);
-  EXPECT_EQ(s.plan, "p {map} {plan}");
+  EXPECT_EQ(s.plans.at(0).source, PlanSource::kCommand);
+  EXPECT_EQ(s.plans.at(0).text, "p {map} {plan}");
+}
+
+// Issue 26: planners could not be compared (no planner axis, no planner runtime column).
+TEST(Spec, PlansAreAPlannerAxisEachNamedInTheCellsAndTheRows) {
+  const auto s = parse_spec(
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nrepeats: 2\n"
+      "plans: [{planner: builtin}, {name: lns2, command: \"lns {plan}\", axis: rowcol}]\n",
+      "p.yaml");
+  ASSERT_EQ(s.plans.size(), 2u);
+  EXPECT_EQ(s.plans[0].name, "builtin");
+  EXPECT_EQ(s.plans[1].name, "lns2");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[0].key, "0-s-n5-footbot-lan-builtin-r0");
+  EXPECT_EQ(cells[3].key, "0-s-n5-footbot-lan-lns2-r1");
+  const auto row = result_row(s, cells[3], json::object(), 1.5);
+  EXPECT_EQ(row["plan"], "lns2");
+  EXPECT_EQ(row["axis"], "rowcol");
+  EXPECT_EQ(row["planner_runtime_s"], 1.5);
+  EXPECT_FALSE(result_row(s, cells[0], json::object()).contains("planner_runtime_s"));
+  for (const auto& [yaml, expected] :
+       {std::pair{"plans: [{planner: builtin}, {planner: builtin}]\n",
+                  "p.yaml:6: plans[1].name: 'builtin' names two plan sources"},
+        {"plans: []\n", "plans: a list"},
+        {"plans: [{name: a b, planner: builtin}]\n", "plans[0].name: 1-64"},
+        {"plan: {planner: builtin}\nplans: [{planner: builtin}]\n", "not both"}}) {
+    try {
+      (void)parse_spec(
+          std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nrepeats: 1\n") + yaml,
+          "p.yaml");
+      ADD_FAILURE() << yaml;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+    }
+  }
 }
 
 TEST(Spec, MistakesNameTheFileLineAndField) {
@@ -121,10 +158,10 @@ TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
   other["extra"] = "q\"uote";
   const auto csv = results_csv({row, other});
   EXPECT_THAT(csv, ::testing::StartsWith("cell,map,scen,agents,robot,qos,uncertainty,repeat,plan,"
-                                         "axis,clock,"
+                                         "axis,clock,planner_runtime_s,"
                                          "adg.type2,aet_s,extra,machine,"));
-  EXPECT_THAT(csv, HasSubstr(",7,12.5,,\"x, y\","));           // row 1: no extra
-  EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));  // row 2: no AET
+  EXPECT_THAT(csv, HasSubstr(",lockstep,,7,12.5,,\"x, y\","));  // no runtime (a file); no extra
+  EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));   // row 2: no AET
 }
 
 }  // namespace

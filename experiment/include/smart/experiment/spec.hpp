@@ -10,6 +10,8 @@
 //   agents: [10, 100]                 # first N robots
 //   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin}, or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
+//   plans: [{name: pp, planner: builtin}, {name: lns2, command: "...", axis: xy}]
+//                                     # instead of plan: a planner axis (names 1-64 plain)
 //   robots: [footbot, footbot-smart]  # default [footbot]
 //   qos: [lan, sim-lossy-wifi]            # default [lan]
 //   clock: lockstep                   # or realtime
@@ -20,6 +22,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,13 +31,20 @@ namespace smart::experiment {
 
 enum class PlanSource { kFile, kBuiltin, kCommand };
 
+// One value of the planner axis: where the plans come from, and its name in results.csv
+// (default: the file's stem, "builtin", or "command" + its index).
+struct PlanSpec {
+  std::string name;
+  PlanSource source = PlanSource::kFile;
+  std::string text;  // the file, or the command template
+  std::string axis = "xy";
+};
+
 struct Spec {
   std::string name;
   std::vector<std::pair<std::string, std::string>> instances;  // (map, scen) as written
   std::vector<std::size_t> agents;
-  PlanSource plan_source = PlanSource::kFile;
-  std::string plan;  // the file, or the command template
-  std::string axis = "xy";
+  std::vector<PlanSpec> plans;  // one (plan:) or several (plans:)
   std::vector<std::string> robots{"footbot"};
   std::vector<std::string> qos{"lan"};
   std::string clock = "lockstep";
@@ -50,21 +60,24 @@ Spec parse_spec(std::string_view yaml_text, const std::string& source);
 struct Cell {
   std::size_t instance = 0;  // index into spec.instances
   std::size_t agents = 0;
+  std::size_t plan = 0;  // index into spec.plans
   std::string robot, qos;
   std::size_t uncertainty = 0;  // index into spec.uncertainty
   std::size_t repeat = 0;       // also the uncertainty seed
   std::string key;              // folder name, unique within the experiment, stable across runs
 };
 
-// The grid, in a fixed order (instance, agents, robot, qos, uncertainty, repeat).
+// The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
 std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
 
-// One results row: the cell's parameters, then every summary.json field, nested objects
-// flattened with dots ("adg.type2"), arrays as JSON text.
-nlohmann::json result_row(const Spec& spec, const Cell& cell, const nlohmann::json& summary);
+// One results row: the cell's parameters (plan: the planner's name), the wall seconds its
+// planner took (planner_runtime_s; absent for a plan file), then every summary.json field,
+// nested objects flattened with dots ("adg.type2"), arrays as JSON text.
+nlohmann::json result_row(const Spec& spec, const Cell& cell, const nlohmann::json& summary,
+                          std::optional<double> planner_runtime_s = std::nullopt);
 // The rows as CSV: the union of their columns, parameters first, then summary fields sorted;
 // fields quoted when they hold a comma, a quote or a newline.
 std::string results_csv(const std::vector<nlohmann::json>& rows);
