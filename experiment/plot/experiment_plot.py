@@ -1,20 +1,29 @@
 #!/usr/bin/env python3
-"""Figures of a `smart experiment` (results.csv): PNG and SVG, with Debian's python3-matplotlib.
+"""Figures of a `smart experiment` (results.csv): PNG, SVG and PDF, with Debian's
+python3-matplotlib, and figures.json, the data each figure shows.
 
 Usage: experiment_plot.py RESULTS_DIR OUT_DIR
 
-Figures (each only when the results vary along its axis):
-  sim_speed.{png,svg}      sim speed vs robots, a line per map / robot model / QoS profile
-  aet_makespan.{png,svg}   AET and makespan vs robots, mean +- sd over repeats (replicability)
-  memory.{png,svg}         peak memory of monitor and sim, and CPU seconds per sim second, vs
-                           robots
-  success.{png,svg}        success rate vs robots, per robot model / QoS profile
-  stalls.{png,svg}         AET and success rate vs stall probability (when it varies), a line
-                           per fleet size / robot model
-  link.{png,svg}           AET and success rate vs the link's delay to the hosts (when it
-                           varies: QoS profiles with different link sections)
-  table.md                 one row per cell of the grid (every parameter but the repeat): runs,
-                           success rate, AET and makespan mean +- sd, sim speed, collisions
+Every grid axis that varies is shown, never silently averaged (issue 26): plan (the planner),
+robot model, QoS profile, uncertainty setting and clock are lines (the legend's title names
+them), maps are panels, and scens are pooled, named in the title ("pooled over 3 scens"): a
+scen is one sample of its map's instances. Each point is the mean of its n runs (n beside the
+point, or in the caption when every point has the same n); error bars, only where n >= 2, are
+one standard deviation, as the caption says. An axis is logarithmic only when its values span
+a factor of 10 or more, with plain tick labels at the data; rates run from 0 to 1.
+
+Figures (each when its data exist):
+  aet_makespan     AET and makespan vs robots
+  sim_speed        sim speed vs robots
+  success          success rate vs robots
+  memory           monitor and sim peak memory, CPU seconds per sim second, vs robots
+  planner_runtime  planner wall seconds vs robots, a line per plan (when planners ran here)
+  stalls           AET and success rate vs stall probability (when it varies)
+  link             AET and success rate vs the link's delay to the hosts (when it varies)
+  table.md         one row per cell of the grid (repeats folded): runs, success, AET, makespan,
+                   sim speed, collisions, planner seconds
+  figures.json     per figure: title, caption, and per panel its axes, scales, tick labels and
+                   series of points {x, mean, sd, n} with the results.csv values they match
 Prints one JSON line naming the files written.
 """
 import csv
@@ -28,6 +37,15 @@ import matplotlib
 
 matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
+
+LINE_AXES = ["plan", "robot", "qos", "uncertainty", "clock"]
+PANEL_AXES = ["map"]
+POOLED_AXES = ["scen"]
+AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
+              "clock": "clock", "map": "map", "scen": "scen", "agents": "robots"}
+RATE_FIELDS = {"success_rate"}
+FORMATS = ("png", "svg", "pdf")
 
 
 def number(text):
@@ -40,96 +58,266 @@ def number(text):
 
 def read_rows(results_dir):
     with open(os.path.join(results_dir, "results.csv"), newline="") as f:
-        return list(csv.DictReader(f))
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        r["success_rate"] = "1" if r.get("success") == "true" else "0"
+    return rows
 
 
-def series_key(row, keys):
-    return " / ".join(row[k] for k in keys if row.get(k))
+def values_of(rows, key):
+    return sorted({r.get(key, "") for r in rows}, key=natural)
 
 
 def varying(rows, keys):
-    """The grouping columns that take more than one value (they name the lines)."""
-    return [k for k in keys if len({r.get(k) for r in rows}) > 1]
+    return [k for k in keys if len(values_of(rows, k)) > 1]
 
 
-def grouped(rows, field, line_keys, x_field="agents"):
-    """line -> x (robots by default) -> [values of field] (None skipped)."""
-    out = defaultdict(lambda: defaultdict(list))
-    for r in rows:
-        v = number(r.get(field))
-        x = number(r.get(x_field))
-        if v is not None and x is not None:
-            out[series_key(r, line_keys) or "all"][x].append(v)
-    return out
+def natural(text):
+    """Sort key: numbers by value ("5" before "10")."""
+    return [(0, float(p), "") if number(p) is not None else (1, 0.0, p)
+            for p in str(text).split(" / ")]
 
 
 def mean_sd(values):
     m = sum(values) / len(values)
-    sd = math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else 0.0
-    return m, sd
+    if len(values) < 2:
+        return m, None
+    return m, math.sqrt(sum((v - m) ** 2 for v in values) / (len(values) - 1))
 
 
-def natural(text):
-    """Sort key: numbers by value ("5 / a" before "10 / a")."""
-    return [(0, float(p), "") if number(p) is not None else (1, 0.0, p)
-            for p in text.split(" / ")]
+def series(rows, field, x_field, line_keys):
+    """[{label, match, points: [{x, mean, sd, n}]}], one per combination of line_keys."""
+    groups = defaultdict(lambda: defaultdict(list))
+    for r in rows:
+        v, x = number(r.get(field)), number(r.get(x_field))
+        if v is not None and x is not None:
+            groups[tuple(r.get(k, "") for k in line_keys)][x].append(v)
+    out = []
+    for key in sorted(groups, key=lambda k: [natural(p) for p in k]):
+        points = []
+        for x in sorted(groups[key]):
+            m, sd = mean_sd(groups[key][x])
+            points.append({"x": x, "mean": m, "sd": sd, "n": len(groups[key][x])})
+        out.append({"label": " / ".join(key) if key else "all runs",
+                    "match": dict(zip(line_keys, key)), "points": points})
+    return out
 
 
-def draw(ax, series, label_suffix=""):
-    for line, by_n in sorted(series.items(), key=lambda kv: natural(kv[0])):
-        ns = sorted(by_n)
-        stats = [mean_sd(by_n[n]) for n in ns]
-        label = line
-        ax.errorbar(ns, [m for m, _ in stats], yerr=[s for _, s in stats], marker="o", capsize=3,
-                    label=line + label_suffix)
+def plain(v):
+    return f"{v:g}"
 
 
-def save(fig, out_dir, name, written):
-    for ext in ("png", "svg"):
+def scale_for(values):
+    """Log only when positive values span a factor of 10 or more over 3+ distinct values."""
+    vs = sorted({v for v in values if v is not None})
+    if len(vs) >= 3 and vs[0] > 0 and vs[-1] / vs[0] >= 10:
+        return "log"
+    return "linear"
+
+
+def set_x_axis(ax, xs):
+    scale = scale_for(xs)
+    ax.set_xscale(scale)
+    distinct = sorted(set(xs))
+    if len(distinct) <= 10:
+        ax.xaxis.set_major_locator(FixedLocator(distinct))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: plain(v)))
+    return scale
+
+
+def set_y_axis(ax, field, ys):
+    if field in RATE_FIELDS:
+        ax.set_ylim(-0.02, 1.05)
+        return "linear"
+    scale = scale_for(ys)
+    ax.set_yscale(scale)
+    if scale == "log":
+        ax.yaxis.set_minor_locator(NullLocator())
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: plain(v)))
+    elif ys and min(ys) == max(ys):  # a constant: from zero, not a 4 % window around it
+        top = max(ys)
+        ax.set_ylim(min(0.0, top) * 1.1, max(top * 1.1, 1e-9) if top >= 0 else 0.0)
+    return scale
+
+
+def draw_panel(ax, panel, uniform_n):
+    xs, ys = [], []
+    for s in panel["series"]:
+        px = [p["x"] for p in s["points"]]
+        py = [p["mean"] for p in s["points"]]
+        err = [p["sd"] if p["sd"] is not None else 0.0 for p in s["points"]]
+        has_err = any(p["sd"] is not None for p in s["points"])
+        ax.errorbar(px, py, yerr=err if has_err else None, marker="o", capsize=3 if has_err else 0,
+                    label=s["label"])
+        if not uniform_n:
+            for p in s["points"]:
+                ax.annotate(f"n={p['n']}", (p["x"], p["mean"]), textcoords="offset points",
+                            xytext=(4, 4), fontsize=7)
+        xs += px
+        ys += py
+    panel["xscale"] = set_x_axis(ax, xs)
+    panel["yscale"] = set_y_axis(ax, panel["field"], ys)
+    ax.set_xlabel(panel["xlabel"])
+    ax.set_ylabel(panel["ylabel"])
+    ax.set_title(panel["title"], fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if panel["legend_title"]:
+        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
+
+
+def caption_of(panels):
+    ns = [p["n"] for panel in panels for s in panel["series"] for p in s["points"]]
+    uniform = len(set(ns)) == 1
+    text = (f"Each point: the mean of n = {ns[0]} runs." if uniform
+            else "Each point: the mean of its n runs (n beside it).")
+    if any(n >= 2 for n in ns):
+        text += " Error bars: \u00b11 standard deviation over those runs."
+    else:
+        text += " One run per point: no error bars."
+    return text, uniform
+
+
+def figure(out_dir, name, title, panels, written, described):
+    """panels: dicts of title, field, xlabel, ylabel, legend_title, series."""
+    if not any(s["points"] for panel in panels for s in panel["series"]):
+        return
+    rows_n = len({panel["row"] for panel in panels})
+    cols_n = len({panel["col"] for panel in panels})
+    fig, axes = plt.subplots(rows_n, cols_n, figsize=(5.5 * cols_n, 3.8 * rows_n + 0.6),
+                             squeeze=False, layout="constrained")
+    caption, uniform = caption_of(panels)
+    for panel in panels:
+        draw_panel(axes[panel["row"]][panel["col"]], panel, uniform)
+    fig.suptitle(title)
+    fig.text(0.5, -0.01, caption, ha="center", va="top", fontsize=8, wrap=True)
+    fig.canvas.draw()
+    for panel in panels:
+        ax = axes[panel["row"]][panel["col"]]
+        panel["xticklabels"] = [t.get_text() for t in ax.get_xticklabels() if t.get_text()]
+        panel["yticklabels"] = [t.get_text() for t in ax.get_yticklabels() if t.get_text()]
+        panel["ylim"] = list(ax.get_ylim())
+    for ext in FORMATS:
         path = os.path.join(out_dir, f"{name}.{ext}")
         fig.savefig(path, dpi=120, bbox_inches="tight")
         written.append(path)
     plt.close(fig)
+    described[name] = {"title": title, "caption": caption, "panels": panels}
 
 
-def figure(out_dir, name, title, ylabel, panels, written, logx=True, xlabel="robots"):
-    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4), squeeze=False)
-    for ax, (series, sub, suffix) in zip(axes[0], panels):
-        draw(ax, series, suffix)
-        ax.set_xlabel(xlabel)
-        ax.set_ylabel(ylabel if not sub else sub)
-        if logx:
-            ax.set_xscale("log")
-        ax.grid(True, alpha=0.3)
-        if series:
-            ax.legend(fontsize=8)
-    fig.suptitle(title)
-    save(fig, out_dir, name, written)
+class Layout:
+    """How the grid's varying axes appear: lines, panels, pooled (named in the title)."""
+
+    def __init__(self, rows, x_field, exclude=()):
+        self.lines = [k for k in varying(rows, LINE_AXES) if k not in exclude]
+        self.panels = [k for k in varying(rows, PANEL_AXES) if k not in exclude]
+        self.pooled = [k for k in varying(rows, POOLED_AXES) if k not in exclude]
+        self.x_field = x_field
+        self.panel_values = ([tuple(v.split("\x00")) for v in
+                              sorted({"\x00".join(r.get(k, "") for k in self.panels)
+                                      for r in rows}, key=natural)]
+                             if self.panels else [()])
+
+    def title(self, base, rows):
+        """The pooled axes by name, counted within a panel (scens belong to their map)."""
+        parts = []
+        for k in self.pooled:
+            counts = sorted({len(values_of([r for r in rows if all(
+                r.get(pk) == v for pk, v in zip(self.panels, pv))], k))
+                for pv in self.panel_values})
+            each = f" per {' / '.join(AXIS_NAMES[p] for p in self.panels)}" if self.panels else ""
+            parts.append("-".join(str(c) for c in (counts[0], counts[-1])[:len(set(counts))])
+                         + f" {AXIS_NAMES[k]}s{each}")
+        return base + (f" (pooled over {', '.join(parts)})" if parts else "")
+
+    def panels_for(self, rows, metrics, xlabel):
+        """metrics: [(field, ylabel)] as columns; one row of panels per panel value."""
+        legend = " / ".join(AXIS_NAMES[k] for k in self.lines)
+        out = []
+        for i, pv in enumerate(self.panel_values):
+            match = dict(zip(self.panels, pv))
+            sub = [r for r in rows if all(r.get(k) == v for k, v in match.items())]
+            where = ", ".join(f"{AXIS_NAMES[k]} {v}" for k, v in match.items())
+            for j, (field, ylabel) in enumerate(metrics):
+                out.append({"row": i, "col": j, "field": field, "x_field": self.x_field,
+                            "match": match, "title": where, "xlabel": xlabel, "ylabel": ylabel,
+                            "legend_title": legend,
+                            "series": series(sub, field, self.x_field, self.lines)})
+        return out
+
+
+def robots_figures(rows, out_dir, written, described):
+    lay = Layout(rows, "agents")
+    for name, base, metrics in (
+            ("aet_makespan", "AET and makespan",
+             [("aet_s", "AET (s)"), ("makespan_s", "makespan (s)")]),
+            ("sim_speed", "Sim speed", [("sim_speed", "sim speed (\u00d7 real time)")]),
+            ("success", "Success rate", [("success_rate", "success rate")]),
+            ("memory", "Memory and CPU",
+             [("peak_rss_mb.monitor", "monitor peak RSS (MB)"),
+              ("peak_rss_mb.sim", "sim peak RSS (MB)"),
+              ("cpu_s_per_sim_s", "CPU s per sim s (monitor + sim)")])):
+        figure(out_dir, name, lay.title(base, rows), lay.panels_for(rows, metrics, "robots"),
+               written, described)
+
+
+def planner_figure(rows, out_dir, written, described):
+    """A planner's time is one per (map, scen, robots, plan): counted once, not per run."""
+    seen, once = set(), []
+    for r in rows:
+        key = (r.get("map"), r.get("scen"), r.get("agents"), r.get("plan"))
+        if number(r.get("planner_runtime_s")) is not None and key not in seen:
+            seen.add(key)
+            once.append(r)
+    if not once:
+        return
+    lay = Layout(once, "agents", exclude=("robot", "qos", "uncertainty", "clock"))
+    lay.lines = ["plan"]
+    figure(out_dir, "planner_runtime", lay.title("Planner wall time", once),
+           lay.panels_for(once, [("planner_runtime_s", "planner wall time (s)")], "robots"),
+           written, described)
+
+
+def sweep_figures(rows, out_dir, written, described):
+    stall = "uncertainty.stall_probability"
+    if len(values_of(rows, stall)) > 1:
+        lay = Layout(rows, stall, exclude=("uncertainty",))
+        lay.lines = ["agents"] + lay.lines
+        figure(out_dir, "stalls", lay.title("Stalls at action start", rows),
+               lay.panels_for(rows, [("aet_s", "AET (s)"), ("success_rate", "success rate")],
+                              "stall probability"), written, described)
+    delay = "link.to_host.delay_ms"
+    if len(values_of(rows, delay)) > 1:
+        lay = Layout(rows, delay, exclude=("qos",))
+        lay.lines = ["agents"] + lay.lines
+        figure(out_dir, "link", lay.title("Link delay (monitor to hosts)", rows),
+               lay.panels_for(rows, [("aet_s", "AET (s)"), ("success_rate", "success rate")],
+                              "link delay (ms)"), written, described)
 
 
 def write_table(rows, out_dir, written):
-    """The paper-style table: repeats folded into mean +- sd."""
-    keys = ["map", "scen", "agents", "robot", "qos", "uncertainty", "plan", "clock"]
+    """The paper-style table: repeats folded into mean +- sd (n = runs)."""
+    keys = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock"]
     groups = defaultdict(list)
     for r in rows:
         groups[tuple(r.get(k, "") for k in keys)].append(r)
 
     def stat(rs, field, fmt="{:.1f}"):
-        vs = [number(r.get(field)) for r in rs]
-        vs = [v for v in vs if v is not None]
+        vs = [v for v in (number(r.get(field)) for r in rs) if v is not None]
         if not vs:
             return "-"
         m, sd = mean_sd(vs)
-        return (fmt + " \u00b1 " + fmt).format(m, sd) if len(vs) > 1 else fmt.format(m)
+        return (fmt + " \u00b1 " + fmt).format(m, sd) if sd is not None else fmt.format(m)
 
     lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
-             "collisions |", "|" + "---|" * (len(keys) + 6)]
+             "collisions | planner (s) |", "|" + "---|" * (len(keys) + 7)]
     for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
         rs = groups[key]
         ok = sum(1 for r in rs if r.get("success") == "true")
         lines.append("| " + " | ".join(str(k) for k in key) + f" | {len(rs)} | {ok}/{len(rs)} | "
                      + " | ".join([stat(rs, "aet_s"), stat(rs, "makespan_s"),
-                                   stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}")])
+                                   stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}"),
+                                   stat(rs[:1], "planner_runtime_s", "{:.2f}")])
                      + " |")
     path = os.path.join(out_dir, "table.md")
     with open(path, "w") as f:
@@ -145,37 +333,16 @@ def main():
     if not rows:
         sys.exit(f"{results_dir}/results.csv has no runs")
     os.makedirs(out_dir, exist_ok=True)
-    lines = varying(rows, ["map", "robot", "qos", "clock"])
-    logx = len({r["agents"] for r in rows}) > 2
-    written = []
-    figure(out_dir, "sim_speed", "Sim speed (sim s per wall s)", "sim speed (x real time)",
-           [(grouped(rows, "sim_speed", lines), None, "")], written, logx)
-    figure(out_dir, "aet_makespan", "AET and makespan, mean \u00b1 sd over repeats", "s",
-           [(grouped(rows, "aet_s", lines), "AET (s)", ""),
-            (grouped(rows, "makespan_s", lines), "makespan (s)", "")], written, logx)
-    figure(out_dir, "memory", "Memory and CPU", "MB",
-           [(grouped(rows, "peak_rss_mb.monitor", lines), "monitor peak RSS (MB)", ""),
-            (grouped(rows, "peak_rss_mb.sim", lines), "sim peak RSS (MB)", ""),
-            (grouped(rows, "cpu_s_per_sim_s", lines), "CPU s per sim s (monitor + sim)", "")],
-           written, logx)
-    success = [dict(r, success_rate="1" if r.get("success") == "true" else "0") for r in rows]
-    figure(out_dir, "success", "Success rate", "success rate",
-           [(grouped(success, "success_rate", lines), None, "")], written, logx)
-    stall = "uncertainty.stall_probability"
-    if len({r.get(stall) for r in rows}) > 1:
-        by = ["agents"] + varying(rows, ["map", "robot", "qos"])
-        figure(out_dir, "stalls", "Execution uncertainty: stalls at action start", "",
-               [(grouped(rows, "aet_s", by, stall), "AET (s)", ""),
-                (grouped(success, "success_rate", by, stall), "success rate", "")],
-               written, False, "stall probability")
-    delay = "link.to_host.delay_ms"
-    if len({r.get(delay) for r in rows}) > 1:
-        by = ["agents"] + varying(rows, ["map", "robot"])
-        figure(out_dir, "link", "Link delay (monitor to hosts)", "",
-               [(grouped(rows, "aet_s", by, delay), "AET (s)", ""),
-                (grouped(success, "success_rate", by, delay), "success rate", "")],
-               written, False, "link delay (ms)")
+    written, described = [], {}
+    robots_figures(rows, out_dir, written, described)
+    planner_figure(rows, out_dir, written, described)
+    sweep_figures(rows, out_dir, written, described)
     write_table(rows, out_dir, written)
+    path = os.path.join(out_dir, "figures.json")
+    with open(path, "w") as f:
+        json.dump({"results": os.path.join(results_dir, "results.csv"), "figures": described},
+                  f, indent=1)
+    written.append(path)
     print(json.dumps({"figures": written, "runs": len(rows)}))
 
 

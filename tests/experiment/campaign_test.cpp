@@ -86,18 +86,25 @@ TEST_F(Campaign, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
   EXPECT_EQ(r.with_results, 4u);
   EXPECT_EQ(fs::last_write_time(kept), kept_time);
   EXPECT_EQ(lines_of(dir_ / "out" / "results.csv").size(), 5u);
-  // The figures, as PNG and SVG.
+  // The figures, as PNG, SVG and PDF, and the data they show (tests/experiment/
+  // experiment_plot_test.py checks that data against results.csv).
   experiment::plot_campaign(dir_ / "out", {});
   for (const char* name : {"sim_speed", "aet_makespan", "memory", "success"}) {
     const auto png = slurp(dir_ / "out" / "figures" / (std::string(name) + ".png"));
     ASSERT_GT(png.size(), 1000u) << name;
     EXPECT_EQ(png.substr(1, 3), "PNG") << name;
     EXPECT_THAT(slurp(dir_ / "out" / "figures" / (std::string(name) + ".svg")), HasSubstr("<svg"));
+    EXPECT_EQ(slurp(dir_ / "out" / "figures" / (std::string(name) + ".pdf")).substr(0, 4), "%PDF");
   }
+  const auto shown = nlohmann::json::parse(slurp(dir_ / "out" / "figures" / "figures.json"));
+  const auto& aet = shown["figures"]["aet_makespan"]["panels"][0];
+  ASSERT_EQ(aet["series"].size(), 1u);               // nothing varies but the fleet size
+  EXPECT_EQ(aet["series"][0]["points"][0]["n"], 2);  // two repeats
+  EXPECT_EQ(aet["xticklabels"], nlohmann::json::array({"1", "2"}));
   // The table: one row per fleet size, its two repeats folded into one (identical in lock-step).
   const auto table = lines_of(dir_ / "out" / "figures" / "table.md");
   ASSERT_EQ(table.size(), 4u);
-  EXPECT_THAT(table[2], HasSubstr("| 1 | footbot | lan |"));
+  EXPECT_THAT(table[2], HasSubstr("| 1 | example_paths_xy | footbot | lan |"));
   EXPECT_THAT(table[2], HasSubstr("| 2 | 2/2 |"));
 }
 

@@ -53,7 +53,7 @@ void register_experiment_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 230))
       ->capture_default_str();
   auto p = std::make_shared<std::pair<std::string, std::string>>();
-  auto* plot = cmd->add_subcommand("plot", "Figures (PNG and SVG) from an experiment's results");
+  auto* plot = cmd->add_subcommand("plot", "Figures (PNG, SVG, PDF; figures.json: the data shown) from an experiment's results");
   plot->add_option("results", p->first, "the folder `smart experiment` wrote")->required();
   plot->add_option("--out", p->second, "where the figures go (default: RESULTS/figures)");
   plot->callback([&exit_code, p] {

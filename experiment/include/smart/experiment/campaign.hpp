@@ -7,8 +7,8 @@
 //   writes OUT/results.csv and OUT/results.jsonl, a row per cell with a summary (spec.hpp).
 //   Resumable: a cell whose summary.json parses is not run again. Once `stop` is set (SIGINT),
 //   the running cells are ended (SIGTERM: each writes what it has) and none is started.
-// - plot_campaign(): the figures (PNG and SVG) of OUT by experiment/plot/experiment_plot.py
-//   (python3-matplotlib, Debian).
+// - plot_campaign(): the figures (PNG, SVG, PDF and figures.json, the data each shows) of OUT by
+//   experiment/plot/experiment_plot.py (python3-matplotlib, Debian).
 // Errors: std::invalid_argument for bad input (spec, files it names, options: the command's exit
 // code 2), std::runtime_error when a plan or the plotter fails (exit code 3). A cell that fails
 // is counted and named with its log, never fatal.

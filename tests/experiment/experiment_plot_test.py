@@ -1,0 +1,128 @@
+"""experiment/plot/experiment_plot.py on small results.csv tables of its own: every point of every
+figure is recomputed from results.csv (figures.json says what each shows), and the issue-26
+mistakes are checked by name: two conditions pooled into one line, error bars of one run, log
+ticks like 6x10^0 for 5/10/20 robots, a 0.96-1.04 axis for a constant success rate, no n, no
+legend title, no PDF, no planner axis."""
+import csv
+import json
+import math
+import pathlib
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "experiment" / "plot" / "experiment_plot.py"
+COLUMNS = ["cell", "map", "scen", "agents", "robot", "qos", "uncertainty", "repeat", "plan",
+           "axis", "clock", "planner_runtime_s", "aet_s", "makespan_s", "sim_speed", "success",
+           "collisions", "peak_rss_mb.monitor", "peak_rss_mb.sim", "cpu_s_per_sim_s"]
+
+
+def row(**kw):
+    r = {"map": "w", "scen": "w-1", "agents": 5, "robot": "footbot", "qos": "lan",
+         "uncertainty": "{}", "repeat": 0, "plan": "paths", "axis": "xy", "clock": "lockstep",
+         "planner_runtime_s": "", "aet_s": 100, "makespan_s": 40, "sim_speed": 50,
+         "success": "true", "collisions": 0, "peak_rss_mb.monitor": 20, "peak_rss_mb.sim": 30,
+         "cpu_s_per_sim_s": 0.01}
+    r.update(kw)
+    r["cell"] = "-".join(str(r[k]) for k in ("scen", "agents", "plan", "uncertainty", "repeat"))
+    return r
+
+
+class ExperimentPlot(unittest.TestCase):
+    def plot(self, rows):
+        root = pathlib.Path(self.enterContext(tempfile.TemporaryDirectory()))
+        with open(root / "results.csv", "w", newline="") as f:
+            w = csv.DictWriter(f, COLUMNS)
+            w.writeheader()
+            w.writerows(rows)
+        out = root / "figures"
+        done = subprocess.run([sys.executable, str(SCRIPT), str(root), str(out)],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(root / "results.csv", newline="") as f:
+            table = list(csv.DictReader(f))
+        return out, json.loads((out / "figures.json").read_text())["figures"], table
+
+    def assert_points_match_results(self, figures, table):
+        """Each point: the mean and count of the results.csv rows it names."""
+        for r in table:
+            r["success_rate"] = "1" if r["success"] == "true" else "0"
+        for name, fig in figures.items():
+            for panel in fig["panels"]:
+                rows = table
+                if name == "planner_runtime":  # one per (map, scen, robots, plan)
+                    rows = list({(r["map"], r["scen"], r["agents"], r["plan"]): r
+                                 for r in table if r["planner_runtime_s"]}.values())
+                for s in panel["series"]:
+                    match = dict(panel["match"], **s["match"])
+                    for p in s["points"]:
+                        vs = [float(r[panel["field"]]) for r in rows
+                              if all(r[k] == v for k, v in match.items())
+                              and float(r[panel["x_field"]]) == p["x"]]
+                        where = f"{name} {panel['field']} {s['label']} x={p['x']}"
+                        self.assertEqual(p["n"], len(vs), where)
+                        self.assertAlmostEqual(p["mean"], sum(vs) / len(vs), msg=where)
+                        self.assertEqual(p["sd"] is None, len(vs) < 2, where)
+
+    def test_two_conditions_are_two_lines_with_plain_ticks_and_no_error_bars(self):
+        rows = []
+        for n, aets in ((5, (98, 124)), (10, (110, 130)), (20, (120, 150))):
+            rows.append(row(agents=n, aet_s=aets[0]))
+            rows.append(row(agents=n, aet_s=aets[1], uncertainty='{"stall_probability":0.05}'))
+        out, figures, table = self.plot(rows)
+        self.assert_points_match_results(figures, table)
+        aet = figures["aet_makespan"]["panels"][0]
+        self.assertEqual(aet["legend_title"], "uncertainty")
+        at5 = sorted(s["points"][0]["mean"] for s in aet["series"])
+        self.assertEqual(at5, [98, 124])  # not one pooled 111
+        self.assertEqual(aet["xscale"], "linear")
+        self.assertEqual(aet["xticklabels"], ["5", "10", "20"])
+        self.assertIn("no error bars", figures["aet_makespan"]["caption"])
+        self.assertIn("n = 1", figures["aet_makespan"]["caption"])
+        success = figures["success"]["panels"][0]
+        self.assertLessEqual(success["ylim"][0], 0.0)
+        self.assertGreaterEqual(success["ylim"][1], 1.0)
+        for ext in ("png", "svg", "pdf"):
+            self.assertGreater((out / f"aet_makespan.{ext}").stat().st_size, 1000, ext)
+        self.assertTrue((out / "success.pdf").read_bytes().startswith(b"%PDF"))
+
+    def test_scens_are_pooled_by_name_maps_are_panels_planners_are_lines(self):
+        rows = []
+        for m in ("w", "r"):
+            for scen in ("1", "2"):
+                for n in (10, 100, 1000):
+                    for plan, runtime in (("builtin", 0.5), ("lns2", 2.0)):
+                        for rep in (0, 1):
+                            rows.append(row(map=m, scen=f"{m}-{scen}", agents=n, plan=plan,
+                                            repeat=rep, planner_runtime_s=runtime * n / 10,
+                                            aet_s=n + rep + (5 if plan == "lns2" else 0),
+                                            success="true" if rep == 0 else "false"))
+        out, figures, table = self.plot(rows)
+        self.assert_points_match_results(figures, table)
+        aet = figures["aet_makespan"]
+        self.assertIn("pooled over 2 scens per map", aet["title"])
+        self.assertEqual(sorted(p["title"] for p in aet["panels"] if p["field"] == "aet_s"),
+                         ["map r", "map w"])
+        panel = aet["panels"][0]
+        self.assertEqual(panel["legend_title"], "plan")
+        self.assertEqual([s["label"] for s in panel["series"]], ["builtin", "lns2"])
+        self.assertEqual({p["n"] for s in panel["series"] for p in s["points"]}, {4})
+        self.assertIn("Error bars", aet["caption"])
+        self.assertEqual(panel["xscale"], "log")
+        self.assertEqual(panel["xticklabels"], ["10", "100", "1000"])
+        runtime = figures["planner_runtime"]["panels"][0]
+        self.assertEqual({p["n"] for s in runtime["series"] for p in s["points"]}, {2})
+        self.assertTrue((out / "planner_runtime.pdf").exists())
+        self.assertIn("| planner (s) |", (out / "table.md").read_text())
+
+    def test_points_with_different_counts_say_their_n(self):
+        rows = [row(agents=5), row(agents=5, repeat=1), row(agents=10)]
+        _, figures, table = self.plot(rows)
+        self.assert_points_match_results(figures, table)
+        self.assertIn("n beside it", figures["aet_makespan"]["caption"])
+        self.assertIn("Error bars", figures["aet_makespan"]["caption"])
+
+
+if __name__ == "__main__":
+    unittest.main()
