@@ -1,4 +1,4 @@
-// The shared command-line pieces: robot id lists.
+// The shared command-line pieces: robot id lists, the network interface.
 #include "smart/tools/cli_common.hpp"
 
 #include <gmock/gmock.h>
@@ -18,6 +18,29 @@ TEST(CliCommon, IdListsTakeIdsAndRangesAndNameTheBadPart) {
   EXPECT_THAT([] { parse_id_ranges("0-3,x"); },
               ::testing::ThrowsMessage<std::invalid_argument>(
                   HasSubstr("'x' is not a robot index (0..1000000); write e.g. 0-9,12")));
+}
+
+// Issue 26: no way to pick the network interface (wlan0 beside docker0 and l4tbr0 on a Jetson).
+TEST(CliCommon, TheInterfaceIsOneOfThisHostsAndGoesToCycloneAndToChildren) {
+  DdsOptions o;
+  o.interface = "lo";
+  EXPECT_THROW(check_interface(o), std::invalid_argument);  // loopback runs use lo anyway
+  o.network = Network::kNetwork;
+  EXPECT_NO_THROW(check_interface(o));
+  const auto c = domain_config(o, dds::find_qos_profile("lan"), "monitor");
+  EXPECT_EQ(c.interfaces, std::vector<std::string>{"lo"});
+  EXPECT_THAT(dds::render_cyclone_config(c),
+              ::testing::HasSubstr("<NetworkInterface name=\"lo\"/>"));
+  const auto argv = dds_argv(o);
+  EXPECT_THAT(argv, ::testing::Contains("--interface"));
+  o.interface = "wlan9x";
+  try {
+    check_interface(o);
+    FAIL() << "a missing interface must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("--interface wlan9x: no such network interface"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("it has lo"));
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "smart/tools/cli_common.hpp"
 
 #include <fmt/format.h>
+#include <net/if.h>
 #include <signal.h>  // NOLINT(modernize-deprecated-headers): sigaction is POSIX, not <csignal>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -76,6 +77,28 @@ void add_dds_options(CLI::App* cmd, DdsOptions& o) {
   add_enum_option(cmd, "--network", o.network, kNetworkNames,
                   "loopback (this host only, no multicast; default) or network (Cyclone's "
                   "default interface with multicast discovery, for multi-host runs)");
+  cmd->add_option("--interface", o.interface,
+                  "with --network network: the network interface DDS uses (e.g. wlan0 on a "
+                  "Jetson beside docker0 and l4tbr0; default: Cyclone's choice)")
+      ->envname("SMART_INTERFACE");
+}
+
+void check_interface(const DdsOptions& o) {
+  if (o.interface.empty()) return;
+  if (o.network != Network::kNetwork) {
+    throw std::invalid_argument("--interface " + o.interface +
+                                " needs --network network (loopback runs use lo only)");
+  }
+  if (if_nametoindex(o.interface.c_str()) != 0) return;
+  std::string names;
+  if (auto* list = if_nameindex()) {
+    for (auto* i = list; i->if_index != 0; ++i)
+      names += (names.empty() ? "" : ", ") + std::string(i->if_name);
+    if_freenameindex(list);
+  }
+  throw std::invalid_argument("--interface " + o.interface +
+                              ": no such network interface on this host; it has " + names +
+                              " (`ip -br addr` shows them with their addresses)");
 }
 
 void group_options(CLI::App* cmd) {
@@ -86,8 +109,9 @@ void group_options(CLI::App* cmd) {
       {"Robots and execution uncertainty",
        {"--robot", "--stall-probability", "--stall-s", "--speed-sigma", "--slip-sigma", "--seed"}},
       {"Network, DDS and trust",
-       {"--domain", "--qos", "--run", "--network", "--security", "--identity", "--run-key",
-        "--link-delay-ms", "--link-jitter-ms", "--link-loss-per-mille", "--link-seed"}},
+       {"--domain", "--qos", "--run", "--network", "--interface", "--security", "--identity",
+        "--run-key", "--link-delay-ms", "--link-jitter-ms", "--link-loss-per-mille",
+        "--link-seed"}},
       {"Run control",
        {"--clock", "--real-time-factor", "--timeout-s", "--window-cap", "--stall-timeout-s",
         "--max-sim-time-s", "--resume", "--require-sim-status"}},
@@ -124,6 +148,7 @@ std::vector<std::string> dds_argv(const DdsOptions& o) {
                                 "--run",     o.run};
   if (!o.security.empty()) argv.insert(argv.end(), {"--security", o.security});
   if (!o.run_key.empty()) argv.insert(argv.end(), {"--run-key", o.run_key});
+  if (!o.interface.empty()) argv.insert(argv.end(), {"--interface", o.interface});
   for (const auto& [flag, v] : {std::pair{"--link-delay-ms", o.link_delay_ms},
                                 {"--link-jitter-ms", o.link_jitter_ms},
                                 {"--link-loss-per-mille", o.link_loss_per_mille}}) {
@@ -153,8 +178,10 @@ std::string fresh_run_name() {
 
 dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& profile,
                                 const std::string& role) {
+  check_interface(o);
   auto c = profile.domain_config(o.network == Network::kNetwork ? dds::DomainConfig::network()
                                                                 : dds::DomainConfig::loopback());
+  if (!o.interface.empty()) c.interfaces = {o.interface};
   if (!o.security.empty())
     c.security = security::identity_files(o.security, o.identity.empty() ? role : o.identity);
   return c;

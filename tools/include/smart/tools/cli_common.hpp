@@ -34,13 +34,19 @@ struct DdsOptions {
   Network network = Network::kLoopback;
   std::string run = smart_msg_DEFAULT_RUN;  // the run's DDS partition (idl/smart.idl, "Runs")
   bool run_given = false;                   // --run / SMART_RUN was set
-  std::string security;  // keystore of `smart security init` (empty: no DDS Security)
-  std::string identity;  // identity in the keystore (empty: the command's own role)
-  std::string run_key;   // --run-key: the run's shared key file (run_key.hpp; empty: none)
+  std::string security;   // keystore of `smart security init` (empty: no DDS Security)
+  std::string identity;   // identity in the keystore (empty: the command's own role)
+  std::string run_key;    // --run-key: the run's shared key file (run_key.hpp; empty: none)
+  std::string interface;  // --interface: the network interface of --network network (empty: any)
   // Link model overrides (smart/wire/link.hpp), both directions, over the profile's `link:`.
   std::optional<double> link_delay_ms, link_jitter_ms, link_loss_per_mille;
   std::optional<uint64_t> link_seed;
 };
+
+// --interface NAME checked against this host's interfaces: an error naming them when it is not
+// one of them, or when --network is loopback (issue 26: wlan0 beside docker0 and l4tbr0 on a
+// Jetson, where Cyclone's own choice may be the wrong one).
+void check_interface(const DdsOptions& options);
 
 // The --qos profile with the command line's link overrides applied.
 dds::QosProfile run_qos_profile(const DdsOptions& options);
