@@ -5,7 +5,7 @@ BUILD_TYPE ?= Release
 JOBS ?= 2
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 
-.PHONY: all deps configure build test demo bench asan asan-test fuzz format clean
+.PHONY: all deps configure build test demo bench asan asan-test fuzz format clean agent package
 
 all: build
 
@@ -38,7 +38,7 @@ asan: deps
 	@cmake --build --preset asan
 
 asan-test: asan
-	ctest --preset asan -LE long
+	ctest --preset asan -LE "long|package"
 
 # libFuzzer (clang) on every reader of untrusted input, FUZZ_SECONDS each, from the seed corpus
 # (tests/fuzz/corpus, replayed by `make test`); new finds go to build-fuzz/corpus/<target>.
@@ -55,8 +55,20 @@ fuzz: deps
 	    build-fuzz/corpus/$$t tests/fuzz/corpus/$$t || exit 1; \
 	done
 
+# A robot's build (docs/lab.md): `smart agent` and its bring-up tools, no Simbody or web app.
+agent:
+	@bash scripts/install-deps.sh --agent
+	@cmake -S . -B build-agent -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=Release -DSMART_AGENT_ONLY=ON >/dev/null
+	@cmake --build build-agent -j $(JOBS)
+
+# Debian packages: smart-dds from the full build, smart-dds-agent from the agent-only build, in
+# <build>/packages/.
+package: build agent
+	cd $(BUILD) && cpack -B packages
+	cd build-agent && cpack -B packages
+
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz
+	rm -rf $(BUILD) build-asan build-fuzz build-agent

@@ -2,8 +2,19 @@
 # Installs every Debian package SMART-DDS needs to build, test and benchmark.
 # A no-op (no apt call at all) when everything is already installed, so `make test` stays fast.
 # Runs as root (CI) or through sudo when available.
+# --agent: only what an agent-only build needs (a robot, docs/lab.md): no Simbody, Chromium,
+# node, test or benchmark libraries.
 set -euo pipefail
 
+agent_packages=(
+  build-essential cmake ninja-build pkg-config git
+  cyclonedds-dev cyclonedds-tools libddsc0debian
+  libeigen3-dev libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libi2c-dev openssl libssl-dev
+)
+if [ "${1:-}" = "--agent" ]; then
+  packages=("${agent_packages[@]}")
+else
 packages=(
   build-essential cmake ninja-build pkg-config git
   cyclonedds-dev cyclonedds-tools
@@ -23,6 +34,7 @@ packages=(
 # from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.
 if ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
+fi
 fi
 
 missing=()

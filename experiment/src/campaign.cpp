@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "smart/common/child_process.hpp"
+#include "smart/common/install_paths.hpp"
 #include "smart/dds/qos_profile.hpp"
 #include "smart/experiment/spec.hpp"
 #include "smart/grid/text_file.hpp"
@@ -295,7 +296,12 @@ CampaignReport run_campaign(const CampaignOptions& options, std::ostream& log) {
 }
 
 void plot_campaign(const fs::path& results_dir, fs::path out_dir) {
-  const fs::path script = fs::path(SMART_SOURCE_DIR) / "experiment" / "plot" / "experiment_plot.py";
+  // Installed beside the executable (<prefix>/share/smart-dds), else the source tree's.
+  const auto share = common::installed_share_dir();
+  const fs::path script = share && fs::exists(*share / "experiment_plot.py")
+                              ? *share / "experiment_plot.py"
+                              : fs::path(SMART_SOURCE_DIR) / "experiment" / "plot" /
+                                    "experiment_plot.py";
   if (!fs::is_regular_file(results_dir / "results.csv")) {
     throw std::invalid_argument("experiment plot: no results.csv in " + results_dir.string() +
                                 "; give the folder `smart experiment` wrote");

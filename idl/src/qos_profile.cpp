@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "smart/common/install_paths.hpp"
 #include "smart/config/yaml_checks.hpp"
 #include "smart/dds/error.hpp"
 
@@ -239,6 +240,8 @@ std::vector<std::filesystem::path> config_search_path() {
   if (const char* env = std::getenv("SMART_CONFIG_DIR"); env != nullptr && *env != '\0') {
     dirs.emplace_back(env);
   }
+  // Installed (cmake --install, the .deb packages) before the source tree of a build.
+  if (const auto share = common::installed_share_dir()) dirs.push_back(*share / "config");
   dirs.emplace_back(SMART_SOURCE_CONFIG_DIR);
   return dirs;
 }

@@ -130,6 +130,7 @@ enum DomainId : int {
   kRobotSpeakers = 224,
   kSecureInsider = 225,
   kServeRestart = 226,
+  kPackagedAgent = 227,  // tests/packaging/packages_test.py (given on its command line)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

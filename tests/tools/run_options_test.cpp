@@ -129,40 +129,6 @@ TEST(RunOptions, TheSimChildsArgvReadsBackAsTheSameOptions) {
   EXPECT_TRUE(back.dds.run_given);
 }
 
-// Issue 26: --qos wifi added an invented delay and loss on top of a real network, silently.
-TEST(RunOptions, ARealTimeRunWithALinkModelIsWarnedThatTheDelayIsAdded) {
-  SimCliOptions o;
-  o.dds.qos = "sim-wifi";
-  const auto wifi = dds::find_qos_profile("sim-wifi");
-  ASSERT_TRUE(wifi.link.active());
-  o.clock = sim::ClockMode::kRealtime;
-  EXPECT_FALSE(link_model_warning(o.clock, o.dds, dds::find_qos_profile("wifi")))
-      << "the real network's profile models nothing";
-  const auto warning = link_model_warning(o.clock, o.dds, wifi);
-  ASSERT_TRUE(warning);
-  EXPECT_THAT(*warning, HasSubstr("--qos sim-wifi models a link ("));
-  EXPECT_THAT(*warning, HasSubstr("added to the real network's own delay and loss"));
-  o.clock = sim::ClockMode::kLockstep;  // the model is the only link: nothing to warn of
-  EXPECT_FALSE(link_model_warning(o.clock, o.dds, wifi));
-  o.clock = sim::ClockMode::kRealtime;
-  EXPECT_FALSE(link_model_warning(o.clock, o.dds, dds::find_qos_profile("lan")));
-}
-
-// Issue 26: lossy-wifi dropped real packets in lock-step too, 3.4x real time instead of 113x.
-TEST(RunOptions, ALockstepRunThatDropsRealPacketsIsWarnedOfTheWallTimeCost) {
-  SimCliOptions o;
-  o.dds.qos = "protocol-loss-test";
-  o.clock = sim::ClockMode::kLockstep;
-  const auto warning = link_model_warning(o.clock, o.dds, dds::find_qos_profile(o.dds.qos));
-  ASSERT_TRUE(warning);
-  EXPECT_THAT(*warning, HasSubstr("drops 200 per mille of the real packets"));
-  EXPECT_THAT(*warning, HasSubstr("use --qos sim-lossy-wifi"));
-  o.dds.qos = "sim-lossy-wifi";
-  EXPECT_FALSE(link_model_warning(o.clock, o.dds, dds::find_qos_profile(o.dds.qos)));
-  EXPECT_EQ(dds::find_qos_profile("sim-lossy-wifi").transport.loss_per_mille, 0);
-  EXPECT_DOUBLE_EQ(dds::find_qos_profile("sim-lossy-wifi").link.to_host.loss_per_mille, 200);
-}
-
 TEST(RunOptions, ARealTimeFactorPacesLockstepAndIsRefusedWithTheRealtimeClock) {
   SimCliOptions o;
   parse_sim(o, {"--map", "m", "--scen", "s", "--real-time-factor", "10"});

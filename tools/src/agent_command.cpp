@@ -22,7 +22,6 @@
 #include "smart/tools/commands.hpp"
 #include "smart/tools/robot_backends.hpp"
 #include "smart/tools/run_key.hpp"
-#include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
 
@@ -175,7 +174,7 @@ int run_agent(const AgentOptions& o) {
   const auto file = robot_file(o.io);
   const auto model = agent::load_robot_model(file);
   const auto profile = run_qos_profile(o.dds);
-  if (const auto warning = link_model_warning(sim::ClockMode::kRealtime, o.dds, profile)) {
+  if (const auto warning = link_model_warning(false, o.dds, profile)) {
     spdlog::warn("agent: {}", *warning);  // an agent always runs in real time
   }
   if (!o.dds.security.empty() && ids.size() > 1) {

@@ -189,6 +189,23 @@ dds::DomainConfig domain_config(const DdsOptions& o, const dds::QosProfile& prof
 
 std::string exact(double value) { return fmt::format("{}", value); }
 
+std::optional<std::string> link_model_warning(bool lockstep, const DdsOptions& dds,
+                                              const dds::QosProfile& profile) {
+  if (lockstep && profile.transport.loss_per_mille > 0) {
+    return "--qos " + dds.qos + " drops " + std::to_string(profile.transport.loss_per_mille) +
+           " per mille of the real packets: a lock-step tick waits for their retransmissions, "
+           "so the run is slower in wall time and no different on the sim clock; use --qos "
+           "sim-lossy-wifi to model a lossy link at full speed";
+  }
+  if (lockstep || !profile.link.active()) return std::nullopt;
+  const auto& d = profile.link.to_host;
+  return "--qos " + dds.qos + " models a link (" + exact(d.delay_ms) + " ms delay, " +
+         exact(d.loss_per_mille) +
+         " per mille loss each way): in a real-time run it is added to "
+         "the real network's own delay and loss; over a real network use --qos lan (or "
+         "--link-delay-ms 0 --link-loss-per-mille 0), or --clock lockstep to study the model alone";
+}
+
 namespace {
 uint32_t parse_id(const std::string& word, const std::string& text) {
   std::size_t used = 0;

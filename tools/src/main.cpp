@@ -108,15 +108,17 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   int exit_code = 0;
   smart::tools::register_dds_commands(app, exit_code);
+#ifndef SMART_AGENT_ONLY  // an agent-only build (a robot's package): no sim, monitor or server
   smart::tools::register_demo_command(app, exit_code);
   smart::tools::register_check_plan_command(app, exit_code);
   smart::tools::register_run_commands(app, exit_code);
   smart::tools::register_bench_command(app, exit_code);
   smart::tools::register_generate_commands(app, exit_code);
-  smart::tools::register_agent_command(app, exit_code);
-  smart::tools::register_security_command(app, exit_code);
   smart::tools::register_serve_command(app, exit_code);
   smart::tools::register_experiment_command(app, exit_code);
+#endif
+  smart::tools::register_agent_command(app, exit_code);
+  smart::tools::register_security_command(app, exit_code);
   smart::tools::register_calibrate_command(app, exit_code);
   smart::tools::register_doctor_command(app, exit_code);
   app.parse_complete_callback([&] { smart::tools::init_logging(log_level); });

@@ -59,7 +59,7 @@ int run_sim(const SimCliOptions& o) {
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
   const auto model = run_robot_model(o);
   const auto profile = run_qos_profile(o.dds);
-  if (const auto warning = link_model_warning(o.clock, o.dds, profile)) {
+  if (const auto warning = link_model_warning(o.clock == sim::ClockMode::kLockstep, o.dds, profile)) {
     spdlog::warn("sim: {}", *warning);
   }
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));

@@ -165,23 +165,6 @@ void check_real_time_factor(const SimCliOptions& o) {
   }
 }
 
-std::optional<std::string> link_model_warning(sim::ClockMode clock, const DdsOptions& dds,
-                                              const dds::QosProfile& profile) {
-  if (clock == sim::ClockMode::kLockstep && profile.transport.loss_per_mille > 0) {
-    return "--qos " + dds.qos + " drops " + std::to_string(profile.transport.loss_per_mille) +
-           " per mille of the real packets: a lock-step tick waits for their retransmissions, "
-           "so the run is slower in wall time and no different on the sim clock; use --qos "
-           "sim-lossy-wifi to model a lossy link at full speed";
-  }
-  if (clock != sim::ClockMode::kRealtime || !profile.link.active()) return std::nullopt;
-  const auto& d = profile.link.to_host;
-  return "--qos " + dds.qos + " models a link (" + exact(d.delay_ms) + " ms delay, " +
-         exact(d.loss_per_mille) +
-         " per mille loss each way): in a real-time run it is added to "
-         "the real network's own delay and loss; over a real network use --qos lan (or "
-         "--link-delay-ms 0 --link-loss-per-mille 0), or --clock lockstep to study the model alone";
-}
-
 sim::SimHostOptions sim_host_options(const SimCliOptions& o) {
   check_real_time_factor(o);
   sim::SimHostOptions ho;

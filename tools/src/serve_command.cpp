@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "smart/common/install_paths.hpp"
 #include "smart/common/child_process.hpp"
 #include "smart/serve/fleet_watch.hpp"
 #include "smart/serve/server.hpp"
@@ -52,9 +53,15 @@ int serve_runs(ServeCliOptions o) {
   auto& s = o.serve;
   if (s.data_dir.empty()) s.data_dir = default_data_dir();
   s.smart_exe = common::self_executable();
-  // The viewer built next to this executable (<build>/web-dist), unless --web says otherwise.
-  const auto built = s.smart_exe.parent_path().parent_path() / "web-dist";
-  if (s.web_dir.empty() && std::filesystem::exists(built / "index.html")) s.web_dir = built;
+  // The viewer installed beside this executable (<prefix>/share/smart-dds/web) or built next to
+  // it (<build>/web-dist), unless --web says otherwise.
+  const auto share = common::installed_share_dir();
+  for (const auto& dir : {share ? *share / "web" : std::filesystem::path(),
+                          s.smart_exe.parent_path().parent_path() / "web-dist"}) {
+    if (s.web_dir.empty() && !dir.empty() && std::filesystem::exists(dir / "index.html")) {
+      s.web_dir = dir;
+    }
+  }
   s.config_dir =
       std::filesystem::path(find_config_file("robots", "footbot")).parent_path().parent_path();
   s.max_upload_bytes = static_cast<std::size_t>(o.max_upload_mb * (1 << 20));

@@ -48,6 +48,13 @@ struct DdsOptions {
 // Jetson, where Cyclone's own choice may be the wrong one).
 void check_interface(const DdsOptions& options);
 
+// A real-time run over a real network with the profile's link model adds the model's delay and
+// loss to the network's own (issue 26: --qos wifi did so silently): the warning to print, or
+// nothing. In lock-step, real packet loss (protocol-loss-test) is warned of: every tick waits for
+// the retransmissions.
+std::optional<std::string> link_model_warning(bool lockstep, const DdsOptions& dds,
+                                              const dds::QosProfile& profile);
+
 // The --qos profile with the command line's link overrides applied.
 dds::QosProfile run_qos_profile(const DdsOptions& options);
 

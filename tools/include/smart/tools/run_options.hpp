@@ -89,11 +89,6 @@ monitor::InstanceOptions instance_options(const WorldCliOptions& world, const st
 // Throws std::invalid_argument naming the flags when --real-time-factor is given with --clock
 // realtime (pacing is for lock-step runs).
 void check_real_time_factor(const SimCliOptions& o);
-// A real-time run over a real network with the profile's link model adds the model's delay and
-// loss to the network's own (issue 26: --qos wifi did so silently): the warning to print, or
-// nothing (lock-step, or no link model).
-std::optional<std::string> link_model_warning(sim::ClockMode clock, const DdsOptions& dds,
-                                              const dds::QosProfile& profile);
 // The sim host's options (checks them with check_real_time_factor first).
 sim::SimHostOptions sim_host_options(const SimCliOptions& o);
 // "I/N" of --shard: shard I (from 0) of N; throws std::invalid_argument saying what is wrong.
