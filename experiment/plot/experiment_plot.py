@@ -98,9 +98,24 @@ def series(rows, field, x_field, line_keys):
         for x in sorted(groups[key]):
             m, sd = mean_sd(groups[key][x])
             points.append({"x": x, "mean": m, "sd": sd, "n": len(groups[key][x])})
-        out.append({"label": " / ".join(key) if key else "all runs",
+        out.append({"label": " / ".join(shown(k, v) for k, v in zip(line_keys, key))
+                    if key else "all runs",
                     "match": dict(zip(line_keys, key)), "points": points})
     return out
+
+
+def shown(axis, value):
+    """A value as a legend shows it: uncertainty settings as words, not JSON."""
+    if axis != "uncertainty":
+        return value
+    try:
+        settings = json.loads(value)
+    except ValueError:
+        return value
+    if not settings:
+        return "none"
+    return ", ".join(f"{k.replace('_', ' ')} {plain(v) if isinstance(v, (int, float)) else v}"
+                     for k, v in settings.items())
 
 
 def plain(v):
