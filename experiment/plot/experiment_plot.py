@@ -293,21 +293,22 @@ def planner_figure(rows, out_dir, written, described):
            written, described)
 
 
+# (name, title, x field, the grid axis it replaces, x label): AET and success against a setting.
+SWEEPS = (("stalls", "Stalls at action start", "uncertainty.stall_probability", "uncertainty",
+           "stall probability"),
+          ("link", "Link delay (monitor to hosts)", "link.to_host.delay_ms", "qos",
+           "link delay (ms)"))
+
+
 def sweep_figures(rows, out_dir, written, described):
-    stall = "uncertainty.stall_probability"
-    if len(values_of(rows, stall)) > 1:
-        lay = Layout(rows, stall, exclude=("uncertainty",))
+    for name, title, x_field, replaced, xlabel in SWEEPS:
+        if len(values_of(rows, x_field)) < 2:
+            continue
+        lay = Layout(rows, x_field, exclude=(replaced,))
         lay.lines = ["agents"] + lay.lines
-        figure(out_dir, "stalls", lay.title("Stalls at action start", rows),
+        figure(out_dir, name, lay.title(title, rows),
                lay.panels_for(rows, [("aet_s", "AET (s)"), ("success_rate", "success rate")],
-                              "stall probability"), written, described)
-    delay = "link.to_host.delay_ms"
-    if len(values_of(rows, delay)) > 1:
-        lay = Layout(rows, delay, exclude=("qos",))
-        lay.lines = ["agents"] + lay.lines
-        figure(out_dir, "link", lay.title("Link delay (monitor to hosts)", rows),
-               lay.panels_for(rows, [("aet_s", "AET (s)"), ("success_rate", "success rate")],
-                              "link delay (ms)"), written, described)
+                              xlabel), written, described)
 
 
 def write_table(rows, out_dir, written):
