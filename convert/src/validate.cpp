@@ -201,11 +201,14 @@ std::string check_monitor_info(const smart_msg_MonitorInfo& m) {
     return "strength " + std::to_string(m.strength) +
            " is below MONITOR_STRENGTH_MIN: not a monitor";
   }
-  for (std::size_t i = 0; i < sizeof(m.host) && m.host[i] != '\0'; ++i) {
-    const auto c = static_cast<unsigned char>(m.host[i]);
-    if (c < 0x20 || c > 0x7e) {
-      return "host name has a non-printable byte (" + std::to_string(c) + " at " +
-             std::to_string(i) + ")";
+  for (const auto& [what, text, size] : {std::tuple{"host name", m.host, sizeof(m.host)},
+                                         std::tuple{"run name", m.run, sizeof(m.run)}}) {
+    for (std::size_t i = 0; i < size && text[i] != '\0'; ++i) {
+      const auto c = static_cast<unsigned char>(text[i]);
+      if (c < 0x20 || c > 0x7e) {
+        return std::string(what) + " has a non-printable byte (" + std::to_string(c) + " at " +
+               std::to_string(i) + ")";
+      }
     }
   }
   return {};

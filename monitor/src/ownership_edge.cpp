@@ -50,6 +50,7 @@ MonitorAnnouncer::MonitorAnnouncer(const dds::Participant& p, const dds::QosProf
   m.monitor_id = self_.monitor_id;
   m.run_id = run_id;
   std::snprintf(m.host, sizeof(m.host), "%s", self_.host.c_str());
+  std::snprintf(m.run, sizeof(m.run), "%s", run_name_.c_str());
   m.pid = self_.pid;
   m.strength = self_.strength;
   m.resume = resume;

@@ -70,7 +70,8 @@ struct FleetWatch::Pump {
     monitors.take_each([&](const smart_msg_MonitorInfo& mi) {
       if (auto why = wire::check_monitor_info(mi); !why.empty()) return reject("monitor", why);
       const std::string host(mi.host, strnlen(mi.host, sizeof(mi.host)));
-      board.on_monitor({mi.run_id, host, mi.pid}, now);
+      const std::string run(mi.run, strnlen(mi.run, sizeof(mi.run)));
+      board.on_monitor({mi.run_id, host, mi.pid, run}, now);
     });
   }
 };

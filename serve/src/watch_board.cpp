@@ -1,15 +1,8 @@
 #include "smart/serve/watch_board.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace smart::serve {
-
-namespace {
-// Below these a robot stands still (a controller's stop tolerance is centimetres per second).
-constexpr double kMovingMps = 0.01;
-constexpr double kTurningRadps = 0.02;
-}  // namespace
 
 WatchBoard::Run* WatchBoard::run_for(uint64_t run_id, double now_s) {
   auto it = runs_.find(run_id);
@@ -63,9 +56,11 @@ void WatchBoard::on_monitor(const WatchedMonitor& m, double now_s) {
 
 nlohmann::json WatchBoard::robot_json(const Robot& r, double now_s) const {
   const auto& s = r.state;
-  const bool moving =
-      std::abs(s.linear_mps) > kMovingMps || std::abs(s.angular_radps) > kTurningRadps;
-  const char* status = now_s - r.heard_s > stale_s_ ? "stale" : moving ? "moving" : "idle";
+  const bool executing = r.progress.executing_seq > r.progress.finished_seq;
+  const char* status = now_s - r.heard_s > stale_s_ ? "stale"
+                       : executing                  ? "moving"
+                       : s.queue > 0                ? "waiting"
+                                                    : "idle";
   return {{"id", s.robot},
           {"x_m", s.x_m},
           {"y_m", s.y_m},
@@ -82,8 +77,10 @@ nlohmann::json WatchBoard::snapshot(double now_s, uint64_t run_id) const {
   const Run* shown = nullptr;
   uint64_t shown_id = 0;
   for (const auto& [id, run] : runs_) {
-    runs.push_back(
-        {{"run_id", id}, {"robots", run.robots.size()}, {"heard_s_ago", now_s - run.heard_s}});
+    runs.push_back({{"run_id", id},
+                    {"name", run.monitor_known ? run.monitor.run : ""},
+                    {"robots", run.robots.size()},
+                    {"heard_s_ago", now_s - run.heard_s}});
     const bool pick = run_id != 0 ? id == run_id : !shown || run.heard_s > shown->heard_s;
     if (pick) shown = &run, shown_id = id;
   }
@@ -96,6 +93,7 @@ nlohmann::json WatchBoard::snapshot(double now_s, uint64_t run_id) const {
   }
   return {{"runs", runs},
           {"run_id", shown_id},
+          {"name", shown && shown->monitor_known ? shown->monitor.run : ""},
           {"monitor", monitor},
           {"t_s", shown ? shown->sim_time_s : 0.0},
           {"robots", robots}};

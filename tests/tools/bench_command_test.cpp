@@ -42,7 +42,8 @@ TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
       run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
                  (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
                  (b / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents",
-                 "5,10", "--domain", std::to_string(kBenchRun), "--out", out.string()},
+                 "5,10", "--qos", "lan,sim-wifi", "--domain", std::to_string(kBenchRun), "--out",
+                 out.string()},
                 120s, "bench_run");
   ASSERT_EQ(r.code, 0) << r.out;
   std::istringstream lines(r.out);
@@ -50,9 +51,16 @@ TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
   for (std::string line; std::getline(lines, line);) {
     if (!line.empty() && line[0] == '{') rows.push_back(nlohmann::json::parse(line));
   }
-  ASSERT_EQ(rows.size(), 2u);
+  // Each size over each profile, the first the reference (issue 26: a modelled link's cost).
+  ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows[0]["robots"], 5);
-  EXPECT_EQ(rows[1]["robots"], 10);
+  EXPECT_EQ(rows[0]["qos"], "lan");
+  EXPECT_EQ(rows[0]["speed_vs_first_qos"], 1.0);
+  EXPECT_EQ(rows[1]["robots"], 5);
+  EXPECT_EQ(rows[1]["qos"], "sim-wifi");
+  EXPECT_DOUBLE_EQ(rows[1]["speed_vs_first_qos"].get<double>(),
+                   rows[1]["sim_speed"].get<double>() / rows[0]["sim_speed"].get<double>());
+  EXPECT_EQ(rows[2]["robots"], 10);
   for (const auto& row : rows) {
     EXPECT_TRUE(row["success"].get<bool>());
     EXPECT_EQ(row["collisions"], 0);
@@ -63,11 +71,11 @@ TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
     EXPECT_GT(row["first_report_wall_s"].get<double>(), 0.0);  // discovery and start-up
     EXPECT_LT(row["first_report_wall_s"].get<double>(), row["wall_time_s"].get<double>());
   }
-  EXPECT_THAT(r.out, HasSubstr("| robots | success | sim time |"));
-  EXPECT_THAT(r.out, HasSubstr("\n| 5 | yes | "));
-  EXPECT_THAT(r.out, HasSubstr("\n| 10 | yes | "));
+  EXPECT_THAT(r.out, HasSubstr("| robots | qos | success | sim time |"));
+  EXPECT_THAT(r.out, HasSubstr("\n| 5 | lan | yes | "));
+  EXPECT_THAT(r.out, HasSubstr("\n| 10 | sim-wifi | yes | "));
   EXPECT_THAT(r.out, HasSubstr("machine: "));
-  EXPECT_TRUE(std::filesystem::exists(out / "10" / "summary.json"));
+  EXPECT_TRUE(std::filesystem::exists(out / "10-sim-wifi" / "summary.json"));
   std::filesystem::remove_all(out);
 }
 

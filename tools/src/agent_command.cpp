@@ -17,6 +17,7 @@
 
 #include "smart/agent/agent.hpp"
 #include "smart/agent/agent_node.hpp"
+#include "smart/agent/run_clock.hpp"
 #include "smart/config/yaml_checks.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
@@ -39,6 +40,7 @@ struct AgentOptions {
 struct Robot {
   RobotIo io;
   std::unique_ptr<agent::Agent> agent;
+  agent::RunClock clock;  // the time its states report: since its run began
 };
 
 bool stopped_by(const std::optional<wire::Tick>& clock, const std::vector<Robot>& robots) {
@@ -62,10 +64,11 @@ bool control_loop(std::vector<Robot>& robots, agent::AgentNode& node, double per
       node.republish_progress();
       repeated_s = now;
     }
-    for (const auto& r : robots) {
+    for (auto& r : robots) {
       const auto& a = *r.agent;
+      const double t_s = r.clock.since_run_start(a.run_id(), now);
       if (a.last_pose().valid) {
-        node.publish_state(a.robot_id(), a.run_id(), now, a.last_pose(), a.last_command());
+        node.publish_state(a.robot_id(), a.run_id(), t_s, a.last_pose(), a.last_command());
       }
     }
     node.flush_states();
@@ -190,7 +193,7 @@ int run_agent(const AgentOptions& o) {
   prove_member(participant, o.dds, "agent");
   std::vector<Robot> robots;
   for (const uint32_t id : ids) {
-    Robot r{open_robot(o.io, id, model, file, participant), nullptr};
+    Robot r{open_robot(o.io, id, model, file, participant), nullptr, {}};
     r.agent = std::make_unique<agent::Agent>(agent::AgentConfig{id, model, o.period_s, 0.5},
                                              *r.io.drive, *r.io.pose);
     spdlog::info("agent {}: {}, pose from {}, domain {}", id, model.name, r.io.pose_name,

@@ -4,8 +4,14 @@
 // - Robots are keyed by (run, robot id); the board shows one run: the one asked for, else the
 //   one heard of most recently. Physical and simulated robots look alike here (the same
 //   RobotState and Progress topics), so a mixed run shows all of them.
-// - A robot's status: "moving" (linear or angular speed above a threshold), "idle" (standing:
-//   waiting for others, or done), "stale" (nothing heard for stale_s: lost, or the run ended).
+// - A robot's status, from what its host says it does (Progress, RobotState's queue), not from
+//   its speed (issue 26: a JetBot's Vicon noise made every robot "moving" at 0 m/s): "moving"
+//   (executing an action), "waiting" (actions queued, none executing: its dependencies are not
+//   finished), "idle" (nothing queued: done, or waiting for its next window), "stale" (nothing
+//   heard for stale_s: lost, or the run ended).
+// - The run's time is the newest robot time heard: sim hosts report sim time, agents the time
+//   since their run's first window (tools/src/agent_command.cpp; issue 26: an agent reported
+//   its host's uptime, 3272 s shown 15 s into a run).
 // - At most kMaxRobots robots and kMaxRuns runs are kept (samples are untrusted: a flood of
 //   made-up ids cannot grow memory without bound); the oldest run is dropped first.
 #pragma once
@@ -36,6 +42,7 @@ struct WatchedMonitor {
   uint64_t run_id = 0;
   std::string host;
   int64_t pid = 0;
+  std::string run;  // the run's name (--run), as its monitor announces it
 };
 
 class WatchBoard {
@@ -48,8 +55,9 @@ class WatchBoard {
   void on_progress(const WatchedProgress& p, double now_s);
   void on_monitor(const WatchedMonitor& m, double now_s);
 
-  // {"runs": [{"run_id", "robots", "heard_s_ago"}], "run_id" (shown; 0: none), "monitor":
-  // {"host", "pid"} or null, "t_s" (newest sim time), "robots": [{"id", "x_m", "y_m",
+  // {"runs": [{"run_id", "name", "robots", "heard_s_ago"}], "run_id" (shown; 0: none), "name"
+  // (its name, "" until its monitor is heard), "monitor": {"host", "pid"} or null, "t_s" (the
+  // run's time), "robots": [{"id", "x_m", "y_m",
   // "yaw_rad", "status", "queue", "finished_seq", "executing_seq", "linear_mps"}]} by robot id.
   // run_id 0: the run heard of most recently.
   nlohmann::json snapshot(double now_s, uint64_t run_id = 0) const;
