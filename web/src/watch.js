@@ -2,16 +2,30 @@
 // /api/watch/live), its status colour (watch_board.js), a click shows its panel; no map given:
 // a floor under the robots.
 import { readMap } from './recording.js';
-import { WATCH_COLORS, extentOf, robotPanel, statusCounts } from './watch_board.js';
+import { WATCH_COLORS, extentOf, robotPanel, runLabel, statusCounts } from './watch_board.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
 import { buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, scene, startLoop } from './view.js';
 
 function showStats(ev) {
   const n = statusCounts(ev.robots), m = ev.monitor;
-  setRows($('stats'), [['', `watching run ${ev.run_id || '(none yet)'}`],
+  const run = ev.run_id ? ev.name || `run ${ev.run_id}` : '(none yet)';
+  setRows($('stats'), [['', `watching ${run}`],
     ['', `monitor: ${m ? `${m.host} pid ${m.pid}` : 'not seen'}`], ['', `robots: ${ev.robots.length}`],
-    ['', `moving ${n.moving}, idle ${n.idle}, stale ${n.stale}`], ['', `dropped samples: ${ev.rejected_samples}`]]);
+    ['', `moving ${n.moving}, waiting ${n.waiting}, idle ${n.idle}, stale ${n.stale}`],
+    ['', `dropped samples: ${ev.rejected_samples}`]]);
   $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
+}
+
+// Every run live on the domain, to pick from (issue 26: only the newest could be watched).
+function showRuns(ev) {
+  const pick = $('live-runs');
+  pick.hidden = false;
+  const ids = ev.runs.map((r) => String(r.run_id));
+  if (ids.join() !== [...pick.options].map((o) => o.value).join()) {
+    pick.replaceChildren(...ev.runs.map((r) => new Option('', String(r.run_id))));
+  }
+  ev.runs.forEach((r, i) => { pick.options[i].text = runLabel(r); });
+  pick.value = String(ev.run_id);
 }
 
 export async function startWatch(runId) {
@@ -41,9 +55,12 @@ export async function startWatch(runId) {
     const picked = ev.robots.find((r) => r.id === viewer.selected);
     if (picked) setRows($('robot'), robotPanel(picked));
     showStats(ev);
-    Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, watched: ev.robots, liveEvents: viewer.liveEvents + 1 });
+    showRuns(ev);
+    Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, runName: ev.name, runs: ev.runs,
+                            watched: ev.robots, liveEvents: viewer.liveEvents + 1 });
   };
   viewer.select = (id) => { viewer.selected = id; return ids.includes(id); };
+  $('live-runs').onchange = (e) => { location.search = `?watch&run_id=${e.target.value}`; };
   $('search').onchange = (e) => viewer.select(Number(e.target.value));
   onRobotClick(() => mesh, (i) => viewer.select(ids[i]));
   startLoop();

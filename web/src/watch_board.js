@@ -1,11 +1,13 @@
 // The watch board (pure): whatever run is live on the DDS domain (`smart serve --watch`, GET
 // /api/watch/live), simulated and physical robots alike, read-only. Robots are drawn in the
 // order the server lists them (by id; ids may have gaps in a mixed run).
-export const WATCH_COLORS = { moving: 0x3d8bfd, idle: 0xf0a030, stale: 0x777777, selected: 0xff3b30 };
+// Statuses (serve/include/smart/serve/watch_board.hpp): moving = executing an action, waiting =
+// actions queued but none executing, idle = nothing queued; the replay's colours for the same.
+export const WATCH_COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, idle: 0x3cb371, stale: 0x777777, selected: 0xff3b30 };
 
 // Counts of robots per status, for the stats panel.
 export function statusCounts(robots) {
-  const n = { moving: 0, idle: 0, stale: 0 };
+  const n = { moving: 0, waiting: 0, idle: 0, stale: 0 };
   for (const r of robots) n[r.status] = (n[r.status] || 0) + 1;
   return n;
 }
@@ -15,6 +17,11 @@ export function extentOf(robots, margin) {
   const xs = robots.map((r) => r.x_m), ys = robots.map((r) => r.y_m);
   return { minX: Math.min(...xs) - margin, maxX: Math.max(...xs) + margin,
            minY: Math.min(...ys) - margin, maxY: Math.max(...ys) + margin };
+}
+
+// The live runs to pick from: the name its monitor announced, else its id.
+export function runLabel(run) {
+  return `${run.name || `run ${run.run_id}`} (${run.robots} robots, heard ${run.heard_s_ago.toFixed(0)} s ago)`;
 }
 
 export function robotPanel(r) {

@@ -221,10 +221,19 @@ async function checkWatch(browser) {
     await page.setViewport({ width: 1280, height: 800 });
     await page.goto(`${watchUrl}/?watch`);
     await page.waitForFunction(() => window.__viewer && window.__viewer.watch && window.__viewer.robots === 20 &&
-      window.__viewer.watched.some((r) => r.status === 'moving'), { timeout: 30000 });
-    assert.match(await page.$eval('#stats', (e) => e.textContent), /watching run \d+.*robots: 20/);
+      window.__viewer.watched.some((r) => r.status === 'moving') && window.__viewer.runName, { timeout: 30000 });
+    // The run's name (issue 26: a 19-digit id), and the live runs to pick from.
+    assert.match(await page.$eval('#stats', (e) => e.textContent), /watching run-\d+-\d+.*robots: 20/);
+    const picks = await page.$$eval('#live-runs option', (os) => os.map((o) => o.textContent));
+    assert.ok(picks.some((t) => /^run-\d+-\d+ \(20 robots/.test(t)), picks.join('; '));
+    // Statuses from what the hosts say they do: a robot moving is executing an action.
+    const watched = await page.evaluate(() => window.__viewer.watched);
+    for (const r of watched) {
+      assert.ok(['moving', 'waiting', 'idle'].includes(r.status), JSON.stringify(r));
+      if (r.status === 'moving') assert.ok(r.executing_seq > r.finished_seq, JSON.stringify(r));
+    }
     await page.evaluate(() => window.__viewer.select(5));
-    await page.waitForFunction(() => /robot 5.*status: (moving|idle)/.test(document.querySelector('#robot').textContent), { timeout: 5000 });
+    await page.waitForFunction(() => /robot 5.*status: (moving|waiting|idle)/.test(document.querySelector('#robot').textContent), { timeout: 5000 });
     await page.screenshot({ path: path.join(artifacts, 'viewer-watch.png') });
     const pixels = await waitForPixels(page, 20 * 10 + 1);
     assert.ok(pixels > 20 * 10, `watched robots not drawn: ${pixels} robot-coloured pixels`);
