@@ -313,6 +313,15 @@ struct MonitorNode::Impl {
     plan_view->publish_paths();
   }
 
+  // Finished actions for live views, when the count changed since the last report.
+  std::optional<std::size_t> reported_finished;
+  void report_finished() {
+    const auto& t = sup.tracker();
+    if (!opt.on_finished || reported_finished == t.finished_total()) return;
+    reported_finished = t.finished_total();
+    opt.on_finished({sup.result().sim_time_s, t.finished_total(), t.total()});
+  }
+
   void publish_plan_view(bool now) {
     if (!plan_view || (!now && now_s() - plan_view_s < 1.0 / opt.ros_plan_hz)) return;
     plan_view_s = now_s();
@@ -424,6 +433,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
       r.wall_time_s = last_check_s;
       on_progress(r, I.sup.robots_done());
     }
+    I.report_finished();
   }
   return I.finish();
 }

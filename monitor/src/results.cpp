@@ -282,6 +282,18 @@ void StatesCsvWriter::add(const StateRow& s) {
   ++rows_;
 }
 
+ProgressCsvWriter::ProgressCsvWriter(const std::filesystem::path& dir) {
+  create_out_dir(dir);
+  out_ = open_out(dir / results::kProgressCsv);
+  out_ << results::kProgressHeader << '\n' << std::flush;
+}
+
+void ProgressCsvWriter::add(const results::ProgressRow& r) {
+  std::string line;
+  results::append_row(line, r);
+  out_ << line << std::flush;
+}
+
 namespace {
 // One row per robot: finish and waiting time, stops, actions, the motion lower bound.
 void write_robots_csv(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,

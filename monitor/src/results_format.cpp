@@ -205,4 +205,25 @@ void for_each_state_row(std::string_view text, const std::function<void(const St
   });
 }
 
+void append_row(std::string& out, const ProgressRow& r) {
+  put(out, r.t_s);
+  put(out, r.finished);
+  put(out, r.total, '\n');
+}
+
+std::optional<ProgressRow> last_progress_row(std::string_view text) {
+  const auto end = text.rfind('\n');
+  if (end == std::string_view::npos) return std::nullopt;
+  const auto start = text.rfind('\n', end == 0 ? 0 : end - 1);
+  std::string_view line =
+      text.substr(start == std::string_view::npos || start == end ? 0 : start + 1,
+                  end - (start == std::string_view::npos || start == end ? 0 : start + 1));
+  ProgressRow r;
+  if (!number(next_field(line), r.t_s) || !number(next_field(line), r.finished) ||
+      !number(next_field(line), r.total) || !line.empty() || r.finished > r.total) {
+    return std::nullopt;  // the header, or not a row
+  }
+  return r;
+}
+
 }  // namespace smart::results

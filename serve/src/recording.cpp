@@ -114,10 +114,18 @@ void PoseTail::feed(std::string_view appended) {
     const auto s = results::parse_state_line(line);
     if (!s || s->robot > 1000000) continue;  // the tail keeps a pose per robot id
     if (latest_.size() <= s->robot) latest_.resize(s->robot + 1);
-    latest_[s->robot] = {s->t_s, s->robot, s->x_m, s->y_m, s->yaw_rad};
+    latest_[s->robot] = *s;
     time_s_ = std::max(time_s_, s->t_s);
   }
   partial_.erase(0, start);
+}
+
+const char* live_status(const results::StateRow& s) {
+  // Below these a simulated robot stands still (its controller stops within centimetres per
+  // second; sim states carry no sensor noise).
+  constexpr double kMovingMps = 0.01, kTurningRadps = 0.02;
+  if (std::abs(s.v_mps) > kMovingMps || std::abs(s.w_radps) > kTurningRadps) return "moving";
+  return s.queue > 0 ? "waiting" : "idle";
 }
 
 Recording decode_recording(std::string_view in) {

@@ -266,6 +266,17 @@ struct Server::Impl {
     res.set_content(slurp(cached), "application/octet-stream");
   }
 
+  // The run's newest progress.csv row (the file's last few hundred bytes), if any yet.
+  std::optional<results::ProgressRow> live_progress(const std::string& id) {
+    std::ifstream in(store.results_file(id, results::kProgressCsv),
+                     std::ios::binary | std::ios::ate);
+    if (!in) return std::nullopt;
+    const auto size = static_cast<std::streamoff>(in.tellg());
+    in.seekg(std::max<std::streamoff>(0, size - 256));
+    const std::string tail((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return results::last_progress_row(tail);
+  }
+
   // One event per call, paced; the stream ends after the event that shows the run ended.
   bool live_event(const std::string& id, PoseTail& tail, std::uintmax_t& offset,
                   httplib::DataSink& sink) {
@@ -277,11 +288,21 @@ struct Server::Impl {
       offset += chunk.size();
       tail.feed(chunk);
     }
-    json poses = json::array();
-    for (const auto& p : tail.latest()) poses.push_back({p.x_m, p.y_m, p.yaw_rad});
-    const std::string state(to_string(e->state));
-    const auto msg =
-        "data: " + json{{"state", state}, {"t_s", tail.time_s()}, {"poses", poses}}.dump() + "\n\n";
+    json poses = json::array(), status = json::array(), queue = json::array();
+    for (const auto& p : tail.latest()) {
+      poses.push_back({p.x_m, p.y_m, p.yaw_rad});
+      status.push_back(live_status(p));
+      queue.push_back(p.queue);
+    }
+    json event = {{"state", std::string(to_string(e->state))},
+                  {"t_s", tail.time_s()},
+                  {"poses", poses},
+                  {"status", status},
+                  {"queue", queue}};
+    if (const auto p = live_progress(id)) {
+      event["progress"] = {{"t_s", p->t_s}, {"finished", p->finished}, {"total", p->total}};
+    }
+    const auto msg = "data: " + event.dump() + "\n\n";
     if (!sink.write(msg.data(), msg.size())) return false;
     if (e->state == RunState::kDone || e->state == RunState::kFailed) {
       sink.done();

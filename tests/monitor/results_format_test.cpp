@@ -130,5 +130,23 @@ TEST(ResultsFormat, ASimReportIsItsLastJsonLineAndABadOneNamesTheFileAndKey) {
               HasSubstr("\"robot_contacts\" is missing or of the wrong type"));
 }
 
+// progress.csv is read while it is written: the last complete row counts, a torn one does not.
+TEST(ResultsFormat, TheLastCompleteProgressRowOfAGrowingFile) {
+  std::string text(kProgressHeader);
+  text += "\n";
+  EXPECT_FALSE(last_progress_row(text));  // the header alone
+  append_row(text, ProgressRow{1.5, 3, 40});
+  append_row(text, ProgressRow{2.25, 7, 40});
+  auto r = last_progress_row(text);
+  ASSERT_TRUE(r);
+  EXPECT_DOUBLE_EQ(r->t_s, 2.25);
+  EXPECT_EQ(r->finished, 7u);
+  EXPECT_EQ(r->total, 40u);
+  EXPECT_EQ(last_progress_row(text + "3.0,9")->finished, 7u);  // a partial last line waits
+  EXPECT_EQ(last_progress_row(text.substr(text.find('\n', 5) - 3))->finished, 7u);  // a tail
+  EXPECT_FALSE(last_progress_row("1.0,50,40\n"));  // more finished than there are
+  EXPECT_FALSE(last_progress_row(""));
+}
+
 }  // namespace
 }  // namespace smart::results

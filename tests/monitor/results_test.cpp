@@ -175,6 +175,17 @@ TEST(Results, StatesAreStreamedRowByRow) {
   std::filesystem::remove_all(dir);
 }
 
+// Read while the run goes (a live view's progress): every row is on disk once added.
+TEST(Results, ProgressIsFlushedRowByRowForLiveViews) {
+  const auto dir = temp_dir("progress");
+  ProgressCsvWriter w(dir);
+  w.add({1.5, 3, 40});
+  EXPECT_EQ(slurp(dir / "progress.csv"), "t_s,finished,total\n1.5,3,40\n");
+  w.add({2.0, 5, 40});
+  EXPECT_EQ(results::last_progress_row(slurp(dir / "progress.csv"))->finished, 5u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Results, AnUnwritableFolderIsAnErrorNamingIt) {
   const auto file = temp_dir("plainfile");
   std::ofstream(file) << "x";

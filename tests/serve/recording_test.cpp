@@ -81,5 +81,20 @@ TEST(PoseTail, KeepsTheNewestPosePerRobotFromPiecesOfAGrowingFile) {
   EXPECT_DOUBLE_EQ(tail.time_s(), 1.0);
 }
 
+// Issue 26: in an upload's live view every robot was blue; the live stream now says what each
+// does, as the replay colours it.
+TEST(PoseTail, ALiveRobotIsMovingWaitingOrIdleFromItsNewestState) {
+  PoseTail tail;
+  tail.feed(std::string(results::kStatesHeader) +
+            "\n1.0,0,1,1,0,0.4,0,0.4,0.4,5\n1.0,1,2,2,0,0,0.5,0,0,3\n"
+            "1.0,2,3,3,0,0.001,0.001,0,0,2\n1.0,3,4,4,0,0,0,0,0,0\n");
+  ASSERT_EQ(tail.latest().size(), 4u);
+  EXPECT_STREQ(live_status(tail.latest()[0]), "moving");   // driving
+  EXPECT_STREQ(live_status(tail.latest()[1]), "moving");   // turning in place
+  EXPECT_STREQ(live_status(tail.latest()[2]), "waiting");  // standing, 2 actions queued
+  EXPECT_STREQ(live_status(tail.latest()[3]), "idle");     // standing, nothing queued
+  EXPECT_EQ(tail.latest()[2].queue, 2u);
+}
+
 }  // namespace
 }  // namespace smart::serve

@@ -59,7 +59,8 @@ int run_sim(const SimCliOptions& o) {
   grid::throw_if_any(grid::check_scen_against_map(scen, grid));
   const auto model = run_robot_model(o);
   const auto profile = run_qos_profile(o.dds);
-  if (const auto warning = link_model_warning(o.clock == sim::ClockMode::kLockstep, o.dds, profile)) {
+  if (const auto warning =
+          link_model_warning(o.clock == sim::ClockMode::kLockstep, o.dds, profile)) {
     spdlog::warn("sim: {}", *warning);
   }
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
@@ -263,9 +264,12 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   // a lost host.
   if (spawn_sim_child) mo.run.join_timeout_s = 4 * mo.run.timeout_s;
   std::optional<monitor::StatesCsvWriter> states;
+  std::optional<monitor::ProgressCsvWriter> progress;
   if (!o.out.empty()) {
     states.emplace(o.out);
     mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
+    progress.emplace(o.out);
+    mo.on_finished = [&progress](const results::ProgressRow& row) { progress->add(row); };
   }
   if (!sims.empty()) mo.host_check = watch(sims);
   monitor::MonitorNode node(participant, profile, in, mo);

@@ -1,28 +1,66 @@
-// Live mode: a run of this server still going; its map, and every robot's newest pose from the
-// live stream (Server-Sent Events, GET /api/runs/{id}/live, about 4 a second); when it ended,
-// the page reloads into the replay.
+// Live mode: a run of this server still going; its map, and every robot's newest state from the
+// live stream (Server-Sent Events, GET /api/runs/{id}/live, about 4 a second), coloured by state
+// as the replay colours them (moving, waiting, idle), a click or the search field selects a
+// robot and shows its panel, and the finished-actions curve grows as the run goes (issue 26:
+// every robot blue, nothing selectable, no progress); when the run ended, the page reloads into
+// the replay.
 import { readMap } from './recording.js';
-import { $, fetchJson, viewer } from './page.js';
-import { buildMap, buildRobots, placeRobot, resize, robotsMoved, startLoop } from './view.js';
+import { drawProgress } from './plot.js';
+import { $, fetchJson, setRows, viewer } from './page.js';
+import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, startLoop } from './view.js';
+
+// The panel of robot i from the newest event.
+export function liveRobotRows(ev, i) {
+  const [x, y, yaw] = ev.poses[i];
+  return [['id', `robot ${i}`], ['pose', `x ${x.toFixed(2)} m, y ${y.toFixed(2)} m`],
+    ['heading', `heading ${(yaw * 180 / Math.PI).toFixed(0)}°`], ['status', `status: ${ev.status[i]}`],
+    ['queue', `queue: ${ev.queue[i]}`]];
+}
+
+// The stats lines: the run, its time, progress and how many robots are in each state.
+function showStats(id, ev) {
+  const n = { moving: 0, waiting: 0, idle: 0 };
+  for (const s of ev.status) n[s] = (n[s] || 0) + 1;
+  const p = ev.progress;
+  setRows($('stats'), [['', `${id}: ${ev.state} (live)`], ['', `robots: ${ev.poses.length}`],
+    ['', p ? `actions: ${p.finished} / ${p.total}` : 'actions: none finished yet'],
+    ['', `moving ${n.moving}, waiting ${n.waiting}, idle ${n.idle}`]]);
+  $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
+}
 
 export async function startLive(id) {
-  const [run, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
+  const [, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
   const cell = 1;
   buildMap(readMap(mapText), cell);
   resize();
   Object.assign(viewer, { live: true, liveEvents: 0 });
-  $('stats').textContent = `${id}: ${run.state} (live)`;
-  let mesh = null;
+  let mesh = null, last = null;
+  const curve = { t_s: [], finished: [] };
+  viewer.select = (i) => {
+    if (!last || i < 0 || i >= last.poses.length) return false;
+    viewer.selected = i;
+    return true;
+  };
+  $('search').onchange = (e) => viewer.select(Number(e.target.value));
+  onRobotClick(() => mesh, (i) => viewer.select(i));
   const source = new EventSource(`/api/runs/${id}/live`);
   source.onmessage = (e) => {
     const ev = JSON.parse(e.data);
+    last = ev;
     if (!mesh && ev.poses.length) mesh = buildRobots(ev.poses.length, cell);
-    ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw));
+    ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw, COLORS[i === viewer.selected ? 'selected' : ev.status[i]]));
     if (mesh) robotsMoved(mesh);
-    viewer.liveEvents++;
-    viewer.robots = ev.poses.length;
-    $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
-    $('stats').textContent = `${id}: ${ev.state} (live)`;
+    if (viewer.selected >= 0 && viewer.selected < ev.poses.length) setRows($('robot'), liveRobotRows(ev, viewer.selected));
+    if (ev.progress && ev.progress.finished !== curve.finished[curve.finished.length - 1]) {
+      curve.t_s.push(ev.progress.t_s);
+      curve.finished.push(ev.progress.finished);
+    }
+    if (curve.t_s.length) {
+      $('plot').hidden = false;
+      drawProgress($('plot'), curve, ev.t_s, ev.progress.total);
+    }
+    showStats(id, ev);
+    Object.assign(viewer, { liveEvents: viewer.liveEvents + 1, robots: ev.poses.length, liveStatus: ev.status, progress: ev.progress });
     if (ev.state === 'done' || ev.state === 'failed') { source.close(); location.reload(); }
   };
   startLoop();

@@ -6,7 +6,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { $ } from './page.js';
 
-export const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
+export const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, idle: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
 
 export const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 $('view').appendChild(renderer.domElement);

@@ -333,16 +333,30 @@ try {
     throw new Error(`no navigation after the upload (${e.message}); the form says: ${status}`);
   });
   assert.match(page.url(), /run=run-000002/);
-  let sawLive = false, replay = null, last = null;
+  // Live = replay (issue 26): robots coloured by state, one selected with its panel, progress.
+  let sawLive = false, replay = null, last = null, sawStates = false, sawPanel = false, sawProgress = false;
   for (const until = Date.now() + 150000; Date.now() < until && !replay;) {
     const s = await page.evaluate(() => window.__viewer && { ...window.__viewer }).catch(() => null);  // reloads
     if (s && s.live && s.liveEvents > 0 && s.robots === 50) sawLive = true;
+    if (s && s.live && s.liveStatus && s.liveStatus.length === 50) {
+      assert.ok(s.liveStatus.every((x) => ['moving', 'waiting', 'idle'].includes(x)), s.liveStatus.join());
+      if (s.liveStatus.includes('moving')) sawStates = true;
+      if (s.progress && s.progress.finished > 0) {
+        assert.ok(s.progress.finished <= s.progress.total, JSON.stringify(s.progress));
+        sawProgress = await page.$eval('#plot', (e) => !e.hidden).catch(() => false) || sawProgress;
+      }
+      const panel = await page.evaluate(() => window.__viewer.select(3) && document.querySelector('#robot').textContent).catch(() => '');
+      if (/robot 3.*status: (moving|waiting|idle).*queue: \d+/.test(panel || '')) sawPanel = true;
+    }
     if (s && s.ready) replay = s;
     if (s) last = s;
     if (s && s.error) break;  // the page gave up: say why below
     await new Promise((r) => setTimeout(r, 100));
   }
   assert.ok(sawLive, 'the run was never shown live with its 50 robots');
+  assert.ok(sawStates, 'no live robot was ever shown moving (states from the live stream)');
+  assert.ok(sawPanel, 'a live robot could not be selected and shown in the panel');
+  assert.ok(sawProgress, 'the live view never showed the run\'s progress');
   if (!replay) {
     // Everything that says why: the page's state, the server's word on the run, the run's output.
     const run = await page.evaluate(async () => (await fetch('/api/runs/run-000002')).text()).catch((e) => String(e));

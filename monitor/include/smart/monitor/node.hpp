@@ -35,6 +35,9 @@ struct MonitorOptions {
   // Robot states as they arrive (e.g. streamed to states.csv by StatesCsvWriter, results.hpp).
   // Not kept in memory: 1000 robots at 2 Hz for 20 min are 2.4 M rows.
   std::function<void(const StateRow&)> on_state;
+  // Finished actions so far, when the count changed (checked about every 100 ms of wall time;
+  // e.g. streamed to progress.csv by ProgressCsvWriter, results.hpp): live views' progress.
+  std::function<void(const results::ProgressRow&)> on_finished;
   // The plan view for rviz2 (ros_plan_view.hpp) at this rate in wall time; 0: off.
   double ros_plan_hz = 0;
   double robot_radius_m = 0.1;  // robot markers' size

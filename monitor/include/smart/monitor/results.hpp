@@ -72,6 +72,16 @@ class StatesCsvWriter {
   std::size_t rows_ = 0;
 };
 
+// progress.csv in `dir`, a row per call, flushed: read while the run goes (results_format.hpp).
+class ProgressCsvWriter {
+ public:
+  explicit ProgressCsvWriter(const std::filesystem::path& dir);
+  void add(const results::ProgressRow& row);
+
+ private:
+  std::ofstream out_;
+};
+
 // Appends the run's stats.csv row to `file` (with the header when the file is new or empty): a
 // batch of runs in one table, as SMART users keep it. Throws std::runtime_error naming the file.
 void append_stats(const std::filesystem::path& file, const Instance& instance,

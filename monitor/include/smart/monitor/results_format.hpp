@@ -27,6 +27,9 @@ inline constexpr std::string_view kStatsCsv = "stats.csv";
 inline constexpr std::string_view kRobotsCsv = "robots.csv";
 inline constexpr std::string_view kActionsCsv = "actions.csv";
 inline constexpr std::string_view kStatesCsv = "states.csv";
+// Written while a run goes, for live views (`smart serve`); not a result (the finished run's
+// progress comes from actions.csv).
+inline constexpr std::string_view kProgressCsv = "progress.csv";
 // Every file of a results folder that a viewer lists, downloads or replays, in that order.
 inline constexpr std::array<std::string_view, 5> kFiles = {kSummaryJson, kStatsCsv, kRobotsCsv,
                                                            kActionsCsv, kStatesCsv};
@@ -118,5 +121,17 @@ std::optional<StateRow> parse_state_line(std::string_view line);
 // Rows need t_s, robot, x_m, y_m, yaw_rad (finite; robot up to 10^7); the other columns are read
 // when present (files of older versions lack some) and 0 otherwise.
 void for_each_state_row(std::string_view text, const std::function<void(const StateRow&)>& row);
+
+// progress.csv: finished actions as the run goes, a row when the count changed (at most ten a
+// second of wall time), so a live view shows the run's progress (issue 26).
+inline constexpr std::string_view kProgressHeader = "t_s,finished,total";
+struct ProgressRow {
+  double t_s = 0;  // sim time
+  uint64_t finished = 0, total = 0;
+};
+void append_row(std::string& out, const ProgressRow& row);
+// The last complete row of a growing file's text (its header and a partial last line skipped);
+// none when there is none.
+std::optional<ProgressRow> last_progress_row(std::string_view text);
 
 }  // namespace smart::results

@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "smart/monitor/results_format.hpp"
+
 namespace smart::serve {
 
 struct PoseRow {
@@ -52,20 +54,25 @@ struct Recording {
 // Throws std::invalid_argument on bytes that are not a version 2 recording.
 Recording decode_recording(std::string_view bytes);
 
-// The newest pose of every robot from states.csv as it grows (a live run): feed() takes the
+// The newest state of every robot from states.csv as it grows (a live run): feed() takes the
 // bytes appended since the last call, in any pieces; a partial last line waits for its end.
 // Malformed rows are skipped (the file is being written).
 class PoseTail {
  public:
   void feed(std::string_view appended);
-  const std::vector<PoseRow>& latest() const { return latest_; }  // by robot id
+  const std::vector<results::StateRow>& latest() const { return latest_; }  // by robot id
   double time_s() const { return time_s_; }
 
  private:
   std::string partial_;
   bool header_seen_ = false;
-  std::vector<PoseRow> latest_;
+  std::vector<results::StateRow> latest_;
   double time_s_ = 0;
 };
+
+// A live robot's status as the replay colours it (web/src/view.js): "moving" (turning or
+// driving), "waiting" (standing with actions queued: its dependencies are not finished) or
+// "idle" (standing, nothing queued: done, or between windows).
+const char* live_status(const results::StateRow& s);
 
 }  // namespace smart::serve
