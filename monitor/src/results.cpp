@@ -60,6 +60,16 @@ std::ofstream open_out(const std::filesystem::path& p) {
 
 // Finish time over the motion lower bound, per robot that moves and finished: {median, max}, and
 // the bound's AET and makespan.
+// The limits the run used (an upload's chosen ones included; issue 26: they appeared nowhere).
+nlohmann::json limits_json(const MotionLimits& l, const std::string& robot) {
+  return {{"robot", robot},
+          {"max_speed_mps", l.max_speed_mps},
+          {"max_accel_mps2", l.max_accel_mps2},
+          {"max_decel_mps2", l.max_decel_mps2},
+          {"max_turn_rate_radps", l.max_turn_rate_radps},
+          {"max_angular_accel_radps2", l.max_angular_accel_radps2}};
+}
+
 nlohmann::json motion_bound_json(const MonitorResult& r, const std::vector<double>& bound) {
   std::vector<double> ratio;
   double sum = 0, makespan = 0;
@@ -188,6 +198,25 @@ nlohmann::json plan_json(const Plan& plan, const PlanStats& st) {
           {"timed", plan.timed}};
 }
 
+namespace {
+// The fields a run has only sometimes: the limits and motion bound, uncertainty, link, a resume.
+nlohmann::json when_known_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
+  nlohmann::json j = nlohmann::json::object();
+  if (info.limits) {
+    j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
+    j["limits"] = limits_json(*info.limits, info.robot_model);
+  }
+  if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
+  if (!info.link.is_null()) j["link"] = info.link;
+  if (r.resumed) {
+    j["resumed"] = {{"at_s", r.resumed_at_s},
+                    {"finished_before", r.finished_before_resume},
+                    {"robots_done_before", r.robots_done_before_resume}};
+  }
+  return j;
+}
+}  // namespace
+
 nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
   double sum = 0, makespan = 0;
   // Times are known once every action finished, whatever the verdict (a run with a collision
@@ -257,14 +286,7 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
   j["stops"] = stops;
   j.update(resources_json(r, info));
-  if (info.limits) j["motion_bound"] = motion_bound_json(r, bounds_of(in, info));
-  if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
-  if (!info.link.is_null()) j["link"] = info.link;
-  if (r.resumed) {
-    j["resumed"] = {{"at_s", r.resumed_at_s},
-                    {"finished_before", r.finished_before_resume},
-                    {"robots_done_before", r.robots_done_before_resume}};
-  }
+  j.update(when_known_json(in, r, info));
   return j;
 }
 

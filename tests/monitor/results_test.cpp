@@ -130,6 +130,15 @@ TEST(Results, MotionBoundPerRobotAndItsRatiosWhenTheLimitsAreKnown) {
   EXPECT_DOUBLE_EQ(j["aet_s"].get<double>(), (bound[0] + bound[1]) / 2);
   EXPECT_DOUBLE_EQ(j["finish_over_bound_max"].get<double>(),
                    std::max(8.0 / bound[0], 12.5 / bound[1]));
+  // The limits themselves, with the model's name (issue 26: an upload's chosen limits appeared
+  // nowhere after the run).
+  info.robot_model = "footbot";
+  const auto limits = summary_json(in, r, info)["limits"];
+  EXPECT_EQ(limits["robot"], "footbot");
+  EXPECT_DOUBLE_EQ(limits["max_speed_mps"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(limits["max_accel_mps2"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(limits["max_angular_accel_radps2"].get<double>(), 10.0);
+  EXPECT_FALSE(summary_json(in, r, RunInfo{}).contains("limits"));
   // Robot 1's last action never finished: no finish time in robots.csv, its bound still there.
   r.action_finish_s = {1, 2, 3, 8, 2.5, 4, 5, 7.25, std::nan("")};
   const auto dir = temp_dir("bound");

@@ -7,7 +7,11 @@
 import { readMap } from './recording.js';
 import { drawProgress } from './plot.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
-import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, startLoop } from './view.js';
+import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, setLabel, showLegend,
+         startLoop } from './view.js';
+
+export const LIVE_LEGEND = [['moving', COLORS.moving], ['waiting', COLORS.waiting],
+  ['idle (done, or between windows)', COLORS.idle], ['selected', COLORS.selected]];
 
 // The panel of robot i from the newest event.
 export function liveRobotRows(ev, i) {
@@ -34,6 +38,7 @@ export async function startLive(id) {
   buildMap(readMap(mapText), cell);
   resize();
   Object.assign(viewer, { live: true, liveEvents: 0 });
+  showLegend(LIVE_LEGEND);
   let mesh = null, last = null;
   const curve = { t_s: [], finished: [] };
   viewer.select = (i) => {
@@ -50,7 +55,10 @@ export async function startLive(id) {
     if (!mesh && ev.poses.length) mesh = buildRobots(ev.poses.length, cell);
     ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw, COLORS[i === viewer.selected ? 'selected' : ev.status[i]]));
     if (mesh) robotsMoved(mesh);
-    if (viewer.selected >= 0 && viewer.selected < ev.poses.length) setRows($('robot'), liveRobotRows(ev, viewer.selected));
+    if (viewer.selected >= 0 && viewer.selected < ev.poses.length) {
+      setRows($('robot'), liveRobotRows(ev, viewer.selected));
+      setLabel(`robot ${viewer.selected}`, ev.poses[viewer.selected][0], ev.poses[viewer.selected][1]);
+    }
     if (ev.progress && ev.progress.finished !== curve.finished[curve.finished.length - 1]) {
       curve.t_s.push(ev.progress.t_s);
       curve.finished.push(ev.progress.finished);

@@ -6,8 +6,8 @@ import { firstFrameBytes, readMap, readRecording } from './recording.js';
 import { robotList, robotStatus } from './panel.js';
 import { drawProgress } from './plot.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
-import { COLORS, buildMap, buildRobots, controls, onRobotClick, placeRobot, pngDataUrl, renderOnce,
-         resize, robotsMoved, scene, startLoop } from './view.js';
+import { COLORS, MARKS, buildMap, buildRobots, controls, onRobotClick, placeRobot, pngDataUrl,
+         renderOnce, resize, robotsMoved, scene, setLabel, showLegend, showMarks, startLoop } from './view.js';
 
 const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
                 collided: new Set(), collisionFrame: Infinity, progress: null };
@@ -18,7 +18,9 @@ const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64
 // done (at its final pose for good).
 function showFrame(t) {
   const { rec, mesh } = state;
-  const f = rec.frameAt(t), fp = Math.max(0, f - 1), end = rec.frames - 1;
+  // Still: the same pose as the frame before (at the first frame, the one after: issue 26, every
+  // robot was "waiting" at t = 0).
+  const f = rec.frameAt(t), end = rec.frames - 1, fp = f > 0 ? f - 1 : Math.min(1, end);
   for (let i = 0; i < rec.robots; i++) {
     rec.pose(f, i, pose);
     rec.pose(fp, i, prev);
@@ -93,6 +95,7 @@ function showRobot(id, f) {
   setRows($('robot'), rows);
   drawTrail(id, f);
   if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
+  setLabel(`robot ${id}`, p[0], p[1]);
 }
 
 // The selected robot's planned path, its trail, and lines to the robots it waits for.
@@ -107,24 +110,25 @@ function drawTrail(id, f) {
   }
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(pts, 3));
-  overlay.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0xffffff }));
+  overlay.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: MARKS.trail }));
   scene.add(overlay.trail);
   viewer.trailPoints = f + 1;
 }
 function drawPath(d) {
   if (overlay.path) scene.remove(overlay.path);
   const pts = d.path.map(([x, y]) => new THREE.Vector3(x, state.cell * 0.05, -y));
-  overlay.path = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: COLORS.selected }));
+  overlay.path = new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: MARKS.path }));
   scene.add(overlay.path);
 }
-// Lines from the selected robot to who it waits for now (red) and who waits for it now
-// (orange), at their poses at this frame; a run without action times draws every partner.
+// Dashed lines from the selected robot to who it waits for now (magenta) and who waits for it
+// now (cyan), at their poses at this frame, above the walls (issue 26: 1 px, in the path's red,
+// hidden by walls); a run without action times draws every partner.
 function drawEdges(id, f, d, status) {
   if (overlay.edges) scene.remove(overlay.edges);
   const me = state.rec.pose(f, id, new Float64Array(3)), other = new Float64Array(3);
-  const pts = [], colors = [], h = state.cell * 0.4;
-  const groups = status.timed ? [[status.waitsNow, 0xff3b30, 'waits'], [status.waitedByNow, 0xf0a030, 'waited']]
-    : [[d.waits_for, 0xff3b30, 'waits'], [d.waited_by, 0xf0a030, 'waited']];
+  const pts = [], colors = [], h = state.cell * 0.75;  // walls are 0.6 cells tall
+  const groups = status.timed ? [[status.waitsNow, MARKS.waitsFor, 'waits'], [status.waitedByNow, MARKS.waitedBy, 'waited']]
+    : [[d.waits_for, MARKS.waitsFor, 'waits'], [d.waited_by, MARKS.waitedBy, 'waited']];
   viewer.edgeLines = [];
   for (const [group, hex, kind] of groups) {
     const c = new THREE.Color(hex);
@@ -138,8 +142,12 @@ function drawEdges(id, f, d, status) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
   g.setAttribute('color', new THREE.Float32BufferAttribute(colors, 3));
-  overlay.edges = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+  overlay.edges = new THREE.LineSegments(g, new THREE.LineDashedMaterial({
+    vertexColors: true, dashSize: state.cell * 0.3, gapSize: state.cell * 0.15, depthTest: false }));
+  overlay.edges.computeLineDistances();
+  overlay.edges.renderOrder = 2;  // drawn over walls and robots
   scene.add(overlay.edges);
+  viewer.edgeStyle = { dashed: true, heightCells: h / state.cell, waitsFor: MARKS.waitsFor, waitedBy: MARKS.waitedBy };
 }
 
 function select(id) {
@@ -156,12 +164,38 @@ function select(id) {
 }
 const seek = (t) => { state.t = Math.max(0, Math.min(t, state.rec.times[state.rec.frames - 1])); showFrame(state.t); };
 
+// The robot model's limits the run used, as its summary records them (the upload's choice).
+export function limitsText(l) {
+  if (!l || typeof l !== 'object') return 'limits: not recorded';
+  const n = (v, unit) => (typeof v === 'number' ? `${Number(v.toPrecision(3))} ${unit}` : '?');
+  return `limits (${l.robot ?? 'robot'}): ${n(l.max_speed_mps, 'm/s')}, ${n(l.max_accel_mps2, 'm/s²')}, ` +
+    `${n(l.max_turn_rate_radps, 'rad/s')}`;
+}
+
 function showStats(s) {
   const num = (v, unit) => `${(typeof v === 'number' ? v : NaN).toFixed(1)}${unit}`;
   setRows($('stats'), [['', `success: ${s.success}`], ['', `robots: ${s.robots}`], ['', `AET: ${num(s.aet_s, ' s')}`],
     ['', `makespan: ${num(s.makespan_s, ' s')}`], ['', `sim speed: ${num(s.sim_speed ?? 0, '×')}`],
-    ['', `actions: ${s.finished_actions} / ${s.total_actions}`], ['', `collisions: ${s.collisions}`]]);
+    ['', `actions: ${s.finished_actions} / ${s.total_actions}`], ['', `collisions: ${s.collisions}`],
+    ['limits', limitsText(s.limits)]]);
 }
+
+// Where each robot starts (the first frame) and ends (the last): a run that succeeded ends every
+// robot on its goal cell (README, "success").
+function markStartsAndGoals() {
+  const { rec } = state, p = new Float64Array(3), starts = [], ends = [];
+  for (let i = 0; i < rec.robots; i++) {
+    rec.pose(0, i, p);
+    starts.push([p[0], p[1]]);
+    rec.pose(rec.frames - 1, i, p);
+    ends.push([p[0], p[1]]);
+  }
+  showMarks(starts, ends, state.cell);
+}
+
+export const REPLAY_LEGEND = [['moving', COLORS.moving], ['waiting', COLORS.waiting], ['done', COLORS.done],
+  ['collided', COLORS.collided], ['selected', COLORS.selected], ['start', MARKS.start], ['goal (end)', MARKS.goal],
+  ['planned path', MARKS.path], ['waits for (Type-2)', MARKS.waitsFor], ['waited for by (Type-2)', MARKS.waitedBy]];
 
 // Export: every results file of the run as a download (GET /api/runs/{id}/results/{name}).
 function showFiles(id, files) {
@@ -232,6 +266,8 @@ export async function startReplay(id) {
   startLoop({ update: play, rendered });
   state.rec = await rest;
   findCollision();
+  markStartsAndGoals();
+  showLegend(REPLAY_LEGEND);
   state.progress = await fetchJson(`/api/runs/${id}/progress`).catch(() => null);
   $('plot').hidden = !state.progress;
   wireControls();

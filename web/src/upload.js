@@ -31,9 +31,17 @@ async function wireSliders() {
   $('up-robot').replaceChildren();
   for (const m of models) $('up-robot').add(new Option(m.name, m.name, false, m.name === 'footbot'));
   const field = (key) => $('upload').querySelector(`input[name=${key}]`);
+  // Each slider spans up to twice the model's own limit (issue 26: they stopped at 3 m/s for a
+  // 5 m/s model), in steps of 1 % of it; the limit itself is shown beside the field.
   const reset = () => {
     const m = models.find((x) => x.name === $('up-robot').value) || models[0];
-    for (const s of document.querySelectorAll('#upload .slider')) { s.value = m[s.dataset.for]; field(s.dataset.for).value = ''; }
+    for (const s of document.querySelectorAll('#upload .slider')) {
+      const own = m[s.dataset.for];
+      Object.assign(s, { min: String(own / 100), max: String(2 * own), step: String(own / 100) });
+      s.value = own;
+      field(s.dataset.for).value = '';
+      field(s.dataset.for).placeholder = `model's: ${own}`;
+    }
   };
   for (const s of document.querySelectorAll('#upload .slider')) s.oninput = () => { field(s.dataset.for).value = s.value; };
   $('up-robot').onchange = reset;

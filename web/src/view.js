@@ -1,12 +1,16 @@
 // The 3D view every mode draws in (three.js). World frame of the project (docs/architecture.md,
 // "Coordinates"): x_w = column * cell, y_w = (height - 1 - row) * cell; three.js is y-up, so a
 // world point (x_w, y_w) is drawn at (x_w, 0, -y_w). One robot placement (placeRobot), one
-// render loop (startLoop), one pick by click (onRobotClick).
+// render loop (startLoop), one pick by click (onRobotClick). For papers and demos (issue 26): the
+// camera frames the map's bounds whatever its shape, robots keep a legible size when zoomed out,
+// a legend names the colours, the selected robot carries a label.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { $ } from './page.js';
+import { $, viewer } from './page.js';
 
 export const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, idle: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
+// Overlays of a selected robot and the run's marks, each its own colour (none the path's red).
+export const MARKS = { path: 0xff3b30, trail: 0xffffff, waitsFor: 0xff4dff, waitedBy: 0x33e0ff, start: 0xb0b8c4, goal: 0xffffff };
 
 export const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
 $('view').appendChild(renderer.domElement);
@@ -21,7 +25,51 @@ export function resize() {
   renderer.setSize(box.width, box.height);
   camera.aspect = box.width / Math.max(1, box.height);
   camera.updateProjectionMatrix();
+  if (framed) frameBounds(framed);
 }
+
+// The camera looks down at the map from the south at this tilt from the vertical.
+const kTilt = 0.6;  // rad, about 34 degrees
+let framed = null;  // {cx, cz, w, d}: the map's bounds in three.js coordinates
+// Frames a w x d rectangle centred at (cx, cz): the nearest camera on the tilted view line from
+// which all of it shows, with a 4 % margin (issue 26: a non-square map filled a third of the view).
+export function frameBounds(b) {
+  framed = b;
+  const v = THREE.MathUtils.degToRad(camera.fov) / 2, h = Math.atan(Math.tan(v) * camera.aspect);
+  const across = (b.w / 2) / Math.tan(h);
+  const deep = (b.d / 2) * Math.cos(kTilt) / Math.tan(v) + (b.d / 2) * Math.sin(kTilt);
+  let dist = 1.04 * Math.max(across, deep);
+  controls.target.set(b.cx, 0, b.cz);
+  // Perspective widens the near edge: a few steps move the camera until the map's larger extent
+  // on screen is 96 % of the view.
+  for (let step = 0; step < 6; step++) {
+    camera.position.set(b.cx, dist * Math.cos(kTilt), b.cz + dist * Math.sin(kTilt));
+    camera.lookAt(controls.target);
+    const s = viewer.mapOnScreen();
+    dist *= Math.max(s.x, s.y) / 0.96;
+  }
+  camera.position.set(b.cx, dist * Math.cos(kTilt), b.cz + dist * Math.sin(kTilt));
+  controls.update();
+}
+
+// What the browser tests read: the share of the view the map's bounds take on screen (x and y,
+// 0-1), and a zoom by factor k (k > 1: farther).
+viewer.mapOnScreen = () => {
+  if (!framed) return null;
+  camera.updateMatrixWorld();
+  camera.updateProjectionMatrix();
+  const xs = [], ys = [];
+  for (const [dx, dz] of [[-1, -1], [1, -1], [-1, 1], [1, 1]]) {
+    const p = new THREE.Vector3(framed.cx + dx * framed.w / 2, 0, framed.cz + dz * framed.d / 2).project(camera);
+    xs.push(p.x);
+    ys.push(p.y);
+  }
+  return { x: (Math.max(...xs) - Math.min(...xs)) / 2, y: (Math.max(...ys) - Math.min(...ys)) / 2 };
+};
+viewer.zoom = (k) => {
+  camera.position.sub(controls.target).multiplyScalar(k).add(controls.target);
+  controls.update();
+};
 window.addEventListener('resize', resize);
 
 // The floor, its grid and the walls of `map` (readMap's shape: width, height, blocked(x, y)),
@@ -32,10 +80,7 @@ export function buildMap(map, cell) {
   floor.rotation.x = -Math.PI / 2;
   floor.position.set((map.width - 1) * cell / 2, 0, -(map.height - 1) * cell / 2);
   scene.add(floor);
-  const grid = new THREE.GridHelper(Math.max(map.width, map.height) * cell,
-                                    Math.max(map.width, map.height), 0x555d69, 0x444a54);
-  grid.position.set(floor.position.x, 0.001, floor.position.z);
-  scene.add(grid);
+  scene.add(floorGrid(map, cell));
   const cells = [];
   for (let y = 0; y < map.height; y++) for (let x = 0; x < map.width; x++) if (map.blocked(x, y)) cells.push([x, y]);
   const walls = new THREE.InstancedMesh(new THREE.BoxGeometry(cell, cell * 0.6, cell),
@@ -43,9 +88,18 @@ export function buildMap(map, cell) {
   const m = new THREE.Matrix4();
   cells.forEach(([x, y], i) => walls.setMatrixAt(i, m.makeTranslation(x * cell, cell * 0.3, -(map.height - 1 - y) * cell)));
   scene.add(walls);
-  const span = Math.max(map.width, map.height) * cell;
-  camera.position.set(floor.position.x, span * 1.05, floor.position.z + span * 0.75);
-  controls.target.copy(floor.position);
+  frameBounds({ cx: floor.position.x, cz: floor.position.z, w: map.width * cell, d: map.height * cell });
+}
+
+// The cell lines of the floor, exactly over it (a square GridHelper overhung non-square maps).
+function floorGrid(map, cell) {
+  const x0 = -cell / 2, x1 = (map.width - 0.5) * cell, z0 = cell / 2, z1 = -(map.height - 0.5) * cell;
+  const pts = [];
+  for (let i = 0; i <= map.width; i++) pts.push(x0 + i * cell, 0.001, z0, x0 + i * cell, 0.001, z1);
+  for (let j = 0; j <= map.height; j++) pts.push(x0, 0.001, z0 - j * cell, x1, 0.001, z0 - j * cell);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0x4a505b }));
 }
 
 function mergeGeometries(a, b) {
@@ -66,6 +120,8 @@ export function buildRobots(count, cell) {
   const mesh = new THREE.InstancedMesh(mergeGeometries(body, nose), new THREE.MeshLambertMaterial(), count);
   mesh.frustumCulled = false;  // instances move all over the map
   mesh.userData.cell = cell;
+  mesh.userData.scale = 1;
+  robotMeshes.add(mesh);
   for (let i = 0; i < count; i++) mesh.setColorAt(i, new THREE.Color(COLORS.moving));
   scene.add(mesh);
   return mesh;
@@ -83,6 +139,81 @@ export function placeRobot(mesh, i, x, y, yaw, hex) {
   if (hex !== undefined) mesh.setColorAt(i, color.setHex(hex));
 }
 
+// Robots stay at least kMinRobotPx across on screen: zoomed out over 1000 robots they are grown
+// (by their geometry, so the instances stay where they are) instead of shrinking to dots.
+const kMinRobotPx = 7;
+const robotMeshes = new Set();
+function keepRobotsLegible() {
+  const height = renderer.domElement.height / renderer.getPixelRatio();
+  const dist = camera.position.distanceTo(controls.target);
+  const pxPerM = height / (2 * dist * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2));
+  for (const mesh of robotMeshes) {
+    if (!mesh.parent) { robotMeshes.delete(mesh); continue; }
+    const diameterPx = 0.6 * mesh.userData.cell * pxPerM;
+    const want = Math.max(1, Math.ceil((kMinRobotPx / diameterPx) * 4) / 4);  // steps of 0.25
+    if (want !== mesh.userData.scale) {
+      const k = want / mesh.userData.scale;
+      mesh.geometry.scale(k, k, k);
+      mesh.userData.scale = want;
+    }
+  }
+  viewer.robotScale = Math.max(1, ...[...robotMeshes].map((m) => m.userData.scale));
+}
+
+// A label that follows a world point (the selected robot): its text, or null to hide it.
+const label = { el: null, at: new THREE.Vector3() };
+export function setLabel(text, x, y) {
+  if (!label.el) {
+    label.el = document.createElement('div');
+    label.el.id = 'label';
+    $('view').appendChild(label.el);
+  }
+  label.el.hidden = text === null;
+  if (text === null) return;
+  label.el.textContent = text;
+  label.at.set(x, 0, -y);
+}
+const projected = new THREE.Vector3();
+function placeLabel() {
+  if (!label.el || label.el.hidden) return;
+  projected.copy(label.at).setY(0.6).project(camera);
+  const box = renderer.domElement;
+  label.el.style.left = `${((projected.x + 1) / 2) * box.clientWidth}px`;
+  label.el.style.top = `${((1 - projected.y) / 2) * box.clientHeight}px`;
+}
+
+// The legend: what each colour of this view means, as text with swatches (never markup).
+export function showLegend(entries) {
+  let el = $('legend');
+  if (!el) {
+    el = document.createElement('div');
+    el.id = 'legend';
+    $('view').appendChild(el);
+  }
+  el.replaceChildren(...entries.map(([name, hex]) => {
+    const row = document.createElement('div');
+    const swatch = document.createElement('span');
+    swatch.className = 'swatch';
+    swatch.style.background = `#${hex.toString(16).padStart(6, '0')}`;
+    row.append(swatch, document.createTextNode(name));
+    return row;
+  }));
+  viewer.legend = entries.map(([name]) => name);
+}
+
+// Start and goal marks of every robot: flat rings at the starts, flat squares at the goals, on
+// the floor below the robots. starts, goals: [[x_m, y_m], ...].
+export function showMarks(starts, goals, cell) {
+  const ring = new THREE.RingGeometry(cell * 0.22, cell * 0.3, 16).rotateX(-Math.PI / 2);
+  const square = new THREE.RingGeometry(cell * 0.16, cell * 0.24, 4, 1).rotateX(-Math.PI / 2);
+  for (const [geometry, points, hex] of [[ring, starts, MARKS.start], [square, goals, MARKS.goal]]) {
+    const mesh = new THREE.InstancedMesh(geometry, new THREE.MeshBasicMaterial({ color: hex }), points.length);
+    points.forEach(([x, y], i) => mesh.setMatrixAt(i, matrix.makeTranslation(x, 0.01, -y)));
+    scene.add(mesh);
+  }
+  viewer.marks = { starts: starts.length, goals: goals.length };
+}
+
 export function robotsMoved(mesh) {
   mesh.instanceMatrix.needsUpdate = true;
   if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
@@ -97,6 +228,8 @@ export function startLoop({ update, rendered } = {}) {
     last = now;
     if (update) update(dt);
     controls.update();
+    keepRobotsLegible();
+    placeLabel();
     const r0 = performance.now();
     renderer.render(scene, camera);
     if (rendered) rendered(performance.now() - r0);

@@ -4,7 +4,8 @@
 import { readMap } from './recording.js';
 import { WATCH_COLORS, extentOf, robotPanel, runLabel, statusCounts } from './watch_board.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
-import { buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, scene, startLoop } from './view.js';
+import { buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, scene, setLabel, showLegend,
+         startLoop } from './view.js';
 
 function showStats(ev) {
   const n = statusCounts(ev.robots), m = ev.monitor;
@@ -35,6 +36,7 @@ export async function startWatch(runId) {
   if (mapResp.ok) buildMap(readMap(await mapResp.text()), cell);
   resize();
   Object.assign(viewer, { live: true, watch: true, liveEvents: 0 });
+  showLegend(Object.entries(WATCH_COLORS).map(([name, hex]) => [name === 'idle' ? 'idle (done, or between windows)' : name, hex]));
   let framed = mapResp.ok, ids = [], mesh = null;
   const source = new EventSource(`/api/watch/live${runId ? `?run_id=${runId}` : ''}`);
   source.onmessage = (e) => {
@@ -53,7 +55,10 @@ export async function startWatch(runId) {
       r.id === viewer.selected ? WATCH_COLORS.selected : WATCH_COLORS[r.status]));
     if (mesh) robotsMoved(mesh);
     const picked = ev.robots.find((r) => r.id === viewer.selected);
-    if (picked) setRows($('robot'), robotPanel(picked));
+    if (picked) {
+      setRows($('robot'), robotPanel(picked));
+      setLabel(`robot ${picked.id}`, picked.x_m, picked.y_m);
+    }
     showStats(ev);
     showRuns(ev);
     Object.assign(viewer, { robots: ev.robots.length, runId: ev.run_id, runName: ev.name, runs: ev.runs,

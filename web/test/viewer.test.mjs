@@ -161,6 +161,42 @@ async function checkExportAndPlot(page, out) {
     return n;
   });
   assert.ok(green > 50, `finished-actions plot not drawn (${green} green pixels)`);
+  // Its axes (issue 26: none): round ticks from 0 past the run's end and its actions.
+  const axes = await page.$eval('#plot', (c) => ({ x: c.dataset.xTicks.split(',').map(Number), y: c.dataset.yTicks.split(',').map(Number) }));
+  assert.ok(axes.x.length >= 3 && axes.x[0] === 0, JSON.stringify(axes));
+  assert.ok(axes.y.length >= 2 && axes.y[0] === 0, JSON.stringify(axes));
+}
+
+// A view for papers and demos (issue 26): the map framed whatever its shape, a legend, start and
+// goal marks, a label on the selected robot, Type-2 lines dashed above the walls in their own
+// colours, robots legible when zoomed out, the run's limits shown; a screenshot kept.
+async function checkPaperView(page, summary, name) {
+  const onScreen = await page.evaluate(() => window.__viewer.mapOnScreen());
+  assert.ok(Math.max(onScreen.x, onScreen.y) > 0.85 && onScreen.x <= 1.001 && onScreen.y <= 1.001,
+    `the map takes ${JSON.stringify(onScreen)} of the view`);
+  const legend = await page.$$eval('#legend div', (ds) => ds.map((d) => d.textContent));
+  for (const entry of ['moving', 'waiting', 'done', 'collided', 'start', 'goal (end)', 'waits for (Type-2)', 'waited for by (Type-2)']) {
+    assert.ok(legend.includes(entry), `legend ${legend.join('; ')} lacks ${entry}`);
+  }
+  const marks = await page.evaluate(() => window.__viewer.marks);
+  assert.deepEqual(marks, { starts: summary.robots, goals: summary.robots });
+  await page.evaluate(() => window.__viewer.select(3));
+  await page.waitForFunction(() => { const l = document.querySelector('#label'); return l && !l.hidden && l.textContent === 'robot 3'; }, { timeout: 5000 });
+  const style = await page.evaluate(() => window.__viewer.edgeStyle);
+  if (style) {
+    assert.ok(style.dashed && style.heightCells > 0.6, JSON.stringify(style));
+    assert.notEqual(style.waitsFor, 0xff3b30);
+    assert.notEqual(style.waitedBy, 0xff3b30);
+  }
+  const stats = await page.$eval('#stats', (e) => e.textContent);
+  assert.match(stats, new RegExp(`limits \\(${summary.limits.robot}\\): ${Number(summary.limits.max_speed_mps.toPrecision(3))} m/s`));
+  await page.screenshot({ path: path.join(artifacts, `${name}.png`) });
+  // Zoomed far out, robots grow to stay legible; back in, they are as they were.
+  const before = await page.evaluate(() => window.__viewer.robotScale);
+  await page.evaluate(() => window.__viewer.zoom(6));
+  await page.waitForFunction((b) => window.__viewer.robotScale >= 2 * b, { timeout: 5000 }, before);
+  await page.evaluate(() => window.__viewer.zoom(1 / 6));
+  await page.waitForFunction((b) => window.__viewer.robotScale === b, { timeout: 5000 }, before);
 }
 
 // A results folder uploaded through the replay form is replayed; this one's summary claims that
@@ -293,6 +329,7 @@ try {
   await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
   await checkWaiting(page, out);
   await checkExportAndPlot(page, out);
+  await checkPaperView(page, summary, 'viewer-paper-random');
   // Play from the start at 64x for a second: the frame time while all robots move.
   await page.evaluate(() => window.__viewer.seek(0));
   await page.select('#speed', '64');
@@ -326,6 +363,11 @@ try {
   assert.ok(footbot && models.some((m) => m.name === 'jetbot'), JSON.stringify(models));
   const slider = '#upload .slider[data-for=max_accel_mps2]';
   assert.equal(Number(await page.$eval(slider, (e) => e.value)), footbot.max_accel_mps2);
+  // Up to twice the model's limit (issue 26: sliders stopped at 3 m/s for a 5 m/s model).
+  for (const key of ['max_speed_mps', 'max_accel_mps2', 'max_turn_rate_radps']) {
+    const max = Number(await page.$eval(`#upload .slider[data-for=${key}]`, (e) => e.max));
+    assert.equal(max, 2 * footbot[key], key);
+  }
   await page.$eval(slider, (e) => { e.value = '0.5'; e.dispatchEvent(new Event('input')); });
   assert.equal(await page.$eval('#upload input[name=max_accel_mps2]', (e) => e.value), '0.5');
   await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
@@ -364,6 +406,10 @@ try {
     assert.fail(`the finished run was not replayed; page: ${JSON.stringify(last)}; server: ${run}; run.out (last 4000 bytes): ${out.slice(-4000)}; serve's log: ${serverLog}`);
   }
   assert.equal(replay.robots, 50);
+  // The warehouse is 161 x 63 cells: framed to fill the view's width; its limits as uploaded.
+  const warehouse = await page.evaluate(async () => (await (await fetch('/api/runs/run-000002')).json()).summary);
+  assert.equal(warehouse.limits.max_accel_mps2, 0.5);
+  await checkPaperView(page, warehouse, 'viewer-paper-warehouse');
   assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
   await checkResultsUpload(page, out, summary);
   await checkWatch(browser);

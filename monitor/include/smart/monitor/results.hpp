@@ -46,6 +46,7 @@ struct RunInfo {
   // goes into robots.csv and their AET / makespan and the finish-over-bound ratios into
   // summary.json ("motion_bound").
   std::optional<MotionLimits> limits;
+  std::string robot_model;  // the model's name (its YAML's name:), shown with its limits
   // The execution uncertainty the run had (agent/uncertainty.hpp to_json); null: none given.
   nlohmann::json uncertainty;
   nlohmann::json link;  // the link model (smart/wire/link.hpp to_json); null: not known
