@@ -412,8 +412,10 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   I.sup.start(I.now_s());
   I.writer.flush();
   I.start_plan_view();
-  spdlog::info("monitor: run {}: {} robots, {} actions; waiting for the sim", I.sup.result().run_id,
-               I.sup.result().robots.size(), I.sup.tracker().total());
+  // The run's name and id as summary.json has them ("run", "run_id"), so logs and results match.
+  spdlog::info("monitor: run {} (run_id {}): {} robots, {} actions; waiting for the sim",
+               I.participant.run(), I.sup.result().run_id, I.sup.result().robots.size(),
+               I.sup.tracker().total());
   double last_check_s = 0;
   while (!I.sup.over()) {
     if (stop_requested.load()) {
