@@ -314,12 +314,22 @@ struct MonitorNode::Impl {
   }
 
   // Finished actions for live views, when the count changed since the last report.
-  std::optional<std::size_t> reported_finished;
+  std::optional<std::size_t> reported_finished, reported_robots;
+  double robots_reported_s = -1;
   void report_finished() {
     const auto& t = sup.tracker();
-    if (!opt.on_finished || reported_finished == t.finished_total()) return;
-    reported_finished = t.finished_total();
-    opt.on_finished({sup.result().sim_time_s, t.finished_total(), t.total()});
+    if (opt.on_finished && reported_finished != t.finished_total()) {
+      reported_finished = t.finished_total();
+      opt.on_finished({sup.result().sim_time_s, t.finished_total(), t.total()});
+    }
+    if (opt.on_robots_finished && reported_robots != t.finished_total() &&
+        now_s() - robots_reported_s >= 1.0) {
+      reported_robots = t.finished_total();
+      robots_reported_s = now_s();
+      std::vector<uint32_t> finished(t.robots());
+      for (uint32_t r = 0; r < finished.size(); ++r) finished[r] = t.finished(r);
+      opt.on_robots_finished(finished);
+    }
   }
 
   void publish_plan_view(bool now) {

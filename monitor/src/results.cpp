@@ -316,6 +316,16 @@ void ProgressCsvWriter::add(const results::ProgressRow& r) {
   out_ << line << std::flush;
 }
 
+void write_finished_csv(const std::filesystem::path& dir, const std::vector<uint32_t>& finished) {
+  const auto file = dir / results::kFinishedCsv;
+  const auto aside = dir / (std::string(results::kFinishedCsv) + ".new");
+  {
+    auto out = open_out(aside);
+    out << results::finished_csv(finished);
+  }
+  std::filesystem::rename(aside, file);
+}
+
 namespace {
 // One row per robot: finish and waiting time, stops, actions, the motion lower bound.
 void write_robots_csv(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,

@@ -226,4 +226,27 @@ std::optional<ProgressRow> last_progress_row(std::string_view text) {
   return r;
 }
 
+std::string finished_csv(const std::vector<uint32_t>& finished) {
+  std::string out(kFinishedHeader);
+  out += '\n';
+  for (std::size_t r = 0; r < finished.size(); ++r) {
+    put(out, static_cast<uint32_t>(r));
+    put(out, finished[r], '\n');
+  }
+  return out;
+}
+
+std::vector<uint32_t> parse_finished_csv(std::string_view text) {
+  std::vector<uint32_t> out;
+  if (text.substr(0, kFinishedHeader.size()) != kFinishedHeader) return {};
+  bool ok = true;
+  rows_of(text, [&](std::string_view line, std::size_t) {
+    uint32_t robot = 0, finished = 0;
+    ok = ok && number(next_field(line), robot) && number(next_field(line), finished) &&
+         line.empty() && robot == out.size();
+    out.push_back(finished);
+  });
+  return ok ? out : std::vector<uint32_t>{};
+}
+
 }  // namespace smart::results

@@ -302,6 +302,10 @@ struct Server::Impl {
     if (const auto p = live_progress(id)) {
       event["progress"] = {{"t_s", p->t_s}, {"finished", p->finished}, {"total", p->total}};
     }
+    // Written by the run this server started (never uploaded): each robot's finished actions.
+    const auto finished =
+        results::parse_finished_csv(slurp(store.results_file(id, results::kFinishedCsv)));
+    if (finished.size() == tail.latest().size()) event["finished"] = finished;
     const auto msg = "data: " + event.dump() + "\n\n";
     if (!sink.write(msg.data(), msg.size())) return false;
     if (e->state == RunState::kDone || e->state == RunState::kFailed) {

@@ -148,5 +148,17 @@ TEST(ResultsFormat, TheLastCompleteProgressRowOfAGrowingFile) {
   EXPECT_FALSE(last_progress_row(""));
 }
 
+// finished.csv: each robot's count, whole or not at all (a torn file reads as nothing).
+TEST(ResultsFormat, FinishedCountsRoundTripAndATornFileIsNothing) {
+  const std::vector<uint32_t> counts{3, 0, 17};
+  const auto text = finished_csv(counts);
+  EXPECT_EQ(text, "robot,finished\n0,3\n1,0\n2,17\n");
+  EXPECT_EQ(parse_finished_csv(text), counts);
+  EXPECT_TRUE(parse_finished_csv(text.substr(0, text.size() - 3)).empty());  // "2," torn
+  EXPECT_TRUE(parse_finished_csv("robot,finished\n0,3\n2,5\n").empty());     // robot 1 missing
+  EXPECT_TRUE(parse_finished_csv("t_s,finished,total\n1,2,3\n").empty());
+  EXPECT_TRUE(parse_finished_csv("").empty());
+}
+
 }  // namespace
 }  // namespace smart::results

@@ -195,6 +195,16 @@ TEST(Results, ProgressIsFlushedRowByRowForLiveViews) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Results, FinishedCountsAreReplacedWhole) {
+  const auto dir = temp_dir("finished");
+  std::filesystem::create_directories(dir);
+  write_finished_csv(dir, {1, 2});
+  write_finished_csv(dir, {4, 5});
+  EXPECT_EQ(slurp(dir / "finished.csv"), "robot,finished\n0,4\n1,5\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "finished.csv.new"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Results, AnUnwritableFolderIsAnErrorNamingIt) {
   const auto file = temp_dir("plainfile");
   std::ofstream(file) << "x";

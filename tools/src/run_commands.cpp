@@ -271,6 +271,9 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
     mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
     progress.emplace(o.out);
     mo.on_finished = [&progress](const results::ProgressRow& row) { progress->add(row); };
+    mo.on_robots_finished = [dir = o.out](const std::vector<uint32_t>& finished) {
+      monitor::write_finished_csv(dir, finished);
+    };
   }
   if (!sims.empty()) mo.host_check = watch(sims);
   monitor::MonitorNode node(participant, profile, in, mo);

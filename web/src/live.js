@@ -13,12 +13,22 @@ import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robots
 export const LIVE_LEGEND = [['moving', COLORS.moving], ['waiting', COLORS.waiting],
   ['idle (done, or between windows)', COLORS.idle], ['selected', COLORS.selected]];
 
-// The panel of robot i from the newest event.
-export function liveRobotRows(ev, i) {
+// The panel of robot i from the newest event, and with its detail (GET /api/runs/{id}/robots/{i}:
+// its actions and their Type-2 predecessors) and every robot's finished count, its current action
+// and who it waits for now: the predecessors of its current action not finished yet.
+export function liveRobotRows(ev, i, detail) {
   const [x, y, yaw] = ev.poses[i];
-  return [['id', `robot ${i}`], ['pose', `x ${x.toFixed(2)} m, y ${y.toFixed(2)} m`],
+  const rows = [['id', `robot ${i}`], ['pose', `x ${x.toFixed(2)} m, y ${y.toFixed(2)} m`],
     ['heading', `heading ${(yaw * 180 / Math.PI).toFixed(0)}°`], ['status', `status: ${ev.status[i]}`],
     ['queue', `queue: ${ev.queue[i]}`]];
+  if (!detail || detail.robot !== i || !ev.finished) return rows;
+  const done = ev.finished[i], steps = detail.steps;
+  if (done >= steps.length) {
+    return rows.concat([['progress', `finished: ${done} / ${steps.length}`], ['current', 'current: none (done)'], ['waits-now', 'waits now for: none']]);
+  }
+  const waits = steps[done].in.filter(([robot, action]) => ev.finished[robot] <= action).map(([robot]) => robot);
+  return rows.concat([['progress', `finished: ${done} / ${steps.length}`], ['current', `current: #${done} ${steps[done].type}`],
+    ['waits-now', `waits now for: ${[...new Set(waits)].join(', ') || 'none'}`]]);
 }
 
 // The stats lines: the run, its time, progress and how many robots are in each state.
@@ -39,10 +49,14 @@ export async function startLive(id) {
   resize();
   Object.assign(viewer, { live: true, liveEvents: 0 });
   showLegend(LIVE_LEGEND);
-  let mesh = null, last = null;
+  let mesh = null, last = null, detail = null;
   const curve = { t_s: [], finished: [] };
   viewer.select = (i) => {
     if (!last || i < 0 || i >= last.poses.length) return false;
+    if (viewer.selected !== i) {
+      detail = null;
+      fetchJson(`/api/runs/${id}/robots/${i}`).then((d) => { detail = d; }).catch(() => {});
+    }
     viewer.selected = i;
     return true;
   };
@@ -56,7 +70,7 @@ export async function startLive(id) {
     ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw, COLORS[i === viewer.selected ? 'selected' : ev.status[i]]));
     if (mesh) robotsMoved(mesh);
     if (viewer.selected >= 0 && viewer.selected < ev.poses.length) {
-      setRows($('robot'), liveRobotRows(ev, viewer.selected));
+      setRows($('robot'), liveRobotRows(ev, viewer.selected, detail));
       setLabel(`robot ${viewer.selected}`, ev.poses[viewer.selected][0], ev.poses[viewer.selected][1]);
     }
     if (ev.progress && ev.progress.finished !== curve.finished[curve.finished.length - 1]) {

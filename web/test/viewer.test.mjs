@@ -388,7 +388,7 @@ try {
         sawProgress = await page.$eval('#plot', (e) => !e.hidden).catch(() => false) || sawProgress;
       }
       const panel = await page.evaluate(() => window.__viewer.select(3) && document.querySelector('#robot').textContent).catch(() => '');
-      if (/robot 3.*status: (moving|waiting|idle).*queue: \d+/.test(panel || '')) sawPanel = true;
+      if (/robot 3.*status: (moving|waiting|idle).*queue: \d+.*finished: \d+ \/ \d+.*current: (#\d+ (move|rotate)|none).*waits now for: /.test(panel || '')) sawPanel = true;
     }
     if (s && s.ready) replay = s;
     if (s) last = s;

@@ -38,6 +38,9 @@ struct MonitorOptions {
   // Finished actions so far, when the count changed (checked about every 100 ms of wall time;
   // e.g. streamed to progress.csv by ProgressCsvWriter, results.hpp): live views' progress.
   std::function<void(const results::ProgressRow&)> on_finished;
+  // Each robot's finished actions (by robot), when any changed, at most once a second of wall
+  // time: a live view's robot panel (e.g. write_finished_csv, results.hpp).
+  std::function<void(const std::vector<uint32_t>&)> on_robots_finished;
   // The plan view for rviz2 (ros_plan_view.hpp) at this rate in wall time; 0: off.
   double ros_plan_hz = 0;
   double robot_radius_m = 0.1;  // robot markers' size

@@ -83,6 +83,10 @@ class ProgressCsvWriter {
   std::ofstream out_;
 };
 
+// finished.csv in `dir`, replaced whole at each write (written aside, then renamed): a reader
+// never sees half of it (results_format.hpp).
+void write_finished_csv(const std::filesystem::path& dir, const std::vector<uint32_t>& finished);
+
 // Appends the run's stats.csv row to `file` (with the header when the file is new or empty): a
 // batch of runs in one table, as SMART users keep it. Throws std::runtime_error naming the file.
 void append_stats(const std::filesystem::path& file, const Instance& instance,

@@ -30,6 +30,8 @@ inline constexpr std::string_view kStatesCsv = "states.csv";
 // Written while a run goes, for live views (`smart serve`); not a result (the finished run's
 // progress comes from actions.csv).
 inline constexpr std::string_view kProgressCsv = "progress.csv";
+// Also for live views: each robot's finished actions, replaced whole about once a second.
+inline constexpr std::string_view kFinishedCsv = "finished.csv";
 // Every file of a results folder that a viewer lists, downloads or replays, in that order.
 inline constexpr std::array<std::string_view, 5> kFiles = {kSummaryJson, kStatsCsv, kRobotsCsv,
                                                            kActionsCsv, kStatesCsv};
@@ -133,5 +135,12 @@ void append_row(std::string& out, const ProgressRow& row);
 // The last complete row of a growing file's text (its header and a partial last line skipped);
 // none when there is none.
 std::optional<ProgressRow> last_progress_row(std::string_view text);
+
+// finished.csv: "robot,finished" then a row per robot in order (a live robot panel's current
+// action is its finished count; whom it waits for, the others' counts).
+inline constexpr std::string_view kFinishedHeader = "robot,finished";
+std::string finished_csv(const std::vector<uint32_t>& finished);
+// The counts by robot; empty when the text is not such a file (e.g. torn).
+std::vector<uint32_t> parse_finished_csv(std::string_view text);
 
 }  // namespace smart::results

@@ -19,7 +19,8 @@
 //   GET  /api/runs/{id}/live     Server-Sent Events, about 4 a second until the run ended:
 //                                {"state", "t_s", "poses": [[x_m, y_m, yaw_rad], ...], "status":
 //                                [moving|waiting|idle per robot], "queue": [...], "progress":
-//                                {"t_s", "finished", "total"} once the run has finished one}
+//                                {"t_s", "finished", "total"} once the run has finished one,
+//                                "finished": [actions finished per robot] once known}
 //   GET  /api/robots             the robot models offered, with their limits
 //   GET  /api/watch              (--watch) the runs live on the DDS domain and the newest one's
 //                                robots (fleet_watch.hpp, watch_board.hpp); ?run_id= picks one
