@@ -441,7 +441,17 @@ struct Server::Impl {
         return reply(res, 404, {{"error", "not watching: start smart serve --watch"}});
       auto j = opt.watch(run_of(req));
       j["cell_m"] = opt.watch_cell_m;
+      if (opt.watch_plan) j["total_actions"] = opt.watch_plan->actions.actions.size();
       reply(res, 200, j);
+    });
+    http.Get(R"(/api/watch/robots/(\d{1,7}))", [this](const auto& req, auto& res) {
+      if (!opt.watch_plan) return reply(res, 404, {{"error", "no plan: give --plan with --watch"}});
+      try {
+        const auto robot = static_cast<uint32_t>(std::stoul(req.matches[1].str()));
+        reply(res, 200, robot_detail(*opt.watch_plan, robot, opt.watch_cell_m));
+      } catch (const std::exception& ex) {
+        reply(res, 404, {{"error", ex.what()}});
+      }
     });
     http.Get("/api/watch/map", [this](const auto&, auto& res) {
       if (opt.watch_map.empty()) return reply(res, 404, {{"error", "no map: give --map"}});

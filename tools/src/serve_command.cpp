@@ -6,11 +6,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "smart/common/install_paths.hpp"
 #include "smart/common/child_process.hpp"
+#include "smart/common/install_paths.hpp"
+#include "smart/monitor/instance.hpp"
 #include "smart/serve/fleet_watch.hpp"
 #include "smart/serve/server.hpp"
 #include "smart/tools/commands.hpp"
+#include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
 
@@ -22,7 +24,27 @@ struct ServeCliOptions {
   double max_upload_memory_mb = 256;
   std::vector<std::filesystem::path> open;  // results folders to replay
   bool watch = false;
+  // --watch --plan: the watched run's instance (with --map, --scen, --axis, --robot, --cell-m).
+  WorldCliOptions world;
+  std::string plan, axis;
 };
+
+// The watched run's plan, for its robots' paths and Type-2 waits (issue 26: none were shown).
+std::shared_ptr<const monitor::Instance> watch_plan(ServeCliOptions& o) {
+  if (o.plan.empty()) return nullptr;
+  if (!o.watch || o.serve.watch_map.empty() || o.world.scen.empty()) {
+    throw std::invalid_argument(
+        "--plan is the watched run's: give it with --watch, --map and --scen");
+  }
+  o.world.map = o.serve.watch_map.string();
+  o.world.cell_m = o.serve.watch_cell_m;
+  return std::make_shared<const monitor::Instance>(monitor::load_instance(instance_options(
+      o.world, o.plan,
+      o.axis.empty()
+          ? std::nullopt
+          : std::optional(o.axis == "xy" ? grid::AxisOrder::kXY : grid::AxisOrder::kRowCol),
+      grid::PlanFormat::kAuto)));
+}
 
 // --watch: a read-only view of the domain; under --security the keystore's viewer identity.
 std::unique_ptr<serve::FleetWatch> start_watch(const ServeCliOptions& o) {
@@ -68,6 +90,7 @@ int serve_runs(ServeCliOptions o) {
   s.max_upload_memory_bytes = static_cast<std::size_t>(o.max_upload_memory_mb * (1 << 20));
   s.domain = o.dds.domain;
   s.qos = o.dds.qos;
+  s.watch_plan = watch_plan(o);
   const auto watch = start_watch(o);
   if (watch) s.watch = [&watch](uint64_t run_id) { return watch->snapshot(run_id); };
   serve::Server server(s);
@@ -117,6 +140,17 @@ void register_serve_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--cell-m", o->serve.watch_cell_m, "the watched run's cell size (--watch)")
       ->check(finite_in(0.01, 100))
       ->capture_default_str();
+  cmd->add_option("--scen", o->world.scen, "the watched run's scenario (--watch --plan)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--plan", o->plan,
+                  "the watched run's plan: robots' paths and whom they wait for (--watch)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--axis", o->axis, "the plan's axis order, xy or rowcol (--watch --plan)")
+      ->check(CLI::IsMember({"xy", "rowcol"}));
+  cmd->add_option("--robot", o->world.robot, "the watched run's robot model (--watch --plan)")
+      ->capture_default_str();
+  cmd->add_option("--agents,--robots", o->world.agents,
+                  "the watched run's robots: the first N of the plan (--watch --plan; 0: all)");
   cmd->add_option("--token", o->serve.token,
                   "secret that uploads must send (\"Authorization: Bearer TOKEN\"; the viewer: "
                   "open it with #token=TOKEN); needed for uploads when --bind is not loopback")

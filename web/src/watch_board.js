@@ -24,6 +24,25 @@ export function runLabel(run) {
   return `${run.name || `run ${run.run_id}`} (${run.robots} robots, heard ${run.heard_s_ago.toFixed(0)} s ago)`;
 }
 
+// With the run's plan (--watch --plan): a robot's current action and whom it waits for now,
+// from its actions' Type-2 predecessors (detail.steps[k].in: [robot, action, ...]) and every
+// robot's finished_seq (finished count = finished_seq + 1).
+export function planRows(r, detail, robots) {
+  if (!detail || detail.robot !== r.id) return [];
+  const finished = new Map(robots.map((x) => [x.id, x.finished_seq + 1]));
+  const done = r.finished_seq + 1, steps = detail.steps;
+  if (done >= steps.length) return [['current', 'current: none (done)'], ['waits-now', 'waits now for: none']];
+  const waits = steps[done].in.filter(([robot, action]) => (finished.get(robot) ?? 0) <= action).map(([robot]) => robot);
+  return [['current', `current: #${done} ${steps[done].type} of ${steps.length}`],
+    ['waits-now', `waits now for: ${[...new Set(waits)].join(', ') || 'none'}`]];
+}
+
+// Finished actions of the run: every robot's count (with the plan, out of its total).
+export function progressLine(robots, total) {
+  const done = robots.reduce((n, r) => n + r.finished_seq + 1, 0);
+  return total ? `actions: ${done} / ${total}` : `actions finished: ${done}`;
+}
+
 export function robotPanel(r) {
   return [['id', `robot ${r.id}`], ['pose', `x ${r.x_m.toFixed(2)} m, y ${r.y_m.toFixed(2)} m`],
     ['heading', `heading ${(r.yaw_rad * 180 / Math.PI).toFixed(0)}°`], ['status', `status: ${r.status}`],

@@ -243,7 +243,7 @@ async function checkResultsUpload(page, out, summary) {
 async function checkWatch(browser) {
   const data = path.join(work, 'watch-data');
   const watcher = spawn(exe, ['serve', '--port', '0', '--data', data, '--web', dist, '--watch',
-    '--map', files.map, '--domain', domain]);
+    '--map', files.map, '--scen', files.scen, '--plan', files.plan, '--axis', 'xy', '--agents', '20', '--domain', domain]);
   const watchUrl = await new Promise((resolve, reject) => {
     let text = '';
     watcher.stdout.on('data', (d) => { text += d; const m = text.match(/"listening":"(http:\/\/[^"]+)"/); if (m) resolve(m[1]); });
@@ -270,6 +270,12 @@ async function checkWatch(browser) {
     }
     await page.evaluate(() => window.__viewer.select(5));
     await page.waitForFunction(() => /robot 5.*status: (moving|waiting|idle)/.test(document.querySelector('#robot').textContent), { timeout: 5000 });
+    // With the run's plan: robot 5's path, current action and whom it waits for now; the run's
+    // progress out of its actions (issue 26: no paths or waits in the watch).
+    await page.waitForFunction(() => window.__viewer.watchPath > 1 &&
+      /current: (#\d+ (move|rotate) of \d+|none).*waits now for: /.test(document.querySelector('#robot').textContent), { timeout: 10000 });
+    const total = await page.evaluate(async () => (await (await fetch('/api/watch')).json()).total_actions);
+    assert.match(await page.$eval('#stats', (e) => e.textContent), new RegExp(`actions: \\d+ / ${total}`));
     await page.screenshot({ path: path.join(artifacts, 'viewer-watch.png') });
     const pixels = await waitForPixels(page, 20 * 10 + 1);
     assert.ok(pixels > 20 * 10, `watched robots not drawn: ${pixels} robot-coloured pixels`);

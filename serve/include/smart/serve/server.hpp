@@ -26,6 +26,9 @@
 //                                robots (fleet_watch.hpp, watch_board.hpp); ?run_id= picks one
 //   GET  /api/watch/live         the same as Server-Sent Events, about 4 a second
 //   GET  /api/watch/map          the map given with --watch (MovingAI text)
+//   GET  /api/watch/robots/{r}   with --plan: robot r's path and actions with their Type-2
+//                                predecessors (robot_detail.hpp, no times); /api/watch then also
+//                                has "total_actions"
 //   POST /api/results            a `smart run --out` folder (fields "files") and the run's map
 //                                (scen, plan optional) to replay; 400 names the bad file/line
 //   GET  /api/runs/{id}/progress finished actions over time (actions.csv)
@@ -44,6 +47,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "smart/monitor/instance.hpp"
 
 namespace smart::serve {
 
@@ -73,6 +78,8 @@ struct ServeOptions {
   std::function<nlohmann::json(uint64_t run_id)> watch;
   std::filesystem::path watch_map;
   double watch_cell_m = 1.0;
+  // The watched run's plan (--watch --plan), for robots' paths and whom they wait for now.
+  std::shared_ptr<const monitor::Instance> watch_plan;
 };
 
 class Server {
