@@ -101,6 +101,20 @@ json finished_curve(std::vector<double> finish_s, std::size_t max_points) {
   return {{"t_s", t}, {"finished", n}};
 }
 
+json starts_and_goals(const monitor::Instance& in, double cell_m) {
+  json starts = json::array(), goals = json::array();
+  for (uint32_t r = 0; r < in.actions.robots(); ++r) {
+    auto goal = in.actions.start[r];
+    for (uint32_t s = 0; s < in.actions.count(r); ++s) {
+      const auto& a = in.actions.at(r, s);
+      if (a.type == grid::ActionType::kMove && a.to.is_cell()) goal = a.to;
+    }
+    starts.push_back(point(in, in.actions.start[r], cell_m));
+    goals.push_back(point(in, goal, cell_m));
+  }
+  return {{"starts", starts}, {"goals", goals}};
+}
+
 json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m,
                   const std::vector<double>& finish_s) {
   if (robot >= in.actions.robots()) {

@@ -530,6 +530,17 @@ struct Server::Impl {
       }
       res.set_content(slurp(dir(id) / "map.map"), "text/plain");
     });
+    http.Get(R"(/api/runs/([^/]+)/marks)", [this](const auto& req, auto& res) {
+      const std::string id = req.matches[1];
+      if (!entry(id) || !fs::exists(dir(id) / "request.json")) {
+        return reply(res, 404, {{"error", "no plan files for " + id}});
+      }
+      try {
+        reply(res, 200, starts_and_goals(*instance(id), summary_cell_m(id)));
+      } catch (const std::exception& ex) {
+        reply(res, 404, {{"error", ex.what()}});
+      }
+    });
     http.Get(R"(/api/runs/([^/]+)/robots/([^/]+))", [this](const auto& req, auto& res) {
       get_robot(req.matches[1], req.matches[2], res);
     });

@@ -41,6 +41,14 @@ TEST(RobotDetail, PathAndPartnersComeFromThePlanAndTheAdg) {
   EXPECT_TRUE(d["steps"][1]["finish_s"].is_null());  // no actions.csv: no times
 }
 
+// Issue 26: no start or goal marks; the viewer marks each robot's plan start and goal.
+TEST(RobotDetail, EveryRobotsStartAndGoalFromThePlan) {
+  const auto in = corridor();
+  const auto m = starts_and_goals(in, 0.5);
+  EXPECT_EQ(m["starts"], json::parse("[[0.5, 0.0], [0.0, 0.0]]"));
+  EXPECT_EQ(m["goals"], json::parse("[[1.0, 0.0], [0.5, 0.0]]"));
+}
+
 TEST(RobotDetail, StepsTellWhenEachActionFinishedAndWhenItsPartnersDid) {
   const auto in = corridor();
   const auto times = parse_action_times(kActionsCsv, in.actions);

@@ -180,9 +180,16 @@ function showStats(s) {
     ['limits', limitsText(s.limits)]]);
 }
 
-// Where each robot starts (the first frame) and ends (the last): a run that succeeded ends every
-// robot on its goal cell (README, "success").
-function markStartsAndGoals() {
+// Every robot's start and goal cell from the run's plan (GET /api/runs/{id}/marks); a replay
+// without plan files marks where each robot was first and last (a run that succeeded ends every
+// robot on its goal cell: README, "success").
+async function markStartsAndGoals(id) {
+  const marks = await fetchJson(`/api/runs/${id}/marks`).catch(() => null);
+  if (marks && marks.starts.length === state.rec.robots) {
+    showMarks(marks.starts, marks.goals, state.cell);
+    viewer.marksFrom = 'plan';
+    return 'goal';
+  }
   const { rec } = state, p = new Float64Array(3), starts = [], ends = [];
   for (let i = 0; i < rec.robots; i++) {
     rec.pose(0, i, p);
@@ -191,10 +198,12 @@ function markStartsAndGoals() {
     ends.push([p[0], p[1]]);
   }
   showMarks(starts, ends, state.cell);
+  viewer.marksFrom = 'recording';
+  return 'last position';
 }
 
-export const REPLAY_LEGEND = [['moving', COLORS.moving], ['waiting', COLORS.waiting], ['done', COLORS.done],
-  ['collided', COLORS.collided], ['selected', COLORS.selected], ['start', MARKS.start], ['goal (end)', MARKS.goal],
+export const replayLegend = (goal) => [['moving', COLORS.moving], ['waiting', COLORS.waiting], ['done', COLORS.done],
+  ['collided', COLORS.collided], ['selected', COLORS.selected], ['start', MARKS.start], [goal, MARKS.goal],
   ['planned path', MARKS.path], ['waits for (Type-2)', MARKS.waitsFor], ['waited for by (Type-2)', MARKS.waitedBy]];
 
 // Export: every results file of the run as a download (GET /api/runs/{id}/results/{name}).
@@ -266,8 +275,7 @@ export async function startReplay(id) {
   startLoop({ update: play, rendered });
   state.rec = await rest;
   findCollision();
-  markStartsAndGoals();
-  showLegend(REPLAY_LEGEND);
+  showLegend(replayLegend(await markStartsAndGoals(id)));
   state.progress = await fetchJson(`/api/runs/${id}/progress`).catch(() => null);
   $('plot').hidden = !state.progress;
   wireControls();

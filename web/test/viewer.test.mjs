@@ -170,16 +170,22 @@ async function checkExportAndPlot(page, out) {
 // A view for papers and demos (issue 26): the map framed whatever its shape, a legend, start and
 // goal marks, a label on the selected robot, Type-2 lines dashed above the walls in their own
 // colours, robots legible when zoomed out, the run's limits shown; a screenshot kept.
-async function checkPaperView(page, summary, name) {
+async function checkPaperView(page, id, summary, name) {
   const onScreen = await page.evaluate(() => window.__viewer.mapOnScreen());
   assert.ok(Math.max(onScreen.x, onScreen.y) > 0.85 && onScreen.x <= 1.001 && onScreen.y <= 1.001,
     `the map takes ${JSON.stringify(onScreen)} of the view`);
   const legend = await page.$$eval('#legend div', (ds) => ds.map((d) => d.textContent));
-  for (const entry of ['moving', 'waiting', 'done', 'collided', 'start', 'goal (end)', 'waits for (Type-2)', 'waited for by (Type-2)']) {
+  for (const entry of ['moving', 'waiting', 'done', 'collided', 'start', 'goal', 'waits for (Type-2)', 'waited for by (Type-2)']) {
     assert.ok(legend.includes(entry), `legend ${legend.join('; ')} lacks ${entry}`);
   }
   const marks = await page.evaluate(() => window.__viewer.marks);
   assert.deepEqual(marks, { starts: summary.robots, goals: summary.robots });
+  // From the plan: robot 3's goal mark is its path's last cell.
+  assert.equal(await page.evaluate(() => window.__viewer.marksFrom), 'plan');
+  const [detail3, marks3] = await page.evaluate(async (id) => [await (await fetch(`/api/runs/${id}/robots/3`)).json(),
+    await (await fetch(`/api/runs/${id}/marks`)).json()], id);
+  assert.deepEqual(marks3.goals[3], detail3.path[detail3.path.length - 1]);
+  assert.deepEqual(marks3.starts[3], detail3.path[0]);
   await page.evaluate(() => window.__viewer.select(3));
   await page.waitForFunction(() => { const l = document.querySelector('#label'); return l && !l.hidden && l.textContent === 'robot 3'; }, { timeout: 5000 });
   const style = await page.evaluate(() => window.__viewer.edgeStyle);
@@ -335,7 +341,7 @@ try {
   await page.screenshot({ path: path.join(artifacts, 'viewer-end-robot3.png') });
   await checkWaiting(page, out);
   await checkExportAndPlot(page, out);
-  await checkPaperView(page, summary, 'viewer-paper-random');
+  await checkPaperView(page, 'run-000001', summary, 'viewer-paper-random');
   // Play from the start at 64x for a second: the frame time while all robots move.
   await page.evaluate(() => window.__viewer.seek(0));
   await page.select('#speed', '64');
@@ -415,7 +421,7 @@ try {
   // The warehouse is 161 x 63 cells: framed to fill the view's width; its limits as uploaded.
   const warehouse = await page.evaluate(async () => (await (await fetch('/api/runs/run-000002')).json()).summary);
   assert.equal(warehouse.limits.max_accel_mps2, 0.5);
-  await checkPaperView(page, warehouse, 'viewer-paper-warehouse');
+  await checkPaperView(page, 'run-000002', warehouse, 'viewer-paper-warehouse');
   assert.match(readFileSync(path.join(work, 'data', 'run-000002', 'robot.yaml'), 'utf8'), /max_accel_mps2: 0\.5/);
   await checkResultsUpload(page, out, summary);
   await checkWatch(browser);

@@ -29,6 +29,10 @@ std::vector<double> parse_action_times(std::string_view csv, const monitor::Acti
 // "finished": [...]}, a step curve of at most max_points points (the last one exact).
 nlohmann::json finished_curve(std::vector<double> finish_s, std::size_t max_points = 400);
 
+// Every robot's start and goal cell centre in metres (the plan's first cell and the last one its
+// moves reach): {"starts": [[x_m, y_m], ...], "goals": [...]}, for the viewer's marks.
+nlohmann::json starts_and_goals(const monitor::Instance& instance, double cell_m);
+
 // Throws std::out_of_range when robot is not in the instance. finish_s: by ADG node, or empty
 // (then every finish_s and ready_s is null).
 nlohmann::json robot_detail(const monitor::Instance& instance, uint32_t robot, double cell_m,

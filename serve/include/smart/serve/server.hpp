@@ -25,8 +25,9 @@
 //   GET  /api/watch              (--watch) the runs live on the DDS domain and the newest one's
 //                                robots (fleet_watch.hpp, watch_board.hpp); ?run_id= picks one
 //   GET  /api/watch/live         the same as Server-Sent Events, about 4 a second
-//   GET  /api/watch/map          the map given with --watch (MovingAI text)
-//   GET  /api/watch/robots/{r}   with --plan: robot r's path and actions with their Type-2
+//   GET  /api/runs/{id}/marks    every robot's start and goal from the run's plan
+//   (robot_detail.hpp) GET  /api/watch/map          the map given with --watch (MovingAI text) GET
+//   /api/watch/robots/{r}   with --plan: robot r's path and actions with their Type-2
 //                                predecessors (robot_detail.hpp, no times); /api/watch then also
 //                                has "total_actions"
 //   POST /api/results            a `smart run --out` folder (fields "files") and the run's map
