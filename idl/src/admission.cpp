@@ -7,8 +7,7 @@
 
 namespace smart::dds {
 
-namespace {
-std::string user_data_of(const dds_qos_t* qos) {
+std::string qos_user_data(const dds_qos_t* qos) {
   void* data = nullptr;
   size_t size = 0;
   if (qos == nullptr || !dds_qget_userdata(qos, &data, &size)) return {};
@@ -17,7 +16,7 @@ std::string user_data_of(const dds_qos_t* qos) {
   return out;
 }
 
-std::vector<std::string> partitions_of(const dds_qos_t* qos) {
+std::vector<std::string> qos_partitions(const dds_qos_t* qos) {
   std::vector<std::string> out;
   uint32_t n = 0;
   char** ps = nullptr;
@@ -30,7 +29,6 @@ std::vector<std::string> partitions_of(const dds_qos_t* qos) {
   }
   return out;
 }
-}  // namespace
 
 AdmitRule admit_roles(const Participant& participant, std::vector<std::string> roles) {
   if (!participant.run_key()) return {};
@@ -38,7 +36,7 @@ AdmitRule admit_roles(const Participant& participant, std::vector<std::string> r
           roles = std::move(roles)](const dds_builtintopic_endpoint_t& writer) {
     wire::GuidPrefix prefix{};
     std::memcpy(prefix.data(), writer.participant_key.v, prefix.size());
-    const auto role = wire::proven_role(key, user_data_of(writer.qos), run, prefix);
+    const auto role = wire::proven_role(key, qos_user_data(writer.qos), run, prefix);
     if (!role) return Verdict::kRefuse;
     return std::find(roles.begin(), roles.end(), *role) != roles.end() ? Verdict::kAdmit
                                                                        : Verdict::kIgnore;
@@ -93,7 +91,7 @@ void WriterAdmission::decide(dds_entity_t reader, dds_instance_handle_t writer) 
   const Verdict v = known ? Verdict::kRefuse : rule_(*e);
   std::optional<Speaks> speaks;
   if (!known && v == Verdict::kAdmit && !run_partition_.empty()) {
-    speaks = speaks_for(run_partition_, partitions_of(e->qos));
+    speaks = speaks_for(run_partition_, qos_partitions(e->qos));
   }
   dds_builtintopic_free_endpoint(e);
   if (known) return;

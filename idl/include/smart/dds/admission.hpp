@@ -53,6 +53,11 @@ using AdmitRule = std::function<Verdict(const dds_builtintopic_endpoint_t& write
 // participant has no run key.
 AdmitRule admit_roles(const Participant& participant, std::vector<std::string> roles);
 
+// A matched endpoint's QoS as admission reads it (nullptr: nothing): its partitions and its
+// USER_DATA bytes (the run proof).
+std::vector<std::string> qos_partitions(const dds_qos_t* qos);
+std::string qos_user_data(const dds_qos_t* qos);
+
 class WriterAdmission {
  public:
   static constexpr std::size_t kMaxWriters = 64;

@@ -188,16 +188,7 @@ class Reader {
   std::optional<std::vector<std::string>> partitions_of(dds_instance_handle_t handle) const {
     dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(entity_.handle(), handle);
     if (e == nullptr) return std::nullopt;
-    std::vector<std::string> out;
-    uint32_t n = 0;
-    char** ps = nullptr;
-    if (e->qos != nullptr && dds_qget_partition(e->qos, &n, &ps)) {
-      for (uint32_t i = 0; i < n; ++i) {
-        out.emplace_back(ps[i]);
-        dds_free(ps[i]);
-      }
-      dds_free(ps);
-    }
+    auto out = qos_partitions(e->qos);
     dds_builtintopic_free_endpoint(e);
     return out;
   }
