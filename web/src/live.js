@@ -5,6 +5,7 @@
 // every robot blue, nothing selectable, no progress); when the run ended, the page reloads into
 // the replay.
 import { readMap } from './recording.js';
+import { liveStatus } from './panel.js';
 import { drawProgress } from './plot.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
 import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, setLabel, showLegend,
@@ -22,13 +23,10 @@ export function liveRobotRows(ev, i, detail) {
     ['heading', `heading ${(yaw * 180 / Math.PI).toFixed(0)}°`], ['status', `status: ${ev.status[i]}`],
     ['queue', `queue: ${ev.queue[i]}`]];
   if (!detail || detail.robot !== i || !ev.finished) return rows;
-  const done = ev.finished[i], steps = detail.steps;
-  if (done >= steps.length) {
-    return rows.concat([['progress', `finished: ${done} / ${steps.length}`], ['current', 'current: none (done)'], ['waits-now', 'waits now for: none']]);
-  }
-  const waits = steps[done].in.filter(([robot, action]) => ev.finished[robot] <= action).map(([robot]) => robot);
-  return rows.concat([['progress', `finished: ${done} / ${steps.length}`], ['current', `current: #${done} ${steps[done].type}`],
-    ['waits-now', `waits now for: ${[...new Set(waits)].join(', ') || 'none'}`]]);
+  const s = liveStatus(detail.steps, ev.finished[i], (robot) => ev.finished[robot]);
+  return rows.concat([['progress', `finished: ${ev.finished[i]} / ${s.total}`],
+    ['current', s.current < 0 ? 'current: none (done)' : `current: #${s.current} ${s.type}`],
+    ['waits-now', `waits now for: ${s.waits.join(', ') || 'none'}`]]);
 }
 
 // The stats lines: the run, its time, progress and how many robots are in each state.

@@ -29,3 +29,12 @@ export function robotList(edges) {
   for (const { robot } of edges) count.set(robot, (count.get(robot) || 0) + 1);
   return [...count].map(([r, n]) => `${r}${n > 1 ? ` (${n})` : ''}`).join(', ') || 'none';
 }
+
+// A live robot's current action and whom it waits for now, from its plan's steps (robot detail,
+// steps[k].in: [robot, action, ...]) and each robot's finished count (finishedOf(robot)): the
+// predecessors of its current action that are not finished yet. current -1: it is done.
+export function liveStatus(steps, done, finishedOf) {
+  if (done >= steps.length) return { current: -1, type: null, total: steps.length, waits: [] };
+  const waits = steps[done].in.filter(([robot, action]) => finishedOf(robot) <= action).map(([robot]) => robot);
+  return { current: done, type: steps[done].type, total: steps.length, waits: [...new Set(waits)] };
+}

@@ -1,6 +1,8 @@
 // The watch board (pure): whatever run is live on the DDS domain (`smart serve --watch`, GET
 // /api/watch/live), simulated and physical robots alike, read-only. Robots are drawn in the
 // order the server lists them (by id; ids may have gaps in a mixed run).
+import { liveStatus } from './panel.js';
+
 // Statuses (serve/include/smart/serve/watch_board.hpp): moving = executing an action, waiting =
 // actions queued but none executing, idle = nothing queued; the replay's colours for the same.
 export const WATCH_COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, idle: 0x3cb371, stale: 0x777777, selected: 0xff3b30 };
@@ -30,11 +32,9 @@ export function runLabel(run) {
 export function planRows(r, detail, robots) {
   if (!detail || detail.robot !== r.id) return [];
   const finished = new Map(robots.map((x) => [x.id, x.finished_seq + 1]));
-  const done = r.finished_seq + 1, steps = detail.steps;
-  if (done >= steps.length) return [['current', 'current: none (done)'], ['waits-now', 'waits now for: none']];
-  const waits = steps[done].in.filter(([robot, action]) => (finished.get(robot) ?? 0) <= action).map(([robot]) => robot);
-  return [['current', `current: #${done} ${steps[done].type} of ${steps.length}`],
-    ['waits-now', `waits now for: ${[...new Set(waits)].join(', ') || 'none'}`]];
+  const s = liveStatus(detail.steps, r.finished_seq + 1, (robot) => finished.get(robot) ?? 0);
+  return [['current', s.current < 0 ? 'current: none (done)' : `current: #${s.current} ${s.type} of ${s.total}`],
+    ['waits-now', `waits now for: ${s.waits.join(', ') || 'none'}`]];
 }
 
 // Finished actions of the run: every robot's count (with the plan, out of its total).
