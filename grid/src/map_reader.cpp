@@ -8,7 +8,11 @@ namespace smart::grid {
 namespace {
 
 // Returns -1 for a symbol that is neither free nor blocked.
-int classify(char c) {
+int classify(char c, MapDialect dialect) {
+  if (dialect == MapDialect::kLorr) {
+    if (c == '@' || c == 'T') return 1;
+    return c == '.' || c == 'E' || c == 'S' ? 0 : -1;
+  }
   switch (c) {
     case '.':
     case 'G':
@@ -90,7 +94,8 @@ Header parse_header(const std::vector<std::string_view>& lines, const std::strin
 
 }  // namespace
 
-Grid parse_map(std::string_view text, const std::string& source) {
+Grid parse_map(std::string_view text, const std::string& source, MapDialect dialect,
+               MapMarks* marks) {
   const auto lines = split_lines(text);
   std::vector<Problem> problems;
   auto problem = [&](int line, std::string msg) {
@@ -122,12 +127,18 @@ Grid parse_map(std::string_view text, const std::string& source) {
                       " symbols but 'width' is " + std::to_string(w));
     }
     for (int32_t x = 0; x < w && x < static_cast<int32_t>(line.size()); ++x) {
-      const int c = classify(line[static_cast<std::size_t>(x)]);
+      const char symbol = line[static_cast<std::size_t>(x)];
+      const int c = classify(symbol, dialect);
       if (c < 0) {
-        problem(ln, "unknown map symbol '" + std::string(1, line[static_cast<std::size_t>(x)]) +
-                        "' at column " + std::to_string(x) +
-                        "; use '.', 'G', 'S' (free) or '@', 'T', 'O', 'W' (blocked)");
+        problem(ln, "unknown map symbol '" + std::string(1, symbol) + "' at column " +
+                        std::to_string(x) +
+                        (dialect == MapDialect::kLorr
+                             ? "; a LoRR map uses '.', 'E', 'S' (free) or '@', 'T' (blocked)"
+                             : "; use '.', 'G', 'S' (free) or '@', 'T', 'O', 'W' (blocked)"));
         continue;
+      }
+      if (marks && dialect == MapDialect::kLorr && (symbol == 'E' || symbol == 'S')) {
+        (symbol == 'E' ? marks->workstations : marks->endpoints).push_back({x, row});
       }
       blocked[static_cast<std::size_t>(row) * static_cast<std::size_t>(w) +
               static_cast<std::size_t>(x)] = static_cast<uint8_t>(c);
