@@ -162,8 +162,7 @@ std::vector<int32_t> bfs_distances(const grid::Grid& g, grid::Cell from) {
   return d;
 }
 
-grid::Scenario generate_scenario(const grid::Grid& g, std::size_t agents, uint64_t seed,
-                                 const std::string& map_name) {
+std::vector<grid::Cell> largest_region_cells(const grid::Grid& g) {
   int32_t largest = -1;
   const auto label = component_labels(g, &largest);
   std::vector<grid::Cell> cells;
@@ -172,6 +171,12 @@ grid::Scenario generate_scenario(const grid::Grid& g, std::size_t agents, uint64
       if (!g.blocked({x, y}) && label[g.index({x, y})] == largest) cells.push_back({x, y});
     }
   }
+  return cells;
+}
+
+grid::Scenario generate_scenario(const grid::Grid& g, std::size_t agents, uint64_t seed,
+                                 const std::string& map_name) {
+  const auto cells = largest_region_cells(g);
   if (cells.size() < agents) {
     throw std::invalid_argument("scenario: " + std::to_string(agents) +
                                 " agents need distinct cells but the largest free region has " +

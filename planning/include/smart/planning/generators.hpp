@@ -44,6 +44,9 @@ grid::Scenario generate_scenario(const grid::Grid& grid, std::size_t agents, uin
                                  const std::string& map_name);
 std::string to_movingai_scen(const grid::Scenario& scen, const grid::Grid& grid);
 
+// The free cells of the largest 4-connected free region, row-major.
+std::vector<grid::Cell> largest_region_cells(const grid::Grid& grid);
+
 // 4-connected shortest-path distances from `from` to every cell (-1: unreachable).
 std::vector<int32_t> bfs_distances(const grid::Grid& grid, grid::Cell from);
 

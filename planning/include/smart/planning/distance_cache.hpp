@@ -1,0 +1,42 @@
+// Contract: shortest-path distances to goal cells, computed lazily and shared (LoRR and LSMART
+// planners keep one backward BFS table per goal: every robot heading to one cell shares it).
+// A table is a 4-connected BFS from the goal over free cells (-1: unreachable), made on first
+// use and kept while the cache holds fewer than its byte budget; beyond it the least recently
+// used table is dropped (tables are handed out as shared pointers, so a caller's copy stays
+// valid). Deterministic: what is cached never changes a distance, only when it is computed.
+#pragma once
+
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "smart/grid/grid.hpp"
+
+namespace smart::planning {
+
+class DistanceCache {
+ public:
+  using Table = std::shared_ptr<const std::vector<int32_t>>;
+
+  explicit DistanceCache(const grid::Grid& grid, std::size_t budget_bytes = std::size_t{1} << 30);
+
+  Table to(grid::Cell goal);
+  int32_t distance(grid::Cell from, grid::Cell goal) { return (*to(goal))[grid_.index(from)]; }
+  std::size_t tables() const { return tables_.size(); }
+  std::size_t computed() const { return computed_; }  // BFS runs so far (misses)
+
+ private:
+  const grid::Grid& grid_;
+  std::size_t max_tables_;
+  std::list<uint32_t> lru_;  // goal indices, most recent first
+  struct Entry {
+    Table table;
+    std::list<uint32_t>::iterator at;
+  };
+  std::unordered_map<uint32_t, Entry> tables_;
+  std::size_t computed_ = 0;
+};
+
+}  // namespace smart::planning

@@ -1,0 +1,59 @@
+// Contract: the built-in lifelong planner, PIBT (Okumura, Machida, Défago, Tsukamoto: "Priority
+// inheritance with backtracking for iterative multi-agent path finding", Artificial
+// Intelligence 310, 2022, Algorithms 1 and 2), written here from the paper. One call plans a
+// window of `steps` timesteps for every robot from its start cell (the commit cut's end): each
+// step, robots in decreasing priority pick the free neighbour (or their own cell) nearest their
+// current goal; a robot that wants a cell another robot still stands on asks it to move first
+// (priority inheritance), and when that robot cannot move the asker tries its next candidate
+// (backtracking). Paths have no vertex and no swap conflicts; robots may follow one another and
+// move round cycles (safe with the ADG's half-cell locations, SMART §IV-B). A robot with errands
+// left heads for the first and, on reaching it inside the window, for the next; a robot with
+// none holds its cell and yields when pushed.
+// Priorities persist across windows as in the paper: each step a robot not at its goal gains 1;
+// reaching a goal resets it to its tie-breaker in [0, 1), so a long-waiting robot eventually
+// outranks everyone (reachability in biconnected graphs, the paper's Theorem 2).
+// Distances come from a shared DistanceCache. Deterministic for a seed; no clock, no I/O.
+// Cost per window: steps x robots x (4 neighbours, sorted) plus the distance tables' BFS runs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "smart/grid/grid.hpp"
+#include "smart/planning/distance_cache.hpp"
+
+namespace smart::planning {
+
+struct WindowRequest {
+  std::vector<grid::Cell> start;               // per robot; distinct free cells
+  std::vector<std::vector<grid::Cell>> goals;  // per robot: errands left, in order (may be empty)
+  int steps = 10;
+};
+
+struct WindowPlan {
+  std::vector<std::vector<grid::Cell>> paths;  // per robot: steps + 1 cells, [0] = start
+  std::size_t moves = 0;                       // robot-steps that change cell
+};
+
+class Pibt {
+ public:
+  Pibt(const grid::Grid& grid, DistanceCache& distances, uint64_t seed);
+
+  // Throws std::invalid_argument for a request that does not fit (sizes, two robots on one
+  // cell, a start on an obstacle, a goal no path reaches).
+  WindowPlan plan(const WindowRequest& request);
+
+ private:
+  struct Step;
+  bool push(Step& s, uint32_t robot, int64_t asker);
+  void check(const WindowRequest& request) const;
+
+  const grid::Grid& grid_;
+  DistanceCache& dist_;
+  uint64_t seed_;
+  std::vector<double> priority_;  // kept across windows
+  std::vector<double> tie_;       // each robot's tie-breaker in [0, 1)
+  uint64_t calls_ = 0;
+};
+
+}  // namespace smart::planning
