@@ -2,6 +2,28 @@
 
 namespace smart::monitor {
 
+std::vector<Action> build_robot_actions(uint32_t robot, uint32_t first_seq, Heading& heading,
+                                        const std::vector<PathStep>& steps) {
+  std::vector<Action> out;
+  uint32_t seq = first_seq;
+  for (std::size_t k = 0; k + 1 < steps.size(); ++k) {
+    const auto& a = steps[k];
+    const auto& b = steps[k + 1];
+    if (a.cell == b.cell) continue;  // a wait: no action
+    const Heading dir = heading_of_step(a.cell, b.cell);
+    const HalfCell ha = HalfCell::of(a.cell), hb = HalfCell::of(b.cell);
+    if (dir != heading) {
+      out.push_back({robot, seq++, ActionType::kRotate, dir, ha, ha, a.time, a.time});
+      heading = dir;
+    }
+    const HalfCell mid = HalfCell::midpoint(a.cell, b.cell);
+    const double t_mid = 0.5 * (a.time + b.time);
+    out.push_back({robot, seq++, ActionType::kMove, dir, ha, mid, a.time, t_mid});
+    out.push_back({robot, seq++, ActionType::kMove, dir, mid, hb, t_mid, b.time});
+  }
+  return out;
+}
+
 ActionPlan build_actions(const Plan& plan, Heading initial_heading) {
   ActionPlan out;
   out.offset.reserve(plan.paths.size() + 1);
@@ -10,27 +32,13 @@ ActionPlan build_actions(const Plan& plan, Heading initial_heading) {
   for (const auto& p : plan.paths) moves += p.steps.size();
   out.actions.reserve(3 * moves);
   for (const auto& path : plan.paths) {
-    const auto robot = static_cast<uint32_t>(path.robot);
-    uint32_t seq = 0;
     Heading heading = initial_heading;
     out.initial_heading.push_back(initial_heading);
     out.start.push_back(path.steps.empty() ? HalfCell{} : HalfCell::of(path.steps.front().cell));
-    for (std::size_t k = 0; k + 1 < path.steps.size(); ++k) {
-      const auto& a = path.steps[k];
-      const auto& b = path.steps[k + 1];
-      if (a.cell == b.cell) continue;  // a wait: no action
-      const Heading dir = heading_of_step(a.cell, b.cell);
-      const HalfCell ha = HalfCell::of(a.cell), hb = HalfCell::of(b.cell);
-      if (dir != heading) {
-        out.actions.push_back({robot, seq++, ActionType::kRotate, dir, ha, ha, a.time, a.time});
-        ++out.rotations;
-        heading = dir;
-      }
-      const HalfCell mid = HalfCell::midpoint(a.cell, b.cell);
-      const double t_mid = 0.5 * (a.time + b.time);
-      out.actions.push_back({robot, seq++, ActionType::kMove, dir, ha, mid, a.time, t_mid});
-      out.actions.push_back({robot, seq++, ActionType::kMove, dir, mid, hb, t_mid, b.time});
-      out.moves += 2;
+    for (const auto& a :
+         build_robot_actions(static_cast<uint32_t>(path.robot), 0, heading, path.steps)) {
+      ++(a.type == ActionType::kMove ? out.moves : out.rotations);
+      out.actions.push_back(a);
     }
     out.offset.push_back(static_cast<uint32_t>(out.actions.size()));
   }

@@ -1,0 +1,138 @@
+// Contract: the Action Dependency Graph of a lifelong run, grown window by window while it is
+// executed (SMART §IV-B and Hönig et al. 2019 for the graph; the commit cut of Lifelong SMART,
+// smart-mapf/lifelong-smart, for where a new window may begin). Pure: no clock, no I/O.
+//
+// Execution, as ExecutionTracker (execution_tracker.hpp): an action is enqueued once its robot's
+// previous action is enqueued and every Type-2 predecessor finished; progress is cumulative per
+// robot (finishing seq k finishes every seq <= k); progress out of range, stale or for an
+// action never enqueued is refused and changes nothing. Seqs grow for the life of the run; the
+// graph keeps only unfinished actions (finished ones are dropped as they finish, so memory stays
+// flat however long the run), and every robot's position after its last finished action.
+//
+// Growth:
+// - commit_cut(keep, lookahead): per robot, every action already sent to it (`keep[r]`, which the
+//   robot may be executing), at least `lookahead` unfinished actions beyond what it finished, then
+//   closed: an action kept keeps every unfinished Type-2 predecessor (and so its robot's actions
+//   before it), and a cut never ends on an edge midpoint (the next half-move is kept), so every
+//   robot stops on a cell and no kept action waits for one that is dropped. Closure is a worklist
+//   fixpoint over in-edges, O(kept actions + their edges).
+// - truncate(cut): drops every action beyond the cut (never sent, so no robot knows them).
+// - append(paths, plan_time_s): each robot's timed cells from its cut cell (paths[r][0]), turned
+//   into rotate/half-move actions continuing its seqs and heading; Type-2 edges, per location,
+//   between consecutive occupants in plan order: the last kept occupant (the kept unfinished
+//   action leaving it latest) before the window's occupants sorted by arrival (the robot standing
+//   there first). Old actions never wait for new ones, so a cycle could only lie inside the
+//   window; Kahn's algorithm over the new actions checks it, and a window that is cyclic, or has a
+//   robot enter a location where another stays for good, is refused whole (nothing appended).
+// Locations are half cells (Footprint::kHalfCells); robots of the cells footprint are refused.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/execution_tracker.hpp"
+#include "smart/monitor/vocabulary.hpp"
+
+namespace smart::monitor {
+
+struct NodeRef {
+  uint32_t robot = 0;
+  uint32_t seq = 0;
+  bool operator==(const NodeRef&) const = default;
+};
+
+struct CommitCut {
+  std::vector<uint32_t> end;  // per robot: one past the last kept seq
+  std::vector<Cell> cell;     // where each robot stands after its kept actions
+  std::vector<Heading> heading;
+  std::size_t kept_unfinished = 0;  // actions kept and not finished (all robots)
+};
+
+struct AppendStats {
+  std::size_t actions = 0;
+  std::size_t type2 = 0;
+};
+
+class LiveAdg {
+ public:
+  using Update = ExecutionTracker::Update;
+  using Window = ExecutionTracker::Window;
+
+  LiveAdg(const Grid& grid, const std::vector<Cell>& start, Heading initial_heading);
+
+  // --- execution ---
+  // `finished` sees each action this progress finishes, in order, before it is dropped.
+  Update on_progress(uint32_t robot, int64_t finished_seq,
+                     const std::function<void(const Action&)>& finished = {});
+  Window window(uint32_t robot, uint32_t cap) const;
+  std::size_t robots() const { return robots_.size(); }
+  uint32_t finished(uint32_t r) const { return robots_[r].finished; }
+  uint32_t enqueued(uint32_t r) const { return robots_[r].enqueued; }
+  uint32_t end(uint32_t r) const { return robots_[r].base + uint32_t(robots_[r].nodes.size()); }
+  // An unfinished action: seq in [finished(r), end(r)).
+  const Action& action(uint32_t r, uint32_t seq) const { return node(r, seq).action; }
+  std::size_t finished_total() const { return finished_total_; }
+  std::size_t appended_total() const { return appended_total_; }
+  std::size_t unfinished_total() const { return appended_total_ - finished_total_; }
+  std::size_t type2_total() const { return type2_total_; }
+  // No robot has an enqueued unfinished action, yet some remain.
+  bool deadlocked() const;
+  // Where the robot stands after its last finished action: a cell or an edge midpoint.
+  HalfCell after_finished(uint32_t r) const { return robots_[r].done; }
+  Heading heading_after_finished(uint32_t r) const { return robots_[r].done_heading; }
+  // Every robot's unfinished Type-2 predecessors of (r, seq) (tests and viewers: who it waits for).
+  std::vector<NodeRef> waits_for(uint32_t r, uint32_t seq) const;
+
+  // --- growth ---
+  CommitCut commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const;
+  void truncate(const CommitCut& cut);
+  // Problems name the robots and locations of a refused window (nothing appended then).
+  std::vector<Problem> append(const std::vector<std::vector<Cell>>& paths, double plan_time_s,
+                              AppendStats* stats = nullptr);
+
+ private:
+  struct Node {
+    Action action;
+    uint32_t pending = 0;      // unfinished Type-2 predecessors
+    std::vector<NodeRef> in;   // unfinished Type-2 predecessors
+    std::vector<NodeRef> out;  // Type-2 successors
+  };
+  struct Robot {
+    uint32_t base = 0;  // seq of nodes.front()
+    std::deque<Node> nodes;
+    uint32_t finished = 0;
+    uint32_t enqueued = 0;
+    HalfCell done;  // after its last finished action (its start before any)
+    Heading done_heading = Heading::kEast;
+    Cell tail_cell;  // after its last appended action
+    Heading tail_heading = Heading::kEast;
+  };
+  struct Occupancy;
+
+  Node& node(uint32_t r, uint32_t seq) { return robots_[r].nodes[seq - robots_[r].base]; }
+  const Node& node(uint32_t r, uint32_t seq) const {
+    return robots_[r].nodes[seq - robots_[r].base];
+  }
+  bool advance(uint32_t r);
+  void finish(uint32_t r, uint32_t seq, Update& u);
+  std::vector<Occupancy> kept_last_leavers() const;
+  std::vector<Occupancy> window_occupancies(const std::vector<std::vector<Action>>& acts) const;
+  std::vector<Problem> link(std::vector<Occupancy> occ,
+                            std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
+  std::vector<Problem> check_window_acyclic(
+      const std::vector<std::vector<Action>>& acts,
+      const std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
+
+  const Grid& grid_;
+  std::vector<Robot> robots_;
+  std::size_t finished_total_ = 0;
+  std::size_t appended_total_ = 0;
+  std::size_t type2_total_ = 0;
+  double last_plan_time_s_ = 0;
+};
+
+}  // namespace smart::monitor
