@@ -33,14 +33,17 @@ uint64_t wall_clock_run_id() {
 // answer, so that a host finds the windows the answer counts already sent.
 class DdsRunWriter final : public RunWriter {
  public:
-  DdsRunWriter(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
+  DdsRunWriter(const dds::Participant& p, const dds::QosProfile& qos, const Grid& grid,
                double cell_m, int32_t strength)
-      : in_(in), cell_m_(cell_m), actions_(p, qos, strength), clock_(p, qos, strength) {}
+      : grid_(grid), cell_m_(cell_m), actions_(p, qos, strength), clock_(p, qos, strength) {}
 
-  void publish_window(uint32_t robot, uint64_t run_id, ExecutionTracker::Window w) override {
-    dds::ActionWindowBuffer buf(robot, run_id, in_.actions.count(robot));
+  // What the windows are cut from (the supervisor's execution, set once it exists).
+  void set_source(const Execution& execution) { exec_ = &execution; }
+
+  void publish_window(uint32_t robot, uint64_t run_id, ActionWindowRange w) override {
+    dds::ActionWindowBuffer buf(robot, run_id, exec_->known(robot));
     for (uint32_t s = w.first; s < w.end; ++s) {
-      buf.steps().push_back(wire::to_wire(in_.actions.at(robot, s), in_.grid, cell_m_));
+      buf.steps().push_back(wire::to_wire(exec_->action(robot, s), grid_, cell_m_));
     }
     actions_.write_batched(buf.view());
   }
@@ -52,7 +55,8 @@ class DdsRunWriter final : public RunWriter {
   bool wait_for_acks(milliseconds timeout) { return clock_.wait_for_acks(timeout); }
 
  private:
-  const Instance& in_;
+  const Grid& grid_;
+  const Execution* exec_ = nullptr;
   double cell_m_;
   dds::WireWriter<smart_msg_ActionWindow> actions_;
   dds::WireWriter<smart_msg_Clock> clock_;
@@ -68,7 +72,8 @@ SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
 
 struct MonitorNode::Impl {
   const dds::Participant& participant;
-  const Instance& in;
+  const Instance* in;  // a plan's run; nullptr in a lifelong run
+  const Grid& grid;
   MonitorOptions opt;
   SupervisorConfig config;
   MonitorAnnouncer announcer;  // before the writers: they take its ownership strength
@@ -103,15 +108,16 @@ struct MonitorNode::Impl {
   std::vector<std::optional<common::Pose2D>> poses;  // last reported, for the plan view
   double plan_view_s = -1e9;
 
-  Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance& in,
-       const MonitorOptions& o)
+  Impl(const dds::Participant& p, const dds::QosProfile& qos, const Instance* in, const Grid& grid,
+       Execution* lifelong, const MonitorOptions& o)
       : participant(p),
         in(in),
+        grid(grid),
         opt(o),
         config(with_run_id(o.run, static_cast<int>(p.domain_id()), o.cell_m)),
         announcer(p, qos, config.run_id, o.resume),
-        writer(p, qos, in, o.cell_m, announcer.strength()),
-        sup(in, config, writer),
+        writer(p, qos, grid, o.cell_m, announcer.strength()),
+        sup(in ? RunSupervisor(*in, config, writer) : RunSupervisor(*lifelong, config, writer)),
         from_hosts_progress(dds::WriterAdmission::per_robot(p, {"sim", "agent"})),
         from_hosts_states(dds::WriterAdmission::per_robot(p, {"sim", "agent"})),
         progress(p, qos, *from_hosts_progress),
@@ -120,10 +126,12 @@ struct MonitorNode::Impl {
         clocks(clock_in.reader()),
         status_in(p, qos),
         status(status_in.reader()),
-        robots(in.actions.robots()),
-        bounds(wire::bounds_of(in.grid, o.cell_m)),
+        robots(sup.execution().robots()),
+        bounds(wire::bounds_of(grid, o.cell_m)),
         directory(p),
-        senders(robots) {}
+        senders(robots) {
+    writer.set_source(sup.execution());
+  }
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.
   template <class Reader>
@@ -307,8 +315,8 @@ struct MonitorNode::Impl {
   }
 
   void start_plan_view() {
-    if (opt.ros_plan_hz <= 0) return;
-    plan_view.emplace(participant, in, opt.cell_m, opt.robot_radius_m);
+    if (opt.ros_plan_hz <= 0 || !in) return;
+    plan_view.emplace(participant, *in, opt.cell_m, opt.robot_radius_m);
     poses.assign(robots, std::nullopt);
     plan_view->publish_paths();
   }
@@ -317,7 +325,7 @@ struct MonitorNode::Impl {
   std::optional<std::size_t> reported_finished, reported_robots;
   double robots_reported_s = -1;
   void report_finished() {
-    const auto& t = sup.tracker();
+    const auto& t = sup.execution();
     if (opt.on_finished && reported_finished != t.finished_total()) {
       reported_finished = t.finished_total();
       opt.on_finished({sup.result().sim_time_s, t.finished_total(), t.total()});
@@ -335,7 +343,7 @@ struct MonitorNode::Impl {
   void publish_plan_view(bool now) {
     if (!plan_view || (!now && now_s() - plan_view_s < 1.0 / opt.ros_plan_hz)) return;
     plan_view_s = now_s();
-    plan_view->publish(snapshot(in.actions, in.adg, sup.tracker()), poses, plan_view_s);
+    plan_view->publish(snapshot(in->actions, in->adg, sup.tracker()), poses, plan_view_s);
   }
 
   // Tell every host the run is over, make sure it was delivered, and take the sim's final
@@ -398,7 +406,11 @@ struct MonitorNode::Impl {
 
 MonitorNode::MonitorNode(const dds::Participant& participant, const dds::QosProfile& qos,
                          const Instance& instance, const MonitorOptions& options)
-    : impl_(std::make_unique<Impl>(participant, qos, instance, options)) {}
+    : impl_(std::make_unique<Impl>(participant, qos, &instance, instance.grid, nullptr, options)) {}
+
+MonitorNode::MonitorNode(const dds::Participant& participant, const dds::QosProfile& qos,
+                         const Grid& grid, Execution& lifelong, const MonitorOptions& options)
+    : impl_(std::make_unique<Impl>(participant, qos, nullptr, grid, &lifelong, options)) {}
 
 MonitorNode::~MonitorNode() = default;
 
@@ -425,7 +437,7 @@ MonitorResult MonitorNode::run(const std::atomic<bool>& stop_requested,
   // The run's name and id as summary.json has them ("run", "run_id"), so logs and results match.
   spdlog::info("monitor: run {} (run_id {}): {} robots, {} actions; waiting for the sim",
                I.participant.run(), I.sup.result().run_id, I.sup.result().robots.size(),
-               I.sup.tracker().total());
+               I.sup.execution().total());
   double last_check_s = 0;
   while (!I.sup.over()) {
     if (stop_requested.load()) {

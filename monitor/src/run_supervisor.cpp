@@ -35,29 +35,49 @@ std::string_view to_string(Outcome o) {
 
 RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& config,
                              RunWriter& writer)
-    : in_(instance),
-      config_(config),
-      writer_(writer),
-      tracker_(instance.actions, instance.adg),
-      sent_(instance.actions.robots()),
-      waiting_(instance.actions.robots(), 0),
-      robot_seen_s_(instance.actions.robots(), 0.0),
-      last_pose_(instance.actions.robots()),
-      seen_done_(instance.actions.robots(), 0) {
+    : in_(&instance), config_(config), writer_(writer) {
+  tracker_.emplace(instance.actions, instance.adg);
+  exec_ = &*tracker_;
   const std::size_t n = instance.actions.robots();
-  res_.robots.resize(n);
-  res_.goal_tolerance_m =
-      config.goal_tolerance_m > 0 ? config.goal_tolerance_m : 0.25 * config.cell_m;
+  init(n);
   for (uint32_t r = 0; r < n; ++r) {
     const uint32_t count = instance.actions.count(r);
     res_.robots[r].actions = count;
     const auto goal = count ? instance.actions.at(r, count - 1).to : instance.actions.start[r];
     goal_.push_back(instance.grid.to_world(goal, config.cell_m));
   }
-  res_.run_id = config.run_id;
   res_.total_actions = instance.actions.actions.size();
   res_.action_finish_s.assign(res_.total_actions, std::nan(""));
-  if (!config.lockstep && config.robot_radius_m > 0) separation_.emplace(n, config.robot_radius_m);
+}
+
+RunSupervisor::RunSupervisor(Execution& execution, const SupervisorConfig& config,
+                             RunWriter& writer)
+    : config_(config), writer_(writer), exec_(&execution) {
+  init(execution.robots());
+}
+
+void RunSupervisor::init(std::size_t n) {
+  sent_ = wire::SyncCounter(n);
+  waiting_.assign(n, 0);
+  robot_seen_s_.assign(n, 0.0);
+  last_pose_.resize(n);
+  seen_done_.assign(n, 0);
+  res_.robots.resize(n);
+  res_.goal_tolerance_m =
+      config_.goal_tolerance_m > 0 ? config_.goal_tolerance_m : 0.25 * config_.cell_m;
+  res_.run_id = config_.run_id;
+  if (!config_.lockstep && config_.robot_radius_m > 0) {
+    separation_.emplace(n, config_.robot_radius_m);
+  }
+}
+
+// A lifelong run's time passes: its windows may grow (replanning); push what changed.
+void RunSupervisor::advance_time(double time_s) {
+  if (!exec_->lifelong() || over()) return;
+  std::vector<uint32_t> sent(exec_->robots());
+  for (uint32_t r = 0; r < sent.size(); ++r) sent[r] = static_cast<uint32_t>(sent_.mark(r));
+  for (const uint32_t r : exec_->on_time(time_s, sent)) publish_window(r);
+  res_.total_actions = exec_->total();
 }
 
 void RunSupervisor::end(Outcome outcome, std::string error) {
@@ -67,11 +87,11 @@ void RunSupervisor::end(Outcome outcome, std::string error) {
 
 void RunSupervisor::start(double now_s) {
   std::fill(robot_seen_s_.begin(), robot_seen_s_.end(), now_s);
-  for (uint32_t r = 0; r < in_.actions.robots(); ++r) publish_window(r);
+  for (uint32_t r = 0; r < exec_->robots(); ++r) publish_window(r);
 }
 
 void RunSupervisor::publish_window(uint32_t robot) {
-  const auto w = tracker_.window(robot, config_.window_cap);
+  const auto w = exec_->window(robot, config_.window_cap);
   writer_.publish_window(robot, res_.run_id, w);
   if (!w.empty()) sent_.raise(robot, w.end);
 }
@@ -116,29 +136,32 @@ void RunSupervisor::on_progress(const ProgressEvent& p, double now_s) {
 
 void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
   if (p.run_id != res_.run_id) return;
-  const uint32_t before = p.robot < tracker_.robots() ? tracker_.finished(p.robot) : 0;
-  const auto u = tracker_.on_progress(p.robot, p.finished_seq);
-  if (u.result == ExecutionTracker::Result::kRejected) {
+  const uint32_t before = p.robot < exec_->robots() ? exec_->finished(p.robot) : 0;
+  const auto u = exec_->on_progress(p.robot, p.finished_seq, sim_time_s);
+  if (u.result == ProgressResult::kRejected) {
     if (res_.rejected_progress++ < 5) notes_.push_back("progress rejected: " + u.reason);
     return;
   }
-  if (u.result != ExecutionTracker::Result::kAdvanced) return;
+  if (u.result != ProgressResult::kAdvanced) return;
   last_finish_sim_s_ = sim_time_s;
-  const uint32_t first = in_.actions.offset[p.robot];
-  for (uint32_t s = before; s < tracker_.finished(p.robot); ++s) {
-    res_.action_finish_s[first + s] = sim_time_s;
+  if (in_) {
+    const uint32_t first = in_->actions.offset[p.robot];
+    for (uint32_t s = before; s < exec_->finished(p.robot); ++s) {
+      res_.action_finish_s[first + s] = sim_time_s;
+    }
   }
   for (const uint32_t r : u.robots_changed) {
     publish_window(r);
-    if (tracker_.robot_done(r)) mark_done(r, sim_time_s);
+    if (exec_->robot_done(r)) mark_done(r, sim_time_s);
   }
-  res_.finished_actions = tracker_.finished_total();
+  res_.finished_actions = exec_->finished_total();
 }
 
 void RunSupervisor::try_answer() {
-  if (!handshake_.ready(tracker_.finished_total())) return;
+  if (!handshake_.ready(exec_->finished_total())) return;
   const double sim_time_s = handshake_.pending()->sim_time_s;
   res_.sim_time_s = sim_time_s;
+  advance_time(sim_time_s);
   update_waiting(sim_time_s);
   check_end();
   writer_.answer_tick(handshake_.answer(res_.run_id, sent_.total(), over()));
@@ -149,7 +172,7 @@ void RunSupervisor::update_waiting(double sim_time_s) {
   const double dt = sim_time_s - last_metrics_sim_s_;
   last_metrics_sim_s_ = sim_time_s;
   for (uint32_t r = 0; r < waiting_.size(); ++r) {
-    const bool w = !tracker_.robot_done(r) && tracker_.enqueued(r) == tracker_.finished(r);
+    const bool w = !exec_->robot_done(r) && exec_->enqueued(r) == exec_->finished(r);
     if (w) {
       res_.robots[r].waiting_time_s += dt;
       if (!waiting_[r]) ++res_.robots[r].stops;
@@ -160,11 +183,11 @@ void RunSupervisor::update_waiting(double sim_time_s) {
 
 void RunSupervisor::check_end() {
   if (over()) return;
-  if (tracker_.complete()) {
+  if (exec_->complete()) {
     end(Outcome::kSuccess, "");
-  } else if (tracker_.deadlocked()) {
+  } else if (exec_->deadlocked()) {
     end(Outcome::kDeadlock, "deadlock: no robot has an action it may execute, yet " +
-                                std::to_string(tracker_.total() - tracker_.finished_total()) +
+                                std::to_string(exec_->total() - exec_->finished_total()) +
                                 " actions remain; the action dependency graph cannot progress");
   } else if (res_.sim_time_s - last_finish_sim_s_ > config_.stall_timeout_s) {
     end(Outcome::kStalled, "stalled: no action finished for " +
@@ -187,7 +210,7 @@ bool RunSupervisor::on_state(const StateEvent& s, double now_s) {
   robot_seen_s_[s.robot] = now_s;
   if (s.run_id != res_.run_id) return false;
   last_pose_[s.robot] = {s.x_m, s.y_m};
-  if (tracker_.robot_done(s.robot)) seen_done_[s.robot] = 1;
+  if (exec_->robot_done(s.robot)) seen_done_[s.robot] = 1;
   if (separation_) {
     separation_->on_pose(s.robot, s.x_m, s.y_m, now_s);
     res_.pose_contacts = separation_->contacts();
@@ -249,6 +272,7 @@ void RunSupervisor::poll(double now_s) {
   if (over()) return;
   if (!config_.lockstep) {
     res_.sim_time_s = now_s;
+    advance_time(now_s);
     update_waiting(now_s);
     check_end();
     if (over()) return;
@@ -264,7 +288,7 @@ void RunSupervisor::check_liveness(double now_s) {
     // window.
     last_sim_sign_s_ = now_s;
     for (uint32_t r = 0; r < robot_seen_s_.size(); ++r) {
-      if (tracker_.robot_done(r) || now_s - robot_seen_s_[r] <= config_.timeout_s) continue;
+      if (exec_->robot_done(r) || now_s - robot_seen_s_[r] <= config_.timeout_s) continue;
       return end(Outcome::kHostLost, "robot " + std::to_string(r) +
                                          ": nothing heard from its host (sim or agent) for " +
                                          std::to_string(config_.timeout_s) +
@@ -290,7 +314,7 @@ void RunSupervisor::finish(double now_s) {
     writer_.answer_tick(
         {res_.run_id, handshake_.last_answered(), res_.sim_time_s, sent_.total(), true});
   }
-  res_.finished_actions = tracker_.finished_total();
+  res_.finished_actions = exec_->finished_total();
   res_.wall_time_s = now_s;
 }
 
@@ -354,7 +378,7 @@ std::optional<std::string> RunSupervisor::collision_seen() const {
 
 std::size_t RunSupervisor::robots_done() const {
   std::size_t done = 0;
-  for (uint32_t r = 0; r < tracker_.robots(); ++r) done += tracker_.robot_done(r) ? 1 : 0;
+  for (uint32_t r = 0; r < exec_->robots(); ++r) done += exec_->robot_done(r) ? 1 : 0;
   return done;
 }
 
@@ -365,7 +389,11 @@ std::vector<std::string> RunSupervisor::take_notes() {
 }
 
 std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
-  std::vector<int64_t> target(tracker_.robots(), -1);
+  if (exec_->lifelong()) {
+    return "cannot resume a lifelong run: its graph and tasks lived in the monitor that stopped; "
+           "start a new run";
+  }
+  std::vector<int64_t> target(exec_->robots(), -1);
   uint64_t run = 0;
   std::string error = resume_check(reported, target, run);
   if (error.empty() && run == 0) {
@@ -375,7 +403,7 @@ std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
     res_.run_id = run;
     resume_fixpoint(target);
     for (uint32_t r = 0; r < target.size() && error.empty(); ++r) {
-      if (static_cast<int64_t>(tracker_.finished(r)) - 1 == target[r]) continue;
+      if (static_cast<int64_t>(exec_->finished(r)) - 1 == target[r]) continue;
       error = "cannot resume: robot " + std::to_string(r) + " reports action " +
               std::to_string(target[r]) +
               " finished, which this plan's dependency graph does not allow; use the plan, "
@@ -388,17 +416,17 @@ std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
   }
   for (uint32_t r = 0; r < target.size(); ++r) {
     // The hosts hold windows up to at least what was finished (sync totals, idl/smart.idl).
-    sent_.raise(r, tracker_.finished(r));
-    if (tracker_.robot_done(r)) {
+    sent_.raise(r, exec_->finished(r));
+    if (exec_->robot_done(r)) {
       res_.robots[r].finish_time_s = std::nan("");
       ++res_.robots_done_before_resume;
     }
   }
   res_.resumed = true;
-  res_.finished_before_resume = res_.finished_actions = tracker_.finished_total();
+  res_.finished_before_resume = res_.finished_actions = exec_->finished_total();
   notes_.push_back("resuming run " + std::to_string(run) + ": " +
-                   std::to_string(tracker_.finished_total()) + " of " +
-                   std::to_string(tracker_.total()) + " actions already finished");
+                   std::to_string(exec_->finished_total()) + " of " +
+                   std::to_string(exec_->total()) + " actions already finished");
   return {};
 }
 
@@ -427,9 +455,9 @@ void RunSupervisor::resume_fixpoint(const std::vector<int64_t>& target) {
   for (bool changed = true; changed;) {
     changed = false;
     for (uint32_t r = 0; r < target.size(); ++r) {
-      const int64_t upto = std::min<int64_t>(target[r], int64_t{tracker_.enqueued(r)} - 1);
-      if (upto <= int64_t{tracker_.finished(r)} - 1) continue;
-      if (tracker_.on_progress(r, upto).result == ExecutionTracker::Result::kAdvanced) {
+      const int64_t upto = std::min<int64_t>(target[r], int64_t{exec_->enqueued(r)} - 1);
+      if (upto <= int64_t{exec_->finished(r)} - 1) continue;
+      if (exec_->on_progress(r, upto, 0).result == ProgressResult::kAdvanced) {
         changed = true;
       }
     }

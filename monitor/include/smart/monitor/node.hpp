@@ -53,6 +53,9 @@ class MonitorNode {
  public:
   MonitorNode(const dds::Participant& participant, const dds::QosProfile& qos,
               const Instance& instance, const MonitorOptions& options);
+  // A lifelong run (execution.hpp, lifelong/): no plan, the ADG grows while robots execute.
+  MonitorNode(const dds::Participant& participant, const dds::QosProfile& qos, const Grid& grid,
+              Execution& lifelong, const MonitorOptions& options);
   ~MonitorNode();
   MonitorResult run(const std::atomic<bool>& stop_requested, const ProgressCallback& progress = {});
 

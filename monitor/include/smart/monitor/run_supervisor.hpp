@@ -178,6 +178,9 @@ class RunWriter {
 class RunSupervisor {
  public:
   RunSupervisor(const Instance& instance, const SupervisorConfig& config, RunWriter& writer);
+  // A lifelong run (execution.hpp): `execution` grows while the run goes (on_time after each
+  // answered tick or real-time poll), is complete when its duration passed, and has no final goals.
+  RunSupervisor(Execution& execution, const SupervisorConfig& config, RunWriter& writer);
 
   // Before start(): take over a run from the hosts' reported progress (any order, any
   // duplicates). Returns an error naming what does not fit; the run then is over (host lost).
@@ -207,13 +210,17 @@ class RunSupervisor {
   // Lock-step: nothing to do with progress until a tick is pending (the edge may sleep on ticks).
   bool wants_progress() const { return !config_.lockstep || handshake_.pending().has_value(); }
   const MonitorResult& result() const { return res_; }
-  const ExecutionTracker& tracker() const { return tracker_; }
+  const Execution& execution() const { return *exec_; }
+  // A plan's run: its fixed ADG's tracker (the plan view reads it).
+  const ExecutionTracker& tracker() const { return *tracker_; }
   std::size_t robots_done() const;
   // Things worth a log line (rejected progress, the resume), taken by the edge.
   std::vector<std::string> take_notes();
 
  private:
+  void init(std::size_t robots);
   void end(Outcome outcome, std::string error);
+  void advance_time(double time_s);
   void publish_window(uint32_t robot);
   void apply_progress(const ProgressEvent& p, double sim_time_s);
   void try_answer();
@@ -226,10 +233,11 @@ class RunSupervisor {
   void mark_done(uint32_t robot, double sim_time_s);
   std::optional<std::string> collision_seen() const;
 
-  const Instance& in_;
+  const Instance* in_ = nullptr;  // a plan's run; nullptr in a lifelong run
   SupervisorConfig config_;
   RunWriter& writer_;
-  ExecutionTracker tracker_;
+  std::optional<ExecutionTracker> tracker_;  // a plan's run
+  Execution* exec_ = nullptr;
   wire::MonitorHandshake handshake_;
   wire::SyncCounter sent_;                     // end of the windows published, per robot
   std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
