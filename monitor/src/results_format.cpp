@@ -249,4 +249,91 @@ std::vector<uint32_t> parse_finished_csv(std::string_view text) {
   return ok ? out : std::vector<uint32_t>{};
 }
 
+namespace {
+void put(std::string& out, const std::optional<uint32_t>& v, char sep = ',') {
+  if (v) put(out, *v, 0);
+  if (sep) out.push_back(sep);
+}
+void put(std::string& out, const std::optional<uint64_t>& v, char sep = ',') {
+  if (v) put(out, *v, 0);
+  if (sep) out.push_back(sep);
+}
+template <class T>
+bool optional_count(std::string_view f, std::optional<T>& out) {
+  out.reset();
+  if (f.empty()) return true;
+  T v{};
+  if (!number(f, v)) return false;
+  out = v;
+  return true;
+}
+}  // namespace
+
+void append_row(std::string& out, const TaskRow& r) {
+  put(out, r.task);
+  put(out, r.source_task);
+  put(out, r.robot);
+  put(out, r.errands);
+  put(out, r.errands_done);
+  put(out, r.revealed_s);
+  put(out, r.assigned_s);
+  put(out, r.opened_s);
+  put(out, r.finished_s);
+  put(out, r.finished_s ? std::optional<double>(*r.finished_s - r.revealed_s) : std::nullopt, '\n');
+}
+
+std::vector<TaskRow> parse_tasks_csv(std::string_view text) {
+  std::vector<TaskRow> out;
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    TaskRow r;
+    std::optional<double> latency;
+    if (!number(next_field(line), r.task) || !number(next_field(line), r.source_task) ||
+        !optional_count(next_field(line), r.robot) || !number(next_field(line), r.errands) ||
+        !number(next_field(line), r.errands_done) || !number(next_field(line), r.revealed_s) ||
+        !optional_number(next_field(line), r.assigned_s) ||
+        !optional_number(next_field(line), r.opened_s) ||
+        !optional_number(next_field(line), r.finished_s) ||
+        !optional_number(next_field(line), latency) || !line.empty()) {
+      throw bad_row(kTasksCsv, line_no, std::string(kTasksHeader) + " (numbers, some empty)");
+    }
+    out.push_back(r);
+  });
+  return out;
+}
+
+void append_row(std::string& out, const EventRow& r) {
+  put(out, r.t_s);
+  out += r.event;
+  out += ',';
+  put(out, r.task);
+  put(out, r.robot);
+  put(out, r.errand);
+  for (const char c : r.detail) out += c == ',' ? ';' : (c == '\n' || c == '\r') ? ' ' : c;
+  out += '\n';
+}
+
+void append_row(std::string& out, const ThroughputRow& r) {
+  put(out, r.t_s);
+  put(out, r.tasks_finished);
+  put(out, r.tasks_last_min);
+  put(out, r.planner_ms);
+  put(out, r.kept_actions);
+  put(out, r.robots_with_task, '\n');
+}
+
+std::vector<ThroughputRow> parse_throughput_csv(std::string_view text) {
+  std::vector<ThroughputRow> out;
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    ThroughputRow r;
+    if (!number(next_field(line), r.t_s) || !number(next_field(line), r.tasks_finished) ||
+        !number(next_field(line), r.tasks_last_min) || !number(next_field(line), r.planner_ms) ||
+        !number(next_field(line), r.kept_actions) ||
+        !number(next_field(line), r.robots_with_task) || !line.empty()) {
+      throw bad_row(kThroughputCsv, line_no, std::string(kThroughputHeader) + " numbers");
+    }
+    out.push_back(r);
+  });
+  return out;
+}
+
 }  // namespace smart::results

@@ -3,13 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <map>
-#include <random>
-
 #include "smart/grid/map_reader.hpp"
 #include "smart/planning/generators.hpp"
 #include "smart/planning/pibt.hpp"
 #include "smart/planning/task_generator.hpp"
+#include "support/ideal_executor.hpp"
 
 namespace smart::monitor {
 namespace {
@@ -19,80 +17,7 @@ using Paths = std::vector<std::vector<Cell>>;
 
 Grid open_map(int w, int h) { return planning::generate_empty_map(w, h); }
 
-// Executes a LiveAdg as robots would: each robot starts its next enqueued action when it is
-// idle, holding the location it moves to from the start of the move and the one it leaves until
-// the move ends (SMART §IV-B). Asserts that no location is ever held by two robots.
-class Executor {
- public:
-  Executor(const Grid& grid, LiveAdg& adg, uint64_t seed, double delay_p = 0)
-      : grid_(grid),
-        adg_(adg),
-        rng_(seed),
-        delay_p_(delay_p),
-        busy_(adg.robots(), 0),
-        left_(adg.robots(), 0) {
-    for (uint32_t r = 0; r < adg.robots(); ++r) hold(adg.after_finished(r), r);
-  }
-
-  // One tick; returns the actions finished in it.
-  std::size_t tick() {
-    std::size_t done = 0;
-    for (uint32_t r = 0; r < adg_.robots(); ++r) {
-      if (busy_[r] && --left_[r] == 0) {
-        const Action a = adg_.action(r, adg_.finished(r));
-        if (a.type == ActionType::kMove) release(a.from, r);
-        const auto u = adg_.on_progress(r, adg_.finished(r));
-        EXPECT_EQ(u.result, ExecutionTracker::Result::kAdvanced) << u.reason;
-        busy_[r] = 0;
-        ++done;
-      }
-    }
-    for (uint32_t r = 0; r < adg_.robots(); ++r) {
-      if (busy_[r] || adg_.enqueued(r) <= adg_.finished(r)) continue;
-      if (std::bernoulli_distribution(delay_p_)(rng_)) continue;  // a delayed robot
-      const Action& a = adg_.action(r, adg_.finished(r));
-      if (a.type == ActionType::kMove) hold(a.to, r);
-      busy_[r] = 1;
-      left_[r] = 1 + static_cast<int>(rng_() % 3);
-    }
-    return done;
-  }
-  bool busy() const {
-    for (auto b : busy_) {
-      if (b) return true;
-    }
-    return false;
-  }
-  // What was sent: as the supervisor sends, at most `cap` enqueued actions ahead.
-  std::vector<uint32_t> sent(uint32_t cap) const {
-    std::vector<uint32_t> s(adg_.robots());
-    for (uint32_t r = 0; r < s.size(); ++r) s[r] = adg_.window(r, cap).end;
-    return s;
-  }
-  uint64_t conflicts = 0;
-
- private:
-  void hold(HalfCell h, uint32_t r) {
-    const auto [it, fresh] = held_.try_emplace(grid_.half_index(h), r);
-    if (!fresh && it->second != r) {
-      ++conflicts;
-      ADD_FAILURE() << "robots " << it->second << " and " << r << " hold " << to_string(h);
-    }
-  }
-  void release(HalfCell h, uint32_t r) {
-    const auto it = held_.find(grid_.half_index(h));
-    ASSERT_TRUE(it != held_.end() && it->second == r) << "robot " << r << " left " << to_string(h);
-    held_.erase(it);
-  }
-
-  const Grid& grid_;
-  LiveAdg& adg_;
-  std::mt19937_64 rng_;
-  double delay_p_;
-  std::vector<uint8_t> busy_;
-  std::vector<int> left_;
-  std::map<std::size_t, uint32_t> held_;
-};
+using Executor = test::IdealExecutor;
 
 TEST(LiveAdg, ACrossingIsOrderedAndExecuted) {
   const auto g = open_map(3, 3);
@@ -106,7 +31,7 @@ TEST(LiveAdg, ACrossingIsOrderedAndExecuted) {
   const auto waits = adg.waits_for(1, 2);
   ASSERT_EQ(waits.size(), 1u);
   EXPECT_EQ(waits[0], (NodeRef{0, 2}));  // robot 0 leaving (1,1)
-  EXPECT_EQ(adg.on_progress(0, 2).robots_changed, (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(adg.on_progress(0, 2, 0.0).robots_changed, (std::vector<uint32_t>{0, 1}));
   EXPECT_EQ(adg.enqueued(1), 5u);
 }
 
@@ -154,7 +79,7 @@ TEST(LiveAdg, TheCutKeepsEveryPredecessorOfAKeptAction) {
   EXPECT_EQ(cut.cell[0], (Cell{1, 1}));
   // Nothing is stranded: the kept actions run to the end without a new window.
   adg.truncate(cut);
-  Executor ex(g, adg, 1);
+  Executor ex(g, adg, {{0, 1}, {1, 0}}, 1);
   for (int t = 0; t < 50; ++t) ex.tick();
   EXPECT_EQ(adg.finished(0), 2u);
   EXPECT_EQ(adg.finished(1), 5u);
@@ -181,7 +106,7 @@ void run_stream(const StreamCase& c) {
   planning::DistanceCache dist(g);
   planning::Pibt pibt(g, dist, c.seed);
   LiveAdg adg(g, starts, Heading::kEast);
-  Executor ex(g, adg, c.seed + 1, c.delay_p);
+  Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
   std::vector<std::size_t> task(robots);
   for (std::size_t r = 0; r < robots; ++r) task[r] = r;
   std::size_t next = robots, reached = 0, executed = 0;

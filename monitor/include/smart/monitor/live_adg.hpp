@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/execution.hpp"
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
@@ -57,7 +58,7 @@ struct AppendStats {
   std::size_t type2 = 0;
 };
 
-class LiveAdg {
+class LiveAdg final : public Execution {
  public:
   using Update = ExecutionTracker::Update;
   using Window = ExecutionTracker::Window;
@@ -67,20 +68,27 @@ class LiveAdg {
   // --- execution ---
   // `finished` sees each action this progress finishes, in order, before it is dropped.
   Update on_progress(uint32_t robot, int64_t finished_seq,
-                     const std::function<void(const Action&)>& finished = {});
-  Window window(uint32_t robot, uint32_t cap) const;
-  std::size_t robots() const { return robots_.size(); }
-  uint32_t finished(uint32_t r) const { return robots_[r].finished; }
-  uint32_t enqueued(uint32_t r) const { return robots_[r].enqueued; }
+                     const std::function<void(const Action&)>& finished);
+  Update on_progress(uint32_t robot, int64_t finished_seq, double /*time_s*/) override {
+    return on_progress(robot, finished_seq, std::function<void(const Action&)>{});
+  }
+  Window window(uint32_t robot, uint32_t cap) const override;
+  std::size_t robots() const override { return robots_.size(); }
+  uint32_t finished(uint32_t r) const override { return robots_[r].finished; }
+  uint32_t enqueued(uint32_t r) const override { return robots_[r].enqueued; }
   uint32_t end(uint32_t r) const { return robots_[r].base + uint32_t(robots_[r].nodes.size()); }
+  uint32_t known(uint32_t r) const override { return end(r); }
   // An unfinished action: seq in [finished(r), end(r)).
-  const Action& action(uint32_t r, uint32_t seq) const { return node(r, seq).action; }
-  std::size_t finished_total() const { return finished_total_; }
+  const Action& action(uint32_t r, uint32_t seq) const override { return node(r, seq).action; }
+  bool robot_done(uint32_t) const override { return false; }
+  std::size_t total() const override { return appended_total_; }
+  bool complete() const override { return false; }  // a growing graph has no end of its own
+  std::size_t finished_total() const override { return finished_total_; }
   std::size_t appended_total() const { return appended_total_; }
   std::size_t unfinished_total() const { return appended_total_ - finished_total_; }
   std::size_t type2_total() const { return type2_total_; }
   // No robot has an enqueued unfinished action, yet some remain.
-  bool deadlocked() const;
+  bool deadlocked() const override;
   // Where the robot stands after its last finished action: a cell or an edge midpoint.
   HalfCell after_finished(uint32_t r) const { return robots_[r].done; }
   Heading heading_after_finished(uint32_t r) const { return robots_[r].done_heading; }

@@ -143,4 +143,52 @@ std::string finished_csv(const std::vector<uint32_t>& finished);
 // The counts by robot; empty when the text is not such a file (e.g. torn).
 std::vector<uint32_t> parse_finished_csv(std::string_view text);
 
+// Lifelong runs (`smart run --lifelong`, lifelong/): three more files, streamed while the run goes.
+inline constexpr std::string_view kTasksCsv = "tasks.csv";
+inline constexpr std::string_view kEventsCsv = "events.csv";
+inline constexpr std::string_view kThroughputCsv = "throughput.csv";
+
+// tasks.csv: a row per task once it finished (and, at the run's end, every task still open).
+// latency_s = finished_s - revealed_s (LoRR's task latency); empty fields: not (yet) happened.
+inline constexpr std::string_view kTasksHeader =
+    "task,source_task,robot,errands,errands_done,revealed_s,assigned_s,opened_s,finished_s,"
+    "latency_s";
+struct TaskRow {
+  uint64_t task = 0;         // revealed order (LoRR's task_id)
+  uint32_t source_task = 0;  // line of the tasks file / generated task it repeats
+  std::optional<uint32_t> robot;
+  uint32_t errands = 0, errands_done = 0;
+  double revealed_s = 0;
+  std::optional<double> assigned_s, opened_s, finished_s;
+};
+void append_row(std::string& out, const TaskRow& row);
+std::vector<TaskRow> parse_tasks_csv(std::string_view text);
+
+// events.csv: what happened to tasks and windows, in order. event: revealed, assigned, opened
+// (first errand done), errand (a later errand done), finished, window (a plan appended), refused
+// (a window refused: detail says why). task/robot/errand empty where they do not apply.
+inline constexpr std::string_view kEventsHeader = "t_s,event,task,robot,errand,detail";
+struct EventRow {
+  double t_s = 0;
+  std::string event;
+  std::optional<uint64_t> task;
+  std::optional<uint32_t> robot;
+  std::optional<uint32_t> errand;
+  std::string detail;  // commas and newlines replaced by ';' and ' '
+};
+void append_row(std::string& out, const EventRow& row);
+
+// throughput.csv: a row per planning call: tasks finished so far and over the last sim minute,
+// the planner's wall time, the actions kept by the commit cut, robots with a task.
+inline constexpr std::string_view kThroughputHeader =
+    "t_s,tasks_finished,tasks_last_min,planner_ms,kept_actions,robots_with_task";
+struct ThroughputRow {
+  double t_s = 0;
+  uint64_t tasks_finished = 0, tasks_last_min = 0;
+  double planner_ms = 0;
+  uint64_t kept_actions = 0, robots_with_task = 0;
+};
+void append_row(std::string& out, const ThroughputRow& row);
+std::vector<ThroughputRow> parse_throughput_csv(std::string_view text);
+
 }  // namespace smart::results

@@ -1,0 +1,114 @@
+// Contract: a lifelong run as the monitor executes it (monitor/execution.hpp): tasks stream in
+// (task_manager.hpp), a planner plans windows from the commit cut, and the ADG grows while the
+// robots execute (monitor/live_adg.hpp). Pure: the run supervisor tells it the time (sim time in
+// lock-step, the monitor's wall time in real time); the planner's wall time is measured only
+// through the clock it is given, and never decides anything.
+// Replanning (on_time): when it is due (every period_s, and with min_unfinished k > 0 also as
+// soon as a robot with a task has at most k unfinished actions: Hönig et al. 2019's event-based
+// policy), the commit cut keeps what was sent plus `lookahead` actions per robot (closed, never on
+// a midpoint), everything beyond it is dropped (never sent), new tasks are revealed and assigned,
+// and the planner plans `window_steps` timesteps from every robot's cut cell toward its errands.
+// The clock never stops for the planner: the cut's actions keep running. In lock-step the window
+// is appended once `budget_s` of sim time has passed since the cut (a fixed charge per call, so
+// a run is the same for a seed whatever the machine's speed); in real time it is appended at
+// once after planning. Robots that run out of actions stop on the cut's cells (never mid-edge)
+// until the window arrives. A window the graph refuses (live_adg.hpp) is logged as a refused
+// event; robots then stop safely at the cut and the next call replans.
+// The run is complete when the time reaches duration_s. Records: task and window events, a
+// throughput row per call (results_format.hpp), planner calls and wall time.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "smart/lifelong/scheduler.hpp"
+#include "smart/lifelong/task_manager.hpp"
+#include "smart/monitor/execution.hpp"
+#include "smart/monitor/live_adg.hpp"
+#include "smart/planning/distance_cache.hpp"
+#include "smart/planning/pibt.hpp"
+
+namespace smart::lifelong {
+
+struct LifelongOptions {
+  double duration_s = 600;      // the run ends here (sim time, or wall time in real time)
+  double period_s = 1.0;        // replanning period
+  uint32_t min_unfinished = 0;  // event-based replanning trigger k; 0: periodic only
+  int window_steps = 10;        // planned timesteps per window
+  uint32_t lookahead = 4;       // actions kept per robot beyond what was sent
+  double budget_s = 0;          // lock-step: sim time charged per planning call
+  std::size_t task_pool = 0;    // revealed unfinished tasks; 0: one per robot
+  uint64_t seed = 1;
+  grid::Heading initial_heading = grid::Heading::kEast;
+};
+
+struct LifelongStats {
+  uint64_t planner_calls = 0;
+  double planner_total_ms = 0, planner_max_ms = 0;
+  uint64_t windows_refused = 0;
+  uint64_t appended_actions = 0, type2_edges = 0;
+  uint64_t tasks_finished = 0, tasks_revealed = 0;
+};
+
+class LifelongExecution final : public monitor::Execution {
+ public:
+  // `wall_ms` measures the planner (e.g. a steady clock in ms); empty: not measured.
+  LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
+                    std::vector<grid::Task> tasks, const LifelongOptions& options,
+                    std::function<double()> wall_ms = {});
+
+  monitor::ProgressUpdate on_progress(uint32_t robot, int64_t finished_seq, double time_s) override;
+  std::vector<uint32_t> on_time(double time_s, const std::vector<uint32_t>& sent) override;
+  monitor::ActionWindowRange window(uint32_t robot, uint32_t cap) const override {
+    return adg_.window(robot, cap);
+  }
+  std::size_t robots() const override { return adg_.robots(); }
+  uint32_t finished(uint32_t r) const override { return adg_.finished(r); }
+  uint32_t enqueued(uint32_t r) const override { return adg_.enqueued(r); }
+  uint32_t known(uint32_t r) const override { return adg_.end(r); }
+  const grid::Action& action(uint32_t r, uint32_t seq) const override {
+    return adg_.action(r, seq);
+  }
+  bool robot_done(uint32_t) const override { return false; }
+  std::size_t finished_total() const override { return adg_.finished_total(); }
+  std::size_t total() const override { return adg_.appended_total(); }
+  bool complete() const override { return now_s_ >= options_.duration_s; }
+  bool deadlocked() const override { return adg_.deadlocked(); }
+  bool lifelong() const override { return true; }
+
+  const LifelongStats& stats() const { return stats_; }
+  TaskManager& tasks() { return tasks_; }
+  const monitor::LiveAdg& adg() const { return adg_; }
+  std::vector<results::EventRow> take_events();
+  std::vector<results::ThroughputRow> take_throughput();
+
+ private:
+  bool due(double time_s) const;
+  void plan(double time_s, const std::vector<uint32_t>& sent);
+  std::vector<uint32_t> append_pending(double time_s);
+
+  const grid::Grid& grid_;
+  LifelongOptions options_;
+  std::function<double()> wall_ms_;
+  monitor::LiveAdg adg_;
+  GreedyNearestScheduler scheduler_;
+  TaskManager tasks_;
+  planning::DistanceCache distances_;
+  planning::Pibt planner_;
+  struct Pending {
+    std::vector<std::vector<grid::Cell>> paths;
+    double release_s = 0;
+  };
+  std::optional<Pending> pending_;
+  double now_s_ = 0;
+  double next_plan_s_ = 0;
+  std::vector<double> finish_times_;  // tasks finished in the last minute (throughput)
+  LifelongStats stats_;
+  std::vector<results::EventRow> events_;
+  std::vector<results::ThroughputRow> throughput_;
+};
+
+}  // namespace smart::lifelong

@@ -1,0 +1,133 @@
+#include "smart/lifelong/lifelong_execution.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace smart::lifelong {
+
+namespace {
+std::size_t pool_of(const LifelongOptions& o, std::size_t robots) {
+  return o.task_pool > 0 ? o.task_pool : std::max<std::size_t>(1, robots);
+}
+}  // namespace
+
+LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
+                                     std::vector<grid::Task> tasks, const LifelongOptions& options,
+                                     std::function<double()> wall_ms)
+    : grid_(grid),
+      options_(options),
+      wall_ms_(std::move(wall_ms)),
+      adg_(grid, starts, options.initial_heading),
+      tasks_(std::move(tasks), starts.size(), pool_of(options, starts.size()), scheduler_),
+      distances_(grid),
+      planner_(grid, distances_, options.seed) {}
+
+monitor::ProgressUpdate LifelongExecution::on_progress(uint32_t robot, int64_t finished_seq,
+                                                       double time_s) {
+  std::vector<grid::Cell> reached;
+  auto u = adg_.on_progress(robot, finished_seq, [&](const grid::Action& a) {
+    if (a.type == grid::ActionType::kMove && a.to.is_cell()) {
+      reached.push_back({a.to.x2 / 2, a.to.y2 / 2});
+    }
+  });
+  const uint64_t before = tasks_.finished();
+  for (const auto c : reached) tasks_.on_reached(robot, c, time_s);
+  for (uint64_t k = before; k < tasks_.finished(); ++k) finish_times_.push_back(time_s);
+  return u;
+}
+
+bool LifelongExecution::due(double time_s) const {
+  if (time_s >= next_plan_s_) return true;
+  if (options_.min_unfinished == 0) return false;
+  for (uint32_t r = 0; r < adg_.robots(); ++r) {
+    if (tasks_.task_of(r) && adg_.end(r) - adg_.finished(r) <= options_.min_unfinished) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<uint32_t> LifelongExecution::on_time(double time_s, const std::vector<uint32_t>& sent) {
+  now_s_ = std::max(now_s_, time_s);
+  std::vector<uint32_t> changed;
+  if (pending_ && time_s >= pending_->release_s) changed = append_pending(time_s);
+  if (!pending_ && !complete() && due(time_s)) {
+    plan(time_s, sent);
+    if (pending_ && time_s >= pending_->release_s) {
+      const auto more = append_pending(time_s);
+      changed.insert(changed.end(), more.begin(), more.end());
+    }
+  }
+  return changed;
+}
+
+void LifelongExecution::plan(double time_s, const std::vector<uint32_t>& sent) {
+  const auto cut = adg_.commit_cut(sent, options_.lookahead);
+  adg_.truncate(cut);
+  tasks_.update(time_s, cut.cell);
+  const std::size_t n = adg_.robots();
+  planning::WindowRequest req{cut.cell, std::vector<std::vector<grid::Cell>>(n),
+                              options_.window_steps};
+  for (uint32_t r = 0; r < n; ++r) {
+    // A robot standing still on its new task's errands has done them already.
+    if (adg_.finished(r) == adg_.end(r)) tasks_.reached_while_idle(r, cut.cell[r], time_s);
+    req.goals[r] = tasks_.goals(r);
+  }
+  const double w0 = wall_ms_ ? wall_ms_() : 0;
+  auto window = planner_.plan(req);
+  const double ms = wall_ms_ ? wall_ms_() - w0 : 0;
+  ++stats_.planner_calls;
+  stats_.planner_total_ms += ms;
+  stats_.planner_max_ms = std::max(stats_.planner_max_ms, ms);
+  pending_ = Pending{std::move(window.paths), time_s + options_.budget_s};
+  next_plan_s_ = time_s + options_.period_s;
+  while (!finish_times_.empty() && finish_times_.front() < time_s - 60) {
+    finish_times_.erase(finish_times_.begin());
+  }
+  throughput_.push_back({time_s, tasks_.finished(), finish_times_.size(), ms, cut.kept_unfinished,
+                         tasks_.robots_with_task()});
+}
+
+std::vector<uint32_t> LifelongExecution::append_pending(double time_s) {
+  std::vector<uint32_t> before(adg_.robots());
+  for (uint32_t r = 0; r < before.size(); ++r) before[r] = adg_.end(r);
+  monitor::AppendStats st;
+  const auto problems = adg_.append(pending_->paths, time_s, &st);
+  pending_.reset();
+  if (!problems.empty()) {
+    ++stats_.windows_refused;
+    events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt,
+                       problems.front().to_string()});
+    return {};
+  }
+  stats_.appended_actions += st.actions;
+  stats_.type2_edges += st.type2;
+  events_.push_back(
+      {time_s, "window", std::nullopt, std::nullopt, std::nullopt,
+       std::to_string(st.actions) + " actions " + std::to_string(st.type2) + " type-2 edges"});
+  std::vector<uint32_t> changed;
+  for (uint32_t r = 0; r < before.size(); ++r) {
+    if (adg_.end(r) != before[r]) changed.push_back(r);
+  }
+  return changed;
+}
+
+std::vector<results::EventRow> LifelongExecution::take_events() {
+  auto out = tasks_.take_events();
+  out.insert(out.end(), events_.begin(), events_.end());
+  events_.clear();
+  std::stable_sort(
+      out.begin(), out.end(),
+      [](const results::EventRow& a, const results::EventRow& b) { return a.t_s < b.t_s; });
+  stats_.tasks_finished = tasks_.finished();
+  stats_.tasks_revealed = tasks_.revealed();
+  return out;
+}
+
+std::vector<results::ThroughputRow> LifelongExecution::take_throughput() {
+  std::vector<results::ThroughputRow> out;
+  out.swap(throughput_);
+  return out;
+}
+
+}  // namespace smart::lifelong
