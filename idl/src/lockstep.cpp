@@ -41,6 +41,7 @@ void HostHandshake::reannounced(double now_s) { announced_at_s_ = now_s; }
 
 void HostHandshake::on_answer(const Tick& a) {
   if (a.stop) stop_ = true;
+  if (a.stop && a.tick == tick_) stop_total_ = a.sync_total;
   if (a.tick == tick_) answer_ = a;
 }
 

@@ -217,7 +217,7 @@ nlohmann::json when_known_json(const Instance& in, const MonitorResult& r, const
 }
 }  // namespace
 
-nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
+nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
   double sum = 0, makespan = 0;
   // Times are known once every action finished, whatever the verdict (a run with a collision
   // still has an AET worth reporting), except for robots done before a resume.
@@ -271,12 +271,10 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
       {"cell_m", info.cell_m},
       {"files",
        {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
-      {"plan", plan_json(in.plan, in.stats)},
-      {"adg", adg_json(in.adg.stats)},
       {"versions", {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };
   j.update(pose_contacts_json(r));
-  j.update(timing_json(in, r));
+  j["first_report_wall_s"] = r.first_progress_wall_s;
   double waiting = 0;
   uint64_t stops = 0;
   for (const auto& m : r.robots) {
@@ -286,6 +284,17 @@ nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const Ru
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
   j["stops"] = stops;
   j.update(resources_json(r, info));
+  if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
+  if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
+  if (!info.link.is_null()) j["link"] = info.link;
+  return j;
+}
+
+nlohmann::json summary_json(const Instance& in, const MonitorResult& r, const RunInfo& info) {
+  auto j = run_summary_json(r, info);
+  j["plan"] = plan_json(in.plan, in.stats);
+  j["adg"] = adg_json(in.adg.stats);
+  j.update(timing_json(in, r));
   j.update(when_known_json(in, r, info));
   return j;
 }

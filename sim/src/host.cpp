@@ -77,8 +77,12 @@ SimHostResult FleetHost::run_lockstep(const std::atomic<bool>& stop_requested) {
     if (auto answer = core_.node.take_monitor_clock(); answer && core_.stop_of_this_run(*answer)) {
       handshake_.on_answer(*answer);
     }
-    if (handshake_.stop()) return finish(true, "", true);
     core_.read_windows();
+    if (handshake_.stop()) {
+      // The final states wait for the windows the stop counts (bounded by the timeout above).
+      if (handshake_.stop_settled(core_.windows.total())) return finish(true, "", true);
+      continue;
+    }
     if (handshake_.may_step(core_.run_id, core_.windows.total())) {
       if (!core_.paced(stop_requested)) continue;  // the loop's top returns
       advance();

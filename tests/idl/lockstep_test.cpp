@@ -71,6 +71,18 @@ TEST(HostHandshake, AStopIsKeptWhateverItsTick) {
   EXPECT_FALSE(h.stop());
   h.on_answer({1, 3, 0, 0, true});
   EXPECT_TRUE(h.stop());
+  EXPECT_TRUE(h.stop_settled(0));  // a stop of another tick counts no windows of ours
+}
+
+// Regression (lifelong determinism): a stop answering the host's tick may come with windows; the
+// final states wait for them, or their queues differ run to run.
+TEST(HostHandshake, AStopAnsweringOurTickSettlesOnceItsWindowsAreIn) {
+  HostHandshake h(2.0, 0.5);
+  h.announced(7, 0);
+  h.on_answer({1, 7, 0, 12, true});
+  EXPECT_TRUE(h.stop());
+  EXPECT_FALSE(h.stop_settled(11));
+  EXPECT_TRUE(h.stop_settled(12));
 }
 
 }  // namespace

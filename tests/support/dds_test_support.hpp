@@ -131,6 +131,9 @@ enum DomainId : int {
   kSecureInsider = 225,
   kServeRestart = 226,
   kPackagedAgent = 227,  // tests/packaging/packages_test.py (given on its command line)
+  kLifelongLorr = 228,
+  kLifelongSeed = 229,  // two runs one after the other
+  kLifelongRandom = 230,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <variant>
 
+#include "run_support.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/common/child_process.hpp"
 #include "smart/dds/topics.hpp"
@@ -99,6 +100,8 @@ void check_ros_pose_robots(const std::vector<uint32_t>& ids, std::size_t robots)
     }
   }
 }
+
+}  // namespace
 
 // A sim child's report: sim-<shard>.json in the results folder, or a file of this process's
 // own in the temp folder (removed once read): the verdict is checked against it either way.
@@ -225,8 +228,11 @@ std::unique_ptr<PrivateRunKey> own_run_key(SimCliOptions& o) {
   return key;
 }
 
+namespace {
+
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
 int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
+  check_plan_run_flags(o);
   // A run this process starts whole gets a run (partition) of its own unless one was named.
   if (spawn_sim_child && !o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
   const auto in = monitor::load_instance(instance_options(o.sim.world, o.plan, o.axis, o.format));
@@ -359,6 +365,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan on a simulated fleet: `smart monitor` "
                                  "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
+  add_lifelong_options(run, ro->lifelong);
   add_sim_host_options(run, ro->sim);
   run->add_option("--sim-hosts", ro->sim.shards,
                   "start the simulated fleet as this many `smart sim --shard I/N` processes "
@@ -368,7 +375,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   group_options(run);
   run->callback([&exit_code, ro] {
     install_stop_handlers();
-    exit_code = run_monitor(*ro, true);
+    exit_code = ro->lifelong.active() ? run_lifelong(*ro) : run_monitor(*ro, true);
   });
 }
 

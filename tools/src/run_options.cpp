@@ -130,6 +130,62 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
 }
 
+void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
+  for (const char* name : {"--map", "--scen", "--plan"}) cmd->get_option(name)->required(false);
+  cmd->add_option("--lifelong", o.problem,
+                  "run a lifelong problem: a LoRR problem JSON (its map, agents and tasks "
+                  "files beside it); replaces --map/--scen/--plan")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--tasks", o.tasks,
+                  "'random': a lifelong run of seeded random tasks on --map for --agents robots "
+                  "(errands alternate endpoints and workstations where the map marks them)")
+      ->check(CLI::IsMember({"random"}));
+  cmd->add_option("--task-errands", o.errands, "errands per generated task")
+      ->check(CLI::Range(1u, 100u))
+      ->capture_default_str();
+  cmd->add_option("--duration-s", o.duration_s, "how long a lifelong run goes (sim seconds)")
+      ->check(finite_in(0.1, 1e7))
+      ->capture_default_str();
+  cmd->add_option("--replan-period-s", o.period_s, "plan a new window every this many seconds")
+      ->check(finite_in(0.05, 3600.0))
+      ->capture_default_str();
+  cmd->add_option("--replan-when-left", o.replan_when_left,
+                  "also replan as soon as a robot with a task has at most this many actions left "
+                  "(event-based, Hönig et al. 2019); 0: periodic only")
+      ->check(CLI::Range(0u, 1000u))
+      ->capture_default_str();
+  cmd->add_option("--window-steps", o.window_steps, "timesteps the planner plans per window")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--lookahead", o.lookahead,
+                  "unfinished actions the commit cut keeps per robot (at least; and the most sent "
+                  "to a robot at once in a lifelong run)")
+      ->check(CLI::Range(0u, 1000u))
+      ->capture_default_str();
+  cmd->add_option("--plan-budget-s", o.budget_s,
+                  "lock-step: sim seconds each planning call is charged (its window arrives "
+                  "then; robots keep executing the cut meanwhile)")
+      ->check(finite_in(0.0, 3600.0))
+      ->capture_default_str();
+}
+
+void check_plan_run_flags(const MonitorCliOptions& o) {
+  std::string missing;
+  for (const auto& [flag, value] :
+       {std::pair<const char*, const std::string*>{"--map", &o.sim.world.map},
+        {"--scen", &o.sim.world.scen},
+        {"--plan", &o.plan}}) {
+    if (value->empty()) missing += std::string(missing.empty() ? "" : ", ") + flag;
+  }
+  if (!missing.empty()) {
+    throw std::invalid_argument(
+        missing +
+        " required: a run executes a plan on a map for a "
+        "scenario's robots, or a lifelong problem (--lifelong PROBLEM.json, "
+        "or --tasks random with --map and --agents)");
+  }
+}
+
 monitor::Footprint robot_footprint(const WorldCliOptions& world) {
   const auto model = agent::load_robot_model(find_config_file("robots", world.robot));
   const auto f = monitor::footprint_for(model.radius_m, world.cell_m);

@@ -75,6 +75,12 @@ class HostHandshake {
   // An answer of the monitor (the newest received). A stop is kept whatever its tick.
   void on_answer(const Tick& answer);
   bool stop() const { return stop_; }
+  // A stop is settled once the windows it counts (a stop answering our tick) are all received, so
+  // the host's final states show every action the monitor sent (a lifelong run's last tick may
+  // push windows with its stop).
+  bool stop_settled(uint64_t windows_received) const {
+    return stop_ && (!stop_total_ || windows_received >= *stop_total_);
+  }
   // Step when the answer to our tick is in and the windows received add up to it.
   bool may_step(uint64_t run_id, uint64_t windows_received) const;
   // No answer yet and the last announcement is older than reannounce_s: announce again.
@@ -89,6 +95,7 @@ class HostHandshake {
   uint64_t tick_ = 0;
   std::optional<Tick> answer_;
   bool stop_ = false;
+  std::optional<uint64_t> stop_total_;  // windows a stop answering our tick counts
   double waiting_since_s_ = 0;
   double announced_at_s_ = 0;
 };

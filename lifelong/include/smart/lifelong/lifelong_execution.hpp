@@ -5,8 +5,8 @@
 // through the clock it is given, and never decides anything.
 // Replanning (on_time): when it is due (every period_s, and with min_unfinished k > 0 also as
 // soon as a robot with a task has at most k unfinished actions: Hönig et al. 2019's event-based
-// policy), the commit cut keeps what was sent plus `lookahead` actions per robot (closed, never on
-// a midpoint), everything beyond it is dropped (never sent), new tasks are revealed and assigned,
+// policy), the commit cut keeps what was sent and at least `lookahead` unfinished actions per
+// robot (closed, never on a midpoint), everything beyond it is dropped (never sent), new tasks are revealed and assigned,
 // and the planner plans `window_steps` timesteps from every robot's cut cell toward its errands.
 // The clock never stops for the planner: the cut's actions keep running. In lock-step the window
 // is appended once `budget_s` of sim time has passed since the cut (a fixed charge per call, so
@@ -38,7 +38,7 @@ struct LifelongOptions {
   double period_s = 1.0;        // replanning period
   uint32_t min_unfinished = 0;  // event-based replanning trigger k; 0: periodic only
   int window_steps = 10;        // planned timesteps per window
-  uint32_t lookahead = 4;       // actions kept per robot beyond what was sent
+  uint32_t lookahead = 8;       // unfinished actions the cut keeps per robot (at least)
   double budget_s = 0;          // lock-step: sim time charged per planning call
   std::size_t task_pool = 0;    // revealed unfinished tasks; 0: one per robot
   uint64_t seed = 1;

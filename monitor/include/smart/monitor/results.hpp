@@ -60,6 +60,9 @@ nlohmann::json build_time_json(const InstanceTimings& timings);
 
 nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
                             const RunInfo& info);
+// What every run's summary.json holds, whether it executed a plan or a lifelong stream (a
+// lifelong run adds its "lifelong" object: lifelong/, tools/).
+nlohmann::json run_summary_json(const MonitorResult& result, const RunInfo& info);
 // Streams states.csv into `dir` (created if missing); throws std::runtime_error naming the
 // file when it cannot be written.
 class StatesCsvWriter {

@@ -70,6 +70,10 @@ inline constexpr const char* kScen = "scen";
 inline constexpr const char* kPlan = "plan";    // also the plan object: {axis, ...}
 inline constexpr const char* kRobot = "robot";  // in "files"
 inline constexpr const char* kAxis = "axis";    // in "plan"
+// A lifelong run's object and the keys of it that `smart experiment` reads.
+inline constexpr const char* kLifelong = "lifelong";
+inline constexpr const char* kTasksFinished = "tasks_finished";
+inline constexpr const char* kThroughputPerMin = "throughput_per_min";
 }  // namespace summary_key
 
 // SMART's stats columns (smart-mapf/SMART server/src/ADG_server.cpp saveStats), in SMART's

@@ -53,8 +53,23 @@ struct SimCliOptions {
 // The robot model named by --robot with the command line's uncertainty overrides applied.
 agent::RobotModel run_robot_model(const SimCliOptions& o);
 
+// `smart run --lifelong` (lifelong/): where tasks come from and how windows are planned.
+struct LifelongCliOptions {
+  std::string problem;      // --lifelong PROBLEM.json (LoRR 2024/2026)
+  std::string tasks;        // --tasks random: generated on --map for --agents robots
+  uint32_t errands = 2;     // --task-errands: errands per generated task
+  double duration_s = 600;  // sim seconds (lock-step) or wall seconds (real time)
+  double period_s = 1.0;
+  uint32_t replan_when_left = 0;
+  int window_steps = 10;
+  uint32_t lookahead = 8;
+  double budget_s = 0.1;
+  bool active() const { return !problem.empty() || !tasks.empty(); }
+};
+
 struct MonitorCliOptions {
   SimCliOptions sim;  // `smart run` passes these on to its sim child
+  LifelongCliOptions lifelong;
   std::string plan, out;
   std::string stats;  // --stats FILE: a stats.csv row appended per run
   std::optional<grid::AxisOrder> axis;
@@ -78,6 +93,12 @@ void add_common_run_options(CLI::App* cmd, SimCliOptions& o);
 void add_sim_host_options(CLI::App* cmd, SimCliOptions& o);
 // The monitor's options: plan, results, run policy, progress bar.
 void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o);
+
+// --lifelong, --tasks and the replanning policy (`smart run`); --map, --scen and --plan then stop
+// being required (run_monitor checks them for plan runs).
+void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o);
+// Throws std::invalid_argument naming the flags a plan run lacks (--map, --scen, --plan).
+void check_plan_run_flags(const MonitorCliOptions& o);
 
 // How the ADG orders robots of the world's robot model on its cells (monitor/adg.hpp); throws
 // std::invalid_argument when the robots are too wide for the cells.

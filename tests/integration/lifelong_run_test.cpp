@@ -1,0 +1,128 @@
+// `smart run --lifelong`: a LoRR 2026 example problem and a generated task stream executed by the
+// real monitor and sim processes over DDS (loopback, own domains), with their result files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "smart/monitor/results_format.hpp"
+#include "support/monitor_fixtures.hpp"
+#include "support/smart_process.hpp"
+
+namespace smart::test {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+std::string maze_problem() {
+  return (benchmarks_dir() / "lorr-2026" / "maze.domain" / "maze-example_40.json").string();
+}
+
+SmartRun lifelong(const std::vector<std::string>& extra, DomainId domain, const std::string& tag) {
+  std::vector<std::string> args{"run", "--domain", std::to_string(domain), "--no-progress"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_smart(args, 180s, tag, true);
+}
+
+TEST(LifelongRun, ALorrExampleRunsItsDurationWithoutCollisionAndFinishesTasks) {
+  const auto out = temp_file("lifelong_lorr");
+  const auto r =
+      lifelong({"--lifelong", maze_problem(), "--duration-s", "120", "--out", out.string()},
+               kLifelongLorr, "lifelong_lorr");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = summary_in(r.out);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_EQ(j["robots"], 40);
+  EXPECT_DOUBLE_EQ(j["sim_time_s"].get<double>(), 120.0);
+  const auto& l = j["lifelong"];
+  EXPECT_GT(l["tasks_finished"].get<int>(), 0);
+  EXPECT_EQ(l["windows_refused"], 0);
+  EXPECT_EQ(l["task_pool"], 60);  // numTasksReveal 1.5 x 40 robots
+  EXPECT_EQ(l["lorr"]["version"], 2026);
+  EXPECT_GE(l["planner"]["calls"].get<int>(), 100);  // every sim second
+  // The files: every finished task's row, every event, a throughput row per planning call.
+  const auto tasks = results::parse_tasks_csv(slurp(out / results::kTasksCsv));
+  std::size_t finished = 0;
+  for (const auto& t : tasks) {
+    if (!t.finished_s) continue;
+    ++finished;
+    ASSERT_TRUE(t.robot && t.assigned_s && t.opened_s);
+    EXPECT_LE(t.revealed_s, *t.assigned_s);
+    EXPECT_LE(*t.opened_s, *t.finished_s);
+    EXPECT_EQ(t.errands_done, t.errands);
+  }
+  EXPECT_EQ(finished, l["tasks_finished"].get<std::size_t>());
+  const auto events = slurp(out / results::kEventsCsv);
+  EXPECT_THAT(events, HasSubstr(",revealed,"));
+  EXPECT_THAT(events, HasSubstr(",assigned,"));
+  EXPECT_THAT(events, HasSubstr(",finished,"));
+  EXPECT_THAT(events, HasSubstr(",window,"));
+  const auto rows = results::parse_throughput_csv(slurp(out / results::kThroughputCsv));
+  EXPECT_EQ(rows.size(), l["planner"]["calls"].get<std::size_t>());
+  EXPECT_EQ(rows.back().tasks_finished, finished);
+  std::filesystem::remove_all(out);
+}
+
+// The first line where two texts differ, both versions; empty when they are equal.
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream x(a), y(b);
+  std::string la, lb;
+  for (int line = 1;; ++line) {
+    const bool ga = static_cast<bool>(std::getline(x, la)),
+               gb = static_cast<bool>(std::getline(y, lb));
+    if (!ga && !gb) return "";
+    if (ga != gb || la != lb)
+      return "line " + std::to_string(line) + ": '" + la + "' vs '" + lb + "'";
+  }
+}
+
+// Lock-step lifelong runs are bit-identical for a seed: the planner is charged a fixed sim-time
+// budget, never its wall time.
+TEST(LifelongRun, TheSameSeedGivesTheSameRunInLockStep) {
+  std::vector<std::string> files[2];
+  for (int k = 0; k < 2; ++k) {
+    const auto out = temp_file("lifelong_seed_" + std::to_string(k));
+    const auto r = lifelong(
+        {"--tasks", "random", "--map", (benchmarks_dir() / "maps" / "random-32-32-20.map").string(),
+         "--agents", "25", "--seed", "5", "--duration-s", "40", "--out", out.string()},
+        kLifelongSeed, "lifelong_seed");
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const auto name : {results::kEventsCsv, results::kTasksCsv, results::kStatesCsv}) {
+      files[k].push_back(slurp(out / name));
+    }
+    std::filesystem::remove_all(out);
+  }
+  const char* names[] = {"events.csv", "tasks.csv", "states.csv"};
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_EQ(first_difference(files[0][f], files[1][f]), "") << names[f] << " differs";
+  }
+  EXPECT_THAT(files[0][0], HasSubstr(",assigned,"));
+}
+
+TEST(LifelongRun, RandomTasksOnTheWarehouseMapRunWithoutCollision) {
+  const auto r = lifelong({"--tasks", "random", "--map",
+                           (benchmarks_dir() / "maps" / "warehouse-10-20-10-2-1.map").string(),
+                           "--agents", "60", "--duration-s", "60", "--task-errands", "1"},
+                          kLifelongRandom, "lifelong_random");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = summary_in(r.out);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_EQ(j["robots"], 60);
+  EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
+}
+
+TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
+  auto r = lifelong({"--lifelong", maze_problem(), "--plan", "p.txt"}, kLifelongRandom, "ll_bad1");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("drop --plan and --scen"));
+  r = lifelong({"--tasks", "random", "--duration-s", "5"}, kLifelongRandom, "ll_bad2");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--tasks random needs --map MAP and --agents N"));
+  r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));
+}
+
+}  // namespace
+}  // namespace smart::test

@@ -1,0 +1,307 @@
+// `smart run --lifelong PROBLEM.json` and `smart run --tasks random --map M --agents N`: a
+// lifelong run on the simulated fleet (lifelong/ decides; this is the file and process edge).
+// The sim child gets the map and the robots' starts as MovingAI files written beside the results
+// (or in a temp folder): the same `smart sim` executes plan runs and lifelong runs.
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "run_support.hpp"
+#include "smart/agent/robot_model.hpp"
+#include "smart/common/memory.hpp"
+#include "smart/grid/lorr.hpp"
+#include "smart/lifelong/lifelong_execution.hpp"
+#include "smart/monitor/results_format.hpp"
+#include "smart/planning/generators.hpp"
+#include "smart/planning/task_generator.hpp"
+#include "smart/tools/cli_common.hpp"
+#include "smart/tools/machine.hpp"
+
+namespace smart::tools {
+
+namespace {
+
+struct LifelongProblem {
+  std::string source;  // the problem JSON, or the map of generated tasks
+  grid::Grid grid;
+  std::vector<grid::Cell> starts;
+  std::vector<grid::Task> tasks;
+  std::size_t pool = 0;  // revealed unfinished tasks (LoRR numTasksReveal x teamSize)
+  std::optional<grid::LorrSpec> spec;
+};
+
+LifelongProblem lorr_problem(const MonitorCliOptions& o) {
+  auto lp = grid::load_lorr_problem(o.lifelong.problem);
+  LifelongProblem p{absolute_path(o.lifelong.problem),
+                    std::move(lp.grid),
+                    std::move(lp.starts),
+                    std::move(lp.tasks),
+                    0,
+                    lp.spec};
+  if (o.sim.world.agents > 0) {
+    if (o.sim.world.agents > p.starts.size()) {
+      throw std::invalid_argument("--agents " + std::to_string(o.sim.world.agents) + ": " +
+                                  o.lifelong.problem + " has only " +
+                                  std::to_string(p.starts.size()) + " robots");
+    }
+    p.starts.resize(o.sim.world.agents);
+  }
+  p.pool = std::max<std::size_t>(
+      1, static_cast<std::size_t>(lp.spec.num_tasks_reveal * static_cast<double>(p.starts.size())));
+  return p;
+}
+
+LifelongProblem random_problem(const MonitorCliOptions& o, uint64_t seed) {
+  const auto& w = o.sim.world;
+  if (w.map.empty() || w.agents == 0) {
+    throw std::invalid_argument(
+        "--tasks random needs --map MAP and --agents N (the robots get random distinct starts)");
+  }
+  grid::MapMarks marks;
+  LifelongProblem p;
+  p.source = absolute_path(w.map);
+  p.grid = grid::load_task_map(w.map, &marks);
+  p.starts = planning::random_starts(p.grid, w.agents, seed);
+  p.tasks = planning::generate_tasks(p.grid, marks, std::max<std::size_t>(1000, 10 * w.agents),
+                                     o.lifelong.errands, seed);
+  p.pool = w.agents;
+  return p;
+}
+
+// The sim child's world: the map with plain MovingAI symbols and a scenario of the starts.
+void write_world(const LifelongProblem& p, const std::filesystem::path& dir, WorldCliOptions& w) {
+  std::filesystem::create_directories(dir);
+  const auto map = dir / "lifelong.map", scen = dir / "lifelong.scen";
+  std::ofstream(map) << planning::to_movingai_map(p.grid);
+  std::ofstream out(scen);
+  out << "version 1\n";
+  for (const auto c : p.starts) {
+    out << "0\tlifelong.map\t" << p.grid.width() << '\t' << p.grid.height() << '\t' << c.x << '\t'
+        << c.y << '\t' << c.x << '\t' << c.y << "\t0\n";
+  }
+  if (!out) throw std::runtime_error(scen.string() + ": cannot be written; check the folder");
+  w.map = map.string();
+  w.scen = scen.string();
+  w.agents = p.starts.size();
+}
+
+// events.csv, tasks.csv and throughput.csv, streamed as the run goes (memory stays flat).
+class LifelongFiles {
+ public:
+  explicit LifelongFiles(const std::string& dir) {
+    if (dir.empty()) return;
+    open(events_, dir, results::kEventsCsv, results::kEventsHeader);
+    open(tasks_, dir, results::kTasksCsv, results::kTasksHeader);
+    open(throughput_, dir, results::kThroughputCsv, results::kThroughputHeader);
+  }
+  void drain(lifelong::LifelongExecution& exec) {
+    std::string text;
+    for (const auto& e : exec.take_events()) results::append_row(text, e);
+    write(events_, text);
+    text.clear();
+    for (const auto& t : exec.tasks().take_finished()) {
+      latency_sum_s += *t.finished_s - t.revealed_s;
+      ++latency_n;
+      results::append_row(text, t);
+    }
+    write(tasks_, text);
+    text.clear();
+    for (const auto& r : exec.take_throughput()) {
+      robots_with_task_sum += static_cast<double>(r.robots_with_task);
+      ++rows;
+      results::append_row(text, r);
+    }
+    write(throughput_, text);
+  }
+  void finish(const std::vector<results::TaskRow>& unfinished) {
+    std::string text;
+    for (const auto& t : unfinished) results::append_row(text, t);
+    write(tasks_, text);
+  }
+  double latency_sum_s = 0, robots_with_task_sum = 0;
+  uint64_t latency_n = 0, rows = 0;
+
+ private:
+  static void open(std::ofstream& f, const std::string& dir, std::string_view name,
+                   std::string_view header) {
+    f.open(std::filesystem::path(dir) / name);
+    if (!f) throw std::runtime_error(dir + "/" + std::string(name) + ": cannot be written");
+    f << header << '\n';
+  }
+  static void write(std::ofstream& f, const std::string& text) {
+    if (f.is_open() && !text.empty()) f << text << std::flush;
+  }
+  std::ofstream events_, tasks_, throughput_;
+};
+
+nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& o,
+                             const lifelong::LifelongExecution& exec, const LifelongFiles& f,
+                             double sim_time_s) {
+  const auto& s = exec.stats();
+  const auto& l = o.lifelong;
+  namespace key = results::summary_key;
+  nlohmann::json j = {
+      {"problem", p.source},
+      {"duration_s", l.duration_s},
+      {key::kTasksFinished, s.tasks_finished},
+      {"tasks_revealed", s.tasks_revealed},
+      {key::kThroughputPerMin,
+       sim_time_s > 0 ? static_cast<double>(s.tasks_finished) * 60.0 / sim_time_s : 0.0},
+      {"mean_latency_s", f.latency_n ? nlohmann::json(f.latency_sum_s / double(f.latency_n))
+                                     : nlohmann::json(nullptr)},
+      {"mean_robots_with_task", f.rows ? f.robots_with_task_sum / double(f.rows) : 0.0},
+      {"task_pool", p.pool},
+      {"planner",
+       {{"name", "pibt"},
+        {"calls", s.planner_calls},
+        {"total_ms", s.planner_total_ms},
+        {"mean_ms", s.planner_calls ? s.planner_total_ms / double(s.planner_calls) : 0.0},
+        {"max_ms", s.planner_max_ms},
+        {"budget_s", l.budget_s}}},
+      {"replan_period_s", l.period_s},
+      {"replan_when_left", l.replan_when_left},
+      {"window_steps", l.window_steps},
+      {"lookahead", l.lookahead},
+      {"windows_refused", s.windows_refused},
+      {"appended_actions", s.appended_actions},
+      {"type2_edges", s.type2_edges},
+  };
+  if (p.spec) {
+    j["lorr"] = {{"version", p.spec->version},
+                 {"team_size", p.spec->team_size},
+                 {"num_tasks_reveal", p.spec->num_tasks_reveal},
+                 {"agent_counter", p.spec->agent_counter},
+                 {"agent_size", p.spec->agent_size},
+                 {"delay_config", p.spec->delay.present}};
+  }
+  return j;
+}
+
+void print_lifelong_progress(const monitor::MonitorResult& r, const LifelongCliOptions& l,
+                             uint64_t tasks, bool final) {
+  std::fprintf(stderr, "\r[lifelong] sim %.1f / %.0f s, %llu tasks done, %zu actions, %.1fx  ",
+               r.sim_time_s, l.duration_s, static_cast<unsigned long long>(tasks),
+               r.finished_actions, r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0);
+  if (final) std::fprintf(stderr, "\n");
+}
+
+lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const LifelongProblem& p,
+                                           uint64_t seed) {
+  const auto& l = o.lifelong;
+  lifelong::LifelongOptions lo;
+  lo.duration_s = l.duration_s;
+  lo.period_s = l.period_s;
+  lo.min_unfinished = l.replan_when_left;
+  lo.window_steps = l.window_steps;
+  lo.lookahead = l.lookahead;
+  lo.budget_s = o.sim.clock == sim::ClockMode::kLockstep ? l.budget_s : 0.0;
+  lo.task_pool = p.pool;
+  lo.seed = seed;
+  lo.initial_heading = o.sim.world.heading;
+  return lo;
+}
+
+monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, double radius_m) {
+  auto mo = monitor_options(o);
+  mo.robot_radius_m = radius_m;
+  mo.run.robot_radius_m = radius_m;
+  mo.run.max_sim_time_s = 0;  // the run ends at --duration-s (complete), not as a failure
+  mo.run.require_sim_status = true;
+  mo.run.join_timeout_s = 4 * mo.run.timeout_s;
+  mo.ros_plan_hz = 0;  // the plan view shows a fixed plan
+  // Bounded dispatch: a robot holds at most the cut's look-ahead, so each window can still
+  // change where it goes next (the cut keeps whatever was sent).
+  mo.run.window_cap = std::min(o.window_cap, std::max<uint32_t>(1, o.lifelong.lookahead));
+  return mo;
+}
+
+}  // namespace
+
+int run_lifelong(MonitorCliOptions o) {
+  if (!o.lifelong.problem.empty() && !o.lifelong.tasks.empty()) {
+    throw std::invalid_argument("--lifelong PROBLEM.json and --tasks random exclude each other");
+  }
+  if (!o.plan.empty() || !o.sim.world.scen.empty()) {
+    throw std::invalid_argument(
+        "a lifelong run plans as it goes: drop --plan and --scen (starts come from the "
+        "problem's agents file, or are drawn at random with --tasks random)");
+  }
+  if (robot_footprint(o.sim.world) != monitor::Footprint::kHalfCells) {
+    throw std::invalid_argument(
+        "--robot " + o.sim.world.robot + " is wider than a quarter of a --cell-m " +
+        std::to_string(o.sim.world.cell_m) +
+        " m cell: lifelong runs order robots by half cells (monitor/live_adg.hpp); use a larger "
+        "--cell-m");
+  }
+  if (!o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
+  const uint64_t seed = o.sim.seed.value_or(1);
+  const auto problem = o.lifelong.problem.empty() ? random_problem(o, seed) : lorr_problem(o);
+  std::optional<std::filesystem::path> temp;
+  if (o.out.empty()) {
+    temp = std::filesystem::temp_directory_path() / ("smart-lifelong-" + std::to_string(getpid()));
+  }
+  write_world(problem, temp ? *temp : std::filesystem::path(o.out), o.sim.world);
+  const auto robot_file = find_config_file("robots", o.sim.world.robot);
+  const auto model = agent::load_robot_model(robot_file);
+  const auto profile = run_qos_profile(o.sim.dds);
+  check_real_time_factor(o.sim);
+  if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  auto private_key = own_run_key(o.sim);
+  auto sims = spawn_sims(o, problem.starts.size(), robot_file);
+  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
+  dds::Participant participant(domain, o.sim.dds.run);
+  prove_member(participant, o.sim.dds, "monitor");
+  auto mo = lifelong_monitor_options(o, model.radius_m);
+  mo.host_check = watch(sims);
+  std::optional<monitor::StatesCsvWriter> states;
+  if (!o.out.empty()) {
+    states.emplace(o.out);
+    mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  lifelong::LifelongExecution exec(
+      problem.grid, problem.starts, problem.tasks, lifelong_options(o, problem, seed), [t0] {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+            .count();
+      });
+  LifelongFiles files(o.out);
+  spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
+               problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),
+               problem.tasks.size(), problem.pool, o.lifelong.duration_s);
+  monitor::MonitorNode node(participant, profile, problem.grid, exec, mo);
+  const bool tty = o.progress && isatty(STDERR_FILENO);
+  auto result = node.run(g_stop_requested, [&](const monitor::MonitorResult& r, std::size_t) {
+    files.drain(exec);
+    if (tty) print_lifelong_progress(r, o.lifelong, exec.tasks().finished(), false);
+  });
+  files.drain(exec);
+  files.finish(exec.tasks().unfinished());
+  if (tty) print_lifelong_progress(result, o.lifelong, exec.tasks().finished(), true);
+  for (auto& sim : sims) {
+    if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
+  }
+  auto info = run_info(o, robot_file);
+  info.map = problem.source;
+  info.scen.clear();
+  info.seed = seed;
+  info.monitor_cpu_s = common::cpu_seconds_self();
+  info.sim_cpu_s = common::cpu_seconds_children();
+  monitor::apply_sim_reports(result, sim_words(o));
+  auto summary = monitor::run_summary_json(result, info);
+  summary[results::summary_key::kLifelong] =
+      lifelong_json(problem, o, exec, files, result.sim_time_s);
+  if (!o.out.empty()) {
+    std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
+  }
+  if (temp) std::filesystem::remove_all(*temp);
+  std::cout << summary.dump(2) << std::endl;
+  if (!result.success()) spdlog::error("run failed: {}", result.error);
+  return result.success() ? kExitSuccess : kExitRunFailed;
+}
+
+}  // namespace smart::tools
