@@ -26,6 +26,7 @@ demo: build
 
 bench: build
 	$(BUILD)/bin/smart_bench
+	$(BUILD)/bin/smart_lifelong_bench
 	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map --robots 1000 --sim-seconds 20
 	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/sortation_large.map --robots 2000 --sim-seconds 20
 	$(BUILD)/bin/smart bench run --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map \

@@ -55,10 +55,22 @@ ActionQueue::Result Agent::on_window(uint64_t run_id, const std::vector<AgentAct
 }
 
 AgentSnapshot Agent::snapshot() const {
-  return {
-      controller_.last(), queue_.snapshot(),       pose_sample_, command_,       stale_,
-      had_pose_,          watchdog_stops_,         now_s_,       stall_until_s_, stall_checked_seq_,
-      last_front_move_,   last_front_heading_rad_, stalls_};
+  return {controller_.last(),
+          queue_.snapshot(),
+          pose_sample_,
+          command_,
+          stale_,
+          had_pose_,
+          watchdog_stops_,
+          now_s_,
+          stall_until_s_,
+          stall_checked_seq_,
+          last_front_move_,
+          last_front_heading_rad_,
+          stalls_,
+          delay_until_s_,
+          delay_tick_,
+          delays_};
 }
 
 void Agent::restore(const AgentSnapshot& s) {
@@ -75,6 +87,9 @@ void Agent::restore(const AgentSnapshot& s) {
   last_front_move_ = s.last_front_move;
   last_front_heading_rad_ = s.last_front_heading_rad;
   stalls_ = s.stalls;
+  delay_until_s_ = s.delay_until_s;
+  delay_tick_ = s.delay_tick;
+  delays_ = s.delays;
 }
 
 void Agent::write(Twist t) {
@@ -120,7 +135,25 @@ void Agent::maybe_stall() {
   }
 }
 
+void Agent::maybe_delay() {
+  const auto& u = config_.model.uncertainty;
+  if (!u.delays()) return;
+  const auto tick = static_cast<int64_t>(std::floor(now_s_ / kDelayTickS + 1e-9));
+  if (tick <= delay_tick_) return;
+  delay_tick_ = tick;
+  if (delayed()) return;  // one event at a time
+  if (const double d = delay_at(u, config_.robot_id, static_cast<uint64_t>(tick)); d > 0) {
+    delay_until_s_ = now_s_ + d;
+    ++delays_;
+  }
+}
+
 Twist Agent::update() {
+  maybe_delay();
+  if (delayed()) {
+    bool stopped = false;
+    return controller_.brake(&stopped);  // a safe stop where it is, even between cells
+  }
   // A few actions may end within one period (a rotation already aligned, a passed half-move).
   for (int guard = 0; guard < 64; ++guard) {
     if (queue_.empty()) {

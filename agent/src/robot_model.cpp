@@ -23,8 +23,10 @@ namespace {
 // The `uncertainty:` section: every key optional, each within its range.
 void read_uncertainty(const std::string& source, const YAML::Node& u, Uncertainty& out) {
   config::require_map(source, u, "uncertainty");
-  config::reject_unknown(source, u, "uncertainty",
-                         {"stall_probability", "stall_s", "speed_sigma", "slip_sigma", "seed"});
+  config::reject_unknown(
+      source, u, "uncertainty",
+      {"stall_probability", "stall_s", "speed_sigma", "slip_sigma", "seed", "delay_probability",
+       "delay_rate_hz", "delay_min_s", "delay_max_s", "delay_mean_ratio", "delay_std_ratio"});
   const auto read = [&](const char* key, double lo, double hi, double& v) {
     if (u[key]) v = config::number(source, u[key], std::string("uncertainty.") + key, lo, hi);
   };
@@ -32,6 +34,17 @@ void read_uncertainty(const std::string& source, const YAML::Node& u, Uncertaint
   read("stall_s", 0.0, 3600.0, out.stall_s);
   read("speed_sigma", 0.0, 1.0, out.speed_sigma);
   read("slip_sigma", 0.0, 0.5, out.slip_sigma);
+  read("delay_probability", 0.0, 1.0, out.delay_probability);
+  read("delay_rate_hz", 0.0, 10.0, out.delay_rate_hz);
+  read("delay_min_s", 0.0, 3600.0, out.delay_min_s);
+  read("delay_max_s", 0.0, 3600.0, out.delay_max_s);
+  read("delay_mean_ratio", 0.0, 1.0, out.delay_mean_ratio);
+  read("delay_std_ratio", 0.0, 10.0, out.delay_std_ratio);
+  if (out.delay_max_s < out.delay_min_s) {
+    throw ConfigError(source + ": uncertainty.delay_max_s " + std::to_string(out.delay_max_s) +
+                      " is below delay_min_s " + std::to_string(out.delay_min_s) +
+                      "; a delay lasts from min to max seconds");
+  }
   double seed = 0;
   read("seed", 0.0, 9007199254740991.0, seed);
   out.seed = static_cast<uint64_t>(seed);

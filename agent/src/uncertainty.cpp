@@ -9,7 +9,7 @@
 namespace smart::agent {
 
 namespace {
-constexpr uint32_t kStall = 1, kSpeed = 2, kSlip = 3;
+constexpr uint32_t kStall = 1, kSpeed = 2, kSlip = 3, kDelay = 4, kDelayLength = 5;
 }  // namespace
 
 double uniform01(uint64_t seed, uint32_t robot, uint32_t stream, uint64_t index) {
@@ -40,12 +40,35 @@ double slip_factor(const Uncertainty& u, uint32_t robot, uint64_t tick, int whee
   return std::clamp(1.0 + u.slip_sigma * standard_normal(u.seed, robot, kSlip, index), 0.5, 1.5);
 }
 
+double delay_at(const Uncertainty& u, uint32_t robot, uint64_t tick) {
+  if (!u.delays()) return 0;
+  const double p =
+      u.delay_rate_hz > 0 ? 1.0 - std::exp(-u.delay_rate_hz * kDelayTickS) : u.delay_probability;
+  if (uniform01(u.seed, robot, kDelay, tick) >= p) return 0;
+  const double lo = u.delay_min_s, span = std::max(0.0, u.delay_max_s - u.delay_min_s);
+  const double d =
+      u.delay_std_ratio > 0
+          ? lo + u.delay_mean_ratio * span +
+                u.delay_std_ratio * span * standard_normal(u.seed, robot, kDelayLength, tick)
+          : lo + span * uniform01(u.seed, robot, kDelayLength, tick);
+  return std::clamp(d, lo, lo + span);
+}
+
 nlohmann::json to_json(const Uncertainty& u) {
-  return {{"stall_probability", u.stall_probability},
-          {"stall_s", u.stall_s},
-          {"speed_sigma", u.speed_sigma},
-          {"slip_sigma", u.slip_sigma},
-          {"seed", u.seed}};
+  nlohmann::json j = {{"stall_probability", u.stall_probability},
+                      {"stall_s", u.stall_s},
+                      {"speed_sigma", u.speed_sigma},
+                      {"slip_sigma", u.slip_sigma},
+                      {"seed", u.seed}};
+  if (u.delays()) {
+    j["delay_probability"] = u.delay_probability;
+    j["delay_rate_hz"] = u.delay_rate_hz;
+    j["delay_min_s"] = u.delay_min_s;
+    j["delay_max_s"] = u.delay_max_s;
+    j["delay_mean_ratio"] = u.delay_mean_ratio;
+    j["delay_std_ratio"] = u.delay_std_ratio;
+  }
+  return j;
 }
 
 }  // namespace smart::agent

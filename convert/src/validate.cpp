@@ -105,7 +105,9 @@ std::string check_handover(const smart_msg_RobotHandover& h, uint32_t shards, st
                                    {"pose.y_m", h.pose.y_m},
                                    {"pose.yaw_rad", h.pose.yaw_rad},
                                    {"wheel_left_mps", h.wheel_left_mps},
-                                   {"wheel_right_mps", h.wheel_right_mps}},
+                                   {"wheel_right_mps", h.wheel_right_mps},
+                                   {"stall_until_s", h.stall_until_s},
+                                   {"delay_until_s", h.delay_until_s}},
                                   at + ".");
       !why.empty()) {
     return why;

@@ -61,23 +61,25 @@ LorrDelayConfig parse_delay(const json& d, const std::string& source,
   field(d, "seed", c.seed, false, source, "a whole number", problems);
   field(d, "minDelay", c.min_delay_ticks, true, source, "ticks, a whole number", problems);
   field(d, "maxDelay", c.max_delay_ticks, true, source, "ticks, a whole number", problems);
-  field(d, "eventModel", c.event_model, false, source, "\"bernoulli\" or \"poisson\"", problems);
+  field(d, "eventModel", c.event_model, false, source, R"("bernoulli" or "poisson")", problems);
   field(d, "pDelay", c.p_delay, true, source, "a probability per tick", problems);
-  field(d, "durationModel", c.duration_model, false, source, "\"uniform\" or \"gaussian\"",
+  field(d, "durationModel", c.duration_model, false, source, R"("uniform" or "gaussian")",
         problems);
   field(d, "gaussMeanRatio", c.gauss_mean_ratio, false, source, "a number", problems);
   field(d, "gaussStdRatio", c.gauss_std_ratio, false, source, "a number", problems);
   if (problems.size() != n) return c;
-  auto bad = [&](std::string msg) { problems.push_back({source, 0, -1, "delayConfig: " + msg}); };
+  auto bad = [&](const std::string& msg) {
+    problems.push_back({source, 0, -1, "delayConfig: " + msg});
+  };
   if (c.min_delay_ticks < 0 || c.max_delay_ticks < c.min_delay_ticks) {
     bad("minDelay " + std::to_string(c.min_delay_ticks) + " and maxDelay " +
         std::to_string(c.max_delay_ticks) + " must satisfy 0 <= minDelay <= maxDelay");
   }
   if (c.event_model != "bernoulli" && c.event_model != "poisson") {
-    bad("eventModel \"" + c.event_model + "\" is unknown; use \"bernoulli\" or \"poisson\"");
+    bad("eventModel \"" + c.event_model + R"(" is unknown; use "bernoulli" or "poisson")");
   }
   if (c.duration_model != "uniform" && c.duration_model != "gaussian") {
-    bad("durationModel \"" + c.duration_model + "\" is unknown; use \"uniform\" or \"gaussian\"");
+    bad("durationModel \"" + c.duration_model + R"(" is unknown; use "uniform" or "gaussian")");
   }
   if (!(c.p_delay >= 0 && c.p_delay <= 1)) bad("pDelay must be a probability in [0, 1]");
   if (c.gauss_std_ratio < 0) bad("gaussStdRatio must not be negative");

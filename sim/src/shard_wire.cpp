@@ -71,6 +71,9 @@ smart_msg_RobotHandover to_wire(const RobotHandover& h) {
   m.last_front_move = a.last_front_move;
   m.last_front_heading_rad = a.last_front_heading_rad;
   m.stalls = a.stalls;
+  m.delay_until_s = a.delay_until_s;
+  m.delay_tick = a.delay_tick;
+  m.delays = a.delays;
   m.reported_finished = static_cast<int32_t>(h.reported_finished);
   m.reported_executing = static_cast<int32_t>(h.reported_executing);
   return m;
@@ -113,6 +116,9 @@ RobotHandover from_wire(const smart_msg_RobotHandover& m) {
   a.last_front_move = m.last_front_move;
   a.last_front_heading_rad = m.last_front_heading_rad;
   a.stalls = m.stalls;
+  a.delay_until_s = m.delay_until_s;
+  a.delay_tick = m.delay_tick;
+  a.delays = m.delays;
   h.reported_finished = m.reported_finished;
   h.reported_executing = m.reported_executing;
   return h;

@@ -80,6 +80,37 @@ TEST(Agent, AStallHoldsTheRobotAtRestForStallSecondsThenItDrives) {
   EXPECT_EQ(r.agent.stalls(), 1u) << "a stall only from rest: the merged run does not stall";
 }
 
+// A delay event stops a moving robot where it is (between cells), braking within its limits,
+// for the event's duration; then it drives on and finishes its actions (LoRR 2026 delays).
+TEST(Agent, ADelayEventStopsAMovingRobotMidEdgeThenItDrivesOn) {
+  auto m = footbot();
+  m.uncertainty.seed = 3;
+  m.uncertainty.delay_probability = 0.05;
+  m.uncertainty.delay_min_s = 2.0;
+  m.uncertainty.delay_max_s = 2.0;
+  Drive r(m);
+  EXPECT_TRUE(r.agent.activate().ok());
+  ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 7)), ActionQueue::Result::kAccepted);
+  bool stopped_mid_edge = false, was_moving = false;
+  for (int i = 0; i < 600 && r.agent.finished_seq() < 7; ++i) {
+    const bool delayed_before = r.agent.delayed();
+    r.steps(1);
+    if (!delayed_before && r.agent.delayed() && r.speed.size() > 1 &&
+        r.speed[r.speed.size() - 2] > 0.1) {
+      was_moving = true;  // an event began while the robot drove
+    }
+    const double x = r.robot.pose().x_m;
+    const double off_grid = std::abs(x / 0.5 - std::round(x / 0.5)) * 0.5;
+    if (was_moving && r.agent.delayed() && std::abs(r.speed.back()) < 1e-6 && off_grid > 0.05) {
+      stopped_mid_edge = true;
+    }
+  }
+  EXPECT_TRUE(was_moving) << "seed 3 should start a delay while the robot drives";
+  EXPECT_TRUE(stopped_mid_edge) << "a delayed robot stops where it is, between half-cells";
+  EXPECT_EQ(r.agent.finished_seq(), 7) << "after its delays the robot finishes its actions";
+  EXPECT_GE(r.agent.delays(), 1u);
+}
+
 TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
   auto m = footbot();
   m.max_speed_mps = 0.5;

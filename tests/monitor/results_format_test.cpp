@@ -160,5 +160,30 @@ TEST(ResultsFormat, FinishedCountsRoundTripAndATornFileIsNothing) {
   EXPECT_TRUE(parse_finished_csv("").empty());
 }
 
+TEST(ResultsFormat, LifelongTaskAndThroughputRowsRoundTrip) {
+  std::string tasks(kTasksHeader);
+  tasks += '\n';
+  append_row(tasks, TaskRow{3, 1, 7u, 2, 2, 0.5, 0.5, 4.25, 9.75});
+  append_row(tasks, TaskRow{4, 2, std::nullopt, 1, 0, 1, std::nullopt, std::nullopt, std::nullopt});
+  EXPECT_NE(tasks.find("3,1,7,2,2,0.5,0.5,4.25,9.75,9.25\n"), std::string::npos) << tasks;
+  const auto rows = parse_tasks_csv(tasks);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].robot, 7u);
+  EXPECT_EQ(rows[0].finished_s, 9.75);
+  EXPECT_FALSE(rows[1].robot.has_value());
+  EXPECT_FALSE(rows[1].assigned_s.has_value());
+  std::string thr(kThroughputHeader);
+  thr += '\n';
+  append_row(thr, ThroughputRow{60, 12, 12, 1.5, 800, 40});
+  const auto t = parse_throughput_csv(thr);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].kept_actions, 800u);
+  std::string ev;
+  append_row(ev, EventRow{2.5, "refused", std::nullopt, 3u, std::nullopt, "a, b\nc"});
+  EXPECT_EQ(ev, "2.5,refused,,3,,a; b c\n");
+  EXPECT_THROW(parse_tasks_csv(std::string(kTasksHeader) + "\n1,2,x,1,0,0,,,,\n"),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace smart::results

@@ -502,5 +502,70 @@ TEST(RunSupervisor, OutcomeNames) {
   EXPECT_EQ(to_string(Outcome::kUnverified), "unverified");
 }
 
+// A lifelong run (execution.hpp) as the supervisor sees it: one robot whose graph grows by a
+// half-move each time time passes 1 s more, complete after 3 s; no final goal.
+struct GrowingExecution final : Execution {
+  std::vector<grid::Action> actions;
+  uint32_t finished_ = 0;
+  double next_s = 0, now_s = 0;
+  std::vector<std::pair<double, std::vector<uint32_t>>> calls;  // on_time's time and `sent`
+  std::size_t robots() const override { return 1; }
+  ProgressUpdate on_progress(uint32_t, int64_t seq, double) override {
+    if (seq < int64_t{finished_}) return {ProgressResult::kStale, "old", {}};
+    if (seq >= int64_t(actions.size())) return {ProgressResult::kRejected, "never sent", {}};
+    finished_ = static_cast<uint32_t>(seq + 1);
+    return {ProgressResult::kAdvanced, "", {0}};
+  }
+  std::vector<uint32_t> on_time(double t, const std::vector<uint32_t>& sent) override {
+    calls.emplace_back(t, sent);
+    now_s = t;
+    if (t < next_s) return {};
+    next_s = t + 1;
+    const auto seq = static_cast<uint32_t>(actions.size());
+    actions.push_back({0, seq, grid::ActionType::kRotate, grid::Heading::kEast, {}, {}, t, t});
+    return {0};
+  }
+  ActionWindowRange window(uint32_t, uint32_t cap) const override {
+    return {finished_, std::min<uint32_t>(uint32_t(actions.size()), finished_ + cap)};
+  }
+  uint32_t finished(uint32_t) const override { return finished_; }
+  uint32_t enqueued(uint32_t) const override { return uint32_t(actions.size()); }
+  uint32_t known(uint32_t) const override { return uint32_t(actions.size()); }
+  const grid::Action& action(uint32_t, uint32_t seq) const override { return actions[seq]; }
+  bool robot_done(uint32_t) const override { return false; }
+  std::size_t finished_total() const override { return finished_; }
+  std::size_t total() const override { return actions.size(); }
+  bool complete() const override { return now_s >= 3; }
+  bool deadlocked() const override { return false; }
+  bool lifelong() const override { return true; }
+};
+
+TEST(RunSupervisor, ALifelongExecutionGrowsAsTimePassesAndSucceedsWhenItsDurationIsOver) {
+  GrowingExecution exec;
+  FakeWriter out;
+  RunSupervisor sup(exec, lockstep_config(), out);
+  sup.start(0);
+  sup.on_clock({kRun, 0, 0.0, 0, false}, 0);
+  ASSERT_EQ(out.answers.size(), 1u);
+  EXPECT_EQ(out.answers[0].sync_total, 1u) << "the window grown at t=0 is sent before the answer";
+  ASSERT_EQ(exec.calls.size(), 1u);
+  EXPECT_EQ(exec.calls[0].second, (std::vector<uint32_t>{0})) << "nothing was sent before";
+  sup.on_progress({0, kRun, 0}, 0);
+  sup.on_clock({kRun, 1, 1.0, 1, false}, 0);  // the action finished: the graph grows again
+  EXPECT_EQ(exec.calls.back().second, (std::vector<uint32_t>{1}));
+  EXPECT_EQ(out.answers.back().sync_total, 2u);
+  EXPECT_FALSE(sup.over());
+  sup.on_progress({0, kRun, 1}, 0);
+  sup.on_clock({kRun, 2, 3.0, 2, false}, 0);
+  EXPECT_TRUE(sup.over());
+  EXPECT_TRUE(out.answers.back().stop);
+  sup.on_sim_status({kRun, 0, 0, 1.0, 10, -1, -1, 3.0});
+  sup.finish(0);
+  sup.conclude();
+  EXPECT_EQ(sup.result().outcome, Outcome::kSuccess) << sup.result().error;
+  EXPECT_TRUE(sup.result().goal_unverified.empty()) << "a lifelong run has no final goals";
+  EXPECT_NE(sup.resume({}), "") << "a lifelong run is not resumed";
+}
+
 }  // namespace
 }  // namespace smart::monitor

@@ -37,6 +37,9 @@ Exchange sample() {
   h.agent.stall_checked_seq = 12;
   h.agent.last_front_move = true;
   h.agent.stalls = 2;
+  h.agent.delay_until_s = 6.3;
+  h.agent.delay_tick = 42;
+  h.agent.delays = 3;
   h.reported_finished = 11;
   h.reported_executing = 12;
   e.outbox.handovers.push_back(h);
@@ -72,6 +75,9 @@ TEST(ShardWire, AnExchangeSurvivesTheWireBitForBit) {
   EXPECT_TRUE(same_bits(b.agent.pose.stamp_s, a.agent.pose.stamp_s));
   EXPECT_EQ(b.agent.stall_checked_seq, 12);
   EXPECT_EQ(b.agent.stalls, 2u);
+  EXPECT_TRUE(same_bits(b.agent.delay_until_s, 6.3));
+  EXPECT_EQ(b.agent.delay_tick, 42);
+  EXPECT_EQ(b.agent.delays, 3u);
   EXPECT_EQ(b.reported_executing, 12);
   ASSERT_EQ(back.outbox.ghosts.size(), 1u);
   EXPECT_EQ(back.outbox.ghosts[0].robot, 5u);

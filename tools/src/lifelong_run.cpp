@@ -13,6 +13,7 @@
 
 #include "run_support.hpp"
 #include "smart/agent/robot_model.hpp"
+#include "smart/agent/uncertainty.hpp"
 #include "smart/common/memory.hpp"
 #include "smart/grid/lorr.hpp"
 #include "smart/lifelong/lifelong_execution.hpp"
@@ -206,6 +207,25 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   return lo;
 }
 
+// A LoRR 2026 delayConfig as the agents' delay events (ticks x 0.1 s), unless flags set them.
+void apply_lorr_delays(const LifelongProblem& p, SimCliOptions& o) {
+  if (!p.spec || !p.spec->delay.present) return;
+  if (o.delay_probability || o.delay_rate_hz || o.delay_min_s || o.delay_max_s) return;
+  const auto& d = p.spec->delay;
+  const double tick_s = agent::kDelayTickS;
+  if (d.event_model == "poisson") {
+    o.delay_rate_hz = d.p_delay / tick_s;  // pDelay: expected events per tick
+  } else {
+    o.delay_probability = d.p_delay;
+  }
+  o.delay_min_s = d.min_delay_ticks * tick_s;
+  o.delay_max_s = d.max_delay_ticks * tick_s;
+  if (d.duration_model == "gaussian") {
+    o.delay_mean_ratio = d.gauss_mean_ratio;
+    o.delay_std_ratio = d.gauss_std_ratio;
+  }
+}
+
 monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, double radius_m) {
   auto mo = monitor_options(o);
   mo.robot_radius_m = radius_m;
@@ -220,9 +240,7 @@ monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, dou
   return mo;
 }
 
-}  // namespace
-
-int run_lifelong(MonitorCliOptions o) {
+void check_lifelong_flags(const MonitorCliOptions& o) {
   if (!o.lifelong.problem.empty() && !o.lifelong.tasks.empty()) {
     throw std::invalid_argument("--lifelong PROBLEM.json and --tasks random exclude each other");
   }
@@ -238,41 +256,43 @@ int run_lifelong(MonitorCliOptions o) {
         " m cell: lifelong runs order robots by half cells (monitor/live_adg.hpp); use a larger "
         "--cell-m");
   }
-  if (!o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
-  const uint64_t seed = o.sim.seed.value_or(1);
-  const auto problem = o.lifelong.problem.empty() ? random_problem(o, seed) : lorr_problem(o);
+  if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  check_real_time_factor(o.sim);
+}
+
+// Where the sim child's world files go: the results folder, or a temp folder (returned, to be
+// removed after the run).
+std::optional<std::filesystem::path> place_world(MonitorCliOptions& o, const LifelongProblem& p) {
   std::optional<std::filesystem::path> temp;
   if (o.out.empty()) {
     temp = std::filesystem::temp_directory_path() / ("smart-lifelong-" + std::to_string(getpid()));
   }
-  write_world(problem, temp ? *temp : std::filesystem::path(o.out), o.sim.world);
-  const auto robot_file = find_config_file("robots", o.sim.world.robot);
-  const auto model = agent::load_robot_model(robot_file);
+  write_world(p, temp ? *temp : std::filesystem::path(o.out), o.sim.world);
+  return temp;
+}
+
+std::function<double()> steady_ms() {
+  const auto t0 = std::chrono::steady_clock::now();
+  return [t0] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  };
+}
+
+// The monitor over DDS until the run ends; the files are streamed meanwhile.
+monitor::MonitorResult execute(const MonitorCliOptions& o, const LifelongProblem& problem,
+                               lifelong::LifelongExecution& exec, LifelongFiles& files,
+                               std::vector<common::ChildProcess>& sims, double radius_m) {
   const auto profile = run_qos_profile(o.sim.dds);
-  check_real_time_factor(o.sim);
-  if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
-  auto private_key = own_run_key(o.sim);
-  auto sims = spawn_sims(o, problem.starts.size(), robot_file);
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
   prove_member(participant, o.sim.dds, "monitor");
-  auto mo = lifelong_monitor_options(o, model.radius_m);
+  auto mo = lifelong_monitor_options(o, radius_m);
   mo.host_check = watch(sims);
   std::optional<monitor::StatesCsvWriter> states;
   if (!o.out.empty()) {
     states.emplace(o.out);
     mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  lifelong::LifelongExecution exec(
-      problem.grid, problem.starts, problem.tasks, lifelong_options(o, problem, seed), [t0] {
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-            .count();
-      });
-  LifelongFiles files(o.out);
-  spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
-               problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),
-               problem.tasks.size(), problem.pool, o.lifelong.duration_s);
   monitor::MonitorNode node(participant, profile, problem.grid, exec, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
   auto result = node.run(g_stop_requested, [&](const monitor::MonitorResult& r, std::size_t) {
@@ -282,6 +302,29 @@ int run_lifelong(MonitorCliOptions o) {
   files.drain(exec);
   files.finish(exec.tasks().unfinished());
   if (tty) print_lifelong_progress(result, o.lifelong, exec.tasks().finished(), true);
+  return result;
+}
+
+}  // namespace
+
+int run_lifelong(MonitorCliOptions o) {
+  check_lifelong_flags(o);
+  if (!o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
+  const uint64_t seed = o.sim.seed.value_or(1);
+  const auto problem = o.lifelong.problem.empty() ? random_problem(o, seed) : lorr_problem(o);
+  apply_lorr_delays(problem, o.sim);
+  const auto temp = place_world(o, problem);
+  const auto robot_file = find_config_file("robots", o.sim.world.robot);
+  const auto model = agent::load_robot_model(robot_file);
+  auto private_key = own_run_key(o.sim);
+  auto sims = spawn_sims(o, problem.starts.size(), robot_file);
+  lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks,
+                                   lifelong_options(o, problem, seed), steady_ms());
+  LifelongFiles files(o.out);
+  spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
+               problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),
+               problem.tasks.size(), problem.pool, o.lifelong.duration_s);
+  auto result = execute(o, problem, exec, files, sims, model.radius_m);
   for (auto& sim : sims) {
     if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
   }

@@ -56,6 +56,23 @@ void add_uncertainty_options(CLI::App* cmd, SimCliOptions& o) {
   cmd->add_option("--slip-sigma", o.slip_sigma,
                   "sim wheel slip: each wheel's speed times 1 + N(0, sigma) per control period")
       ->check(finite_in(0.0, 0.5));
+  cmd->add_option("--delay-probability", o.delay_probability,
+                  "chance per 0.1 s tick that a robot starts a delay event: it stops where it is "
+                  "(LoRR 2026 delays, Bernoulli)")
+      ->check(finite_in(0.0, 1.0));
+  cmd->add_option("--delay-rate-hz", o.delay_rate_hz,
+                  "delay events per robot per second (Poisson), instead of --delay-probability")
+      ->check(finite_in(0.0, 10.0));
+  cmd->add_option("--delay-min-s", o.delay_min_s, "shortest delay (sim seconds)")
+      ->check(finite_in(0.0, 3600.0));
+  cmd->add_option("--delay-max-s", o.delay_max_s, "longest delay (sim seconds)")
+      ->check(finite_in(0.0, 3600.0));
+  cmd->add_option("--delay-mean-ratio", o.delay_mean_ratio,
+                  "Gaussian delays: mean at min + ratio x (max - min)")
+      ->check(finite_in(0.0, 1.0));
+  cmd->add_option("--delay-std-ratio", o.delay_std_ratio,
+                  "Gaussian delays: sd = ratio x (max - min); 0: uniform in [min, max]")
+      ->check(finite_in(0.0, 10.0));
   cmd->add_option("--seed", o.seed, "seed of the execution uncertainty (same seed, same run)");
 }
 }  // namespace
@@ -67,6 +84,20 @@ agent::RobotModel run_robot_model(const SimCliOptions& o) {
   if (o.stall_s) u.stall_s = *o.stall_s;
   if (o.speed_sigma) u.speed_sigma = *o.speed_sigma;
   if (o.slip_sigma) u.slip_sigma = *o.slip_sigma;
+  if (o.delay_probability) u.delay_probability = *o.delay_probability;
+  if (o.delay_rate_hz) u.delay_rate_hz = *o.delay_rate_hz;
+  if (o.delay_min_s) u.delay_min_s = *o.delay_min_s;
+  if (o.delay_max_s) u.delay_max_s = *o.delay_max_s;
+  if (o.delay_mean_ratio) u.delay_mean_ratio = *o.delay_mean_ratio;
+  if (o.delay_std_ratio) u.delay_std_ratio = *o.delay_std_ratio;
+  if (u.delay_max_s < u.delay_min_s) {
+    throw std::invalid_argument("--delay-max-s " + exact(u.delay_max_s) +
+                                " is below the shortest "
+                                "delay " +
+                                exact(u.delay_min_s) +
+                                "; give --delay-min-s <= "
+                                "--delay-max-s");
+  }
   if (o.seed) u.seed = *o.seed;
   return m;
 }
@@ -322,7 +353,13 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
   for (const auto& [flag, v] : {std::pair{"--stall-probability", o.stall_probability},
                                 {"--stall-s", o.stall_s},
                                 {"--speed-sigma", o.speed_sigma},
-                                {"--slip-sigma", o.slip_sigma}}) {
+                                {"--slip-sigma", o.slip_sigma},
+                                {"--delay-probability", o.delay_probability},
+                                {"--delay-rate-hz", o.delay_rate_hz},
+                                {"--delay-min-s", o.delay_min_s},
+                                {"--delay-max-s", o.delay_max_s},
+                                {"--delay-mean-ratio", o.delay_mean_ratio},
+                                {"--delay-std-ratio", o.delay_std_ratio}}) {
     if (v) argv.insert(argv.end(), {flag, exact(*v)});
   }
   if (o.seed) argv.insert(argv.end(), {"--seed", std::to_string(*o.seed)});

@@ -11,7 +11,9 @@
 //   robot passes its end (the last one of the run when the robot has stopped on it).
 // - Execution uncertainty (model.uncertainty, uncertainty.hpp): the robot's top speed is scaled
 //   by its speed factor; an action that starts from rest (a rotation, or a move that does not
-//   continue a run of moves along its heading) may first be held for stall_s (stalled()).
+//   continue a run of moves along its heading) may first be held for stall_s (stalled()); a
+//   delay event (LoRR's, drawn per 0.1 s tick of the robot's clock) stops the robot where it is,
+//   braking within its limits, for the event's duration (delayed()).
 // - progress: finished_seq() is cumulative (every seq <= it is done); executing_seq() is the
 //   action at the front of the queue, -1 when idle.
 #pragma once
@@ -51,6 +53,9 @@ struct AgentSnapshot {
   bool last_front_move = false;
   double last_front_heading_rad = 0;
   uint64_t stalls = 0;
+  double delay_until_s = -1;
+  int64_t delay_tick = -1;  // the last delay tick drawn
+  uint64_t delays = 0;
 };
 
 class Agent {
@@ -81,6 +86,8 @@ class Agent {
   uint64_t watchdog_stops() const { return watchdog_stops_; }
   bool stalled() const { return stall_until_s_ > now_s_; }
   uint64_t stalls() const { return stalls_; }
+  bool delayed() const { return delay_until_s_ > now_s_; }
+  uint64_t delays() const { return delays_; }
   // True when nothing is queued and the wheels are at rest: the backend may let it sleep.
   bool idle() const { return queue_.empty() && command_.left_mps == 0 && command_.right_mps == 0; }
 
@@ -92,6 +99,8 @@ class Agent {
   Twist update();
   // A new front action, from rest: maybe a stall (uncertainty.hpp).
   void maybe_stall();
+  // A new delay tick: maybe a delay event (uncertainty.hpp).
+  void maybe_delay();
 
   AgentConfig config_;
   DriveBackend& drive_;
@@ -110,6 +119,9 @@ class Agent {
   bool last_front_move_ = false;    // that action's kind and heading
   double last_front_heading_rad_ = 0;
   uint64_t stalls_ = 0;
+  double delay_until_s_ = -1;
+  int64_t delay_tick_ = -1;
+  uint64_t delays_ = 0;
 };
 
 }  // namespace smart::agent

@@ -47,6 +47,9 @@ struct SimCliOptions {
   uint32_t shard = 0, shards = 1;  // `smart sim --shard I/N` (sim/shard.hpp)
   // Execution uncertainty overrides of the robot model's `uncertainty:` section.
   std::optional<double> stall_probability, stall_s, speed_sigma, slip_sigma;
+  // Delay events (agent/uncertainty.hpp; a LoRR delayConfig sets them in lifelong runs).
+  std::optional<double> delay_probability, delay_rate_hz, delay_min_s, delay_max_s,
+      delay_mean_ratio, delay_std_ratio;
   std::optional<uint64_t> seed;
 };
 

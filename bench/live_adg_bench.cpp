@@ -1,0 +1,121 @@
+// Lifelong replanning costs (issue 27 goals: appending a 10-step window for 10 000 robots <= 50
+// ms, a commit cut <= 20 ms, on 2 cores): the LoRR 2026 examples' robots on their maps, windows
+// planned by PIBT (planning/pibt.hpp) from the previous window's cut, as a lifelong run does.
+// Run by `smart_lifelong_bench` (make bench); results in docs/performance.md.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "smart/grid/lorr.hpp"
+#include "smart/monitor/live_adg.hpp"
+#include "smart/planning/pibt.hpp"
+#include "smart/tools/machine.hpp"
+
+namespace {
+
+using namespace smart;
+
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("SMART_BENCHMARKS"); env && *env) return env;
+  return SMART_BENCHMARKS_DIR;
+}
+
+// A LoRR problem with one window appended and its next window planned from the cut: the state a
+// lifelong run is in when it appends.
+struct Scene {
+  grid::LorrProblem problem;
+  std::unique_ptr<planning::DistanceCache> dist;
+  std::unique_ptr<planning::Pibt> pibt;
+  std::unique_ptr<monitor::LiveAdg> adg;
+  monitor::CommitCut cut;
+  std::vector<std::vector<grid::Cell>> next;  // the window planned from the cut
+
+  std::vector<std::vector<grid::Cell>> goals() const {
+    std::vector<std::vector<grid::Cell>> g(problem.starts.size());
+    for (std::size_t r = 0; r < g.size(); ++r) {
+      g[r] = problem.tasks[r % problem.tasks.size()].errands;
+    }
+    return g;
+  }
+};
+
+Scene& scene(const std::string& file) {
+  static std::map<std::string, Scene> cache;
+  auto it = cache.find(file);
+  if (it != cache.end()) return it->second;
+  Scene& s = cache[file];
+  s.problem = grid::load_lorr_problem(data_dir() / "lorr-2026" / file);
+  s.dist = std::make_unique<planning::DistanceCache>(s.problem.grid);
+  s.pibt = std::make_unique<planning::Pibt>(s.problem.grid, *s.dist, 1);
+  s.adg =
+      std::make_unique<monitor::LiveAdg>(s.problem.grid, s.problem.starts, grid::Heading::kEast);
+  const auto w1 = s.pibt->plan({s.problem.starts, s.goals(), 10});
+  if (!s.adg->append(w1.paths, 0).empty()) throw std::runtime_error("window 1 refused");
+  // Robots are 3 actions into the window when the next cut is made.
+  const std::vector<uint32_t> sent(s.problem.starts.size(), 3);
+  s.cut = s.adg->commit_cut(sent, 8);
+  auto truncated = *s.adg;
+  truncated.truncate(s.cut);
+  s.next = s.pibt->plan({s.cut.cell, s.goals(), 10}).paths;
+  return s;
+}
+
+void BM_CommitCut(benchmark::State& state, const std::string& file) {
+  Scene& s = scene(file);
+  const std::vector<uint32_t> sent(s.problem.starts.size(), 3);
+  for (auto _ : state) benchmark::DoNotOptimize(s.adg->commit_cut(sent, 8));
+  state.counters["robots"] = static_cast<double>(s.problem.starts.size());
+}
+
+void BM_AppendWindow(benchmark::State& state, const std::string& file) {
+  Scene& s = scene(file);
+  std::size_t edges = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto adg = *s.adg;
+    adg.truncate(s.cut);
+    state.ResumeTiming();
+    monitor::AppendStats st;
+    if (!adg.append(s.next, 100, &st).empty()) state.SkipWithError("window refused");
+    edges = st.type2;
+    state.PauseTiming();
+    {
+      const auto drop = std::move(adg);  // freeing the copy is not the append's cost
+    }
+    state.ResumeTiming();
+  }
+  state.counters["robots"] = static_cast<double>(s.problem.starts.size());
+  state.counters["type2"] = static_cast<double>(edges);
+}
+
+void BM_PibtWindow(benchmark::State& state, const std::string& file) {
+  Scene& s = scene(file);
+  for (auto _ : state) benchmark::DoNotOptimize(s.pibt->plan({s.cut.cell, s.goals(), 10}));
+  state.counters["robots"] = static_cast<double>(s.problem.starts.size());
+}
+
+#define LIFELONG_BENCH(name, file)                                                            \
+  BENCHMARK_CAPTURE(BM_CommitCut, name, std::string(file))->Unit(benchmark::kMillisecond);    \
+  BENCHMARK_CAPTURE(BM_AppendWindow, name, std::string(file))->Unit(benchmark::kMillisecond); \
+  BENCHMARK_CAPTURE(BM_PibtWindow, name, std::string(file))->Unit(benchmark::kMillisecond)
+
+LIFELONG_BENCH(random_400, "random.domain/random-example_400.json");
+LIFELONG_BENCH(warehouse_2500, "warehouse.domain/fulfill-example_2500.json");
+LIFELONG_BENCH(iron_10000, "iron_harvest.domain/iron-example_10000.json");
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (!std::filesystem::exists(data_dir() / "lorr-2026")) {
+    std::fprintf(stderr, "smart_lifelong_bench: no lorr-2026 folder in %s; set SMART_BENCHMARKS\n",
+                 data_dir().c_str());
+    return 1;
+  }
+  benchmark::AddCustomContext("machine", smart::tools::machine_description());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
