@@ -39,6 +39,11 @@ TEST(LifelongRun, ALorrExampleRunsItsDurationWithoutCollisionAndFinishesTasks) {
   EXPECT_EQ(l["windows_refused"], 0);
   EXPECT_EQ(l["task_pool"], 60);  // numTasksReveal 1.5 x 40 robots
   EXPECT_EQ(l["lorr"]["version"], 2026);
+  // Its delayConfig (pDelay 0.0003 per tick, 5..12 ticks, Gaussian) became the agents' delays.
+  EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_probability"].get<double>(), 0.0003);
+  EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_min_s"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_max_s"].get<double>(), 1.2);
+  EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_std_ratio"].get<double>(), 0.22);
   EXPECT_GE(l["planner"]["calls"].get<int>(), 100);  // every sim second
   // The files: every finished task's row, every event, a throughput row per planning call.
   const auto tasks = results::parse_tasks_csv(slurp(out / results::kTasksCsv));
@@ -99,17 +104,21 @@ TEST(LifelongRun, TheSameSeedGivesTheSameRunInLockStep) {
   EXPECT_THAT(files[0][0], HasSubstr(",assigned,"));
 }
 
-TEST(LifelongRun, RandomTasksOnTheWarehouseMapRunWithoutCollision) {
-  const auto r = lifelong({"--tasks", "random", "--map",
-                           (benchmarks_dir() / "maps" / "warehouse-10-20-10-2-1.map").string(),
-                           "--agents", "60", "--duration-s", "60", "--task-errands", "1"},
-                          kLifelongRandom, "lifelong_random");
+TEST(LifelongRun, RandomTasksOnTheWarehouseMapRunWithDelaysAndWithoutCollision) {
+  const auto r =
+      lifelong({"--tasks", "random", "--map",
+                (benchmarks_dir() / "maps" / "warehouse-10-20-10-2-1.map").string(), "--agents",
+                "60", "--duration-s", "60", "--task-errands", "1", "--delay-probability", "0.01",
+                "--delay-min-s", "0.5", "--delay-max-s", "4"},
+               kLifelongRandom, "lifelong_random");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = summary_in(r.out);
   EXPECT_TRUE(j["success"].get<bool>());
   EXPECT_EQ(j["collisions"], 0);
   EXPECT_EQ(j["robots"], 60);
   EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
+  EXPECT_GT(j["lifelong"]["tasks_finished"].get<int>(), 0);
+  EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_probability"].get<double>(), 0.01);
 }
 
 TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
