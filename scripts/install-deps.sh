@@ -18,7 +18,7 @@ else
 packages=(
   build-essential cmake ninja-build pkg-config git
   cyclonedds-dev cyclonedds-tools
-  libsimbody-dev libeigen3-dev
+  libsimbody-dev libeigen3-dev libboost-dev
   libyaml-cpp-dev libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libi2c-dev

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <unordered_map>
 
 namespace smart::monitor {
 
@@ -10,7 +9,8 @@ namespace {
 
 constexpr double kStanding = -std::numeric_limits<double>::infinity();
 
-void erase_ref(std::vector<NodeRef>& v, NodeRef x) {
+template <class Refs>
+void erase_ref(Refs& v, NodeRef x) {
   const auto it = std::find(v.begin(), v.end(), x);
   if (it != v.end()) v.erase(it);
 }
@@ -117,7 +117,10 @@ bool LiveAdg::deadlocked() const {
   return any_left;
 }
 
-std::vector<NodeRef> LiveAdg::waits_for(uint32_t r, uint32_t seq) const { return node(r, seq).in; }
+std::vector<NodeRef> LiveAdg::waits_for(uint32_t r, uint32_t seq) const {
+  const auto& in = node(r, seq).in;
+  return {in.begin(), in.end()};
+}
 
 CommitCut LiveAdg::commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const {
   const auto n = static_cast<uint32_t>(robots_.size());
@@ -177,24 +180,35 @@ void LiveAdg::truncate(const CommitCut& cut) {
 }
 
 // Per location, the kept unfinished occupancy that is left last (the latest leaving plan time).
-std::vector<LiveAdg::Occupancy> LiveAdg::kept_last_leavers() const {
-  std::unordered_map<uint32_t, Occupancy> last;
+// A dense table over the grid's locations, reused from call to call: a slot is this call's when
+// its stamp is (no clearing, no hashing: 10 000 robots' cut in a few milliseconds).
+std::vector<LiveAdg::Occupancy> LiveAdg::kept_last_leavers() {
+  if (leaver_stamp_.size() != grid_.half_cell_count()) {
+    leaver_stamp_.assign(grid_.half_cell_count(), 0);
+    leaver_.resize(grid_.half_cell_count());
+  }
+  ++stamp_;
+  std::vector<uint32_t> touched;
   for (uint32_t r = 0; r < robots_.size(); ++r) {
     for (uint32_t s = robots_[r].finished; s < end(r); ++s) {
       const Action& a = action(r, s);
       if (a.type != ActionType::kMove) continue;
       const auto loc = static_cast<uint32_t>(grid_.half_index(a.from));
-      const auto [it, fresh] = last.try_emplace(loc);
-      if (!fresh &&
-          action(it->second.leave.robot, it->second.leave.seq).start_time >= a.start_time) {
-        continue;
+      if (leaver_stamp_[loc] == stamp_) {
+        const NodeRef l = leaver_[loc];
+        if (action(l.robot, l.seq).start_time >= a.start_time) continue;
+      } else {
+        leaver_stamp_[loc] = stamp_;
+        touched.push_back(loc);
       }
-      it->second = Occupancy{loc, 0, kStanding, r, false, {}, true, {r, s}};
+      leaver_[loc] = {r, s};
     }
   }
   std::vector<Occupancy> out;
-  out.reserve(last.size());
-  for (const auto& [loc, o] : last) out.push_back(o);
+  out.reserve(touched.size());
+  for (const uint32_t loc : touched) {
+    out.push_back(Occupancy{loc, 0, kStanding, leaver_[loc].robot, false, {}, true, leaver_[loc]});
+  }
   return out;
 }
 
@@ -229,14 +243,38 @@ std::vector<LiveAdg::Occupancy> LiveAdg::window_occupancies(
   return occ;
 }
 
-std::vector<Problem> LiveAdg::link(std::vector<Occupancy> occ,
-                                   std::vector<std::pair<NodeRef, NodeRef>>& edges) const {
-  std::sort(occ.begin(), occ.end(), [](const Occupancy& a, const Occupancy& b) {
-    if (a.location != b.location) return a.location < b.location;
-    if (a.rank != b.rank) return a.rank < b.rank;
-    if (a.arrive != b.arrive) return a.arrive < b.arrive;
-    return a.robot < b.robot;
-  });
+// Occupancies grouped by location (a counting sort over the locations touched, stamped like
+// kept_last_leavers'), each group in passing order: the last kept leaver, then by arrival.
+std::vector<LiveAdg::Occupancy> LiveAdg::by_location(const std::vector<Occupancy>& occ) {
+  ++stamp_;
+  std::vector<uint32_t> count;
+  for (const auto& o : occ) {
+    if (leaver_stamp_[o.location] != stamp_) {
+      leaver_stamp_[o.location] = stamp_;
+      leaver_[o.location] = {static_cast<uint32_t>(count.size()), 0};  // the group's id
+      count.push_back(0);
+    }
+    ++count[leaver_[o.location].robot];
+  }
+  std::vector<uint32_t> start(count.size() + 1, 0);
+  for (std::size_t g = 0; g < count.size(); ++g) start[g + 1] = start[g] + count[g];
+  std::vector<Occupancy> sorted(occ.size());
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (const auto& o : occ) sorted[fill[leaver_[o.location].robot]++] = o;
+  for (std::size_t g = 0; g < count.size(); ++g) {
+    std::sort(sorted.begin() + start[g], sorted.begin() + start[g + 1],
+              [](const Occupancy& a, const Occupancy& b) {
+                if (a.rank != b.rank) return a.rank < b.rank;
+                if (a.arrive != b.arrive) return a.arrive < b.arrive;
+                return a.robot < b.robot;
+              });
+  }
+  return sorted;
+}
+
+std::vector<Problem> LiveAdg::link(const std::vector<Occupancy>& unsorted,
+                                   std::vector<std::pair<NodeRef, NodeRef>>& edges) {
+  const auto occ = by_location(unsorted);
   std::vector<Problem> problems;
   for (std::size_t i = 1; i < occ.size(); ++i) {
     const Occupancy& p = occ[i - 1];
@@ -260,30 +298,40 @@ std::vector<Problem> LiveAdg::check_window_acyclic(
     const std::vector<std::vector<Action>>& acts,
     const std::vector<std::pair<NodeRef, NodeRef>>& edges) const {
   // Dense ids of the new actions; old actions never wait for new ones, so only new-to-new edges
-  // can close a cycle.
+  // can close a cycle. Type-1 successors are implicit (k -> k + 1 within a robot), Type-2 ones in
+  // compressed rows.
   std::vector<uint32_t> first(acts.size() + 1, 0);
   for (std::size_t r = 0; r < acts.size(); ++r) first[r + 1] = first[r] + uint32_t(acts[r].size());
-  auto id = [&](NodeRef n) -> int64_t {
-    return n.seq < end(n.robot) ? -1 : int64_t{first[n.robot] + (n.seq - end(n.robot))};
-  };
   const uint32_t n = first.back();
-  std::vector<uint32_t> indegree(n, 0);
-  std::vector<std::vector<uint32_t>> out(n);
+  auto id = [&](NodeRef x) -> int64_t {
+    return x.seq < end(x.robot) ? -1 : int64_t{first[x.robot] + (x.seq - end(x.robot))};
+  };
+  std::vector<uint32_t> indegree(n, 0), begin(n + 1, 0), list;
+  std::vector<uint8_t> last(n, 0);  // the last new action of its robot (no Type-1 successor)
   for (std::size_t r = 0; r < acts.size(); ++r) {
-    for (uint32_t k = first[r] + 1; k < first[r + 1]; ++k) out[k - 1].push_back(k), ++indegree[k];
+    for (uint32_t k = first[r] + 1; k < first[r + 1]; ++k) ++indegree[k];
+    if (first[r + 1] > first[r]) last[first[r + 1] - 1] = 1;
   }
+  std::vector<std::pair<uint32_t, uint32_t>> t2;
   for (const auto& [u, v] : edges) {
     if (id(u) < 0) continue;
-    out[static_cast<uint32_t>(id(u))].push_back(static_cast<uint32_t>(id(v)));
-    ++indegree[static_cast<uint32_t>(id(v))];
+    t2.emplace_back(static_cast<uint32_t>(id(u)), static_cast<uint32_t>(id(v)));
+    ++begin[t2.back().first + 1];
+    ++indegree[t2.back().second];
   }
+  for (uint32_t v = 0; v < n; ++v) begin[v + 1] += begin[v];
+  list.resize(t2.size());
+  std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+  for (const auto& [u, v] : t2) list[fill[u]++] = v;
   std::vector<uint32_t> queue;
   for (uint32_t v = 0; v < n; ++v) {
     if (indegree[v] == 0) queue.push_back(v);
   }
   for (std::size_t h = 0; h < queue.size(); ++h) {
-    for (const uint32_t v : out[queue[h]]) {
-      if (--indegree[v] == 0) queue.push_back(v);
+    const uint32_t u = queue[h];
+    if (!last[u] && --indegree[u + 1] == 0) queue.push_back(u + 1);
+    for (uint32_t i = begin[u]; i < begin[u + 1]; ++i) {
+      if (--indegree[list[i]] == 0) queue.push_back(list[i]);
     }
   }
   if (queue.size() == n) return {};
@@ -332,7 +380,7 @@ std::vector<Problem> LiveAdg::append(const std::vector<std::vector<Cell>>& paths
   const auto kept = kept_last_leavers();
   occ.insert(occ.end(), kept.begin(), kept.end());
   std::vector<std::pair<NodeRef, NodeRef>> edges;
-  problems = link(std::move(occ), edges);
+  problems = link(occ, edges);
   if (problems.empty()) problems = check_window_acyclic(acts, edges);
   if (!problems.empty()) return problems;
 

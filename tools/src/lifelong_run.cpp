@@ -344,6 +344,14 @@ int run_lifelong(MonitorCliOptions o) {
   if (temp) std::filesystem::remove_all(*temp);
   std::cout << summary.dump(2) << std::endl;
   if (!result.success()) spdlog::error("run failed: {}", result.error);
+  if (!result.success() && exec.stats().planner_max_ms > 500 * o.sim.timeout_s) {
+    // A lock-step sim waits for the monitor's answer at most --timeout-s; a planner call holds
+    // it (its distance tables: one BFS over the map per goal cell, planning/distance_cache.hpp).
+    spdlog::error(
+        "a planning call took {:.1f} s, longer than half of --timeout-s {} s that the sim waits "
+        "for an answer: give a larger --timeout-s, or fewer robots on this map",
+        exec.stats().planner_max_ms / 1000, o.sim.timeout_s);
+  }
   return result.success() ? kExitSuccess : kExitRunFailed;
 }
 
