@@ -107,6 +107,7 @@ class LiveAdg final : public Execution {
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
   // boost::container::small_vector), which halves an append's time at 10 000 robots.
   using Refs = boost::container::small_vector<NodeRef, 2>;
+  // NOLINTNEXTLINE(bugprone-exception-escape): clang-tidy 14 flags the implicit special members
   struct Node {
     Action action;
     uint32_t pending = 0;  // unfinished Type-2 predecessors
