@@ -104,7 +104,7 @@ TEST(LifelongRun, TheSameSeedGivesTheSameRunInLockStep) {
   EXPECT_THAT(files[0][0], HasSubstr(",assigned,"));
 }
 
-TEST(LifelongRun, RandomTasksOnTheWarehouseMapRunWithDelaysAndWithoutCollision) {
+TEST(LifelongRun, GeneratedStreamsRunWithDelaysInLockStepAndInRealTime) {
   const auto r =
       lifelong({"--tasks", "random", "--map",
                 (benchmarks_dir() / "maps" / "warehouse-10-20-10-2-1.map").string(), "--agents",
@@ -119,6 +119,20 @@ TEST(LifelongRun, RandomTasksOnTheWarehouseMapRunWithDelaysAndWithoutCollision) 
   EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
   EXPECT_GT(j["lifelong"]["tasks_finished"].get<int>(), 0);
   EXPECT_DOUBLE_EQ(j["uncertainty"]["delay_probability"].get<double>(), 0.01);
+
+  // Real time, next on the same domain: the fleet moves on the wall clock while the monitor
+  // replans every second.
+  const auto rt =
+      lifelong({"--lifelong", maze_problem(), "--clock", "realtime", "--duration-s", "5"},
+               kLifelongRandom, "lifelong_realtime");
+  ASSERT_EQ(rt.code, 0) << rt.out;
+  const auto k = summary_in(rt.out);
+  EXPECT_TRUE(k["success"].get<bool>());
+  EXPECT_EQ(k["clock"], "realtime");
+  EXPECT_GE(k["sim_time_s"].get<double>(), 5.0);
+  EXPECT_GE(k["lifelong"]["planner"]["calls"].get<int>(), 3);
+  EXPECT_GT(k["finished_actions"].get<int>(), 0);
+  EXPECT_EQ(k["lifelong"]["windows_refused"], 0);
 }
 
 TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {

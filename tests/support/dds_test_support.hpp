@@ -133,7 +133,7 @@ enum DomainId : int {
   kPackagedAgent = 227,  // tests/packaging/packages_test.py (given on its command line)
   kLifelongLorr = 228,
   kLifelongSeed = 229,  // two runs one after the other
-  kLifelongRandom = 230,
+  kLifelongRandom = 230,  // the last id --domain takes (Cyclone's port formula)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
