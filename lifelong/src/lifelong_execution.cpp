@@ -79,6 +79,10 @@ void LifelongExecution::plan(double time_s, const std::vector<uint32_t>& sent) {
   ++stats_.planner_calls;
   stats_.planner_total_ms += ms;
   stats_.planner_max_ms = std::max(stats_.planner_max_ms, ms);
+  stats_.distance_tables = distances_.tables();
+  stats_.distance_tables_mb = static_cast<double>(distances_.tables()) *
+                              static_cast<double>(grid_.width()) *
+                              static_cast<double>(grid_.height()) * sizeof(int32_t) / 1048576.0;
   pending_ = Pending{std::move(window.paths), time_s + options_.budget_s};
   next_plan_s_ = time_s + options_.period_s;
   while (!finish_times_.empty() && finish_times_.front() < time_s - 60) {

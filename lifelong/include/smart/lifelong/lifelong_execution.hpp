@@ -6,16 +6,16 @@
 // Replanning (on_time): when it is due (every period_s, and with min_unfinished k > 0 also as
 // soon as a robot with a task has at most k unfinished actions: Hönig et al. 2019's event-based
 // policy), the commit cut keeps what was sent and at least `lookahead` unfinished actions per
-// robot (closed, never on a midpoint), everything beyond it is dropped (never sent), new tasks are revealed and assigned,
-// and the planner plans `window_steps` timesteps from every robot's cut cell toward its errands.
-// The clock never stops for the planner: the cut's actions keep running. In lock-step the window
-// is appended once `budget_s` of sim time has passed since the cut (a fixed charge per call, so
-// a run is the same for a seed whatever the machine's speed); in real time it is appended at
-// once after planning. Robots that run out of actions stop on the cut's cells (never mid-edge)
-// until the window arrives. A window the graph refuses (live_adg.hpp) is logged as a refused
-// event; robots then stop safely at the cut and the next call replans.
-// The run is complete when the time reaches duration_s. Records: task and window events, a
-// throughput row per call (results_format.hpp), planner calls and wall time.
+// robot (closed, never on a midpoint), everything beyond it is dropped (never sent), new tasks are
+// revealed and assigned, and the planner plans `window_steps` timesteps from every robot's cut cell
+// toward its errands. The clock never stops for the planner: the cut's actions keep running. In
+// lock-step the window is appended once `budget_s` of sim time has passed since the cut (a fixed
+// charge per call, so a run is the same for a seed whatever the machine's speed); in real time it
+// is appended at once after planning. Robots that run out of actions stop on the cut's cells (never
+// mid-edge) until the window arrives. A window the graph refuses (live_adg.hpp) is logged as a
+// refused event; robots then stop safely at the cut and the next call replans. The run is complete
+// when the time reaches duration_s. Records: task and window events, a throughput row per call
+// (results_format.hpp), planner calls and wall time.
 #pragma once
 
 #include <cstdint>
@@ -51,6 +51,8 @@ struct LifelongStats {
   uint64_t windows_refused = 0;
   uint64_t appended_actions = 0, type2_edges = 0;
   uint64_t tasks_finished = 0, tasks_revealed = 0;
+  uint64_t distance_tables = 0;  // held by the planner's cache (one per goal cell seen, bounded)
+  double distance_tables_mb = 0;
 };
 
 class LifelongExecution final : public monitor::Execution {
