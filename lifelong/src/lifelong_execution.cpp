@@ -19,7 +19,7 @@ LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<g
       wall_ms_(std::move(wall_ms)),
       adg_(grid, starts, options.initial_heading),
       tasks_(std::move(tasks), starts.size(), pool_of(options, starts.size()), scheduler_),
-      distances_(grid),
+      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0)),
       planner_(grid, distances_, options.seed) {}
 
 monitor::ProgressUpdate LifelongExecution::on_progress(uint32_t robot, int64_t finished_seq,

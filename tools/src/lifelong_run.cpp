@@ -204,6 +204,7 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.lookahead = l.lookahead;
   lo.budget_s = o.sim.clock == sim::ClockMode::kLockstep ? l.budget_s : 0.0;
   lo.task_pool = p.pool;
+  lo.distance_budget_mb = l.distance_budget_mb;
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
   return lo;

@@ -198,6 +198,12 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
                   "then; robots keep executing the cut meanwhile)")
       ->check(finite_in(0.0, 3600.0))
       ->capture_default_str();
+  cmd->add_option("--distance-budget-mb", o.distance_budget_mb,
+                  "memory for the planner's distance tables (one BFS over the map per goal cell; "
+                  "past it the least recently used are recomputed): large maps with many goals "
+                  "need more")
+      ->check(finite_in(16.0, 1e6))
+      ->capture_default_str();
 }
 
 void check_plan_run_flags(const MonitorCliOptions& o) {

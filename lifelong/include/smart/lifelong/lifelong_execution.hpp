@@ -34,13 +34,14 @@
 namespace smart::lifelong {
 
 struct LifelongOptions {
-  double duration_s = 600;      // the run ends here (sim time, or wall time in real time)
-  double period_s = 1.0;        // replanning period
-  uint32_t min_unfinished = 0;  // event-based replanning trigger k; 0: periodic only
-  int window_steps = 10;        // planned timesteps per window
-  uint32_t lookahead = 8;       // unfinished actions the cut keeps per robot (at least)
-  double budget_s = 0;          // lock-step: sim time charged per planning call
-  std::size_t task_pool = 0;    // revealed unfinished tasks; 0: one per robot
+  double duration_s = 600;           // the run ends here (sim time, or wall time in real time)
+  double period_s = 1.0;             // replanning period
+  uint32_t min_unfinished = 0;       // event-based replanning trigger k; 0: periodic only
+  int window_steps = 10;             // planned timesteps per window
+  uint32_t lookahead = 8;            // unfinished actions the cut keeps per robot (at least)
+  double budget_s = 0;               // lock-step: sim time charged per planning call
+  std::size_t task_pool = 0;         // revealed unfinished tasks; 0: one per robot
+  double distance_budget_mb = 1024;  // the planner's distance tables (one per goal cell)
   uint64_t seed = 1;
   grid::Heading initial_heading = grid::Heading::kEast;
 };

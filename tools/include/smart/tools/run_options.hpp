@@ -67,6 +67,7 @@ struct LifelongCliOptions {
   int window_steps = 10;
   uint32_t lookahead = 8;
   double budget_s = 0.1;
+  double distance_budget_mb = 1024;
   bool active() const { return !problem.empty() || !tasks.empty(); }
 };
 
