@@ -43,7 +43,10 @@ void Pibt::check(const WindowRequest& r) const {
                                   std::to_string(i) + " both start on " + grid::to_string(c));
     }
     at[grid_.index(c)] = static_cast<int64_t>(i);
-    for (const auto goal : r.goals[i]) {
+    // The first goal only: a table per later errand would cost a BFS each (thousands on large
+    // maps) for goals a window rarely reaches; a later errand out of reach is held, not chased.
+    if (!r.goals[i].empty()) {
+      const auto goal = r.goals[i].front();
       if (!grid_.free(goal) || dist_.distance(c, goal) < 0) {
         throw std::invalid_argument("PIBT: robot " + std::to_string(i) + " at " +
                                     grid::to_string(c) + " cannot reach its goal " +
@@ -118,6 +121,10 @@ WindowPlan Pibt::plan(const WindowRequest& r) {
       while (next_goal[i] < r.goals[i].size() && r.goals[i][next_goal[i]] == s.from[i]) {
         ++next_goal[i];
         priority_[i] = tie_[i];
+        if (next_goal[i] < r.goals[i].size() &&
+            dist_.distance(s.from[i], r.goals[i][next_goal[i]]) < 0) {
+          next_goal[i] = r.goals[i].size();  // out of reach: hold here (see check())
+        }
       }
       const bool has_goal = next_goal[i] < r.goals[i].size();
       s.goal[i] = has_goal ? r.goals[i][next_goal[i]] : s.from[i];
