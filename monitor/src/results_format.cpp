@@ -69,7 +69,9 @@ void put(std::string& out, T v, char sep = ',') {
   if (sep) out.push_back(sep);
 }
 
-void put(std::string& out, const std::optional<double>& v, char sep = ',') {
+// An optional field: empty when not known.
+template <class T>
+void put(std::string& out, const std::optional<T>& v, char sep = ',') {
   if (v) put(out, *v, 0);
   if (sep) out.push_back(sep);
 }
@@ -250,14 +252,6 @@ std::vector<uint32_t> parse_finished_csv(std::string_view text) {
 }
 
 namespace {
-void put(std::string& out, const std::optional<uint32_t>& v, char sep = ',') {
-  if (v) put(out, *v, 0);
-  if (sep) out.push_back(sep);
-}
-void put(std::string& out, const std::optional<uint64_t>& v, char sep = ',') {
-  if (v) put(out, *v, 0);
-  if (sep) out.push_back(sep);
-}
 template <class T>
 bool optional_count(std::string_view f, std::optional<T>& out) {
   out.reset();
