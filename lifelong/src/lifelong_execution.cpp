@@ -14,13 +14,18 @@ std::size_t pool_of(const LifelongOptions& o, std::size_t robots) {
 LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,
                                      std::function<double()> wall_ms)
+    : LifelongExecution(grid, starts, std::move(tasks), options,
+                        std::make_unique<BuiltinPlanner>(grid, options.distance_budget_mb,
+                                                         options.seed, std::move(wall_ms))) {}
+
+LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
+                                     std::vector<grid::Task> tasks, const LifelongOptions& options,
+                                     std::unique_ptr<WindowPlanner> planner)
     : grid_(grid),
       options_(options),
-      wall_ms_(std::move(wall_ms)),
       adg_(grid, starts, options.initial_heading),
       tasks_(std::move(tasks), starts.size(), pool_of(options, starts.size()), scheduler_),
-      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0)),
-      planner_(grid, distances_, options.seed) {}
+      planner_(std::move(planner)) {}
 
 monitor::ProgressUpdate LifelongExecution::on_progress(uint32_t robot, int64_t finished_seq,
                                                        double time_s) {
@@ -50,13 +55,11 @@ bool LifelongExecution::due(double time_s) const {
 std::vector<uint32_t> LifelongExecution::on_time(double time_s, const std::vector<uint32_t>& sent) {
   now_s_ = std::max(now_s_, time_s);
   std::vector<uint32_t> changed;
-  if (pending_ && time_s >= pending_->release_s) changed = append_pending(time_s);
+  if (pending_) changed = arrive(time_s);
   if (!pending_ && !complete() && due(time_s)) {
     plan(time_s, sent);
-    if (pending_ && time_s >= pending_->release_s) {
-      const auto more = append_pending(time_s);
-      changed.insert(changed.end(), more.begin(), more.end());
-    }
+    const auto more = arrive(time_s);
+    changed.insert(changed.end(), more.begin(), more.end());
   }
   return changed;
 }
@@ -73,31 +76,44 @@ void LifelongExecution::plan(double time_s, const std::vector<uint32_t>& sent) {
     if (adg_.finished(r) == adg_.end(r)) tasks_.reached_while_idle(r, cut.cell[r], time_s);
     req.goals[r] = tasks_.goals(r);
   }
-  const double w0 = wall_ms_ ? wall_ms_() : 0;
-  auto window = planner_.plan(req);
-  const double ms = wall_ms_ ? wall_ms_() - w0 : 0;
-  ++stats_.planner_calls;
-  stats_.planner_total_ms += ms;
-  stats_.planner_max_ms = std::max(stats_.planner_max_ms, ms);
-  stats_.distance_tables = distances_.tables();
-  stats_.distance_tables_mb = static_cast<double>(distances_.tables()) *
-                              static_cast<double>(grid_.width()) *
-                              static_cast<double>(grid_.height()) * sizeof(int32_t) / 1048576.0;
-  pending_ = Pending{std::move(window.paths), time_s + options_.budget_s};
   next_plan_s_ = time_s + options_.period_s;
   while (!finish_times_.empty() && finish_times_.front() < time_s - 60) {
     finish_times_.erase(finish_times_.begin());
   }
-  throughput_.push_back({time_s, tasks_.finished(), finish_times_.size(), ms, cut.kept_unfinished,
-                         tasks_.robots_with_task()});
+  pending_ = Pending{time_s + options_.budget_s,
+                     {time_s, tasks_.finished(), finish_times_.size(), 0, cut.kept_unfinished,
+                      tasks_.robots_with_task()},
+                     std::nullopt};
+  planner_->submit(std::move(req));
 }
 
-std::vector<uint32_t> LifelongExecution::append_pending(double time_s) {
+// The planner's answer, appended once it is there and the sim-time budget has passed.
+std::vector<uint32_t> LifelongExecution::arrive(double time_s) {
+  if (!pending_->window) pending_->window = planner_->poll();
+  if (!pending_->window || time_s < pending_->release_s) return {};
+  const auto& w = *pending_->window;
+  ++stats_.planner_calls;
+  stats_.planner_total_ms += w.wall_ms;
+  stats_.planner_max_ms = std::max(stats_.planner_max_ms, w.wall_ms);
+  stats_.distance_tables = w.distance_tables;
+  stats_.distance_tables_mb = w.distance_tables_mb;
+  pending_->row.planner_ms = w.wall_ms;
+  throughput_.push_back(pending_->row);
+  auto changed = append(w, time_s);
+  pending_.reset();
+  return changed;
+}
+
+std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, double time_s) {
+  if (!window.error.empty()) {
+    ++stats_.windows_refused;
+    events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt, window.error});
+    return {};
+  }
   std::vector<uint32_t> before(adg_.robots());
   for (uint32_t r = 0; r < before.size(); ++r) before[r] = adg_.end(r);
   monitor::AppendStats st;
-  const auto problems = adg_.append(pending_->paths, time_s, &st);
-  pending_.reset();
+  const auto problems = adg_.append(window.paths, time_s, &st);
   if (!problems.empty()) {
     ++stats_.windows_refused;
     events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt,

@@ -281,6 +281,17 @@ std::function<double()> steady_ms() {
   };
 }
 
+// Lock-step: the planner runs inside the monitor's answer, charged --plan-budget-s of sim time.
+// Real time: on its own thread, while the monitor keeps dispatching the committed actions.
+std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions& o,
+                                                        const grid::Grid& grid,
+                                                        const lifelong::LifelongOptions& lo) {
+  auto builtin =
+      std::make_unique<lifelong::BuiltinPlanner>(grid, lo.distance_budget_mb, lo.seed, steady_ms());
+  if (o.sim.clock == sim::ClockMode::kLockstep) return builtin;
+  return std::make_unique<lifelong::ThreadedPlanner>(std::move(builtin));
+}
+
 // The monitor over DDS until the run ends; the files are streamed meanwhile.
 monitor::MonitorResult execute(const MonitorCliOptions& o, const LifelongProblem& problem,
                                lifelong::LifelongExecution& exec, LifelongFiles& files,
@@ -321,8 +332,9 @@ int run_lifelong(MonitorCliOptions o) {
   const auto model = agent::load_robot_model(robot_file);
   auto private_key = own_run_key(o.sim);
   auto sims = spawn_sims(o, problem.starts.size(), robot_file);
-  lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks,
-                                   lifelong_options(o, problem, seed), steady_ms());
+  const auto options = lifelong_options(o, problem, seed);
+  lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks, options,
+                                   window_planner(o, problem.grid, options));
   LifelongFiles files(o.out);
   spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
                problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),

@@ -11,7 +11,8 @@
 // toward its errands. The clock never stops for the planner: the cut's actions keep running. In
 // lock-step the window is appended once `budget_s` of sim time has passed since the cut (a fixed
 // charge per call, so a run is the same for a seed whatever the machine's speed); in real time it
-// is appended at once after planning. Robots that run out of actions stop on the cut's cells (never
+// is appended as soon as the planner answers (window_planner.hpp: a ThreadedPlanner plans while
+// the monitor goes on dispatching). Robots that run out of actions stop on the cut's cells (never
 // mid-edge) until the window arrives. A window the graph refuses (live_adg.hpp) is logged as a
 // refused event; robots then stop safely at the cut and the next call replans. The run is complete
 // when the time reaches duration_s. Records: task and window events, a throughput row per call
@@ -26,10 +27,9 @@
 
 #include "smart/lifelong/scheduler.hpp"
 #include "smart/lifelong/task_manager.hpp"
+#include "smart/lifelong/window_planner.hpp"
 #include "smart/monitor/execution.hpp"
 #include "smart/monitor/live_adg.hpp"
-#include "smart/planning/distance_cache.hpp"
-#include "smart/planning/pibt.hpp"
 
 namespace smart::lifelong {
 
@@ -58,10 +58,15 @@ struct LifelongStats {
 
 class LifelongExecution final : public monitor::Execution {
  public:
-  // `wall_ms` measures the planner (e.g. a steady clock in ms); empty: not measured.
+  // The built-in planner, planning inside on_time(); `wall_ms` measures it (e.g. a steady clock
+  // in ms); empty: not measured.
   LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                     std::vector<grid::Task> tasks, const LifelongOptions& options,
                     std::function<double()> wall_ms = {});
+  // Any planner (window_planner.hpp), e.g. the built-in one on a thread for real-time runs.
+  LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
+                    std::vector<grid::Task> tasks, const LifelongOptions& options,
+                    std::unique_ptr<WindowPlanner> planner);
 
   monitor::ProgressUpdate on_progress(uint32_t robot, int64_t finished_seq, double time_s) override;
   std::vector<uint32_t> on_time(double time_s, const std::vector<uint32_t>& sent) override;
@@ -91,19 +96,19 @@ class LifelongExecution final : public monitor::Execution {
  private:
   bool due(double time_s) const;
   void plan(double time_s, const std::vector<uint32_t>& sent);
-  std::vector<uint32_t> append_pending(double time_s);
+  std::vector<uint32_t> arrive(double time_s);
+  std::vector<uint32_t> append(const PlannedWindow& window, double time_s);
 
   const grid::Grid& grid_;
   LifelongOptions options_;
-  std::function<double()> wall_ms_;
   monitor::LiveAdg adg_;
   GreedyNearestScheduler scheduler_;
   TaskManager tasks_;
-  planning::DistanceCache distances_;
-  planning::Pibt planner_;
+  std::unique_ptr<WindowPlanner> planner_;
   struct Pending {
-    std::vector<std::vector<grid::Cell>> paths;
     double release_s = 0;
+    results::ThroughputRow row;           // the cut's figures; the planner's time on arrival
+    std::optional<PlannedWindow> window;  // empty while the planner works
   };
   std::optional<Pending> pending_;
   double now_s_ = 0;

@@ -1,0 +1,71 @@
+// Contract: where a lifelong run's windows are planned. The run (lifelong_execution.hpp) submits
+// one request at a time (every robot's commit-cut cell and its errands left) and polls for the
+// answer; poll() never blocks, so the run goes on while a planner works.
+// - BuiltinPlanner plans inside submit() with PIBT (planning/pibt.hpp) and its distance tables:
+//   pure and deterministic; the wall clock it may be given only measures it (lock-step runs).
+// - ThreadedPlanner runs another planner's submit() on a worker thread (real-time runs: the
+//   monitor keeps dispatching and recording while the window is planned; issue 27 item 5). It
+//   owns the inner planner; nothing else touches it while a request is outstanding.
+// A planner that fails (PIBT refuses a request it cannot fit) answers with `error` set; the run
+// records it as a refused window and robots stop safely at the cut.
+#pragma once
+
+#include <functional>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "smart/grid/grid.hpp"
+#include "smart/planning/distance_cache.hpp"
+#include "smart/planning/pibt.hpp"
+
+namespace smart::lifelong {
+
+struct PlannedWindow {
+  std::vector<std::vector<grid::Cell>> paths;  // per robot: window_steps + 1 cells, [0] = start
+  std::string error;                           // non-empty: no window (why)
+  double wall_ms = 0;                          // the planner's own time, if it measured it
+  std::size_t distance_tables = 0;             // the planner's heuristic tables after the call
+  double distance_tables_mb = 0;
+};
+
+class WindowPlanner {
+ public:
+  virtual ~WindowPlanner() = default;
+  // Starts planning; the previous answer must have been polled (one request at a time).
+  virtual void submit(planning::WindowRequest request) = 0;
+  // The answer to the last request once it is there; empty while it is being planned.
+  virtual std::optional<PlannedWindow> poll() = 0;
+};
+
+class BuiltinPlanner final : public WindowPlanner {
+ public:
+  // `wall_ms`: a clock in ms that measures each call; empty: not measured.
+  BuiltinPlanner(const grid::Grid& grid, double distance_budget_mb, uint64_t seed,
+                 std::function<double()> wall_ms = {});
+  void submit(planning::WindowRequest request) override;
+  std::optional<PlannedWindow> poll() override;
+
+ private:
+  const grid::Grid& grid_;
+  std::function<double()> wall_ms_;
+  planning::DistanceCache distances_;
+  planning::Pibt pibt_;
+  std::optional<PlannedWindow> answer_;
+};
+
+class ThreadedPlanner final : public WindowPlanner {
+ public:
+  explicit ThreadedPlanner(std::unique_ptr<WindowPlanner> inner);
+  ~ThreadedPlanner() override;  // waits for an outstanding request (bounded by the planner)
+  void submit(planning::WindowRequest request) override;
+  std::optional<PlannedWindow> poll() override;
+
+ private:
+  std::unique_ptr<WindowPlanner> inner_;
+  std::future<PlannedWindow> answer_;
+};
+
+}  // namespace smart::lifelong

@@ -1,0 +1,134 @@
+#include "smart/lifelong/window_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "smart/lifelong/lifelong_execution.hpp"
+#include "smart/planning/generators.hpp"
+
+namespace smart::lifelong {
+namespace {
+
+planning::WindowRequest one_robot(grid::Cell start, grid::Cell goal) {
+  return {{start}, {{goal}}, 4};
+}
+
+TEST(BuiltinPlanner, AnswersInSubmitAndOnlyOnce) {
+  const auto g = planning::generate_empty_map(6, 6);
+  BuiltinPlanner p(g, 16, 1);
+  EXPECT_FALSE(p.poll());
+  p.submit(one_robot({0, 0}, {5, 0}));
+  const auto w = p.poll();
+  ASSERT_TRUE(w);
+  EXPECT_TRUE(w->error.empty());
+  EXPECT_EQ(w->paths.at(0), (std::vector<grid::Cell>{{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}}));
+  EXPECT_EQ(w->distance_tables, 1u);
+  EXPECT_FALSE(p.poll());
+}
+
+TEST(BuiltinPlanner, AGoalNoPathReachesIsAnErrorNotAnException) {
+  std::vector<uint8_t> blocked(36, 0);
+  for (int y = 0; y < 6; ++y) blocked[static_cast<std::size_t>(y * 6 + 3)] = 1;  // a wall
+  const grid::Grid g(6, 6, blocked);
+  BuiltinPlanner p(g, 16, 1);
+  p.submit(one_robot({0, 0}, {5, 5}));
+  const auto w = p.poll();
+  ASSERT_TRUE(w);
+  EXPECT_NE(w->error.find("robot 0"), std::string::npos) << w->error;
+  EXPECT_NE(w->error.find("cannot reach"), std::string::npos) << w->error;
+}
+
+// The built-in planner held until the test opens the gate: a planner late by as much as a test
+// wants, without guessing a time.
+class GatedPlanner final : public WindowPlanner {
+ public:
+  GatedPlanner(const grid::Grid& g, std::shared_future<void> gate)
+      : inner_(g, 16, 1), gate_(std::move(gate)) {}
+  void submit(planning::WindowRequest r) override {
+    gate_.wait();
+    inner_.submit(std::move(r));
+  }
+  std::optional<PlannedWindow> poll() override { return inner_.poll(); }
+
+ private:
+  BuiltinPlanner inner_;
+  std::shared_future<void> gate_;
+};
+
+// Polls until the planner's thread has answered (an event, with a hang guard).
+std::vector<uint32_t> until_appended(LifelongExecution& exec, double t) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < give_up) {
+    auto changed = exec.on_time(t, {0});
+    if (!changed.empty()) return changed;
+    std::this_thread::yield();
+  }
+  ADD_FAILURE() << "the threaded planner never answered";
+  return {};
+}
+
+TEST(ThreadedPlanner, ALatePlanLeavesTheRunGoingAndArrivesWhenReady) {
+  const auto g = planning::generate_empty_map(8, 8);
+  std::promise<void> open;
+  auto planner = std::make_unique<ThreadedPlanner>(
+      std::make_unique<GatedPlanner>(g, open.get_future().share()));
+  LifelongExecution exec(g, {{0, 0}}, {{0, 1, {{7, 0}}}},
+                         {.duration_s = 100, .period_s = 1, .window_steps = 4}, std::move(planner));
+  // The first window is being planned: nothing to dispatch yet, and on_time does not block.
+  EXPECT_TRUE(exec.on_time(0.0, {0}).empty());
+  EXPECT_TRUE(exec.on_time(0.5, {0}).empty());
+  EXPECT_EQ(exec.known(0), 0u);
+  open.set_value();
+  EXPECT_EQ(until_appended(exec, 0.6), (std::vector<uint32_t>{0}));
+  EXPECT_GT(exec.known(0), 0u);
+  EXPECT_EQ(exec.stats().planner_calls, 1u);
+  ASSERT_EQ(exec.take_throughput().size(), 1u);
+}
+
+TEST(ThreadedPlanner, CommittedActionsRunWhileTheNextWindowIsPlanned) {
+  const auto g = planning::generate_empty_map(12, 3);
+  std::promise<void> second;
+  // Window 1 plans at once; window 2 waits for `second`.
+  class TwoGates final : public WindowPlanner {
+   public:
+    TwoGates(const grid::Grid& g, std::shared_future<void> later)
+        : inner_(g, 16, 1), later_(std::move(later)) {}
+    void submit(planning::WindowRequest r) override {
+      if (calls_++ > 0) later_.wait();
+      inner_.submit(std::move(r));
+    }
+    std::optional<PlannedWindow> poll() override { return inner_.poll(); }
+
+   private:
+    BuiltinPlanner inner_;
+    std::shared_future<void> later_;
+    int calls_ = 0;
+  };
+  LifelongExecution exec(g, {{0, 1}}, {{0, 1, {{11, 1}}}},
+                         {.duration_s = 100, .period_s = 1, .window_steps = 6, .lookahead = 2},
+                         std::make_unique<ThreadedPlanner>(
+                             std::make_unique<TwoGates>(g, second.get_future().share())));
+  exec.on_time(0, {0});
+  until_appended(exec, 0);
+  const uint32_t first_end = exec.known(0);
+  ASSERT_GT(first_end, 2u);
+  // At 1 s the cut keeps two unfinished actions and drops the rest; window 2 is late.
+  EXPECT_TRUE(exec.on_time(1.0, {0}).empty());
+  const uint32_t cut_end = exec.known(0);
+  EXPECT_LE(cut_end, first_end);
+  // The robot finishes every committed action while the planner works, and stops on a cell.
+  EXPECT_TRUE(exec.action(0, cut_end - 1).to.is_cell());
+  for (uint32_t seq = 0; seq < cut_end; ++seq) exec.on_progress(0, seq, 1.0 + 0.1 * seq);
+  EXPECT_TRUE(exec.on_time(2.0, {cut_end}).empty());
+  EXPECT_EQ(exec.finished(0), cut_end);
+  EXPECT_FALSE(exec.deadlocked());
+  second.set_value();
+  EXPECT_EQ(until_appended(exec, 2.1), (std::vector<uint32_t>{0}));
+  EXPECT_GT(exec.known(0), cut_end);
+}
+
+}  // namespace
+}  // namespace smart::lifelong
