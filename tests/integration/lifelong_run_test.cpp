@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "smart/monitor/results_format.hpp"
+#include "support/mixed_fleet.hpp"
 #include "support/monitor_fixtures.hpp"
 #include "support/smart_process.hpp"
 
@@ -102,6 +105,124 @@ TEST(LifelongRun, TheSameSeedGivesTheSameRunInLockStep) {
     EXPECT_EQ(first_difference(files[0][f], files[1][f]), "") << names[f] << " differs";
   }
   EXPECT_THAT(files[0][0], HasSubstr(",assigned,"));
+}
+
+// The same run under DDS Security, and as `smart monitor --lifelong` beside a separate
+// `smart sim --lifelong` (each process loading the problem itself, as on two hosts): the same
+// events, tasks and states as the plain `smart run`.
+TEST(LifelongRun, ASecureRunAndASplitRunAreThePlainRun) {
+  const auto keys = temp_file("ll_keys");
+  std::filesystem::remove_all(keys);
+  ASSERT_EQ(run_smart({"security", "init", "--out", keys.string()}, 60s, "ll_keys").code, 0);
+  const std::vector<std::string> problem{
+      "--tasks",
+      "random",
+      "--map",
+      (benchmarks_dir() / "maps" / "random-32-32-20.map").string(),
+      "--agents",
+      "15",
+      "--seed",
+      "3",
+      "--task-errands",
+      "1",
+      "--delay-probability",
+      "0.02",
+      "--delay-max-s",
+      "2"};
+  const std::vector<std::string> policy{"--duration-s", "60", "--no-progress"};
+  const auto domain = std::to_string(kLifelongSecure);
+  std::vector<std::string> files[3];
+  for (int k = 0; k < 3; ++k) {
+    const auto out = temp_file("ll_secure_" + std::to_string(k));
+    std::filesystem::remove_all(out);
+    std::vector<std::string> args{k == 2 ? "monitor" : "run", "--domain", domain, "--out",
+                                  out.string()};
+    args.insert(args.end(), problem.begin(), problem.end());
+    args.insert(args.end(), policy.begin(), policy.end());
+    if (k == 1) args.insert(args.end(), {"--security", keys.string()});
+    std::optional<common::ChildProcess> sim;
+    if (k == 2) {
+      std::vector<std::string> s{"sim", "--domain", domain};
+      s.insert(s.end(), problem.begin(), problem.end());
+      sim.emplace(start_smart(s, temp_file("ll_split_sim.out")));
+    }
+    const auto r = run_smart(args, 120s, "ll_secure_" + std::to_string(k), true);
+    ASSERT_EQ(r.code, 0) << r.out;
+    if (sim) {
+      ASSERT_EQ(sim->wait(20s).value_or(-1), 0) << slurp(temp_file("ll_split_sim.out"));
+    }
+    const auto j = summary_in(r.out);
+    EXPECT_EQ(j["collisions"], 0);
+    EXPECT_GT(j["lifelong"]["tasks_finished"].get<int>(), 0);
+    for (const auto name : {results::kEventsCsv, results::kTasksCsv, results::kStatesCsv}) {
+      files[k].push_back(slurp(out / name));
+    }
+    std::filesystem::remove_all(out);
+  }
+  const char* names[] = {"events.csv", "tasks.csv", "states.csv"};
+  for (int k = 1; k < 3; ++k) {
+    for (int f = 0; f < 3; ++f) {
+      EXPECT_EQ(first_difference(files[0][f], files[k][f]), "")
+          << names[f] << (k == 1 ? " differs under DDS Security" : " differs in the split run");
+    }
+  }
+  std::filesystem::remove_all(keys);
+}
+
+// A tiny LoRR 2024 problem on MixedFleet's 6x6 open floor: robots at (2,2), (5,5) and (4,0);
+// the first three tasks lie next to them, the rest go round the floor.
+std::filesystem::path write_floor_problem(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "floor.map") << "type octile\nheight 6\nwidth 6\nmap\n......\n......\n"
+                                      "......\n......\n......\n......\n";
+  std::ofstream(dir / "floor.agents") << "3\n14\n35\n4\n";
+  const int cells[] = {20, 29, 16, 0, 35, 5, 30, 18, 3, 33, 12, 23};
+  std::ofstream tasks(dir / "floor.tasks");
+  tasks << "36\n";
+  for (int k = 0; k < 36; ++k) tasks << cells[k % 12] << "\n";
+  tasks.close();
+  std::ofstream(dir / "floor.json")
+      << R"({"mapFile": "floor.map", "agentFile": "floor.agents", "teamSize": 3,
+             "taskFile": "floor.tasks", "numTasksReveal": 1.0})";
+  return dir / "floor.json";
+}
+
+// A mixed lifelong run: `smart monitor --lifelong` and `smart sim --lifelong` in real time, and
+// robot 2 an emulated JetBot's `smart agent` (support/mixed_fleet.hpp) that takes tasks from the
+// stream like the simulated robots.
+TEST(LifelongRun, AnEmulatedJetbotTakesTasksBesideSimulatedRobots) {
+  const auto dir = temp_file("ll_mixed");
+  std::filesystem::remove_all(dir);
+  const auto problem = write_floor_problem(dir).string();
+  const std::string domain = std::to_string(kLifelongMixed);
+  const std::vector<std::string> world{"--lifelong", problem,   "--clock", "realtime", "--cell-m",
+                                       "0.4",        "--robot", "jetbot",  "--domain", domain};
+  std::vector<std::string> sim_args{"sim", "--external-robots", "2"};
+  sim_args.insert(sim_args.end(), world.begin(), world.end());
+  const auto sim_out = dir / "sim.out", agent_out = dir / "agent.out";
+  auto sim = start_smart(sim_args, sim_out);
+  auto agent = start_smart(
+      MixedFleet::agent_args(kLifelongMixed, 4 * MixedFleet::kCellM, 5 * MixedFleet::kCellM, 0.0),
+      agent_out);
+  std::vector<std::string> mon{"monitor",     "--duration-s", "30",    "--no-progress",
+                               "--timeout-s", "15",           "--out", (dir / "out").string()};
+  mon.insert(mon.end(), world.begin(), world.end());
+  const auto r = run_smart(mon, 120s, "ll_mixed_monitor", true);
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(agent.wait(10s).value_or(-1), 0) << slurp(agent_out);
+  ASSERT_EQ(sim.wait(10s).value_or(-1), 0) << slurp(sim_out);
+  const auto j = summary_in(r.out);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
+  EXPECT_TRUE(summary_in(slurp(agent_out))["stopped_by_monitor"].get<bool>());
+  std::set<uint32_t> finishers;
+  for (const auto& t : results::parse_tasks_csv(slurp(dir / "out" / results::kTasksCsv))) {
+    if (t.finished_s) finishers.insert(*t.robot);
+  }
+  EXPECT_TRUE(finishers.count(2)) << "the JetBot finished no task";
+  EXPECT_GE(finishers.size(), 2u);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(LifelongRun, GeneratedStreamsRunWithDelaysInLockStepAndInRealTime) {

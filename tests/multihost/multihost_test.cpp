@@ -163,6 +163,42 @@ TEST_F(MultihostBenchmark, SecureRunAcrossHostsGivesTheSameSummary) {
   std::filesystem::remove_all(lan_dir);
 }
 
+// A lifelong run across hosts: `smart monitor --lifelong` on host 0 and `smart sim --lifelong` on
+// host 1, each loading the same seeded problem, in lock-step over the LAN: the events, tasks and
+// states of the one-host `smart run --lifelong`.
+TEST_F(MultihostBenchmark, LifelongRunWithMonitorAndSimOnTwoHostsIsTheOneHostRun) {
+  const std::vector<std::string> problem{
+      "--tasks",        "random", "--map",    (b_ / "maps/random-32-32-20.map").string(),
+      "--agents",       "20",     "--seed",   "9",
+      "--task-errands", "1",      "--domain", std::to_string(kMultihostLifelong)};
+  const auto lan_dir = temp_file("lan_lifelong"), one_dir = temp_file("one_lifelong");
+  for (const auto& d : {lan_dir, one_dir}) std::filesystem::remove_all(d);
+  const std::string run = "lifelong";
+  auto sim_args = problem;
+  sim_args.insert(sim_args.begin(), "sim");
+  auto mon_args = problem;
+  mon_args.insert(mon_args.begin(), "monitor");
+  mon_args.insert(mon_args.end(), {"--duration-s", "40", "--no-progress", "--out", lan_dir});
+  const auto sim_out = temp_file("lan_lifelong_sim"), mon_out = temp_file("lan_lifelong_mon");
+  const uint64_t before = lab_->sent_packets(1);
+  auto sim = lab_->start_smart(1, on_lan(sim_args, run), sim_out);
+  auto mon = lab_->start_smart(0, on_lan(mon_args, run), mon_out);
+  const auto lan = report_of(mon, mon_out, 120s);
+  EXPECT_TRUE(report_of(sim, sim_out, 15s)["stopped_by_monitor"].get<bool>());
+  EXPECT_GT(lab_->sent_packets(1) - before, 100u) << "the run crossed the sim host's link";
+  ASSERT_TRUE(lan["success"].get<bool>()) << lan.dump();
+  EXPECT_GT(lan["lifelong"]["tasks_finished"].get<int>(), 0);
+  // The reference: the same problem on this host alone (the two-host run is over).
+  auto one_args = problem;
+  one_args.insert(one_args.begin(), "run");
+  one_args.insert(one_args.end(), {"--duration-s", "40", "--no-progress", "--out", one_dir});
+  ASSERT_EQ(run_smart(one_args, 120s, "one_lifelong").code, 0);
+  for (const char* name : {"events.csv", "tasks.csv", "states.csv"}) {
+    EXPECT_EQ(slurp(lan_dir / name), slurp(one_dir / name)) << name << " differs across hosts";
+  }
+  for (const auto& f : {sim_out, mon_out, lan_dir, one_dir}) std::filesystem::remove_all(f);
+}
+
 // The mixed run of support/mixed_fleet.hpp with every process on a host of its own: monitor on
 // host 0, the sim host (robots 0 and 1) on host 1, robot 2's emulated JetBot agent on host 2.
 class MultihostMixed : public Multihost {

@@ -132,8 +132,11 @@ enum DomainId : int {
   kServeRestart = 226,
   kPackagedAgent = 227,  // tests/packaging/packages_test.py (given on its command line)
   kLifelongLorr = 228,
-  kLifelongSeed = 229,  // two runs one after the other
-  kLifelongRandom = 230,  // the last id --domain takes (Cyclone's port formula)
+  kLifelongSeed = 229,    // two runs one after the other
+  kLifelongSecure = 118,  // three runs one after the other
+  kLifelongMixed = 119,
+  kMultihostLifelong = 202,  // the two-host run, then its one-host reference
+  kLifelongRandom = 230,     // the last id --domain takes (Cyclone's port formula)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

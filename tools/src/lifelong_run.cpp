@@ -27,70 +27,6 @@ namespace smart::tools {
 
 namespace {
 
-struct LifelongProblem {
-  std::string source;  // the problem JSON, or the map of generated tasks
-  grid::Grid grid;
-  std::vector<grid::Cell> starts;
-  std::vector<grid::Task> tasks;
-  std::size_t pool = 0;  // revealed unfinished tasks (LoRR numTasksReveal x teamSize)
-  std::optional<grid::LorrSpec> spec;
-};
-
-LifelongProblem lorr_problem(const MonitorCliOptions& o) {
-  auto lp = grid::load_lorr_problem(o.lifelong.problem);
-  LifelongProblem p{absolute_path(o.lifelong.problem),
-                    std::move(lp.grid),
-                    std::move(lp.starts),
-                    std::move(lp.tasks),
-                    0,
-                    lp.spec};
-  if (o.sim.world.agents > 0) {
-    if (o.sim.world.agents > p.starts.size()) {
-      throw std::invalid_argument("--agents " + std::to_string(o.sim.world.agents) + ": " +
-                                  o.lifelong.problem + " has only " +
-                                  std::to_string(p.starts.size()) + " robots");
-    }
-    p.starts.resize(o.sim.world.agents);
-  }
-  p.pool = std::max<std::size_t>(
-      1, static_cast<std::size_t>(lp.spec.num_tasks_reveal * static_cast<double>(p.starts.size())));
-  return p;
-}
-
-LifelongProblem random_problem(const MonitorCliOptions& o, uint64_t seed) {
-  const auto& w = o.sim.world;
-  if (w.map.empty() || w.agents == 0) {
-    throw std::invalid_argument(
-        "--tasks random needs --map MAP and --agents N (the robots get random distinct starts)");
-  }
-  grid::MapMarks marks;
-  LifelongProblem p;
-  p.source = absolute_path(w.map);
-  p.grid = grid::load_task_map(w.map, &marks);
-  p.starts = planning::random_starts(p.grid, w.agents, seed);
-  p.tasks = planning::generate_tasks(p.grid, marks, std::max<std::size_t>(1000, 10 * w.agents),
-                                     o.lifelong.errands, seed);
-  p.pool = w.agents;
-  return p;
-}
-
-// The sim child's world: the map with plain MovingAI symbols and a scenario of the starts.
-void write_world(const LifelongProblem& p, const std::filesystem::path& dir, WorldCliOptions& w) {
-  std::filesystem::create_directories(dir);
-  const auto map = dir / "lifelong.map", scen = dir / "lifelong.scen";
-  std::ofstream(map) << planning::to_movingai_map(p.grid);
-  std::ofstream out(scen);
-  out << "version 1\n";
-  for (const auto c : p.starts) {
-    out << "0\tlifelong.map\t" << p.grid.width() << '\t' << p.grid.height() << '\t' << c.x << '\t'
-        << c.y << '\t' << c.x << '\t' << c.y << "\t0\n";
-  }
-  if (!out) throw std::runtime_error(scen.string() + ": cannot be written; check the folder");
-  w.map = map.string();
-  w.scen = scen.string();
-  w.agents = p.starts.size();
-}
-
 // events.csv, tasks.csv and throughput.csv, streamed as the run goes (memory stays flat).
 class LifelongFiles {
  public:
@@ -210,25 +146,6 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   return lo;
 }
 
-// A LoRR 2026 delayConfig as the agents' delay events (ticks x 0.1 s), unless flags set them.
-void apply_lorr_delays(const LifelongProblem& p, SimCliOptions& o) {
-  if (!p.spec || !p.spec->delay.present) return;
-  if (o.delay_probability || o.delay_rate_hz || o.delay_min_s || o.delay_max_s) return;
-  const auto& d = p.spec->delay;
-  const double tick_s = agent::kDelayTickS;
-  if (d.event_model == "poisson") {
-    o.delay_rate_hz = d.p_delay / tick_s;  // pDelay: expected events per tick
-  } else {
-    o.delay_probability = d.p_delay;
-  }
-  o.delay_min_s = d.min_delay_ticks * tick_s;
-  o.delay_max_s = d.max_delay_ticks * tick_s;
-  if (d.duration_model == "gaussian") {
-    o.delay_mean_ratio = d.gauss_mean_ratio;
-    o.delay_std_ratio = d.gauss_std_ratio;
-  }
-}
-
 monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, double radius_m) {
   auto mo = monitor_options(o);
   mo.robot_radius_m = radius_m;
@@ -244,9 +161,6 @@ monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, dou
 }
 
 void check_lifelong_flags(const MonitorCliOptions& o) {
-  if (!o.lifelong.problem.empty() && !o.lifelong.tasks.empty()) {
-    throw std::invalid_argument("--lifelong PROBLEM.json and --tasks random exclude each other");
-  }
   if (!o.plan.empty() || !o.sim.world.scen.empty()) {
     throw std::invalid_argument(
         "a lifelong run plans as it goes: drop --plan and --scen (starts come from the "
@@ -321,17 +235,27 @@ monitor::MonitorResult execute(const MonitorCliOptions& o, const LifelongProblem
 
 }  // namespace
 
-int run_lifelong(MonitorCliOptions o) {
+int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   check_lifelong_flags(o);
-  if (!o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
+  // A run this process starts whole gets a run (partition) of its own unless one was named.
+  if (spawn_sim && !o.sim.dds.run_given) o.sim.dds.run = fresh_run_name();
   const uint64_t seed = o.sim.seed.value_or(1);
-  const auto problem = o.lifelong.problem.empty() ? random_problem(o, seed) : lorr_problem(o);
+  const auto problem = load_lifelong_problem(o.sim);
   apply_lorr_delays(problem, o.sim);
-  const auto temp = place_world(o, problem);
+  std::optional<std::filesystem::path> temp;
+  if (spawn_sim) {
+    temp = place_world(o, problem);
+  } else if (!o.out.empty()) {
+    write_world(problem, o.out, o.sim.world);  // beside the results, for whoever reads them
+  }
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
   const auto model = agent::load_robot_model(robot_file);
-  auto private_key = own_run_key(o.sim);
-  auto sims = spawn_sims(o, problem.starts.size(), robot_file);
+  std::unique_ptr<PrivateRunKey> private_key;
+  std::vector<common::ChildProcess> sims;
+  if (spawn_sim) {
+    private_key = own_run_key(o.sim);
+    sims = spawn_sims(o, problem.starts.size(), robot_file);
+  }
   const auto options = lifelong_options(o, problem, seed);
   lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks, options,
                                    window_planner(o, problem.grid, options));
@@ -348,8 +272,10 @@ int run_lifelong(MonitorCliOptions o) {
   info.scen.clear();
   info.seed = seed;
   info.monitor_cpu_s = common::cpu_seconds_self();
-  info.sim_cpu_s = common::cpu_seconds_children();
-  monitor::apply_sim_reports(result, sim_words(o));
+  if (!sims.empty()) {
+    info.sim_cpu_s = common::cpu_seconds_children();
+    monitor::apply_sim_reports(result, sim_words(o));
+  }
   auto summary = monitor::run_summary_json(result, info);
   summary[results::summary_key::kLifelong] =
       lifelong_json(problem, o, exec, files, result.sim_time_s);

@@ -53,11 +53,35 @@ nlohmann::json sim_report(const sim::SimHostResult& r) {
           {"peak_rss_mb", peak_rss_mb()}};
 }
 
-int run_sim(const SimCliOptions& o) {
-  const auto& w = o.world;
-  const auto grid = grid::parse_map(grid::read_text_file(w.map, "map"), w.map);
+// The world a sim host executes: a map and a scenario's starts, or a lifelong problem's.
+struct SimWorld {
+  std::string name;
+  grid::Grid grid;
+  std::vector<grid::Cell> starts;
+};
+
+SimWorld sim_world(SimCliOptions& o) {
+  auto& w = o.world;
+  if (o.source.active()) {
+    auto p = load_lifelong_problem(o);
+    apply_lorr_delays(p, o);
+    return {p.source, std::move(p.grid), std::move(p.starts)};
+  }
+  if (w.map.empty() || w.scen.empty()) {
+    throw std::invalid_argument(
+        "--map and --scen required: a sim host executes a scenario's robots on a map, or a "
+        "lifelong problem's (--lifelong PROBLEM.json, or --tasks random with --map and --agents)");
+  }
+  SimWorld out{w.map, grid::parse_map(grid::read_text_file(w.map, "map"), w.map), {}};
   const auto scen = grid::parse_scen(grid::read_text_file(w.scen, "scenario"), w.scen, w.agents);
-  grid::throw_if_any(grid::check_scen_against_map(scen, grid));
+  grid::throw_if_any(grid::check_scen_against_map(scen, out.grid));
+  for (const auto& a : scen.agents) out.starts.push_back(a.start);
+  return out;
+}
+
+int run_sim(SimCliOptions o) {
+  const auto world = sim_world(o);
+  const auto& w = o.world;
   const auto model = run_robot_model(o);
   const auto profile = run_qos_profile(o.dds);
   if (const auto warning =
@@ -67,13 +91,12 @@ int run_sim(const SimCliOptions& o) {
   dds::Domain domain(o.dds.domain, domain_config(o.dds, profile, "sim"));
   dds::Participant participant(domain, o.dds.run);
   prove_member(participant, o.dds, "sim");
-  std::vector<grid::Cell> starts;
-  for (const auto& a : scen.agents) starts.push_back(a.start);
-  sim::SimHost host(participant, profile, grid, model,
-                    sim::start_poses(grid, w.cell_m, starts, grid::yaw_rad(w.heading)),
+  sim::SimHost host(participant, profile, world.grid, model,
+                    sim::start_poses(world.grid, w.cell_m, world.starts, grid::yaw_rad(w.heading)),
                     sim_host_options(o));
-  spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", starts.size(), w.map,
-               grid.width(), grid.height(), enum_name(o.clock, kClockNames), o.dds.domain);
+  spdlog::info("sim: {} robots on {} ({}x{}), {} clock, domain {}", world.starts.size(), world.name,
+               world.grid.width(), world.grid.height(), enum_name(o.clock, kClockNames),
+               o.dds.domain);
   const auto r = host.run(g_stop_requested);
   std::cout << sim_report(r).dump() << std::endl;
   if (!r.ok) spdlog::error("sim: {}", r.error);
@@ -322,6 +345,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "driven over DDS by `smart monitor`");
   add_common_run_options(sim, *so);
   add_sim_host_options(sim, *so);
+  add_task_source_options(sim, so->source);
   sim->add_option("--external-robots", so->external,
                   "robots executed by other hosts (mixed runs), shown at their published poses")
       ->delimiter(',');
@@ -348,6 +372,8 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan: publish action windows, track "
                                  "progress, detect completion/deadlock, write results");
   add_monitor_options(mon, *mo);
+  add_task_source_options(mon, mo->sim.source);
+  add_lifelong_options(mon, mo->lifelong);
   mon->add_flag("--resume", mo->resume,
                 "take over a run whose monitor died: its run id and finished actions come from "
                 "the sim hosts' progress (same plan, --agents and --initial-heading)");
@@ -357,7 +383,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   group_options(mon);
   mon->callback([&exit_code, mo] {
     install_stop_handlers();
-    exit_code = run_monitor(*mo, false);
+    exit_code = mo->sim.source.active() ? run_lifelong(*mo, false) : run_monitor(*mo, false);
   });
 
   auto ro = std::make_shared<MonitorCliOptions>();
@@ -365,6 +391,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                                  "Execute a plan on a simulated fleet: `smart monitor` "
                                  "here plus a `smart sim` process, over DDS");
   add_monitor_options(run, *ro);
+  add_task_source_options(run, ro->sim.source);
   add_lifelong_options(run, ro->lifelong);
   add_sim_host_options(run, ro->sim);
   run->add_option("--sim-hosts", ro->sim.shards,
@@ -375,7 +402,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   group_options(run);
   run->callback([&exit_code, ro] {
     install_stop_handlers();
-    exit_code = ro->lifelong.active() ? run_lifelong(*ro) : run_monitor(*ro, true);
+    exit_code = ro->sim.source.active() ? run_lifelong(*ro, true) : run_monitor(*ro, true);
   });
 }
 

@@ -161,8 +161,10 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
 }
 
-void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
-  for (const char* name : {"--map", "--scen", "--plan"}) cmd->get_option(name)->required(false);
+void add_task_source_options(CLI::App* cmd, TaskSourceOptions& o) {
+  for (const char* name : {"--map", "--scen", "--plan"}) {
+    if (auto* opt = cmd->get_option_no_throw(name)) opt->required(false);
+  }
   cmd->add_option("--lifelong", o.problem,
                   "run a lifelong problem: a LoRR problem JSON (its map, agents and tasks "
                   "files beside it); replaces --map/--scen/--plan")
@@ -174,6 +176,9 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
   cmd->add_option("--task-errands", o.errands, "errands per generated task")
       ->check(CLI::Range(1u, 100u))
       ->capture_default_str();
+}
+
+void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
   cmd->add_option("--duration-s", o.duration_s, "how long a lifelong run goes (sim seconds)")
       ->check(finite_in(0.1, 1e7))
       ->capture_default_str();

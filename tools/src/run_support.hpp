@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "smart/common/child_process.hpp"
+#include "smart/grid/lorr.hpp"
 #include "smart/monitor/results.hpp"
 #include "smart/monitor/sim_reports.hpp"
 #include "smart/tools/run_key.hpp"
@@ -33,8 +34,28 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
 // The run's key: the named file (made when missing), or a private one for its own processes.
 std::unique_ptr<PrivateRunKey> own_run_key(SimCliOptions& o);
 
-// `smart run --lifelong PROBLEM.json` or `--tasks random` (lifelong_run.cpp): exit code as the
-// README documents.
-int run_lifelong(MonitorCliOptions o);
+// A lifelong run's problem (lifelong_problem.cpp), loaded alike by every process of the run.
+struct LifelongProblem {
+  std::string source;  // the problem JSON, or the map of generated tasks
+  grid::Grid grid;
+  std::vector<grid::Cell> starts;
+  std::vector<grid::Task> tasks;
+  std::size_t pool = 0;  // revealed unfinished tasks (LoRR numTasksReveal x teamSize)
+  std::optional<grid::LorrSpec> spec;
+};
+// --lifelong PROBLEM.json (the first --agents robots), or --tasks random on --map for --agents
+// robots seeded by --seed; throws std::invalid_argument naming the flags or the file's fault.
+LifelongProblem load_lifelong_problem(const SimCliOptions& o);
+// A LoRR 2026 delayConfig as the agents' delay events (ticks x 0.1 s), unless --delay-* flags
+// set them.
+void apply_lorr_delays(const LifelongProblem& p, SimCliOptions& o);
+// The world as MovingAI files (`dir`/lifelong.map and .scen) for a sim child; sets w's map, scen
+// and agents to them.
+void write_world(const LifelongProblem& p, const std::filesystem::path& dir, WorldCliOptions& w);
+
+// `smart run --lifelong PROBLEM.json` or `--tasks random` (lifelong_run.cpp), and with
+// `spawn_sim` false `smart monitor --lifelong` (the fleet runs elsewhere: `smart sim --lifelong`
+// on other hosts, mixed with `smart agent`s): exit code as the README documents.
+int run_lifelong(MonitorCliOptions o, bool spawn_sim);
 
 }  // namespace smart::tools

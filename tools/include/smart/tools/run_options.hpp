@@ -33,9 +33,19 @@ struct WorldCliOptions {
   std::string robot = "footbot";  // name in config/robots or a YAML file
 };
 
+// Where a lifelong run's map, robots and tasks come from: every process of the run (`smart run`,
+// `smart monitor`, `smart sim`) loads the same problem, so hosts agree on the world.
+struct TaskSourceOptions {
+  std::string problem;   // --lifelong PROBLEM.json (LoRR 2024/2026)
+  std::string tasks;     // --tasks random: generated on --map for --agents robots
+  uint32_t errands = 2;  // --task-errands: errands per generated task
+  bool active() const { return !problem.empty() || !tasks.empty(); }
+};
+
 struct SimCliOptions {
   DdsOptions dds;
   WorldCliOptions world;
+  TaskSourceOptions source;  // a lifelong problem instead of --scen
   sim::ClockMode clock = sim::ClockMode::kLockstep;
   double state_rate_hz = 2.0;
   double timeout_s = 30.0;
@@ -56,11 +66,8 @@ struct SimCliOptions {
 // The robot model named by --robot with the command line's uncertainty overrides applied.
 agent::RobotModel run_robot_model(const SimCliOptions& o);
 
-// `smart run --lifelong` (lifelong/): where tasks come from and how windows are planned.
+// `smart run --lifelong` (lifelong/): how windows are planned (the problem: TaskSourceOptions).
 struct LifelongCliOptions {
-  std::string problem;      // --lifelong PROBLEM.json (LoRR 2024/2026)
-  std::string tasks;        // --tasks random: generated on --map for --agents robots
-  uint32_t errands = 2;     // --task-errands: errands per generated task
   double duration_s = 600;  // sim seconds (lock-step) or wall seconds (real time)
   double period_s = 1.0;
   uint32_t replan_when_left = 0;
@@ -68,7 +75,6 @@ struct LifelongCliOptions {
   uint32_t lookahead = 8;
   double budget_s = 0.1;
   double distance_budget_mb = 1024;
-  bool active() const { return !problem.empty() || !tasks.empty(); }
 };
 
 struct MonitorCliOptions {
@@ -98,8 +104,10 @@ void add_sim_host_options(CLI::App* cmd, SimCliOptions& o);
 // The monitor's options: plan, results, run policy, progress bar.
 void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o);
 
-// --lifelong, --tasks and the replanning policy (`smart run`); --map, --scen and --plan then stop
-// being required (run_monitor checks them for plan runs).
+// --lifelong, --tasks, --task-errands (`smart run`, `monitor`, `sim`); --map, --scen and --plan
+// then stop being required (run_monitor and run_sim check them for plan runs).
+void add_task_source_options(CLI::App* cmd, TaskSourceOptions& o);
+// The replanning policy of a lifelong run (`smart run`, `smart monitor`).
 void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o);
 // Throws std::invalid_argument naming the flags a plan run lacks (--map, --scen, --plan).
 void check_plan_run_flags(const MonitorCliOptions& o);
