@@ -15,8 +15,11 @@ LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<g
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,
                                      std::function<double()> wall_ms)
     : LifelongExecution(grid, starts, std::move(tasks), options,
-                        std::make_unique<BuiltinPlanner>(grid, options.distance_budget_mb,
-                                                         options.seed, std::move(wall_ms))) {}
+                        std::make_unique<BuiltinPlanner>(
+                            grid,
+                            BuiltinPlannerOptions{options.distance_budget_mb, options.seed,
+                                                  options.heuristic, starts.size()},
+                            std::move(wall_ms))) {}
 
 LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,
@@ -96,7 +99,7 @@ std::vector<uint32_t> LifelongExecution::arrive(double time_s) {
   stats_.planner_total_ms += w.wall_ms;
   stats_.planner_max_ms = std::max(stats_.planner_max_ms, w.wall_ms);
   stats_.distance_tables = w.distance_tables;
-  stats_.distance_tables_mb = w.distance_tables_mb;
+  stats_.heuristic_mb = w.heuristic_mb;
   pending_->row.planner_ms = w.wall_ms;
   throughput_.push_back(pending_->row);
   auto changed = append(w, time_s);

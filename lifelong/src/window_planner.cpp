@@ -3,14 +3,29 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "smart/planning/guide_paths.hpp"
+
 namespace smart::lifelong {
 
-BuiltinPlanner::BuiltinPlanner(const grid::Grid& grid, double distance_budget_mb, uint64_t seed,
+namespace {
+std::unique_ptr<planning::GoalHeuristic> make_heuristic(const grid::Grid& grid,
+                                                        const BuiltinPlannerOptions& o,
+                                                        planning::DistanceCache& tables) {
+  const auto budget = static_cast<std::size_t>(o.distance_budget_mb * 1048576.0);
+  if (planning::choose_heuristic(o.heuristic, grid, o.robots, budget) ==
+      planning::HeuristicKind::kTables) {
+    return std::make_unique<planning::TableHeuristic>(tables);
+  }
+  return std::make_unique<planning::GuidePaths>(grid);
+}
+}  // namespace
+
+BuiltinPlanner::BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptions& options,
                                std::function<double()> wall_ms)
-    : grid_(grid),
-      wall_ms_(std::move(wall_ms)),
-      distances_(grid, static_cast<std::size_t>(distance_budget_mb * 1048576.0)),
-      pibt_(grid, distances_, seed) {}
+    : wall_ms_(std::move(wall_ms)),
+      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0)),
+      heuristic_(make_heuristic(grid, options, distances_)),
+      pibt_(grid, *heuristic_, options.seed) {}
 
 void BuiltinPlanner::submit(planning::WindowRequest request) {
   PlannedWindow out;
@@ -22,9 +37,7 @@ void BuiltinPlanner::submit(planning::WindowRequest request) {
   }
   out.wall_ms = wall_ms_ ? wall_ms_() - w0 : 0;
   out.distance_tables = distances_.tables();
-  out.distance_tables_mb = static_cast<double>(distances_.tables()) *
-                           static_cast<double>(grid_.width()) *
-                           static_cast<double>(grid_.height()) * sizeof(int32_t) / 1048576.0;
+  out.heuristic_mb = static_cast<double>(heuristic_->memory_bytes()) / 1048576.0;
   answer_ = std::move(out);
 }
 

@@ -22,10 +22,10 @@ struct Pibt::Step {
   std::mt19937_64 rng;
 };
 
-Pibt::Pibt(const grid::Grid& grid, DistanceCache& distances, uint64_t seed)
-    : grid_(grid), dist_(distances), seed_(seed) {}
+Pibt::Pibt(const grid::Grid& grid, GoalHeuristic& heuristic, uint64_t seed)
+    : grid_(grid), heur_(heuristic), seed_(seed) {}
 
-void Pibt::check(const WindowRequest& r) const {
+void Pibt::check(const WindowRequest& r) {
   if (r.goals.size() != r.start.size()) {
     throw std::invalid_argument("PIBT: " + std::to_string(r.start.size()) + " starts but " +
                                 std::to_string(r.goals.size()) + " goal lists");
@@ -47,7 +47,7 @@ void Pibt::check(const WindowRequest& r) const {
     // maps) for goals a window rarely reaches; a later errand out of reach is held, not chased.
     if (!r.goals[i].empty()) {
       const auto goal = r.goals[i].front();
-      if (!grid_.free(goal) || dist_.distance(c, goal) < 0) {
+      if (!grid_.free(goal) || !heur_.aim(static_cast<uint32_t>(i), c, goal)) {
         throw std::invalid_argument("PIBT: robot " + std::to_string(i) + " at " +
                                     grid::to_string(c) + " cannot reach its goal " +
                                     grid::to_string(goal));
@@ -67,10 +67,13 @@ bool Pibt::push(Step& s, uint32_t robot, int64_t asker) {
   }
   // Random tie order first, then a stable sort by distance (ties broken at random, seeded).
   for (std::size_t k = n - 1; k > 0; --k) std::swap(c[k], c[s.rng() % (k + 1)]);
-  const auto& d = *dist_.to(s.goal[robot]);
-  std::stable_sort(c.begin(), c.begin() + static_cast<long>(n), [&](grid::Cell a, grid::Cell b) {
-    return d[grid_.index(a)] < d[grid_.index(b)];
-  });
+  std::array<int64_t, 5> rank{};
+  for (std::size_t k = 0; k < n; ++k) rank[k] = heur_.rank(robot, c[k]);
+  std::array<std::size_t, 5> by{0, 1, 2, 3, 4};
+  std::stable_sort(by.begin(), by.begin() + static_cast<long>(n),
+                   [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+  const auto shuffled = c;
+  for (std::size_t k = 0; k < n; ++k) c[k] = shuffled[by[k]];
   for (std::size_t k = 0; k < n; ++k) {
     const auto v = grid_.index(c[k]);
     if (s.next[v] != kNobody) continue;                                                 // vertex
@@ -93,6 +96,7 @@ bool Pibt::push(Step& s, uint32_t robot, int64_t asker) {
 }
 
 WindowPlan Pibt::plan(const WindowRequest& r) {
+  heur_.new_window();
   check(r);
   const std::size_t robots = r.start.size();
   if (priority_.size() != robots) {
@@ -122,12 +126,13 @@ WindowPlan Pibt::plan(const WindowRequest& r) {
         ++next_goal[i];
         priority_[i] = tie_[i];
         if (next_goal[i] < r.goals[i].size() &&
-            dist_.distance(s.from[i], r.goals[i][next_goal[i]]) < 0) {
+            !heur_.aim(static_cast<uint32_t>(i), s.from[i], r.goals[i][next_goal[i]])) {
           next_goal[i] = r.goals[i].size();  // out of reach: hold here (see check())
         }
       }
       const bool has_goal = next_goal[i] < r.goals[i].size();
       s.goal[i] = has_goal ? r.goals[i][next_goal[i]] : s.from[i];
+      heur_.aim(static_cast<uint32_t>(i), s.from[i], s.goal[i]);
       if (has_goal) priority_[i] += 1;
       s.now[grid_.index(s.from[i])] = static_cast<int64_t>(i);
     }

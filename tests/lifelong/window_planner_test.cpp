@@ -18,7 +18,7 @@ planning::WindowRequest one_robot(grid::Cell start, grid::Cell goal) {
 
 TEST(BuiltinPlanner, AnswersInSubmitAndOnlyOnce) {
   const auto g = planning::generate_empty_map(6, 6);
-  BuiltinPlanner p(g, 16, 1);
+  BuiltinPlanner p(g, {.distance_budget_mb = 16});
   EXPECT_FALSE(p.poll());
   p.submit(one_robot({0, 0}, {5, 0}));
   const auto w = p.poll();
@@ -33,7 +33,7 @@ TEST(BuiltinPlanner, AGoalNoPathReachesIsAnErrorNotAnException) {
   std::vector<uint8_t> blocked(36, 0);
   for (int y = 0; y < 6; ++y) blocked[static_cast<std::size_t>(y * 6 + 3)] = 1;  // a wall
   const grid::Grid g(6, 6, blocked);
-  BuiltinPlanner p(g, 16, 1);
+  BuiltinPlanner p(g, {.distance_budget_mb = 16});
   p.submit(one_robot({0, 0}, {5, 5}));
   const auto w = p.poll();
   ASSERT_TRUE(w);
@@ -46,7 +46,7 @@ TEST(BuiltinPlanner, AGoalNoPathReachesIsAnErrorNotAnException) {
 class GatedPlanner final : public WindowPlanner {
  public:
   GatedPlanner(const grid::Grid& g, std::shared_future<void> gate)
-      : inner_(g, 16, 1), gate_(std::move(gate)) {}
+      : inner_(g, {.distance_budget_mb = 16}), gate_(std::move(gate)) {}
   void submit(planning::WindowRequest r) override {
     gate_.wait();
     inner_.submit(std::move(r));
@@ -95,7 +95,7 @@ TEST(ThreadedPlanner, CommittedActionsRunWhileTheNextWindowIsPlanned) {
   class TwoGates final : public WindowPlanner {
    public:
     TwoGates(const grid::Grid& g, std::shared_future<void> later)
-        : inner_(g, 16, 1), later_(std::move(later)) {}
+        : inner_(g, {.distance_budget_mb = 16}), later_(std::move(later)) {}
     void submit(planning::WindowRequest r) override {
       if (calls_++ > 0) later_.wait();
       inner_.submit(std::move(r));

@@ -104,7 +104,8 @@ void run_stream(const StreamCase& c) {
   const auto starts = planning::random_starts(g, robots, c.seed);
   const auto tasks = planning::generate_tasks(g, {}, 2000, 1, c.seed);
   planning::DistanceCache dist(g);
-  planning::Pibt pibt(g, dist, c.seed);
+  planning::TableHeuristic tables(dist);
+  planning::Pibt pibt(g, tables, c.seed);
   LiveAdg adg(g, starts, Heading::kEast);
   Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
   std::vector<std::size_t> task(robots);

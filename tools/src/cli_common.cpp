@@ -107,7 +107,7 @@ void group_options(CLI::App* cmd) {
        {"--map", "--scen", "--agents", "--plan", "--axis", "--format", "--initial-heading",
         "--cell-m"}},
       {"Lifelong runs (tasks stream in, windows are replanned)",
-       {"--lifelong", "--tasks", "--task-errands", "--duration-s", "--replan-period-s",
+       {"--lifelong", "--tasks", "--task-errands", "--duration-s", "--replan-period-s", "--heuristic",
         "--replan-when-left", "--window-steps", "--lookahead", "--plan-budget-s",
         "--distance-budget-mb"}},
       {"Robots and execution uncertainty",

@@ -76,6 +76,14 @@ class LifelongFiles {
   std::ofstream events_, tasks_, throughput_;
 };
 
+// What the built-in planner ranks moves by (planning/goal_heuristic.hpp).
+std::string heuristic_name(const MonitorCliOptions& o, const LifelongProblem& p) {
+  const auto kind = planning::choose_heuristic(
+      o.lifelong.heuristic, p.grid, p.starts.size(),
+      static_cast<std::size_t>(o.lifelong.distance_budget_mb * 1048576.0));
+  return kind == planning::HeuristicKind::kTables ? "distance tables" : "guide paths";
+}
+
 nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& o,
                              const lifelong::LifelongExecution& exec, const LifelongFiles& f,
                              double sim_time_s) {
@@ -101,7 +109,8 @@ nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& 
         {"max_ms", s.planner_max_ms},
         {"budget_s", l.budget_s},
         {"distance_tables", s.distance_tables},
-        {"distance_tables_mb", s.distance_tables_mb}}},
+        {"heuristic", heuristic_name(o, p)},
+        {"heuristic_mb", s.heuristic_mb}}},
       {"replan_period_s", l.period_s},
       {"replan_when_left", l.replan_when_left},
       {"window_steps", l.window_steps},
@@ -141,6 +150,7 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.budget_s = o.sim.clock == sim::ClockMode::kLockstep ? l.budget_s : 0.0;
   lo.task_pool = p.pool;
   lo.distance_budget_mb = l.distance_budget_mb;
+  lo.heuristic = l.heuristic;
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
   return lo;
@@ -198,10 +208,11 @@ std::function<double()> steady_ms() {
 // Lock-step: the planner runs inside the monitor's answer, charged --plan-budget-s of sim time.
 // Real time: on its own thread, while the monitor keeps dispatching the committed actions.
 std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions& o,
-                                                        const grid::Grid& grid,
+                                                        const grid::Grid& grid, std::size_t robots,
                                                         const lifelong::LifelongOptions& lo) {
-  auto builtin =
-      std::make_unique<lifelong::BuiltinPlanner>(grid, lo.distance_budget_mb, lo.seed, steady_ms());
+  auto builtin = std::make_unique<lifelong::BuiltinPlanner>(
+      grid, lifelong::BuiltinPlannerOptions{lo.distance_budget_mb, lo.seed, lo.heuristic, robots},
+      steady_ms());
   if (o.sim.clock == sim::ClockMode::kLockstep) return builtin;
   return std::make_unique<lifelong::ThreadedPlanner>(std::move(builtin));
 }
@@ -258,7 +269,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   }
   const auto options = lifelong_options(o, problem, seed);
   lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks, options,
-                                   window_planner(o, problem.grid, options));
+                                   window_planner(o, problem.grid, problem.starts.size(), options));
   LifelongFiles files(o.out);
   spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
                problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),

@@ -14,6 +14,10 @@ const EnumNames<sim::ClockMode> kClockNames{{"lockstep", sim::ClockMode::kLockst
                                             {"realtime", sim::ClockMode::kRealtime}};
 const EnumNames<grid::AxisOrder> kAxisNames{{"xy", grid::AxisOrder::kXY},
                                             {"rowcol", grid::AxisOrder::kRowCol}};
+const EnumNames<planning::HeuristicKind> kHeuristicNames{
+    {"auto", planning::HeuristicKind::kAuto},
+    {"tables", planning::HeuristicKind::kTables},
+    {"paths", planning::HeuristicKind::kPaths}};
 const EnumNames<grid::PlanFormat> kFormatNames{{"auto", grid::PlanFormat::kAuto},
                                                {"smart", grid::PlanFormat::kSmart},
                                                {"lacam", grid::PlanFormat::kLacam},
@@ -208,6 +212,11 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
                   "past it the least recently used are recomputed): large maps with many goals "
                   "need more")
       ->check(finite_in(16.0, 1e6))
+      ->capture_default_str();
+  add_enum_option(cmd, "--heuristic", o.heuristic, kHeuristicNames,
+                  "how the planner ranks moves: 'tables' (exact distances, a BFS table per goal "
+                  "cell), 'paths' (a shortest path per robot, A* with landmarks: maps too large "
+                  "for tables), 'auto' (tables when one per robot fits --distance-budget-mb)")
       ->capture_default_str();
 }
 

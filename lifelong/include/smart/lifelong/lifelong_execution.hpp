@@ -42,6 +42,7 @@ struct LifelongOptions {
   double budget_s = 0;               // lock-step: sim time charged per planning call
   std::size_t task_pool = 0;         // revealed unfinished tasks; 0: one per robot
   double distance_budget_mb = 1024;  // the planner's distance tables (one per goal cell)
+  planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
   uint64_t seed = 1;
   grid::Heading initial_heading = grid::Heading::kEast;
 };
@@ -53,7 +54,7 @@ struct LifelongStats {
   uint64_t appended_actions = 0, type2_edges = 0;
   uint64_t tasks_finished = 0, tasks_revealed = 0;
   uint64_t distance_tables = 0;  // held by the planner's cache (one per goal cell seen, bounded)
-  double distance_tables_mb = 0;
+  double heuristic_mb = 0;       // the planner's heuristic memory (tables, or landmarks + paths)
 };
 
 class LifelongExecution final : public monitor::Execution {

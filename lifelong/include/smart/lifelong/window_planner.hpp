@@ -19,6 +19,7 @@
 
 #include "smart/grid/grid.hpp"
 #include "smart/planning/distance_cache.hpp"
+#include "smart/planning/goal_heuristic.hpp"
 #include "smart/planning/pibt.hpp"
 
 namespace smart::lifelong {
@@ -27,8 +28,8 @@ struct PlannedWindow {
   std::vector<std::vector<grid::Cell>> paths;  // per robot: window_steps + 1 cells, [0] = start
   std::string error;                           // non-empty: no window (why)
   double wall_ms = 0;                          // the planner's own time, if it measured it
-  std::size_t distance_tables = 0;             // the planner's heuristic tables after the call
-  double distance_tables_mb = 0;
+  std::size_t distance_tables = 0;             // the planner's distance tables after the call
+  double heuristic_mb = 0;                     // the memory its heuristic holds
 };
 
 class WindowPlanner {
@@ -40,18 +41,26 @@ class WindowPlanner {
   virtual std::optional<PlannedWindow> poll() = 0;
 };
 
+struct BuiltinPlannerOptions {
+  double distance_budget_mb = 1024;  // distance tables (planning/distance_cache.hpp)
+  uint64_t seed = 1;
+  planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
+  std::size_t robots = 0;  // for kAuto (planning/goal_heuristic.hpp)
+};
+
 class BuiltinPlanner final : public WindowPlanner {
  public:
   // `wall_ms`: a clock in ms that measures each call; empty: not measured.
-  BuiltinPlanner(const grid::Grid& grid, double distance_budget_mb, uint64_t seed,
+  BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptions& options,
                  std::function<double()> wall_ms = {});
+  std::string heuristic() const { return heuristic_->name(); }
   void submit(planning::WindowRequest request) override;
   std::optional<PlannedWindow> poll() override;
 
  private:
-  const grid::Grid& grid_;
   std::function<double()> wall_ms_;
   planning::DistanceCache distances_;
+  std::unique_ptr<planning::GoalHeuristic> heuristic_;
   planning::Pibt pibt_;
   std::optional<PlannedWindow> answer_;
 };

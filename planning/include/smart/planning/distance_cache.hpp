@@ -26,6 +26,7 @@ class DistanceCache {
   int32_t distance(grid::Cell from, grid::Cell goal) { return (*to(goal))[grid_.index(from)]; }
   std::size_t tables() const { return tables_.size(); }
   std::size_t computed() const { return computed_; }  // BFS runs so far (misses)
+  const grid::Grid& grid() const { return grid_; }
 
  private:
   const grid::Grid& grid_;

@@ -12,15 +12,17 @@
 // Priorities persist across windows as in the paper: each step a robot not at its goal gains 1;
 // reaching a goal resets it to its tie-breaker in [0, 1), so a long-waiting robot eventually
 // outranks everyone (reachability in biconnected graphs, the paper's Theorem 2).
-// Distances come from a shared DistanceCache. Deterministic for a seed; no clock, no I/O.
-// Cost per window: steps x robots x (4 neighbours, sorted) plus the distance tables' BFS runs.
+// Candidates are ranked by a GoalHeuristic (goal_heuristic.hpp): exact distance tables shared
+// per goal cell, or each robot's guide path on maps too large for them. Deterministic for a
+// seed; no clock, no I/O. Cost per window: steps x robots x (4 neighbours, sorted) plus the
+// heuristic's own (BFS tables, or A* for new goals).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "smart/grid/grid.hpp"
-#include "smart/planning/distance_cache.hpp"
+#include "smart/planning/goal_heuristic.hpp"
 
 namespace smart::planning {
 
@@ -37,7 +39,7 @@ struct WindowPlan {
 
 class Pibt {
  public:
-  Pibt(const grid::Grid& grid, DistanceCache& distances, uint64_t seed);
+  Pibt(const grid::Grid& grid, GoalHeuristic& heuristic, uint64_t seed);
 
   // Throws std::invalid_argument for a request that does not fit (sizes, two robots on one
   // cell, a start on an obstacle, a goal no path reaches).
@@ -46,10 +48,10 @@ class Pibt {
  private:
   struct Step;
   bool push(Step& s, uint32_t robot, int64_t asker);
-  void check(const WindowRequest& request) const;
+  void check(const WindowRequest& request);
 
   const grid::Grid& grid_;
-  DistanceCache& dist_;
+  GoalHeuristic& heur_;
   uint64_t seed_;
   std::vector<double> priority_;  // kept across windows
   std::vector<double> tie_;       // each robot's tie-breaker in [0, 1)

@@ -14,6 +14,7 @@
 
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/node.hpp"
+#include "smart/planning/goal_heuristic.hpp"
 #include "smart/sim/host.hpp"
 #include "smart/tools/cli_common.hpp"
 
@@ -23,6 +24,7 @@ extern const EnumNames<grid::Heading> kHeadingNames;
 extern const EnumNames<sim::ClockMode> kClockNames;
 extern const EnumNames<grid::AxisOrder> kAxisNames;
 extern const EnumNames<grid::PlanFormat> kFormatNames;
+extern const EnumNames<planning::HeuristicKind> kHeuristicNames;
 
 // Map, scenario, robot count and start heading: what every job on a fleet shares.
 struct WorldCliOptions {
@@ -75,6 +77,7 @@ struct LifelongCliOptions {
   uint32_t lookahead = 8;
   double budget_s = 0.1;
   double distance_budget_mb = 1024;
+  planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
 };
 
 struct MonitorCliOptions {

@@ -1,0 +1,33 @@
+#include "smart/planning/goal_heuristic.hpp"
+
+namespace smart::planning {
+
+HeuristicKind choose_heuristic(HeuristicKind kind, const grid::Grid& grid, std::size_t robots,
+                               std::size_t budget_bytes) {
+  if (kind != HeuristicKind::kAuto) return kind;
+  const std::size_t table = sizeof(int32_t) * static_cast<std::size_t>(grid.width()) *
+                            static_cast<std::size_t>(grid.height());
+  return robots * table <= budget_bytes ? HeuristicKind::kTables : HeuristicKind::kPaths;
+}
+
+bool TableHeuristic::aim(uint32_t robot, grid::Cell at, grid::Cell goal) {
+  if (robot >= goal_.size()) goal_.resize(robot + 1);
+  goal_[robot] = goal;
+  if (robot == last_robot_) last_robot_ = UINT32_MAX;
+  return tables_.distance(at, goal) >= 0;
+}
+
+int64_t TableHeuristic::rank(uint32_t robot, grid::Cell c) {
+  if (robot != last_robot_) {
+    last_ = tables_.to(goal_[robot]);
+    last_robot_ = robot;
+  }
+  return (*last_)[tables_.grid().index(c)];
+}
+
+std::size_t TableHeuristic::memory_bytes() const {
+  return tables_.tables() * sizeof(int32_t) * static_cast<std::size_t>(tables_.grid().width()) *
+         static_cast<std::size_t>(tables_.grid().height());
+}
+
+}  // namespace smart::planning
