@@ -18,12 +18,20 @@ std::unique_ptr<planning::GoalHeuristic> make_heuristic(const grid::Grid& grid,
   }
   return std::make_unique<planning::GuidePaths>(grid);
 }
+// Every robot's current goal and a quarter more for the goals that come back soon: the cache
+// fills in the run's first minutes and then stays (a table per goal cell ever seen would grow
+// for hours on a warehouse); none given: the budget alone bounds it.
+std::size_t tables_for(std::size_t robots) {
+  return robots == 0 ? SIZE_MAX : robots + robots / 4 + 16;
+}
+
 }  // namespace
 
 BuiltinPlanner::BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptions& options,
                                std::function<double()> wall_ms)
     : wall_ms_(std::move(wall_ms)),
-      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0)),
+      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0),
+                 tables_for(options.robots)),
       heuristic_(make_heuristic(grid, options, distances_)),
       pibt_(grid, *heuristic_, options.seed) {}
 

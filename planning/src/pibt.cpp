@@ -96,7 +96,13 @@ bool Pibt::push(Step& s, uint32_t robot, int64_t asker) {
 }
 
 WindowPlan Pibt::plan(const WindowRequest& r) {
-  heur_.new_window();
+  if (r.goals.size() == r.start.size()) {
+    std::vector<grid::Cell> first(r.start.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+      first[i] = r.goals[i].empty() ? r.start[i] : r.goals[i].front();
+    }
+    heur_.new_window(r.start, first);
+  }
   check(r);
   const std::size_t robots = r.start.size();
   if (priority_.size() != robots) {

@@ -29,6 +29,22 @@ TEST(BuiltinPlanner, AnswersInSubmitAndOnlyOnce) {
   EXPECT_FALSE(p.poll());
 }
 
+// Tables for the robots' current goals and a margin, not one per goal cell ever seen: memory
+// stops growing early in a long run.
+TEST(BuiltinPlanner, KeepsTablesForTheRobotsGoalsNotEveryGoalSeen) {
+  const auto g = planning::generate_empty_map(12, 12);
+  BuiltinPlanner p(
+      g, {.distance_budget_mb = 64, .heuristic = planning::HeuristicKind::kTables, .robots = 2});
+  std::size_t most = 0;
+  for (int k = 0; k < 60; ++k) {  // 60 windows, two new goal cells each
+    p.submit({{{0, 0}, {11, 11}}, {{{k % 12, k / 12 + 1}}, {{k % 12, k / 12 + 6}}}, 2});
+    const auto w = p.poll();
+    ASSERT_TRUE(w && w->error.empty()) << (w ? w->error : "no answer");
+    most = std::max(most, w->distance_tables);
+  }
+  EXPECT_EQ(most, 2u + 2 / 4 + 16);
+}
+
 TEST(BuiltinPlanner, AGoalNoPathReachesIsAnErrorNotAnException) {
   std::vector<uint8_t> blocked(36, 0);
   for (int y = 0; y < 6; ++y) blocked[static_cast<std::size_t>(y * 6 + 3)] = 1;  // a wall

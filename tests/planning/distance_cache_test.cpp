@@ -33,5 +33,12 @@ TEST(DistanceCache, EvictsTheLeastRecentlyUsedWithinTheBudget) {
   EXPECT_EQ((*kept)[g.index({1, 0})], 0);  // a held table outlives eviction
 }
 
+TEST(DistanceCache, ATableCountBoundsItBelowTheBudget) {
+  const auto g = generate_empty_map(10, 10);
+  DistanceCache cache(g, 1 << 20, 6);  // room for 2621 tables, but at most six
+  for (int x = 0; x < 10; ++x) cache.to({x, 3});
+  EXPECT_EQ(cache.tables(), 6u);
+}
+
 }  // namespace
 }  // namespace smart::planning

@@ -105,17 +105,41 @@ TEST(GuidePaths, ARobotPushedFurtherFindsItsWayBackWithoutANewSearch) {
 TEST(GuidePaths, SearchesBeyondTheWindowsBudgetWaitWithTheLandmarkBound) {
   const auto g = generate_empty_map(8, 8);
   GuidePaths paths(g, 2, 1);  // one A* per window
-  paths.new_window();
+  paths.new_window({}, {});
   ASSERT_TRUE(paths.aim(0, {0, 0}, {7, 0}));
   ASSERT_TRUE(paths.aim(1, {0, 7}, {7, 7}));  // no search left: waits
   EXPECT_EQ(paths.searches(), 1u);
   EXPECT_EQ(paths.rank(1, {0, 7}), 7);  // the bound: 7 cells east
   EXPECT_EQ(paths.rank(1, {1, 7}), 6);
-  paths.new_window();
+  paths.new_window({}, {});
   ASSERT_TRUE(paths.aim(0, {1, 0}, {7, 0}));  // on its path: no search
   ASSERT_TRUE(paths.aim(1, {1, 7}, {7, 7}));
   EXPECT_EQ(paths.searches(), 2u);
   EXPECT_EQ(paths.rank(1, {1, 7}), 6);
+}
+
+// A window's first searches run on threads; which robots search is decided in robot order.
+TEST(GuidePaths, TheWindowsSearchesAreTheSameOnOneThreadOrTwo) {
+  const auto g = generate_random_map(60, 40, 0.25, 8);
+  const auto cells = largest_region_cells(g);
+  std::vector<Cell> at, goal;
+  for (std::size_t r = 0; r < 50; ++r) {
+    at.push_back(cells[(r * 131) % cells.size()]);
+    goal.push_back(cells[(r * 977 + 5) % cells.size()]);
+  }
+  GuidePaths one(g, 4, 30, 1), two(g, 4, 30, 2);
+  one.new_window(at, goal);
+  two.new_window(at, goal);
+  EXPECT_EQ(one.searches(), 30u);
+  EXPECT_EQ(two.searches(), 30u);
+  for (uint32_t r = 0; r < 50; ++r) {
+    ASSERT_TRUE(one.aim(r, at[r], goal[r]));
+    ASSERT_TRUE(two.aim(r, at[r], goal[r]));
+    EXPECT_EQ(one.rank(r, at[r]), two.rank(r, at[r])) << "robot " << r;
+  }
+  EXPECT_EQ(one.searches(), 30u);  // robots 30.. wait for the next window
+  EXPECT_EQ(one.rank(40, at[40]), one.lower_bound(at[40], goal[40]));
+  EXPECT_EQ(one.rank(5, at[5]), bfs_distances(g, at[5])[g.index(goal[5])]);
 }
 
 TEST(GuidePaths, AnUnreachableGoalIsSaid) {

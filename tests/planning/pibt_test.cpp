@@ -90,6 +90,21 @@ TEST(Pibt, GuidePathsKeepEveryRobotReachingGoals) {
   keep_reaching_goals(g, paths);
 }
 
+TEST(Pibt, GuidePathsPlanTheSameOnOneThreadOrTwo) {
+  const auto g = warehouse();
+  const auto starts = random_starts(g, 200, 21);
+  const auto tasks = generate_tasks(g, {}, 200, 2, 22);
+  WindowRequest req{starts, {}, 12};
+  for (const auto& t : tasks) req.goals.push_back(t.errands);
+  GuidePaths one(g, 8, 50, 1), two(g, 8, 50, 2);  // 50 searches a window: some robots wait
+  Pibt a(g, one, 4), b(g, two, 4);
+  for (int w = 0; w < 5; ++w) {
+    const auto pa = a.plan(req), pb = b.plan(req);
+    ASSERT_EQ(pa.paths, pb.paths) << "window " << w;
+    for (std::size_t r = 0; r < starts.size(); ++r) req.start[r] = pa.paths[r][6];
+  }
+}
+
 TEST(Pibt, DeterministicForASeed) {
   const auto g = generate_random_map(24, 24, 0.15, 5);
   auto run = [&](uint64_t seed) {

@@ -45,7 +45,7 @@ struct BuiltinPlannerOptions {
   double distance_budget_mb = 1024;  // distance tables (planning/distance_cache.hpp)
   uint64_t seed = 1;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
-  std::size_t robots = 0;  // for kAuto (planning/goal_heuristic.hpp)
+  std::size_t robots = 0;  // for kAuto (planning/goal_heuristic.hpp) and the tables kept
 };
 
 class BuiltinPlanner final : public WindowPlanner {

@@ -34,8 +34,10 @@ class GoalHeuristic {
   virtual int64_t rank(uint32_t robot, grid::Cell c) = 0;
   virtual std::size_t memory_bytes() const = 0;
   virtual std::string name() const = 0;
-  // A window's planning begins (a heuristic may budget its work per window).
-  virtual void new_window() {}
+  // A window's planning begins: every robot's start and first goal (its start when it has none).
+  // A heuristic may budget its work per window, or prepare it all at once here.
+  virtual void new_window(const std::vector<grid::Cell>& /*at*/,
+                          const std::vector<grid::Cell>& /*goal*/) {}
 };
 
 class TableHeuristic final : public GoalHeuristic {
