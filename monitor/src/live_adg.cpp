@@ -168,7 +168,10 @@ void LiveAdg::truncate(const CommitCut& cut) {
     auto& rb = robots_[r];
     while (end(r) > cut.end[r]) {
       const uint32_t s = end(r) - 1;
-      for (const NodeRef p : node(r, s).in) erase_ref(node(p.robot, p.seq).out, {r, s});
+      for (const NodeRef p : node(r, s).in) {
+        // A predecessor of a dropped action may be dropped already (its robot came first).
+        if (p.seq < end(p.robot)) erase_ref(node(p.robot, p.seq).out, {r, s});
+      }
       type2_total_ -= node(r, s).in.size();
       rb.nodes.pop_back();
       --appended_total_;

@@ -35,6 +35,25 @@ TEST(LiveAdg, ACrossingIsOrderedAndExecuted) {
   EXPECT_EQ(adg.enqueued(1), 5u);
 }
 
+// Regression: truncate dropped robot 0's actions first, then cleaned the out-lists of robot 1's
+// dropped actions' predecessors through node(0, s) for s past robot 0's end: a write into
+// destroyed nodes (silent in a release build; the sanitized build's checked deque aborts).
+TEST(LiveAdg, TruncatingBothSidesOfAPassingOrderTouchesNoDroppedAction) {
+  const auto g = open_map(3, 3);
+  LiveAdg adg(g, {{0, 1}, {1, 0}}, Heading::kEast);
+  ASSERT_TRUE(adg.append({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}, 0).empty());
+  ASSERT_EQ(adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 2}}));
+  const auto cut = adg.commit_cut({0, 0}, 0);  // nothing sent, no look-ahead: all dropped
+  EXPECT_EQ(cut.end, (std::vector<uint32_t>{0, 0}));
+  adg.truncate(cut);
+  EXPECT_EQ(adg.end(0), 0u);
+  EXPECT_EQ(adg.end(1), 0u);
+  EXPECT_EQ(adg.appended_total(), 0u);
+  // The graph grows again from the cut as if nothing had been appended.
+  ASSERT_TRUE(adg.append({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}, 1).empty());
+  EXPECT_EQ(adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 2}}));
+}
+
 TEST(LiveAdg, ASwapWindowIsRefusedWhole) {
   const auto g = open_map(2, 1);
   LiveAdg adg(g, {{0, 0}, {1, 0}}, Heading::kEast);
