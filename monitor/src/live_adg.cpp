@@ -192,6 +192,7 @@ std::vector<LiveAdg::Occupancy> LiveAdg::kept_last_leavers() {
   }
   ++stamp_;
   std::vector<uint32_t> touched;
+  touched.reserve(robots_.size() * 4);
   for (uint32_t r = 0; r < robots_.size(); ++r) {
     for (uint32_t s = robots_[r].finished; s < end(r); ++s) {
       const Action& a = action(r, s);
@@ -216,8 +217,11 @@ std::vector<LiveAdg::Occupancy> LiveAdg::kept_last_leavers() {
 }
 
 std::vector<LiveAdg::Occupancy> LiveAdg::window_occupancies(
-    const std::vector<std::vector<Action>>& acts) const {
+    const std::vector<std::vector<Action>>& acts, std::size_t room) const {
   std::vector<Occupancy> occ;
+  std::size_t n = acts.size() + room;  // at most one per action, one per robot, and `room`
+  for (const auto& a : acts) n += a.size();
+  occ.reserve(n);
   for (uint32_t r = 0; r < acts.size(); ++r) {
     Occupancy cur{static_cast<uint32_t>(grid_.half_index(HalfCell::of(robots_[r].tail_cell))),
                   1,
@@ -379,8 +383,8 @@ std::vector<Problem> LiveAdg::append(const std::vector<std::vector<Cell>>& paths
     t_end = std::max(t_end, steps.back().time);
   }
   if (!problems.empty()) return problems;
-  auto occ = window_occupancies(acts);
   const auto kept = kept_last_leavers();
+  auto occ = window_occupancies(acts, kept.size());
   occ.insert(occ.end(), kept.begin(), kept.end());
   std::vector<std::pair<NodeRef, NodeRef>> edges;
   problems = link(occ, edges);

@@ -133,7 +133,9 @@ class LiveAdg final : public Execution {
   bool advance(uint32_t r);
   void finish(uint32_t r, uint32_t seq, Update& u);
   std::vector<Occupancy> kept_last_leavers();
-  std::vector<Occupancy> window_occupancies(const std::vector<std::vector<Action>>& acts) const;
+  // The window's occupancies, with room reserved for `room` more (the kept leavers).
+  std::vector<Occupancy> window_occupancies(const std::vector<std::vector<Action>>& acts,
+                                            std::size_t room) const;
   std::vector<Occupancy> by_location(const std::vector<Occupancy>& occ);
   std::vector<Problem> link(const std::vector<Occupancy>& occ,
                             std::vector<std::pair<NodeRef, NodeRef>>& edges);
