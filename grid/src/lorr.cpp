@@ -28,6 +28,10 @@ json parse_json(std::string_view text, const std::string& source) {
     throw InputError({{source, line_at(text, e.byte), -1,
                        std::string("not valid JSON (") + e.what() +
                            "); a LoRR problem is one JSON object, see Input_Output_Format.md"}});
+  } catch (const json::exception& e) {  // e.g. a number too large for any JSON number type
+    throw InputError({{source, 0, -1,
+                       std::string("cannot be read as JSON (") + e.what() +
+                           "); give numbers a 64-bit integer or a double can hold"}});
   }
 }
 

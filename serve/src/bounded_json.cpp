@@ -24,6 +24,8 @@ nlohmann::json parse_bounded_json(std::string_view text, const std::string& sour
     return nlohmann::json::parse(text, depth);
   } catch (const nlohmann::json::parse_error& e) {
     throw std::invalid_argument(source + " is not JSON (" + e.what() + ")");
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number no JSON number type holds
+    throw std::invalid_argument(source + " cannot be read as JSON (" + e.what() + ")");
   }
 }
 

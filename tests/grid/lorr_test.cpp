@@ -29,6 +29,15 @@ std::string error_of(F&& f) {
   return "(no error)";
 }
 
+// Found by fuzz_lorr: a number too large for JSON's number types escaped as nlohmann's
+// out_of_range instead of an InputError naming the file.
+TEST(Lorr, ANumberNoJsonTypeHoldsIsAnInputError) {
+  const std::string huge = "{\"n_row\": " + std::string(400, '9') + "}";
+  EXPECT_THAT(error_of([&] { parse_lsmart_map(huge, "big.json"); }),
+              HasSubstr("big.json: cannot be read as JSON"));
+  EXPECT_THAT(error_of([&] { parse_lorr_spec(huge, "p.json"); }), HasSubstr("p.json"));
+}
+
 TEST(Lorr, MapDialectFreesEmittersAndServiceCellsAndMarksThem) {
   MapMarks marks;
   const auto g = parse_map("type octile\nheight 3\nwidth 4\nmap\n..@E\n....\nS@..\n", "t.map",

@@ -27,6 +27,8 @@ TEST(BoundedJson, DeepNestingTooManyBytesAndNonJsonAreRefusedNamingTheSource) {
   EXPECT_THAT(refusal(std::string(kMaxJsonBytes + 1, ' ')),
               HasSubstr("summary.json is 16777217 bytes; at most 16777216"));
   EXPECT_THAT(refusal("{\"robots\": "), HasSubstr("summary.json is not JSON"));
+  EXPECT_THAT(refusal("{\"robots\": " + std::string(400, '9') + "}"),
+              HasSubstr("summary.json cannot be read as JSON"));
 }
 
 TEST(BoundedJson, ASummaryWithinTheLimitsIsRead) {
