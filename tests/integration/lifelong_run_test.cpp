@@ -263,6 +263,11 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
   r = lifelong({"--tasks", "random", "--duration-s", "5"}, kLifelongRandom, "ll_bad2");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--tasks random needs --map MAP and --agents N"));
+  const auto resume = run_smart({"monitor", "--lifelong", maze_problem(), "--resume", "--domain",
+                                 std::to_string(kLifelongRandom)},
+                                30s, "ll_bad_resume", true);
+  EXPECT_EQ(resume.code, 2);
+  EXPECT_THAT(resume.out, HasSubstr("a lifelong run cannot be taken over"));
   r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));

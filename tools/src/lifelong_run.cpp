@@ -184,6 +184,11 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  if (o.resume) {
+    throw std::invalid_argument(
+        "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "
+        "start it again");
+  }
   check_real_time_factor(o.sim);
 }
 
