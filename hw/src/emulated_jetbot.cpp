@@ -138,11 +138,12 @@ void EmulatedJetbot::step_wheels(double dt) {
 
 // The pose as Vicon reports it: in the mocap frame, with measurement noise.
 std::vector<uint8_t> EmulatedJetbot::vicon_frame() {
-  std::normal_distribution<double> position(0.0, flaws_.vicon_noise_m),
-      heading(0.0, flaws_.vicon_noise_rad);
-  const double nx = flaws_.vicon_noise_m > 0 ? position(noise_) : 0.0;
-  const double ny = flaws_.vicon_noise_m > 0 ? position(noise_) : 0.0;
-  const double nyaw = flaws_.vicon_noise_rad > 0 ? heading(noise_) : 0.0;
+  // A unit normal scaled: a distribution's standard deviation must be positive, and a noiseless
+  // Vicon has none (libstdc++'s assertions abort on it).
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const double nx = flaws_.vicon_noise_m > 0 ? flaws_.vicon_noise_m * unit(noise_) : 0.0;
+  const double ny = flaws_.vicon_noise_m > 0 ? flaws_.vicon_noise_m * unit(noise_) : 0.0;
+  const double nyaw = flaws_.vicon_noise_rad > 0 ? flaws_.vicon_noise_rad * unit(noise_) : 0.0;
   const Eigen::Vector2d p = mocap_from_grid_.apply({pose_.x_m + nx, pose_.y_m + ny});
   ViconObject o{
       object_, {p.x(), p.y(), 0}, {0, 0, mocap_from_grid_.apply_yaw(pose_.yaw_rad + nyaw)}};
