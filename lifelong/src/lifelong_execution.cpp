@@ -99,6 +99,7 @@ std::vector<uint32_t> LifelongExecution::arrive(double time_s) {
   stats_.planner_total_ms += w.wall_ms;
   stats_.planner_max_ms = std::max(stats_.planner_max_ms, w.wall_ms);
   stats_.distance_tables = w.distance_tables;
+  stats_.heuristic = w.heuristic;
   stats_.heuristic_mb = w.heuristic_mb;
   pending_->row.planner_ms = w.wall_ms;
   throughput_.push_back(pending_->row);
@@ -107,10 +108,15 @@ std::vector<uint32_t> LifelongExecution::arrive(double time_s) {
   return changed;
 }
 
+// A window not appended (the planner's error or the graph's refusal): robots stop at the cut.
+void LifelongExecution::refuse(double time_s, const std::string& why) {
+  ++stats_.windows_refused;
+  events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt, why});
+}
+
 std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, double time_s) {
   if (!window.error.empty()) {
-    ++stats_.windows_refused;
-    events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt, window.error});
+    refuse(time_s, window.error);
     return {};
   }
   std::vector<uint32_t> before(adg_.robots());
@@ -118,9 +124,7 @@ std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, dou
   monitor::AppendStats st;
   const auto problems = adg_.append(window.paths, time_s, &st);
   if (!problems.empty()) {
-    ++stats_.windows_refused;
-    events_.push_back({time_s, "refused", std::nullopt, std::nullopt, std::nullopt,
-                       problems.front().to_string()});
+    refuse(time_s, problems.front().to_string());
     return {};
   }
   stats_.appended_actions += st.actions;

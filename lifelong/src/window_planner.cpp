@@ -8,11 +8,14 @@
 namespace smart::lifelong {
 
 namespace {
+std::size_t budget_bytes(const BuiltinPlannerOptions& o) {
+  return static_cast<std::size_t>(o.distance_budget_mb * 1048576.0);
+}
+
 std::unique_ptr<planning::GoalHeuristic> make_heuristic(const grid::Grid& grid,
                                                         const BuiltinPlannerOptions& o,
                                                         planning::DistanceCache& tables) {
-  const auto budget = static_cast<std::size_t>(o.distance_budget_mb * 1048576.0);
-  if (planning::choose_heuristic(o.heuristic, grid, o.robots, budget) ==
+  if (planning::choose_heuristic(o.heuristic, grid, o.robots, budget_bytes(o)) ==
       planning::HeuristicKind::kTables) {
     return std::make_unique<planning::TableHeuristic>(tables);
   }
@@ -30,8 +33,7 @@ std::size_t tables_for(std::size_t robots) {
 BuiltinPlanner::BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptions& options,
                                std::function<double()> wall_ms)
     : wall_ms_(std::move(wall_ms)),
-      distances_(grid, static_cast<std::size_t>(options.distance_budget_mb * 1048576.0),
-                 tables_for(options.robots)),
+      distances_(grid, budget_bytes(options), tables_for(options.robots)),
       heuristic_(make_heuristic(grid, options, distances_)),
       pibt_(grid, *heuristic_, options.seed) {}
 
@@ -45,6 +47,7 @@ void BuiltinPlanner::submit(planning::WindowRequest request) {
   }
   out.wall_ms = wall_ms_ ? wall_ms_() - w0 : 0;
   out.distance_tables = distances_.tables();
+  out.heuristic = heuristic_->name();
   out.heuristic_mb = static_cast<double>(heuristic_->memory_bytes()) / 1048576.0;
   answer_ = std::move(out);
 }

@@ -10,11 +10,7 @@ DistanceCache::DistanceCache(const grid::Grid& grid, std::size_t budget_bytes,
                              std::size_t max_tables)
     : grid_(grid),
       max_tables_(std::max<std::size_t>(
-          4,
-          std::min(max_tables,
-                   budget_bytes / std::max<std::size_t>(
-                                      1, sizeof(int32_t) * static_cast<std::size_t>(grid.width()) *
-                                             static_cast<std::size_t>(grid.height()))))) {}
+          4, std::min(max_tables, budget_bytes / std::max<std::size_t>(1, table_bytes(grid))))) {}
 
 DistanceCache::Table DistanceCache::to(grid::Cell goal) {
   const auto key = static_cast<uint32_t>(grid_.index(goal));

@@ -5,9 +5,8 @@ namespace smart::planning {
 HeuristicKind choose_heuristic(HeuristicKind kind, const grid::Grid& grid, std::size_t robots,
                                std::size_t budget_bytes) {
   if (kind != HeuristicKind::kAuto) return kind;
-  const std::size_t table = sizeof(int32_t) * static_cast<std::size_t>(grid.width()) *
-                            static_cast<std::size_t>(grid.height());
-  return robots * table <= budget_bytes ? HeuristicKind::kTables : HeuristicKind::kPaths;
+  return robots * DistanceCache::table_bytes(grid) <= budget_bytes ? HeuristicKind::kTables
+                                                                   : HeuristicKind::kPaths;
 }
 
 bool TableHeuristic::aim(uint32_t robot, grid::Cell at, grid::Cell goal) {
@@ -26,8 +25,7 @@ int64_t TableHeuristic::rank(uint32_t robot, grid::Cell c) {
 }
 
 std::size_t TableHeuristic::memory_bytes() const {
-  return tables_.tables() * sizeof(int32_t) * static_cast<std::size_t>(tables_.grid().width()) *
-         static_cast<std::size_t>(tables_.grid().height());
+  return tables_.tables() * DistanceCache::table_bytes(tables_.grid());
 }
 
 }  // namespace smart::planning

@@ -74,6 +74,31 @@ bool GuidePaths::adjacent(uint32_t a, uint32_t b) const {
   return hi - lo == w || (hi - lo == 1 && hi % w != 0);
 }
 
+grid::Cell GuidePaths::cell_of(uint32_t v) const {
+  return {static_cast<int32_t>(v % static_cast<uint32_t>(width_)),
+          static_cast<int32_t>(v / static_cast<uint32_t>(width_))};
+}
+
+// The free 4-neighbours of cell index `c` into `out`; returns how many.
+int GuidePaths::free_neighbours(uint32_t c, uint32_t (&out)[4]) const {
+  const auto w = static_cast<uint32_t>(width_);
+  const auto cells = w * static_cast<uint32_t>(grid_.height());
+  const uint32_t x = c % w;
+  const uint32_t next[4] = {x + 1 < w ? c + 1 : UINT32_MAX, x > 0 ? c - 1 : UINT32_MAX,
+                            c + w < cells ? c + w : UINT32_MAX, c >= w ? c - w : UINT32_MAX};
+  int n = 0;
+  for (const uint32_t m : next) {
+    if (m != UINT32_MAX && !grid_.blocked(cell_of(m))) out[n++] = m;
+  }
+  return n;
+}
+
+// Where a robot may be found on its path: kReach cells either side of where it was.
+std::pair<std::size_t, std::size_t> GuidePaths::near(const Guide& p) {
+  return {p.idx > kReach ? p.idx - kReach : 0,
+          std::min(p.cells.size(), std::size_t{p.idx} + kReach)};
+}
+
 uint32_t GuidePaths::Workspace::next_stamp() {
   if (++stamp == 0) {
     std::fill(seen.begin(), seen.end(), 0);
@@ -94,8 +119,6 @@ bool GuidePaths::search(Workspace& w, uint32_t from, uint32_t to,
   w.g[from] = 0;
   w.parent[from] = from;
   w.heap.push_back({h(from, to), 0, from});
-  const auto width = static_cast<uint32_t>(width_);
-  const auto cells = static_cast<uint32_t>(w.seen.size());
   while (!w.heap.empty()) {
     std::pop_heap(w.heap.begin(), w.heap.end(), worse);
     const Open n = w.heap.back();
@@ -109,16 +132,10 @@ bool GuidePaths::search(Workspace& w, uint32_t from, uint32_t to,
       return true;
     }
     ++w.expanded;
-    const uint32_t x = n.cell % width;
-    const uint32_t next[4] = {x + 1 < width ? n.cell + 1 : UINT32_MAX,
-                              x > 0 ? n.cell - 1 : UINT32_MAX,
-                              n.cell + width < cells ? n.cell + width : UINT32_MAX,
-                              n.cell >= width ? n.cell - width : UINT32_MAX};
-    for (const uint32_t m : next) {
-      if (m == UINT32_MAX ||
-          grid_.blocked({static_cast<int32_t>(m % width), static_cast<int32_t>(m / width)})) {
-        continue;
-      }
+    uint32_t next[4];
+    const int count = free_neighbours(n.cell, next);
+    for (int i = 0; i < count; ++i) {
+      const uint32_t m = next[i];
       const int32_t ng = n.g + 1;
       if (w.seen[m] == stamp && w.g[m] <= ng) continue;
       w.seen[m] = stamp;
@@ -146,16 +163,14 @@ std::vector<grid::Cell> GuidePaths::shortest_path(grid::Cell from, grid::Cell to
               static_cast<uint32_t>(grid_.index(to)), cells)) {
     return out;
   }
-  for (const auto c : cells)
-    out.push_back({static_cast<int32_t>(c % width_), static_cast<int32_t>(c / width_)});
+  for (const auto c : cells) out.push_back(cell_of(c));
   return out;
 }
 
 // The robot is on its path near where it was last seen (a window's cut may lie behind where
 // the last window ended), or a cell off it: keep the path.
 bool GuidePaths::rejoin(Guide& p, uint32_t at) const {
-  const std::size_t begin = p.idx > kReach ? p.idx - kReach : 0;
-  const std::size_t end = std::min(p.cells.size(), std::size_t{p.idx} + kReach);
+  const auto [begin, end] = near(p);
   for (std::size_t k = begin; k < end; ++k) {
     if (p.cells[k] == at) {
       p.idx = static_cast<uint32_t>(k);
@@ -177,8 +192,7 @@ bool GuidePaths::rejoin(Guide& p, uint32_t at) const {
 // A BFS from `at` (at most kRepairDepth steps) to the nearest cell of the path near idx; the
 // way there is prepended to the rest of the path.
 bool GuidePaths::repair(Guide& p, uint32_t at) {
-  const std::size_t begin = p.idx > kReach ? p.idx - kReach : 0;
-  const std::size_t end = std::min(p.cells.size(), std::size_t{p.idx} + kReach);
+  const auto [begin, end] = near(p);
   auto& w = work_.front();
   const uint32_t path_mark = w.next_stamp();
   for (std::size_t k = begin; k < end; ++k) {
@@ -187,8 +201,6 @@ bool GuidePaths::repair(Guide& p, uint32_t at) {
   }
   const uint32_t stamp = w.next_stamp();
   if (stamp < path_mark) return false;  // the stamps wrapped (after 4 billion searches)
-  const auto width = static_cast<uint32_t>(width_);
-  const auto cells = static_cast<uint32_t>(w.seen.size());
   w.queue.assign(1, at);
   w.depth.assign(1, 0);
   w.parent[at] = at;
@@ -209,15 +221,11 @@ bool GuidePaths::repair(Guide& p, uint32_t at) {
       return true;
     }
     if (w.depth[head] == kRepairDepth) continue;
-    const uint32_t x = c % width;
-    const uint32_t next[4] = {x + 1 < width ? c + 1 : UINT32_MAX, x > 0 ? c - 1 : UINT32_MAX,
-                              c + width < cells ? c + width : UINT32_MAX,
-                              c >= width ? c - width : UINT32_MAX};
-    for (const uint32_t m : next) {
-      if (m == UINT32_MAX || w.seen[m] == stamp ||
-          grid_.blocked({static_cast<int32_t>(m % width), static_cast<int32_t>(m / width)})) {
-        continue;
-      }
+    uint32_t next[4];
+    const int count = free_neighbours(c, next);
+    for (int i = 0; i < count; ++i) {
+      const uint32_t m = next[i];
+      if (w.seen[m] == stamp) continue;
       if (w.seen[m] != path_mark) w.seen[m] = stamp;
       w.parent[m] = c;
       w.queue.push_back(m);
@@ -245,6 +253,9 @@ bool GuidePaths::settle(Guide& p, uint32_t at, uint32_t goal) {
 
 void GuidePaths::found(Guide& p, uint32_t at, uint32_t goal, bool path) {
   ++searches_;
+  p.idx = 0;
+  p.off = false;
+  p.waiting = false;
   if (searches_left_ > 0) --searches_left_;
   p.goal = path ? goal : UINT32_MAX;
   if (!path) p.cells.assign(1, at);  // ranks as holding still
@@ -277,11 +288,7 @@ void GuidePaths::new_window(const std::vector<grid::Cell>& at,
   run(0);
   for (auto& t : pool) t.join();
   for (std::size_t k = 0; k < batch.size(); ++k) {
-    auto& p = guides_[batch[k]];
-    p.idx = 0;
-    p.off = false;
-    p.waiting = false;
-    found(p, static_cast<uint32_t>(grid_.index(at[batch[k]])),
+    found(guides_[batch[k]], static_cast<uint32_t>(grid_.index(at[batch[k]])),
           static_cast<uint32_t>(grid_.index(goal[batch[k]])), ok[k] != 0);
   }
 }

@@ -76,14 +76,6 @@ class LifelongFiles {
   std::ofstream events_, tasks_, throughput_;
 };
 
-// What the built-in planner ranks moves by (planning/goal_heuristic.hpp).
-std::string heuristic_name(const MonitorCliOptions& o, const LifelongProblem& p) {
-  const auto kind = planning::choose_heuristic(
-      o.lifelong.heuristic, p.grid, p.starts.size(),
-      static_cast<std::size_t>(o.lifelong.distance_budget_mb * 1048576.0));
-  return kind == planning::HeuristicKind::kTables ? "distance tables" : "guide paths";
-}
-
 nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& o,
                              const lifelong::LifelongExecution& exec, const LifelongFiles& f,
                              double sim_time_s) {
@@ -109,7 +101,7 @@ nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& 
         {"max_ms", s.planner_max_ms},
         {"budget_s", l.budget_s},
         {"distance_tables", s.distance_tables},
-        {"heuristic", heuristic_name(o, p)},
+        {"heuristic", s.heuristic},
         {"heuristic_mb", s.heuristic_mb}}},
       {"replan_period_s", l.period_s},
       {"replan_when_left", l.replan_when_left},
@@ -303,7 +295,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   if (!result.success() && exec.stats().planner_max_ms > 500 * o.sim.timeout_s) {
     // A lock-step sim waits for the monitor's answer at most --timeout-s; a planner call holds
-    // it (its distance tables: one BFS over the map per goal cell, planning/distance_cache.hpp).
+    // it (distance tables are a BFS over the map per goal cell, guide paths an A* per robot).
     spdlog::error(
         "a planning call took {:.1f} s, longer than half of --timeout-s {} s that the sim waits "
         "for an answer: give a larger --timeout-s, or fewer robots on this map",

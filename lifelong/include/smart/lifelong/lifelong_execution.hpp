@@ -23,6 +23,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "smart/lifelong/scheduler.hpp"
@@ -54,6 +55,7 @@ struct LifelongStats {
   uint64_t appended_actions = 0, type2_edges = 0;
   uint64_t tasks_finished = 0, tasks_revealed = 0;
   uint64_t distance_tables = 0;  // held by the planner's cache (one per goal cell seen, bounded)
+  std::string heuristic;         // what the planner ranks moves by (its last answer)
   double heuristic_mb = 0;       // the planner's heuristic memory (tables, or landmarks + paths)
 };
 
@@ -99,6 +101,7 @@ class LifelongExecution final : public monitor::Execution {
   void plan(double time_s, const std::vector<uint32_t>& sent);
   std::vector<uint32_t> arrive(double time_s);
   std::vector<uint32_t> append(const PlannedWindow& window, double time_s);
+  void refuse(double time_s, const std::string& why);
 
   const grid::Grid& grid_;
   LifelongOptions options_;

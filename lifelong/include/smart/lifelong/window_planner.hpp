@@ -29,6 +29,7 @@ struct PlannedWindow {
   std::string error;                           // non-empty: no window (why)
   double wall_ms = 0;                          // the planner's own time, if it measured it
   std::size_t distance_tables = 0;             // the planner's distance tables after the call
+  std::string heuristic;                       // what ranks its moves (e.g. "guide paths")
   double heuristic_mb = 0;                     // the memory its heuristic holds
 };
 
@@ -53,7 +54,6 @@ class BuiltinPlanner final : public WindowPlanner {
   // `wall_ms`: a clock in ms that measures each call; empty: not measured.
   BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptions& options,
                  std::function<double()> wall_ms = {});
-  std::string heuristic() const { return heuristic_->name(); }
   void submit(planning::WindowRequest request) override;
   std::optional<PlannedWindow> poll() override;
 

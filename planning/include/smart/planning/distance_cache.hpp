@@ -30,6 +30,10 @@ class DistanceCache {
   std::size_t tables() const { return tables_.size(); }
   std::size_t computed() const { return computed_; }  // BFS runs so far (misses)
   const grid::Grid& grid() const { return grid_; }
+  static std::size_t table_bytes(const grid::Grid& grid) {  // one table: a distance per cell
+    return sizeof(int32_t) * static_cast<std::size_t>(grid.width()) *
+           static_cast<std::size_t>(grid.height());
+  }
 
  private:
   const grid::Grid& grid_;

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "smart/planning/goal_heuristic.hpp"
@@ -83,6 +84,9 @@ class GuidePaths final : public GoalHeuristic {
   bool settle(Guide& p, uint32_t at, uint32_t goal);
   void found(Guide& p, uint32_t at, uint32_t goal, bool path);
   int32_t h(uint32_t v, uint32_t goal) const;
+  grid::Cell cell_of(uint32_t v) const;
+  int free_neighbours(uint32_t c, uint32_t (&out)[4]) const;
+  static std::pair<std::size_t, std::size_t> near(const Guide& p);
   bool adjacent(uint32_t a, uint32_t b) const;
 
   const grid::Grid& grid_;
