@@ -2,9 +2,8 @@
 
 namespace smart::monitor {
 
-std::vector<Action> build_robot_actions(uint32_t robot, uint32_t first_seq, Heading& heading,
-                                        const std::vector<PathStep>& steps) {
-  std::vector<Action> out;
+void append_robot_actions(uint32_t robot, uint32_t first_seq, Heading& heading,
+                          const std::vector<PathStep>& steps, std::vector<Action>& out) {
   uint32_t seq = first_seq;
   for (std::size_t k = 0; k + 1 < steps.size(); ++k) {
     const auto& a = steps[k];
@@ -21,7 +20,6 @@ std::vector<Action> build_robot_actions(uint32_t robot, uint32_t first_seq, Head
     out.push_back({robot, seq++, ActionType::kMove, dir, ha, mid, a.time, t_mid});
     out.push_back({robot, seq++, ActionType::kMove, dir, mid, hb, t_mid, b.time});
   }
-  return out;
 }
 
 ActionPlan build_actions(const Plan& plan, Heading initial_heading) {
@@ -35,10 +33,10 @@ ActionPlan build_actions(const Plan& plan, Heading initial_heading) {
     Heading heading = initial_heading;
     out.initial_heading.push_back(initial_heading);
     out.start.push_back(path.steps.empty() ? HalfCell{} : HalfCell::of(path.steps.front().cell));
-    for (const auto& a :
-         build_robot_actions(static_cast<uint32_t>(path.robot), 0, heading, path.steps)) {
-      ++(a.type == ActionType::kMove ? out.moves : out.rotations);
-      out.actions.push_back(a);
+    const std::size_t first = out.actions.size();
+    append_robot_actions(static_cast<uint32_t>(path.robot), 0, heading, path.steps, out.actions);
+    for (std::size_t i = first; i < out.actions.size(); ++i) {
+      ++(out.actions[i].type == ActionType::kMove ? out.moves : out.rotations);
     }
     out.offset.push_back(static_cast<uint32_t>(out.actions.size()));
   }

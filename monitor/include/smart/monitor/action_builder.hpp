@@ -19,10 +19,11 @@ namespace smart::monitor {
 
 ActionPlan build_actions(const Plan& plan, Heading initial_heading = Heading::kEast);
 
-// One robot's actions for timed steps (steps[0] is where it stands), seqs from `first_seq`,
-// starting with `heading`, which is left as the heading after the last action (lifelong windows
-// continue from where the previous window's actions end, live_adg.hpp).
-std::vector<Action> build_robot_actions(uint32_t robot, uint32_t first_seq, Heading& heading,
-                                        const std::vector<PathStep>& steps);
+// Appends to `out` one robot's actions for timed steps (steps[0] is where it stands), seqs from
+// `first_seq`, starting with `heading`, which is left as the heading after the last action
+// (lifelong windows continue from where the previous window's actions end, live_adg.hpp).
+// Appending to the caller's vector lets a 10 000-robot window share one allocation.
+void append_robot_actions(uint32_t robot, uint32_t first_seq, Heading& heading,
+                          const std::vector<PathStep>& steps, std::vector<Action>& out);
 
 }  // namespace smart::monitor

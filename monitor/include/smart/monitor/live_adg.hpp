@@ -29,7 +29,6 @@
 
 #include <boost/container/small_vector.hpp>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <string>
 #include <vector>
@@ -37,6 +36,7 @@
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/execution.hpp"
 #include "smart/monitor/execution_tracker.hpp"
+#include "smart/monitor/ring.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
@@ -116,13 +116,20 @@ class LiveAdg final : public Execution {
   };
   struct Robot {
     uint32_t base = 0;  // seq of nodes.front()
-    std::deque<Node> nodes;
+    // The unfinished actions: finishing pops the front, a window pushes at the back, and slots
+    // (with their edge lists' storage) are reused, so memory settles at the longest queue.
+    Ring<Node> nodes;
     uint32_t finished = 0;
     uint32_t enqueued = 0;
     HalfCell done;  // after its last finished action (its start before any)
     Heading done_heading = Heading::kEast;
     Cell tail_cell;  // after its last appended action
     Heading tail_heading = Heading::kEast;
+  };
+  // A window's actions, robot by robot: robot r's are all[first[r] .. first[r + 1]).
+  struct NewActions {
+    std::vector<Action> all;
+    std::vector<uint32_t> first;
   };
   struct Occupancy;
 
@@ -132,16 +139,14 @@ class LiveAdg final : public Execution {
   }
   bool advance(uint32_t r);
   void finish(uint32_t r, uint32_t seq, Update& u);
-  std::vector<Occupancy> kept_last_leavers();
-  // The window's occupancies, with room reserved for `room` more (the kept leavers).
-  std::vector<Occupancy> window_occupancies(const std::vector<std::vector<Action>>& acts,
-                                            std::size_t room) const;
-  std::vector<Occupancy> by_location(const std::vector<Occupancy>& occ);
+  std::vector<Problem> build_window(const std::vector<std::vector<Cell>>& paths, double t0,
+                                    NewActions& acts, double& t_end) const;
+  std::vector<Occupancy> occupancies(const NewActions& acts) const;
   std::vector<Problem> link(const std::vector<Occupancy>& occ,
-                            std::vector<std::pair<NodeRef, NodeRef>>& edges);
+                            std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
   std::vector<Problem> check_window_acyclic(
-      const std::vector<std::vector<Action>>& acts,
-      const std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
+      const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
+  void insert(const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges);
 
   const Grid& grid_;
   std::vector<Robot> robots_;
@@ -149,11 +154,6 @@ class LiveAdg final : public Execution {
   std::size_t appended_total_ = 0;
   std::size_t type2_total_ = 0;
   double last_plan_time_s_ = 0;
-  // A table over the grid's locations for kept_last_leavers() and by_location() (reused: stamped,
-  // never cleared; by_location keeps a group id in `robot`).
-  std::vector<uint32_t> leaver_stamp_;
-  std::vector<NodeRef> leaver_;
-  uint32_t stamp_ = 0;
 };
 
 }  // namespace smart::monitor
