@@ -17,7 +17,9 @@ extern char** environ;
 namespace smart::common {
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
-                           const std::filesystem::path& stdout_file) {
+                           const std::filesystem::path& stdout_file,
+                           const std::vector<std::pair<int, int>>& give, bool own_group)
+    : own_group_(own_group) {
   if (argv.empty()) throw std::invalid_argument("ChildProcess: empty argv");
   std::vector<char*> args;
   args.reserve(argv.size() + 1);
@@ -29,7 +31,15 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_file.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
   }
-  const int rc = posix_spawn(&pid_, argv[0].c_str(), &actions, nullptr, args.data(), environ);
+  for (const auto& [from, to] : give) posix_spawn_file_actions_adddup2(&actions, from, to);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (own_group) {
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+  }
+  const int rc = posix_spawn(&pid_, argv[0].c_str(), &actions, &attr, args.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
     pid_ = -1;
@@ -39,10 +49,12 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv,
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept
-    : pid_(std::exchange(other.pid_, -1)), status_(other.status_) {}
+    : pid_(std::exchange(other.pid_, -1)), own_group_(other.own_group_), status_(other.status_) {}
 
 ChildProcess::~ChildProcess() {
   if (pid_ > 0 && !status_) terminate();
+  // The group outlives its leader while members remain, so its id is not reused meanwhile.
+  if (pid_ > 0 && own_group_) ::kill(-pid_, SIGKILL);
 }
 
 std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
@@ -67,7 +79,7 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
 bool ChildProcess::running() { return pid_ > 0 && !wait(std::chrono::milliseconds(0)); }
 
 void ChildProcess::signal(int sig) {
-  if (pid_ > 0 && !status_) ::kill(pid_, sig);
+  if (pid_ > 0 && !status_) ::kill(own_group_ ? -pid_ : pid_, sig);
 }
 
 int ChildProcess::terminate(std::chrono::milliseconds grace) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace smart::common {
@@ -16,7 +17,13 @@ namespace smart::common {
 class ChildProcess {
  public:
   // `stdout_file`: where the child's stdout goes (empty: inherit). stderr is inherited.
-  ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& stdout_file = {});
+  // `give`: descriptors the child gets as {parent fd, child fd} (e.g. a pipe's end as its stdin;
+  // the parent's descriptors should be close-on-exec, so the child keeps only these).
+  // `own_group`: the child leads a process group of its own, and signals go to the whole group
+  // (a shell command's children too); the destructor also kills what is left of the group once
+  // the leader has ended.
+  ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& stdout_file = {},
+               const std::vector<std::pair<int, int>>& give = {}, bool own_group = false);
   ChildProcess(ChildProcess&& other) noexcept;
   ChildProcess& operator=(ChildProcess&&) = delete;
   ~ChildProcess();
@@ -31,6 +38,7 @@ class ChildProcess {
 
  private:
   pid_t pid_ = -1;
+  bool own_group_ = false;
   std::optional<int> status_;
 };
 
