@@ -73,7 +73,7 @@ void LifelongExecution::plan(double time_s, const std::vector<uint32_t>& sent) {
   tasks_.update(time_s, cut.cell);
   const std::size_t n = adg_.robots();
   planning::WindowRequest req{cut.cell, std::vector<std::vector<grid::Cell>>(n),
-                              options_.window_steps};
+                              options_.window_steps, cut.heading, time_s};
   for (uint32_t r = 0; r < n; ++r) {
     // A robot standing still on its new task's errands has done them already.
     if (adg_.finished(r) == adg_.end(r)) tasks_.reached_while_idle(r, cut.cell[r], time_s);
@@ -119,6 +119,8 @@ std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, dou
     refuse(time_s, window.error);
     return {};
   }
+  if (!window.replaced.empty())
+    refuse(time_s, window.replaced + "; the fallback planner's window is used");
   std::vector<uint32_t> before(adg_.robots());
   for (uint32_t r = 0; r < before.size(); ++r) before[r] = adg_.end(r);
   monitor::AppendStats st;

@@ -58,6 +58,32 @@ std::optional<PlannedWindow> BuiltinPlanner::poll() {
   return out;
 }
 
+FallbackPlanner::FallbackPlanner(std::unique_ptr<WindowPlanner> first,
+                                 std::unique_ptr<WindowPlanner> second)
+    : first_(std::move(first)), second_(std::move(second)) {}
+
+void FallbackPlanner::submit(planning::WindowRequest request) {
+  first_->submit(request);
+  auto first = first_->poll();
+  if (!first) throw std::logic_error("FallbackPlanner: the first planner must answer in submit()");
+  if (first->error.empty()) {
+    answer_ = std::move(first);
+    return;
+  }
+  second_->submit(std::move(request));
+  answer_ = second_->poll();
+  if (!answer_)
+    throw std::logic_error("FallbackPlanner: the second planner must answer in submit()");
+  answer_->replaced = first->error;
+  answer_->wall_ms += first->wall_ms;
+}
+
+std::optional<PlannedWindow> FallbackPlanner::poll() {
+  auto out = std::move(answer_);
+  answer_.reset();
+  return out;
+}
+
 ThreadedPlanner::ThreadedPlanner(std::unique_ptr<WindowPlanner> inner) : inner_(std::move(inner)) {}
 
 ThreadedPlanner::~ThreadedPlanner() {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <thread>
@@ -47,7 +48,7 @@ TEST(BuiltinPlanner, KeepsTablesForTheRobotsGoalsNotEveryGoalSeen) {
 
 TEST(BuiltinPlanner, AGoalNoPathReachesIsAnErrorNotAnException) {
   std::vector<uint8_t> blocked(36, 0);
-  for (int y = 0; y < 6; ++y) blocked[static_cast<std::size_t>(y * 6 + 3)] = 1;  // a wall
+  for (int y = 0; y < 6; ++y) blocked[static_cast<std::size_t>(y) * 6 + 3] = 1;  // a wall
   const grid::Grid g(6, 6, blocked);
   BuiltinPlanner p(g, {.distance_budget_mb = 16});
   p.submit(one_robot({0, 0}, {5, 5}));
@@ -144,6 +145,64 @@ TEST(ThreadedPlanner, CommittedActionsRunWhileTheNextWindowIsPlanned) {
   second.set_value();
   EXPECT_EQ(until_appended(exec, 2.1), (std::vector<uint32_t>{0}));
   EXPECT_GT(exec.known(0), cut_end);
+}
+
+// A planner that refuses every window with the same reason (an external planner gone bad).
+class Refusing final : public WindowPlanner {
+ public:
+  void submit(planning::WindowRequest) override {
+    answer_ = PlannedWindow{};
+    answer_->error = "robots 0 and 1 collide";
+    answer_->wall_ms = 3;
+  }
+  std::optional<PlannedWindow> poll() override { return std::exchange(answer_, std::nullopt); }
+
+ private:
+  std::optional<PlannedWindow> answer_;
+};
+
+TEST(FallbackPlanner, ARefusedWindowIsPlannedByTheSecondWithTheReasonKept) {
+  const auto g = planning::generate_empty_map(6, 6);
+  FallbackPlanner p(std::make_unique<Refusing>(),
+                    std::make_unique<BuiltinPlanner>(g, BuiltinPlannerOptions{16}));
+  p.submit(one_robot({0, 0}, {5, 0}));
+  const auto w = p.poll();
+  ASSERT_TRUE(w);
+  EXPECT_TRUE(w->error.empty()) << w->error;
+  EXPECT_EQ(w->paths.at(0).back(), (grid::Cell{4, 0}));
+  EXPECT_EQ(w->replaced, "robots 0 and 1 collide");
+  EXPECT_GE(w->wall_ms, 3);
+  EXPECT_FALSE(p.poll());
+}
+
+TEST(FallbackPlanner, AnAcceptedWindowIsTheFirstPlannersOwn) {
+  const auto g = planning::generate_empty_map(6, 6);
+  FallbackPlanner p(std::make_unique<BuiltinPlanner>(g, BuiltinPlannerOptions{16}),
+                    std::make_unique<Refusing>());
+  p.submit(one_robot({0, 0}, {5, 0}));
+  const auto w = p.poll();
+  ASSERT_TRUE(w);
+  EXPECT_TRUE(w->error.empty());
+  EXPECT_TRUE(w->replaced.empty());
+}
+
+// The run records the refusal as an event and appends the stand-in window.
+TEST(FallbackPlanner, TheRunRecordsTheRefusalAndAppendsTheStandIn) {
+  const auto g = planning::generate_empty_map(8, 8);
+  LifelongExecution exec(g, {{0, 0}}, {{0, 1, {{7, 0}}}}, {.duration_s = 100, .window_steps = 4},
+                         std::make_unique<FallbackPlanner>(
+                             std::make_unique<Refusing>(),
+                             std::make_unique<BuiltinPlanner>(g, BuiltinPlannerOptions{16})));
+  EXPECT_EQ(exec.on_time(0.0, {0}), (std::vector<uint32_t>{0}));
+  EXPECT_GT(exec.known(0), 0u);
+  EXPECT_EQ(exec.stats().windows_refused, 1u);
+  const auto events = exec.take_events();
+  const auto refused = std::find_if(events.begin(), events.end(),
+                                    [](const auto& e) { return e.event == "refused"; });
+  ASSERT_NE(refused, events.end());
+  EXPECT_NE(refused->detail.find("robots 0 and 1 collide; the fallback planner's window is used"),
+            std::string::npos)
+      << refused->detail;
 }
 
 }  // namespace

@@ -6,6 +6,10 @@
 // - ThreadedPlanner runs another planner's submit() on a worker thread (real-time runs: the
 //   monitor keeps dispatching and recording while the window is planned; issue 27 item 5). It
 //   owns the inner planner; nothing else touches it while a request is outstanding.
+// - FallbackPlanner asks a first planner (e.g. an external one, tools/pipe_planner.hpp) and, when
+//   it refuses, plans the window with a second (the built-in one: `--planner-fallback builtin`);
+//   the first's reason travels in `replaced`. Both must answer within submit() (wrap the whole in
+//   a ThreadedPlanner for real time).
 // A planner that fails (PIBT refuses a request it cannot fit) answers with `error` set; the run
 // records it as a refused window and robots stop safely at the cut.
 #pragma once
@@ -31,6 +35,8 @@ struct PlannedWindow {
   std::size_t distance_tables = 0;             // the planner's distance tables after the call
   std::string heuristic;                       // what ranks its moves (e.g. "guide paths")
   double heuristic_mb = 0;                     // the memory its heuristic holds
+  std::string replaced;  // non-empty: another planner's window was refused (why) and this one
+                         // stands in for it
 };
 
 class WindowPlanner {
@@ -62,6 +68,17 @@ class BuiltinPlanner final : public WindowPlanner {
   planning::DistanceCache distances_;
   std::unique_ptr<planning::GoalHeuristic> heuristic_;
   planning::Pibt pibt_;
+  std::optional<PlannedWindow> answer_;
+};
+
+class FallbackPlanner final : public WindowPlanner {
+ public:
+  FallbackPlanner(std::unique_ptr<WindowPlanner> first, std::unique_ptr<WindowPlanner> second);
+  void submit(planning::WindowRequest request) override;
+  std::optional<PlannedWindow> poll() override;
+
+ private:
+  std::unique_ptr<WindowPlanner> first_, second_;
   std::optional<PlannedWindow> answer_;
 };
 

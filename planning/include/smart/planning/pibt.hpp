@@ -30,6 +30,8 @@ struct WindowRequest {
   std::vector<grid::Cell> start;               // per robot; distinct free cells
   std::vector<std::vector<grid::Cell>> goals;  // per robot: errands left, in order (may be empty)
   int steps = 10;
+  std::vector<grid::Heading> heading = {};  // per robot at its start, if known (PIBT ignores it)
+  double time_s = 0;  // when the cut was made (sim time), for planners that ask
 };
 
 struct WindowPlan {
