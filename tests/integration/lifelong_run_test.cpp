@@ -260,6 +260,84 @@ TEST(LifelongRun, GeneratedStreamsRunWithDelaysInLockStepAndInRealTime) {
   EXPECT_EQ(k["lifelong"]["windows_refused"], 0);
 }
 
+// Issue 28: a planner in another language drives the run through a pipe (the example Python
+// planner); a planner that crashes leaves the run going, its windows refused with the reason,
+// robots waiting at the cut or the built-in planner standing in (--planner-fallback); a hung
+// one in real time never stops the clock. All on one domain, one after the other.
+TEST(LifelongRun, APythonPlannerDrivesARunAndABrokenOneNeverStopsIt) {
+  const std::vector<std::string> stream{
+      "--tasks",        "random",
+      "--map",          (benchmarks_dir() / "maps" / "random-32-32-20.map").string(),
+      "--agents",       "20",
+      "--seed",         "3",
+      "--task-errands", "1"};
+  auto with = [&](std::vector<std::string> more) {
+    more.insert(more.begin(), stream.begin(), stream.end());
+    return more;
+  };
+  const auto python = "python3 " + (std::filesystem::path(SMART_SOURCE_DIR) / "examples" /
+                                    "planners" / "greedy_planner.py")
+                                       .string();
+  const auto out = temp_file("lifelong_pipe");
+  auto r = lifelong(with({"--duration-s", "120", "--planner-cmd", python, "--out", out.string()}),
+                    kLifelongPipePlanner, "lifelong_pipe");
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto j = summary_in(r.out);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_EQ(j["lifelong"]["planner"]["name"], "external");
+  EXPECT_EQ(j["lifelong"]["planner"]["heuristic"], "external: greedy_planner.py");
+  EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
+  EXPECT_GE(j["lifelong"]["planner"]["calls"].get<int>(), 100);
+  EXPECT_GT(j["lifelong"]["tasks_finished"].get<int>(), 0);
+  std::filesystem::remove_all(out);
+
+  const std::string crashes = R"(read start; echo '{"type": "ready"}'; exit 3)";
+  for (const std::string fallback : {"stop", "builtin"}) {
+    r = lifelong(with({"--duration-s", "60", "--planner-cmd", crashes, "--planner-fallback",
+                       fallback, "--out", out.string()}),
+                 kLifelongPipePlanner, "lifelong_pipe_" + fallback);
+    ASSERT_EQ(r.code, 0) << r.out;
+    j = summary_in(r.out);
+    EXPECT_TRUE(j["success"].get<bool>()) << fallback;
+    EXPECT_EQ(j["collisions"], 0);
+    EXPECT_DOUBLE_EQ(j["sim_time_s"].get<double>(), 60.0);
+    const auto& l = j["lifelong"];
+    EXPECT_EQ(l["windows_refused"], l["planner"]["calls"]);
+    EXPECT_EQ(l["planner"]["fallback"], fallback);
+    // Said once in the log, and in events.csv for every window.
+    EXPECT_THAT(r.out, HasSubstr("--planner-cmd window 1 refused: the planner closed its output "
+                                 "and exited with code 3; no more windows from it"));
+    const auto events = slurp(out / results::kEventsCsv);
+    EXPECT_THAT(events,
+                HasSubstr(",refused,,,,--planner-cmd window 2 refused: the planner closed"));
+    if (fallback == "stop") {
+      // Nobody moved: no window was ever appended (a task may still finish where its robot
+      // stands).
+      EXPECT_EQ(l["appended_actions"], 0);
+      EXPECT_EQ(j["finished_actions"], 0);
+    } else {
+      EXPECT_THAT(events,
+                  HasSubstr("no more windows from it; the fallback planner's window is used"));
+      EXPECT_GT(l["tasks_finished"].get<int>(), 0);
+    }
+    std::filesystem::remove_all(out);
+  }
+
+  // Real time: a planner that reads its requests and never answers. The run keeps the wall
+  // clock and ends on time; every window is refused as late.
+  const std::string hangs = R"(read start; echo '{"type": "ready"}'; exec sleep 600)";
+  r = lifelong(with({"--clock", "realtime", "--duration-s", "3", "--planner-cmd", hangs,
+                     "--planner-timeout-s", "0.5"}),
+               kLifelongPipePlanner, "lifelong_pipe_hang");
+  ASSERT_EQ(r.code, 0) << r.out;
+  j = summary_in(r.out);
+  EXPECT_TRUE(j["success"].get<bool>());
+  EXPECT_GE(j["sim_time_s"].get<double>(), 3.0);
+  EXPECT_GE(j["lifelong"]["windows_refused"].get<int>(), 1);
+  EXPECT_THAT(r.out, HasSubstr("late: no reply within 0.5 s (--planner-timeout-s)"));
+}
+
 TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
   auto r = lifelong({"--lifelong", maze_problem(), "--plan", "p.txt"}, kLifelongRandom, "ll_bad1");
   EXPECT_NE(r.code, 0);
@@ -275,6 +353,11 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
   r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));
+  r = lifelong({"--lifelong", maze_problem(), "--planner-cmd", "python3 p.py",
+                "--planner-timeout-s", "20", "--timeout-s", "30"},
+               kLifelongRandom, "ll_bad4");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("give a --timeout-s above twice the planner's timeout"));
 }
 
 }  // namespace

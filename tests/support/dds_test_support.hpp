@@ -137,6 +137,8 @@ enum DomainId : int {
   kLifelongMixed = 119,
   kMultihostLifelong = 202,  // the two-host run, then its one-host reference
   kLifelongRandom = 230,     // the last id --domain takes (Cyclone's port formula)
+  // 101..230 are taken: later tests count down from 100.
+  kLifelongPipePlanner = 100,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -22,6 +22,7 @@
 #include "smart/planning/task_generator.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/machine.hpp"
+#include "smart/tools/pipe_planner.hpp"
 
 namespace smart::tools {
 
@@ -94,7 +95,10 @@ nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& 
       {"mean_robots_with_task", f.rows ? f.robots_with_task_sum / double(f.rows) : 0.0},
       {"task_pool", p.pool},
       {"planner",
-       {{"name", "pibt"},
+       {{"name", l.planner_cmd.empty() ? "pibt" : "external"},
+        {"command", l.planner_cmd},
+        {"fallback",
+         l.planner_fallback == LifelongCliOptions::Fallback::kBuiltin ? "builtin" : "stop"},
         {"calls", s.planner_calls},
         {"total_ms", s.planner_total_ms},
         {"mean_ms", s.planner_calls ? s.planner_total_ms / double(s.planner_calls) : 0.0},
@@ -182,6 +186,14 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "start it again");
   }
   check_real_time_factor(o.sim);
+  if (!o.lifelong.planner_cmd.empty() && o.sim.clock == sim::ClockMode::kLockstep &&
+      2 * o.lifelong.planner_timeout_s >= o.sim.timeout_s) {
+    throw std::invalid_argument(
+        "--planner-timeout-s " + std::to_string(o.lifelong.planner_timeout_s) +
+        ": in lock-step the sim waits for the monitor at most --timeout-s " +
+        std::to_string(o.sim.timeout_s) +
+        " s, and a planner call holds it; give a --timeout-s above twice the planner's timeout");
+  }
 }
 
 // Where the sim child's world files go: the results folder, or a temp folder (returned, to be
@@ -204,14 +216,29 @@ std::function<double()> steady_ms() {
 
 // Lock-step: the planner runs inside the monitor's answer, charged --plan-budget-s of sim time.
 // Real time: on its own thread, while the monitor keeps dispatching the committed actions.
+// --planner-cmd: an external planner over a pipe, with the built-in one behind it if asked.
 std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions& o,
                                                         const grid::Grid& grid, std::size_t robots,
                                                         const lifelong::LifelongOptions& lo) {
-  auto builtin = std::make_unique<lifelong::BuiltinPlanner>(
-      grid, lifelong::BuiltinPlannerOptions{lo.distance_budget_mb, lo.seed, lo.heuristic, robots},
-      steady_ms());
-  if (o.sim.clock == sim::ClockMode::kLockstep) return builtin;
-  return std::make_unique<lifelong::ThreadedPlanner>(std::move(builtin));
+  auto builtin = [&] {
+    return std::make_unique<lifelong::BuiltinPlanner>(
+        grid, lifelong::BuiltinPlannerOptions{lo.distance_budget_mb, lo.seed, lo.heuristic, robots},
+        steady_ms());
+  };
+  std::unique_ptr<lifelong::WindowPlanner> planner;
+  const auto& l = o.lifelong;
+  if (l.planner_cmd.empty()) {
+    planner = builtin();
+  } else {
+    planner = std::make_unique<PipePlanner>(
+        grid, robots, lo.window_steps,
+        PipePlannerOptions{l.planner_cmd, l.planner_timeout_s, lo.budget_s, 0});
+    if (l.planner_fallback == LifelongCliOptions::Fallback::kBuiltin) {
+      planner = std::make_unique<lifelong::FallbackPlanner>(std::move(planner), builtin());
+    }
+  }
+  if (o.sim.clock == sim::ClockMode::kLockstep) return planner;
+  return std::make_unique<lifelong::ThreadedPlanner>(std::move(planner));
 }
 
 // The monitor over DDS until the run ends; the files are streamed meanwhile.

@@ -78,6 +78,11 @@ struct LifelongCliOptions {
   double budget_s = 0.1;
   double distance_budget_mb = 1024;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
+  // An external planner (tools/pipe_planner.hpp); empty: the built-in one.
+  std::string planner_cmd;
+  double planner_timeout_s = 2.0;           // wall seconds per window
+  enum class Fallback { kStop, kBuiltin };  // a refused external window: wait, or built-in
+  Fallback planner_fallback = Fallback::kStop;
 };
 
 struct MonitorCliOptions {
