@@ -129,7 +129,16 @@ TEST_F(PipePlannerTest, ALateReplyIsRefusedAndSkippedWhenItComes) {
 
 TEST_F(PipePlannerTest, AHungPlannerIsLateEveryWindowAndNeverBlocksLonger) {
   PipePlanner p(grid_, 2, 2, {fake("None"), 0.05, 0, 0});  // reads requests, never answers
-  for (int k = 0; k < 3; ++k) EXPECT_NE(plan(p).error.find("late"), std::string::npos);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NE(plan(p).error.find("late: no reply within 0.05 s"), std::string::npos);
+  }
+}
+
+// Regression: a whole number of seconds was written "2. s".
+TEST_F(PipePlannerTest, AWholeTimeoutIsWrittenAsAWholeNumber) {
+  PipePlanner p(grid_, 2, 2, {fake("None"), 1, 0, 0});
+  EXPECT_NE(plan(p).error.find("late: no reply within 1 s (--planner-timeout-s)"),
+            std::string::npos);
 }
 
 TEST_F(PipePlannerTest, APlannerThatStopsReadingIsRefusedForGood) {

@@ -1,5 +1,6 @@
 #include "smart/tools/pipe_planner.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -27,10 +28,7 @@ std::size_t reply_bound(const PipePlannerOptions& o, std::size_t robots, int ste
   return robots * (static_cast<std::size_t>(steps) + 1) * 32 + 65536;
 }
 
-std::string seconds(double s) {
-  const auto text = std::to_string(s);
-  return text.substr(0, text.find_last_not_of('0') + 1) + " s";
-}
+std::string seconds(double s) { return fmt::format("{:g} s", s); }
 
 }  // namespace
 
