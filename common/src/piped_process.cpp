@@ -111,6 +111,9 @@ PipedProcess::Io PipedProcess::read_line(std::string& line, std::size_t max_line
       buffer_.clear();
     }
     if (from_child_ < 0) return Io::kClosed;
+    // Checked before every read, not only when the pipe is empty: a child that writes faster
+    // than lines are taken would otherwise keep this loop going past the deadline.
+    if (std::chrono::steady_clock::now() >= deadline) return Io::kTimeout;
     const ssize_t n = ::read(from_child_, chunk.data(), chunk.size());
     if (n > 0) {
       buffer_.append(chunk.data(), static_cast<std::size_t>(n));

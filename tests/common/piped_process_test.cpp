@@ -67,6 +67,21 @@ TEST(PipedProcess, AnEndlessLineCostsBoundedMemory) {
   EXPECT_LE(p.buffered(), 4096u + 65536u);
 }
 
+// Regression: the deadline was checked only when the pipe was empty, so a reader taking lines
+// from a child that writes them faster (`yes`, or a planner flooding stale replies under ASan)
+// never timed out.
+TEST(PipedProcess, AChildWritingFasterThanItIsReadStillTimesOut) {
+  PipedProcess p("yes 2>/dev/null");
+  std::string line;
+  const auto deadline = std::chrono::steady_clock::now() + 200ms;
+  const auto give_up = deadline + 30s;  // the guard of a broken test, not a time it needs
+  Io io = Io::kOk;
+  while (io == Io::kOk && std::chrono::steady_clock::now() < give_up) {
+    io = p.read_line(line, 100, deadline);
+  }
+  EXPECT_EQ(io, Io::kTimeout);
+}
+
 TEST(PipedProcess, AChildNotReadingItsInputTimesOutTheWriter) {
   PipedProcess p("sleep 30");
   const std::string big(1 << 20, 'x');  // larger than a pipe's buffer
