@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 #include "smart/planning/guide_paths.hpp"
 
@@ -52,11 +53,7 @@ void BuiltinPlanner::submit(planning::WindowRequest request) {
   answer_ = std::move(out);
 }
 
-std::optional<PlannedWindow> BuiltinPlanner::poll() {
-  auto out = std::move(answer_);
-  answer_.reset();
-  return out;
-}
+std::optional<PlannedWindow> BuiltinPlanner::poll() { return std::exchange(answer_, std::nullopt); }
 
 FallbackPlanner::FallbackPlanner(std::unique_ptr<WindowPlanner> first,
                                  std::unique_ptr<WindowPlanner> second)
@@ -79,9 +76,7 @@ void FallbackPlanner::submit(planning::WindowRequest request) {
 }
 
 std::optional<PlannedWindow> FallbackPlanner::poll() {
-  auto out = std::move(answer_);
-  answer_.reset();
-  return out;
+  return std::exchange(answer_, std::nullopt);
 }
 
 ThreadedPlanner::ThreadedPlanner(std::unique_ptr<WindowPlanner> inner) : inner_(std::move(inner)) {}

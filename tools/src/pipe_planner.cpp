@@ -1,12 +1,13 @@
 #include "smart/tools/pipe_planner.hpp"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 #include "smart/lifelong/plan_protocol.hpp"
+#include "smart/tools/cli_common.hpp"
 
 namespace smart::tools {
 
@@ -28,7 +29,7 @@ std::size_t reply_bound(const PipePlannerOptions& o, std::size_t robots, int ste
   return robots * (static_cast<std::size_t>(steps) + 1) * 32 + 65536;
 }
 
-std::string seconds(double s) { return fmt::format("{:g} s", s); }
+std::string seconds(double s) { return exact(s) + " s"; }
 
 }  // namespace
 
@@ -125,9 +126,7 @@ void PipePlanner::submit(planning::WindowRequest request) {
 }
 
 std::optional<lifelong::PlannedWindow> PipePlanner::poll() {
-  auto out = std::move(answer_);
-  answer_.reset();
-  return out;
+  return std::exchange(answer_, std::nullopt);
 }
 
 }  // namespace smart::tools

@@ -12,7 +12,10 @@
 //   malformed, and the reason names the field, robot and step.
 // - check_window: a window is refused unless every robot has steps + 1 cells, starts on its cut
 //   cell, stays on free cells of the map, moves at most one cell a step, and no two robots share a
-//   cell at a step or swap cells between steps (the MAPF vertex and edge conflicts).
+//   cell at a step or swap cells between steps (the MAPF vertex and edge conflicts). Not
+//   monitor/plan_validator.hpp: that one checks timed plan files against a scenario, with
+//   intervals and advice about axes and files; a window is steps + 1 unit steps from a cut, and
+//   its reasons are for whoever wrote the planner.
 // Cells are [x, y]: x the column, y the row (MovingAI; row 0 at the top).
 #pragma once
 
