@@ -203,14 +203,16 @@ std::string check_monitor_info(const smart_msg_MonitorInfo& m) {
     return "strength " + std::to_string(m.strength) +
            " is below MONITOR_STRENGTH_MIN: not a monitor";
   }
-  for (const auto& [what, text, size] : {std::tuple{"host name", m.host, sizeof(m.host)},
-                                         std::tuple{"run name", m.run, sizeof(m.run)}}) {
-    for (std::size_t i = 0; i < size && text[i] != '\0'; ++i) {
-      const auto c = static_cast<unsigned char>(text[i]);
-      if (c < 0x20 || c > 0x7e) {
-        return std::string(what) + " has a non-printable byte (" + std::to_string(c) + " at " +
-               std::to_string(i) + ")";
-      }
+  auto why = check_printable("host name", m.host, sizeof(m.host));
+  return why.empty() ? check_printable("run name", m.run, sizeof(m.run)) : why;
+}
+
+std::string check_printable(const char* what, const char* text, std::size_t size) {
+  for (std::size_t i = 0; i < size && text[i] != '\0'; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c > 0x7e) {
+      return std::string(what) + " has a non-printable byte (" + std::to_string(c) + " at " +
+             std::to_string(i) + ")";
     }
   }
   return {};

@@ -156,6 +156,8 @@ const TopicQos& QosProfile::topic(TopicRole role) const {
       return status;
     case TopicRole::kShard:
       return shard;
+    case TopicRole::kPlan:
+      return plan;
   }
   return action;
 }
@@ -192,6 +194,12 @@ QosProfile default_qos_profile() {
   p.shard.durability = Durability::kTransientLocal;
   p.shard.depth = 4;
   p.shard.max_blocking = std::chrono::milliseconds(1000);
+  // Planning over DDS: the latest problem, request and reply, none lost, and kept for a planner
+  // or monitor discovered late; a 10 000-robot reply is ~1 MB, so a writer may block a while.
+  p.plan.reliability = Reliability::kReliable;
+  p.plan.durability = Durability::kTransientLocal;
+  p.plan.depth = 1;
+  p.plan.max_blocking = std::chrono::milliseconds(2000);
   return p;
 }
 
@@ -218,7 +226,7 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
     const auto topics = root["topics"];
     require_map(source, topics, "topics");
     reject_unknown(source, topics, "topics",
-                   {"action", "progress", "state", "clock", "status", "shard"});
+                   {"action", "progress", "state", "clock", "status", "shard", "plan"});
     if (topics["action"]) parse_topic(source, topics["action"], "topics.action", p.action);
     if (topics["progress"]) {
       parse_topic(source, topics["progress"], "topics.progress", p.progress);
@@ -227,6 +235,7 @@ QosProfile parse_qos_profile(const std::string& yaml_text, const std::string& so
     if (topics["clock"]) parse_topic(source, topics["clock"], "topics.clock", p.clock);
     if (topics["status"]) parse_topic(source, topics["status"], "topics.status", p.status);
     if (topics["shard"]) parse_topic(source, topics["shard"], "topics.shard", p.shard);
+    if (topics["plan"]) parse_topic(source, topics["plan"], "topics.plan", p.plan);
   }
   return p;
 }

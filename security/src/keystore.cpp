@@ -103,8 +103,14 @@ std::vector<Grant> role_grants(const std::vector<uint32_t>& agent_ids) {
   const std::string monitor_info = smart_msg_TOPIC_MONITOR;
   std::vector<Grant> g{
       {"monitor",
-       {t(kActionTopic), t(kClockTopic), monitor_info},
-       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info},
+       {t(kActionTopic), t(kClockTopic), monitor_info, t(kPlanProblemTopic), t(kPlanRequestTopic)},
+       {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info,
+        t(kPlannerTopic), t(kPlanReplyTopic)},
+       {}},
+      // The lifelong planner over DDS (`smart planner`): only it may answer windows.
+      {"planner",
+       {t(kPlannerTopic), t(kPlanReplyTopic)},
+       {t(kPlanProblemTopic), t(kPlanRequestTopic)},
        {}},
       {"sim",
        {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), t(kShardTopic),

@@ -10,7 +10,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const auto p = parse_qos_profile(std::string(smart::fuzz::text_of(data, size)), "fuzz.yaml");
     (void)render_cyclone_config(p.domain_config());
     for (const auto role : {TopicRole::kAction, TopicRole::kProgress, TopicRole::kState,
-                            TopicRole::kClock, TopicRole::kStatus, TopicRole::kShard}) {
+                            TopicRole::kClock, TopicRole::kStatus, TopicRole::kShard,
+                            TopicRole::kPlan}) {
       (void)p.topic(role).to_dds();
     }
   } catch (const smart::config::ConfigError&) {

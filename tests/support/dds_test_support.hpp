@@ -139,6 +139,9 @@ enum DomainId : int {
   kLifelongRandom = 230,     // the last id --domain takes (Cyclone's port formula)
   // 101..230 are taken: later tests count down from 100.
   kLifelongPipePlanner = 100,
+  kDdsPlanner = 99,          // tests/tools/dds_planner_test.cpp, one test after the other
+  kPlannerNode = 98,         // tests/tools/planner_node_test.cpp
+  kLifelongDdsPlanner = 97,  // the run, then its in-process reference
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -21,6 +21,7 @@
 #include "smart/planning/generators.hpp"
 #include "smart/planning/task_generator.hpp"
 #include "smart/tools/cli_common.hpp"
+#include "smart/tools/dds_planner.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/pipe_planner.hpp"
 
@@ -95,7 +96,10 @@ nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& 
       {"mean_robots_with_task", f.rows ? f.robots_with_task_sum / double(f.rows) : 0.0},
       {"task_pool", p.pool},
       {"planner",
-       {{"name", l.planner_cmd.empty() ? "pibt" : "external"},
+       {{"name", l.external() ? "external" : "pibt"},
+        {"via", !l.planner_cmd.empty() ? "pipe"
+                : l.external()         ? "dds"
+                                       : "process"},
         {"command", l.planner_cmd},
         {"fallback",
          l.planner_fallback == LifelongCliOptions::Fallback::kBuiltin ? "builtin" : "stop"},
@@ -186,7 +190,13 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "start it again");
   }
   check_real_time_factor(o.sim);
-  if (!o.lifelong.planner_cmd.empty() && o.sim.clock == sim::ClockMode::kLockstep &&
+  if (!o.lifelong.planner_cmd.empty() &&
+      o.lifelong.planner == LifelongCliOptions::Planner::kExternal) {
+    throw std::invalid_argument(
+        "--planner external and --planner-cmd: choose one (a planner over DDS, or a command "
+        "over a pipe)");
+  }
+  if (o.lifelong.external() && o.sim.clock == sim::ClockMode::kLockstep &&
       2 * o.lifelong.planner_timeout_s >= o.sim.timeout_s) {
     throw std::invalid_argument(
         "--planner-timeout-s " + std::to_string(o.lifelong.planner_timeout_s) +
@@ -194,6 +204,19 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         std::to_string(o.sim.timeout_s) +
         " s, and a planner call holds it; give a --timeout-s above twice the planner's timeout");
   }
+}
+
+// Like own_run_key, but a run whose planner is started by hand (--planner external) needs a
+// key file the user names, as a mixed run does.
+std::unique_ptr<PrivateRunKey> own_lifelong_run_key(MonitorCliOptions& o) {
+  if (o.lifelong.planner == LifelongCliOptions::Planner::kExternal && o.sim.dds.run_key.empty()) {
+    spdlog::warn(
+        "--planner external without --run-key: any participant that learns the run's partition "
+        "can answer its windows; give `smart run` and `smart planner` the same --run-key FILE "
+        "(README, \"Running safely\")");
+    return nullptr;
+  }
+  return own_run_key(o.sim);
 }
 
 // Where the sim child's world files go: the results folder, or a temp folder (returned, to be
@@ -216,8 +239,11 @@ std::function<double()> steady_ms() {
 
 // Lock-step: the planner runs inside the monitor's answer, charged --plan-budget-s of sim time.
 // Real time: on its own thread, while the monitor keeps dispatching the committed actions.
-// --planner-cmd: an external planner over a pipe, with the built-in one behind it if asked.
+// --planner-cmd: an external planner over a pipe; --planner external: a `smart planner` of the
+// run over DDS (on the monitor's participant); either with the built-in one behind it if asked.
 std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions& o,
+                                                        const dds::Participant& participant,
+                                                        const dds::QosProfile& profile,
                                                         const grid::Grid& grid, std::size_t robots,
                                                         const lifelong::LifelongOptions& lo) {
   auto builtin = [&] {
@@ -227,12 +253,19 @@ std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions&
   };
   std::unique_ptr<lifelong::WindowPlanner> planner;
   const auto& l = o.lifelong;
-  if (l.planner_cmd.empty()) {
+  if (!l.external()) {
     planner = builtin();
   } else {
-    planner = std::make_unique<PipePlanner>(
-        grid, robots, lo.window_steps,
-        PipePlannerOptions{l.planner_cmd, l.planner_timeout_s, lo.budget_s, 0});
+    if (l.planner_cmd.empty()) {
+      planner =
+          std::make_unique<DdsPlanner>(participant, profile, grid, robots, lo.window_steps,
+                                       DdsPlannerOptions{l.planner_wait_s, 0.5, l.planner_timeout_s,
+                                                         lo.budget_s, &g_stop_requested});
+    } else {
+      planner = std::make_unique<PipePlanner>(
+          grid, robots, lo.window_steps,
+          PipePlannerOptions{l.planner_cmd, l.planner_timeout_s, lo.budget_s, 0});
+    }
     if (l.planner_fallback == LifelongCliOptions::Fallback::kBuiltin) {
       planner = std::make_unique<lifelong::FallbackPlanner>(std::move(planner), builtin());
     }
@@ -242,13 +275,10 @@ std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions&
 }
 
 // The monitor over DDS until the run ends; the files are streamed meanwhile.
-monitor::MonitorResult execute(const MonitorCliOptions& o, const LifelongProblem& problem,
+monitor::MonitorResult execute(const MonitorCliOptions& o, const dds::Participant& participant,
+                               const dds::QosProfile& profile, const LifelongProblem& problem,
                                lifelong::LifelongExecution& exec, LifelongFiles& files,
                                std::vector<common::ChildProcess>& sims, double radius_m) {
-  const auto profile = run_qos_profile(o.sim.dds);
-  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
-  dds::Participant participant(domain, o.sim.dds.run);
-  prove_member(participant, o.sim.dds, "monitor");
   auto mo = lifelong_monitor_options(o, radius_m);
   mo.host_check = watch(sims);
   std::optional<monitor::StatesCsvWriter> states;
@@ -286,19 +316,24 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   const auto robot_file = find_config_file("robots", o.sim.world.robot);
   const auto model = agent::load_robot_model(robot_file);
   std::unique_ptr<PrivateRunKey> private_key;
-  std::vector<common::ChildProcess> sims;
-  if (spawn_sim) {
-    private_key = own_run_key(o.sim);
-    sims = spawn_sims(o, problem.starts.size(), robot_file);
-  }
+  if (spawn_sim) private_key = own_lifelong_run_key(o);
+  const auto profile = run_qos_profile(o.sim.dds);
+  dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
+  dds::Participant participant(domain, o.sim.dds.run);
+  prove_member(participant, o.sim.dds, "monitor");
   const auto options = lifelong_options(o, problem, seed);
+  // The planner first: an external one is waited for before the sim starts its clock.
+  auto planner =
+      window_planner(o, participant, profile, problem.grid, problem.starts.size(), options);
+  std::vector<common::ChildProcess> sims;
+  if (spawn_sim) sims = spawn_sims(o, problem.starts.size(), robot_file);
   lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks, options,
-                                   window_planner(o, problem.grid, problem.starts.size(), options));
+                                   std::move(planner));
   LifelongFiles files(o.out);
   spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
                problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),
                problem.tasks.size(), problem.pool, o.lifelong.duration_s);
-  auto result = execute(o, problem, exec, files, sims, model.radius_m);
+  auto result = execute(o, participant, profile, problem, exec, files, sims, model.radius_m);
   for (auto& sim : sims) {
     if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
   }

@@ -218,22 +218,35 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
                   "cell), 'paths' (a shortest path per robot, A* with landmarks: maps too large "
                   "for tables), 'auto' (tables when one per robot fits --distance-budget-mb)")
       ->capture_default_str();
+  static const EnumNames<LifelongCliOptions::Planner> kPlannerNames{
+      {"builtin", LifelongCliOptions::Planner::kBuiltin},
+      {"external", LifelongCliOptions::Planner::kExternal}};
+  add_enum_option(cmd, "--planner", o.planner, kPlannerNames,
+                  "who plans the windows: 'builtin' (PIBT in this process) or 'external' (wait for "
+                  "a `smart planner` in the run, over DDS; docs/planner-protocol.md)")
+      ->capture_default_str();
+  cmd->add_option("--planner-wait-s", o.planner_wait_s,
+                  "--planner external: wall seconds to wait for a planner to announce itself")
+      ->check(finite_in(0.1, 86400.0))
+      ->capture_default_str();
   cmd->add_option("--planner-cmd", o.planner_cmd,
                   "plan windows with this command instead of the built-in planner: it runs under "
                   "sh -c and speaks newline-delimited JSON on stdin/stdout "
                   "(docs/planner-protocol.md; examples/planners/)");
-  cmd->add_option("--planner-timeout-s", o.planner_timeout_s,
-                  "wall seconds a --planner-cmd has to answer a window (a later answer is refused "
-                  "as late; robots stop at the cut)")
+  cmd->add_option(
+         "--planner-timeout-s", o.planner_timeout_s,
+         "wall seconds an external planner has to answer a window (a later answer is refused "
+         "as late; robots stop at the cut)")
       ->check(finite_in(0.01, 3600.0))
       ->capture_default_str();
   static const EnumNames<LifelongCliOptions::Fallback> kFallbackNames{
       {"stop", LifelongCliOptions::Fallback::kStop},
       {"builtin", LifelongCliOptions::Fallback::kBuiltin}};
-  add_enum_option(cmd, "--planner-fallback", o.planner_fallback, kFallbackNames,
-                  "when a --planner-cmd window is refused: 'stop' (robots finish the committed "
-                  "actions and wait for the next window) or 'builtin' (the built-in planner plans "
-                  "that window)")
+  add_enum_option(
+      cmd, "--planner-fallback", o.planner_fallback, kFallbackNames,
+      "when an external planner's window is refused: 'stop' (robots finish the committed "
+      "actions and wait for the next window) or 'builtin' (the built-in planner plans "
+      "that window)")
       ->capture_default_str();
 }
 

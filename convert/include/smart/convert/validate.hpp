@@ -39,6 +39,9 @@ std::string check_status(const smart_msg_SimStatus& s, std::size_t robots);
 // MONITOR_STRENGTH_RESUME) and a host name of printable ASCII (it is printed in refusals, logs
 // and `smart doctor`'s table: no terminal control sequences from the wire).
 std::string check_monitor_info(const smart_msg_MonitorInfo& m);
+// Text from the wire that is printed (host and planner names): printable ASCII up to its NUL or
+// `size` bytes; why not, naming `what`.
+std::string check_printable(const char* what, const char* text, std::size_t size);
 // A sim shard's exchange (sim/shard.hpp): shard numbers, every robot id, number and position in
 // its hand-overs, ghosts, relayed progress and states.
 std::string check_exchange(const smart_msg_ShardExchange& e, std::size_t robots,

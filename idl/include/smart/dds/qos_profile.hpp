@@ -21,7 +21,7 @@ inline constexpr const char* kShippedQosProfiles =
     "lan, wifi (real networks), sim-wifi, sim-lossy-wifi (modelled links) or protocol-loss-test";
 
 // Which QoS of a profile a topic uses; each topic's role is in the table of topics.hpp.
-enum class TopicRole { kAction, kProgress, kState, kClock, kStatus, kShard };
+enum class TopicRole { kAction, kProgress, kState, kClock, kStatus, kShard, kPlan };
 
 struct QosProfile {
   std::string name;
@@ -33,6 +33,7 @@ struct QosProfile {
   TopicQos clock;
   TopicQos status;  // SimStatus: the latest status of the sim host
   TopicQos shard;   // ShardExchange between sim shards: every period's, none lost
+  TopicQos plan;    // lifelong planning over DDS: the problem, requests, replies (latest kept)
   // `link:` section: delay, jitter and loss of windows and progress (smart/wire/link.hpp),
   // applied by the hosts' AgentNode; none by default.
   wire::LinkModel link;

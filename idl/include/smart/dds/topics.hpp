@@ -20,6 +20,10 @@ SMART_DDS_TOPIC_TYPE(smart_msg_Clock)
 SMART_DDS_TOPIC_TYPE(smart_msg_SimStatus)
 SMART_DDS_TOPIC_TYPE(smart_msg_MonitorInfo)
 SMART_DDS_TOPIC_TYPE(smart_msg_ShardExchange)
+SMART_DDS_TOPIC_TYPE(smart_msg_PlannerInfo)
+SMART_DDS_TOPIC_TYPE(smart_msg_PlanProblem)
+SMART_DDS_TOPIC_TYPE(smart_msg_PlanRequest)
+SMART_DDS_TOPIC_TYPE(smart_msg_PlanReply)
 
 namespace smart::dds {
 
@@ -50,6 +54,13 @@ SMART_DDS_WIRE_TOPIC(smart_msg_SimStatus, smart_msg_TOPIC_SIM_STATUS, kStatus, f
 SMART_DDS_WIRE_TOPIC(smart_msg_MonitorInfo, smart_msg_TOPIC_MONITOR, kStatus, false, false);
 // Between the shards of one sim; keyed by shard, shared: every shard hears every other.
 SMART_DDS_WIRE_TOPIC(smart_msg_ShardExchange, smart_msg_TOPIC_SHARD, kShard, false, false);
+// Lifelong planning over DDS (idl/smart.idl, "Lifelong planning over DDS"): announcements are
+// status (latest per planner, kept for late joiners); the problem, requests and replies are the
+// plan role's (reliable, the latest kept per run / per planner). Shared: the monitor chooses.
+SMART_DDS_WIRE_TOPIC(smart_msg_PlannerInfo, smart_msg_TOPIC_PLANNER, kStatus, false, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_PlanProblem, smart_msg_TOPIC_PLAN_PROBLEM, kPlan, false, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_PlanRequest, smart_msg_TOPIC_PLAN_REQUEST, kPlan, false, false);
+SMART_DDS_WIRE_TOPIC(smart_msg_PlanReply, smart_msg_TOPIC_PLAN_REPLY, kPlan, false, false);
 #undef SMART_DDS_WIRE_TOPIC
 
 inline constexpr std::string_view kActionTopic = WireTopic<smart_msg_ActionWindow>::name;
@@ -58,6 +69,10 @@ inline constexpr std::string_view kStateTopic = WireTopic<smart_msg_RobotState>:
 inline constexpr std::string_view kClockTopic = WireTopic<smart_msg_Clock>::name;
 inline constexpr std::string_view kSimStatusTopic = WireTopic<smart_msg_SimStatus>::name;
 inline constexpr std::string_view kShardTopic = WireTopic<smart_msg_ShardExchange>::name;
+inline constexpr std::string_view kPlannerTopic = WireTopic<smart_msg_PlannerInfo>::name;
+inline constexpr std::string_view kPlanProblemTopic = WireTopic<smart_msg_PlanProblem>::name;
+inline constexpr std::string_view kPlanRequestTopic = WireTopic<smart_msg_PlanRequest>::name;
+inline constexpr std::string_view kPlanReplyTopic = WireTopic<smart_msg_PlanReply>::name;
 
 inline constexpr uint32_t kSimClockSource = smart_msg_CLOCK_SOURCE_SIM;
 inline constexpr uint32_t kMonitorClockSource = smart_msg_CLOCK_SOURCE_MONITOR;

@@ -5,7 +5,9 @@
 //                                  discovery, liveliness and every topic's data encrypted
 //   DIR/<identity>/{cert.pem, key.pem, permissions.p7s}
 // Identities and what their permissions allow (topics of idl/smart.idl, any run partition):
-//   monitor   publishes actions, clock answers, its MonitorInfo; reads the rest
+//   monitor   publishes actions, clock answers, its MonitorInfo, a lifelong run's planning
+//             problem and requests; reads the rest
+//   planner   publishes its PlannerInfo and plan replies; reads the problem and requests
 //   sim       publishes progress, states, ticks, sim status and the ROS 2 view (rt/*)
 //   agent-<id> (one per robot id) publishes progress and states; reads actions and the clock
 //   viewer    reads everything, publishes nothing

@@ -23,6 +23,7 @@ void register_serve_command(CLI::App& app, int& exit_code);
 void register_experiment_command(CLI::App& app, int& exit_code);
 void register_calibrate_command(CLI::App& app, int& exit_code);
 void register_doctor_command(CLI::App& app, int& exit_code);
+void register_planner_command(CLI::App& app, int& exit_code);
 
 // The generation pipeline, also used by `smart demo`. Each prints one JSON line and returns an
 // exit code; bad input throws grid::InputError.

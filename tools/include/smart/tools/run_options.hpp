@@ -78,11 +78,16 @@ struct LifelongCliOptions {
   double budget_s = 0.1;
   double distance_budget_mb = 1024;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
-  // An external planner (tools/pipe_planner.hpp); empty: the built-in one.
+  // Where windows are planned: in this process, or by a `smart planner` of the run over DDS
+  // (tools/dds_planner.hpp); --planner-cmd (tools/pipe_planner.hpp) replaces the built-in one.
+  enum class Planner { kBuiltin, kExternal };
+  Planner planner = Planner::kBuiltin;
+  double planner_wait_s = 60;  // --planner external: wall seconds to wait for one
   std::string planner_cmd;
   double planner_timeout_s = 2.0;           // wall seconds per window
   enum class Fallback { kStop, kBuiltin };  // a refused external window: wait, or built-in
   Fallback planner_fallback = Fallback::kStop;
+  bool external() const { return planner == Planner::kExternal || !planner_cmd.empty(); }
 };
 
 struct MonitorCliOptions {
