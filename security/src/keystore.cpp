@@ -107,17 +107,17 @@ std::vector<Grant> role_grants(const std::vector<uint32_t>& agent_ids) {
        {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), monitor_info,
         t(kPlannerTopic), t(kPlanReplyTopic)},
        {}},
-      // The lifelong planner over DDS (`smart planner`): only it may answer windows.
-      {"planner",
-       {t(kPlannerTopic), t(kPlanReplyTopic)},
-       {t(kPlanProblemTopic), t(kPlanRequestTopic)},
-       {}},
       {"sim",
        {t(kProgressTopic), t(kStateTopic), t(kClockTopic), t(kSimStatusTopic), t(kShardTopic),
         "rt/*"},
        {t(kActionTopic), t(kClockTopic), t(kStateTopic), t(kShardTopic)},
        {}},
       {"viewer", {}, {"*"}, {}},
+      // The lifelong planner over DDS (`smart planner`): only it may answer windows.
+      {"planner",
+       {t(kPlannerTopic), t(kPlanReplyTopic)},
+       {t(kPlanProblemTopic), t(kPlanRequestTopic)},
+       {}},
   };
   for (const uint32_t id : agent_ids) {
     g.push_back({"agent-" + std::to_string(id),

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <thread>
 
 #include "smart/monitor/results_format.hpp"
 #include "support/mixed_fleet.hpp"
@@ -336,6 +337,100 @@ TEST(LifelongRun, APythonPlannerDrivesARunAndABrokenOneNeverStopsIt) {
   EXPECT_GE(j["sim_time_s"].get<double>(), 3.0);
   EXPECT_GE(j["lifelong"]["windows_refused"].get<int>(), 1);
   EXPECT_THAT(r.out, HasSubstr("late: no reply within 0.5 s (--planner-timeout-s)"));
+}
+
+// `smart args...` in the background with its log (stderr) in `out` too.
+common::ChildProcess start_logged(const std::vector<std::string>& args,
+                                  const std::filesystem::path& out) {
+  std::vector<std::string> argv{"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>&1", smart_exe().string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return common::ChildProcess(argv, out);
+}
+
+// Until `file` holds `text` (true) or `process` has ended (false).
+bool wait_for_line(const std::filesystem::path& file, const std::string& text,
+                   common::ChildProcess& process) {
+  const auto guard = std::chrono::steady_clock::now() + 60s * SMART_SLOWDOWN;
+  while (slurp(file).find(text) == std::string::npos) {
+    if (!process.running() || std::chrono::steady_clock::now() > guard) return false;
+    std::this_thread::sleep_for(10ms);
+  }
+  return true;
+}
+
+// Issue 28: the built-in planner as its own process drives a run over DDS (`smart planner`,
+// `--planner external`), in the clear and under DDS Security with the planner identity: the same
+// events, tasks and states as the in-process planner, bit for bit in lock-step; a second planner
+// started for the run is refused and says which planner plans it; the chosen one ends with the
+// run.
+TEST(LifelongRun, TheBuiltInPlannerDrivesARunOverDdsAsItsOwnProcess) {
+  const auto keys = temp_file("ll_dds_keys");
+  std::filesystem::remove_all(keys);
+  ASSERT_EQ(run_smart({"security", "init", "--out", keys.string()}, 60s, "ll_dds_keys").code, 0);
+  const std::vector<std::string> problem{
+      "--tasks",        "random",
+      "--map",          (benchmarks_dir() / "maps" / "random-32-32-20.map").string(),
+      "--agents",       "20",
+      "--seed",         "3",
+      "--task-errands", "1",
+      "--duration-s",   "60"};
+  const auto domain = std::to_string(kLifelongDdsPlanner);
+  std::vector<std::string> files[3];
+  for (int k = 0; k < 3; ++k) {
+    const auto out = temp_file("ll_dds_" + std::to_string(k));
+    std::filesystem::remove_all(out);
+    std::vector<std::string> args{"run",   "--domain",   domain,  "--no-progress",
+                                  "--out", out.string(), "--run", "lldds"};
+    args.insert(args.end(), problem.begin(), problem.end());
+    std::vector<std::string> planner{"planner", "--domain", domain, "--run",
+                                     "lldds",   "--seed",   "3"};
+    if (k == 2) {
+      for (auto* a : {&args, &planner}) a->insert(a->end(), {"--security", keys.string()});
+    }
+    std::optional<common::ChildProcess> first, second;
+    const auto first_log = temp_file("ll_dds_first.out"), second_log = temp_file("ll_dds_2nd.out");
+    if (k > 0) {
+      args.insert(args.end(), {"--planner", "external"});
+      first.emplace(start_logged(planner, first_log));
+      ASSERT_TRUE(wait_for_line(first_log, "waits for run 'lldds'", *first)) << slurp(first_log);
+      planner.insert(planner.end(), {"--name", "second"});
+      second.emplace(start_logged(planner, second_log));  // started later: refused
+      ASSERT_TRUE(wait_for_line(second_log, "waits for run 'lldds'", *second)) << slurp(second_log);
+    }
+    const auto r = run_smart(args, 120s, "ll_dds_" + std::to_string(k), true);
+    ASSERT_EQ(r.code, 0) << r.out;
+    const auto j = summary_in(r.out);
+    EXPECT_EQ(j["collisions"], 0);
+    EXPECT_EQ(j["lifelong"]["windows_refused"], 0);
+    EXPECT_GT(j["lifelong"]["tasks_finished"].get<int>(), 0);
+    if (k > 0) {
+      EXPECT_EQ(j["lifelong"]["planner"]["via"], "dds");
+      EXPECT_EQ(j["lifelong"]["planner"]["heuristic"], "external: pibt");
+      EXPECT_THAT(r.out,
+                  HasSubstr("lifelong: planner 'pibt' (pid " + std::to_string(first->pid())));
+      EXPECT_EQ(first->wait(30s * SMART_SLOWDOWN).value_or(-1), 0) << slurp(first_log);
+      EXPECT_THAT(slurp(first_log), HasSubstr("planner: the run is over after"));
+      EXPECT_EQ(second->wait(30s * SMART_SLOWDOWN).value_or(-1), 1) << slurp(second_log);
+      EXPECT_THAT(slurp(second_log),
+                  HasSubstr("refused: run 'lldds' on domain " + domain +
+                            " is planned by planner 'pibt' (pid " + std::to_string(first->pid())));
+    } else {
+      EXPECT_EQ(j["lifelong"]["planner"]["via"], "process");
+    }
+    for (const auto name : {results::kEventsCsv, results::kTasksCsv, results::kStatesCsv}) {
+      files[k].push_back(slurp(out / name));
+    }
+    std::filesystem::remove_all(out);
+  }
+  const char* names[] = {"events.csv", "tasks.csv"};
+  for (int k = 1; k < 3; ++k) {
+    const char* how = k == 1 ? " differs over DDS" : " differs over DDS Security";
+    for (int f = 0; f < 2; ++f) {
+      EXPECT_EQ(first_difference(files[0][f], files[k][f]), "") << names[f] << how;
+    }
+    EXPECT_EQ(compare_state_rows(files[0][2], files[k][2]), "") << "states.csv" << how;
+  }
+  std::filesystem::remove_all(keys);
 }
 
 TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {

@@ -39,7 +39,7 @@ std::string sender(const std::optional<dds_guid_t>& participant) {
 }  // namespace
 
 PlannerNode::PlannerNode(const dds::Participant& participant, const dds::QosProfile& profile,
-                         std::string name, PlannerFactory make_planner)
+                         const std::string& name, PlannerFactory make_planner)
     : participant_(participant),
       make_planner_(std::move(make_planner)),
       self_(self_info(name)),

@@ -36,8 +36,8 @@ class PlannerNode {
     std::string detail;    // kRefused: the refusal, naming the run's planner
     uint64_t windows = 0;  // replies written
   };
-  PlannerNode(const dds::Participant& participant, const dds::QosProfile& profile, std::string name,
-              PlannerFactory make_planner);
+  PlannerNode(const dds::Participant& participant, const dds::QosProfile& profile,
+              const std::string& name, PlannerFactory make_planner);
   const smart_msg_PlannerInfo& info() const { return self_; }
   Outcome serve(const std::atomic<bool>& stop);
 
