@@ -24,8 +24,7 @@ LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<g
 LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,
                                      std::unique_ptr<WindowPlanner> planner)
-    : grid_(grid),
-      options_(options),
+    : options_(options),
       adg_(grid, starts, options.initial_heading),
       tasks_(std::move(tasks), starts.size(), pool_of(options, starts.size()), scheduler_),
       planner_(std::move(planner)) {}

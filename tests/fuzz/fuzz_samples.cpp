@@ -2,13 +2,16 @@
 // wire could send them): the edge checks (wire/validate.hpp), then, for what passes, what the
 // receivers do with it: a window becomes agent actions in an ActionQueue; progress, states,
 // ticks and sim status become RunSupervisor events; answers drive the host's handshake; a sim
-// shard's exchange is checked.
+// shard's exchange is checked; lifelong planning samples (convert/plan_wire.hpp) are checked, and
+// what passes becomes a request for a planner or a window checked for execution.
 #include <vector>
 
 #include "fuzz_input.hpp"
 #include "smart/agent/action_queue.hpp"
 #include "smart/convert/convert.hpp"
+#include "smart/convert/plan_wire.hpp"
 #include "smart/convert/validate.hpp"
+#include "smart/lifelong/plan_protocol.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/run_supervisor.hpp"
 #include "support/monitor_fixtures.hpp"
@@ -103,9 +106,56 @@ void exchange(fuzz::Bytes& in, const wire::Bounds& bounds) {
   (void)wire::check_exchange(e, kRobots, bounds);
 }
 
+// Cyclone's deserializer ends every bounded string within its bound.
+template <std::size_t N>
+void terminate(char (&text)[N]) {
+  text[N - 1] = '\0';
+}
+
+void plan_problem(fuzz::Bytes& in) {
+  auto p = in.take<smart_msg_PlanProblem>();
+  terminate(p.planner.name);
+  terminate(p.planner.host);
+  p.width %= 9;
+  p.height %= 9;
+  auto blocked = items<uint8_t>(in);
+  if (in.take<uint8_t>() % 2) blocked.assign(std::size_t{p.width} * p.height, in.take<uint8_t>());
+  borrow(p.blocked, blocked);
+  if (!wire::check_problem(p).empty()) return;
+  const auto g = wire::grid_of(p);
+  (void)g.free_cells();
+}
+
+// A request for the corridor's two robots, then a reply to it: what passes the wire checks is
+// converted and the window checked as the monitor checks it.
+void plan_exchange(fuzz::Bytes& in, const grid::Grid& grid) {
+  auto r = in.take<smart_msg_PlanRequest>();
+  auto starts = items<smart_msg_GridCell>(in), errands = items<smart_msg_GridCell>(in);
+  auto headings = items<uint8_t>(in);
+  auto counts = items<uint32_t>(in);
+  borrow(r.starts, starts);
+  borrow(r.errands, errands);
+  borrow(r.headings, headings);
+  borrow(r.errand_counts, counts);
+  if (!wire::check_request(r, grid, kRobots).empty()) return;
+  const auto request = wire::request_of(r);
+  auto reply = in.take<smart_msg_PlanReply>();
+  terminate(reply.error);
+  reply.steps %= 4;
+  auto cells = items<smart_msg_GridCell>(in);
+  if (in.take<uint8_t>() % 2) cells.resize(kRobots * (std::size_t{reply.steps} + 1));
+  borrow(reply.cells, cells);
+  if (!wire::check_reply(reply, kRobots, r.steps).empty()) return;
+  (void)lifelong::check_window(grid, request, wire::paths_of(reply));
+}
+
 void one_sample(fuzz::Bytes& in, monitor::RunSupervisor& sup, agent::ActionQueue& queue,
                 wire::HostHandshake& host, const wire::Bounds& bounds, double now_s) {
-  switch (in.take<uint8_t>() % 7) {
+  switch (in.take<uint8_t>() % 9) {
+    case 7:
+      return plan_problem(in);
+    case 8:
+      return plan_exchange(in, corridor().grid);
     case 0:
       return window(in, queue, bounds);
     case 1: {

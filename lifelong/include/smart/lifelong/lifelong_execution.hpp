@@ -103,7 +103,6 @@ class LifelongExecution final : public monitor::Execution {
   std::vector<uint32_t> append(const PlannedWindow& window, double time_s);
   void refuse(double time_s, const std::string& why);
 
-  const grid::Grid& grid_;
   LifelongOptions options_;
   monitor::LiveAdg adg_;
   GreedyNearestScheduler scheduler_;
