@@ -453,6 +453,17 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
                kLifelongRandom, "ll_bad4");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("give a --timeout-s above twice the planner's timeout"));
+  r = lifelong({"--lifelong", maze_problem(), "--planner", "external", "--planner-cmd", "p"},
+               kLifelongRandom, "ll_bad5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.out, HasSubstr("--planner external and --planner-cmd: choose one"));
+  r = lifelong({"--lifelong", maze_problem(), "--planner", "external", "--planner-wait-s", "0.2",
+                "--run", "ll_nobody"},
+               kLifelongRandom, "ll_bad6");
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("no planner announced itself on run 'll_nobody'"));
+  EXPECT_THAT(r.out, HasSubstr("start one with `smart planner --domain " +
+                               std::to_string(kLifelongRandom) + " --run ll_nobody`"));
 }
 
 }  // namespace
