@@ -20,8 +20,12 @@ Figures (each when its data exist):
   planner_runtime  planner wall seconds vs robots, a line per plan (when planners ran here)
   stalls           AET and success rate vs stall probability (when it varies)
   link             AET and success rate vs the link's delay to the hosts (when it varies)
+  throughput       lifelong runs: throughput (tasks per minute) and mean task latency vs robots
+  throughput_time  lifelong runs: tasks finished and the last minute's throughput over sim time
+                   (each cell's throughput.csv, at every replanning), a panel per team size,
+                   the band one standard deviation over the repeats
   table.md         one row per cell of the grid (repeats folded): runs, success, AET, makespan,
-                   sim speed, collisions, planner seconds
+                   sim speed, collisions, planner seconds, and throughput for lifelong runs
   figures.json     per figure: title, caption, and per panel its axes, scales, tick labels and
                    series of points {x, mean, sd, n} with the results.csv values they match
 Prints one JSON line naming the files written.
@@ -39,11 +43,12 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
-LINE_AXES = ["plan", "robot", "qos", "uncertainty", "clock"]
+LINE_AXES = ["plan", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
 PANEL_AXES = ["map"]
 POOLED_AXES = ["scen"]
 AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
-              "clock": "clock", "map": "map", "scen": "scen", "agents": "robots"}
+              "clock": "clock", "map": "map", "scen": "scen", "agents": "robots",
+              "replan_period_s": "replan period (s)"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")
 
@@ -156,7 +161,32 @@ def set_y_axis(ax, field, ys):
     return scale
 
 
+def draw_time_panel(ax, panel):
+    """A line per series over time, its band one standard deviation where n >= 2."""
+    ys = []
+    for s in panel["series"]:
+        px = [p["x"] for p in s["points"]]
+        py = [p["mean"] for p in s["points"]]
+        line, = ax.plot(px, py, label=s["label"])
+        if any(p["sd"] is not None for p in s["points"]):
+            sd = [p["sd"] or 0.0 for p in s["points"]]
+            ax.fill_between(px, [m - d for m, d in zip(py, sd)], [m + d for m, d in zip(py, sd)],
+                            color=line.get_color(), alpha=0.2, linewidth=0)
+        ys += py
+    panel["xscale"] = "linear"
+    panel["yscale"] = "linear"
+    ax.set_ylim(0, max(ys + [1.0]) * 1.1)
+    ax.set_xlabel(panel["xlabel"])
+    ax.set_ylabel(panel["ylabel"])
+    ax.set_title(panel["title"], fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if panel["legend_title"]:
+        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
+
+
 def draw_panel(ax, panel, uniform_n):
+    if panel.get("kind") == "time":
+        return draw_time_panel(ax, panel)
     xs, ys = [], []
     for s in panel["series"]:
         px = [p["x"] for p in s["points"]]
@@ -184,6 +214,12 @@ def draw_panel(ax, panel, uniform_n):
 def caption_of(panels):
     ns = [p["n"] for panel in panels for s in panel["series"] for p in s["points"]]
     uniform = len(set(ns)) == 1
+    if all(panel.get("kind") == "time" for panel in panels):
+        text = (f"Each line: the mean of n = {ns[0]} runs" if uniform
+                else f"Each line: the mean of {min(ns)}-{max(ns)} runs") + ", at every replanning."
+        text += (" Band: \u00b11 standard deviation over those runs." if any(n >= 2 for n in ns)
+                 else " One run per line: no band.")
+        return text, True
     text = (f"Each point: the mean of n = {ns[0]} runs." if uniform
             else "Each point: the mean of its n runs (n beside it).")
     if any(n >= 2 for n in ns):
@@ -311,9 +347,60 @@ def sweep_figures(rows, out_dir, written, described):
                               xlabel), written, described)
 
 
+def lifelong_figures(results_dir, rows, out_dir, written, described):
+    if not any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows):
+        return
+    lay = Layout(rows, "agents")
+    figure(out_dir, "throughput", lay.title("Lifelong throughput", rows),
+           lay.panels_for(rows, [("lifelong.throughput_per_min", "throughput (tasks / min)"),
+                                 ("lifelong.mean_latency_s", "mean task latency (s)")],
+                          "robots"), written, described)
+    time_figure(time_rows(results_dir, rows), out_dir, written, described)
+
+
+def time_rows(results_dir, rows):
+    """A row per results row and replanning: its parameters, t_s on the period's grid, and the
+    tasks finished so far and in the last minute (the cell's throughput.csv)."""
+    out = []
+    for r in rows:
+        path = os.path.join(results_dir, "cells", r.get("cell", ""), "throughput.csv")
+        if not os.path.isfile(path):
+            continue
+        period = number(r.get("replan_period_s")) or 1.0
+        with open(path, newline="") as f:
+            for t in csv.DictReader(f):
+                at = number(t.get("t_s"))
+                if at is None:
+                    continue
+                out.append(dict(r, t_s=str(round(at / period) * period),
+                                tasks_finished=t.get("tasks_finished"),
+                                tasks_last_min=t.get("tasks_last_min")))
+    return out
+
+
+def time_figure(trows, out_dir, written, described):
+    if not trows:
+        return
+    lay = Layout(trows, "t_s")
+    lay.panels = ["agents"] + lay.panels
+    lay.panel_values = [tuple(v.split("\x00")) for v in
+                        sorted({"\x00".join(r.get(k, "") for k in lay.panels) for r in trows},
+                               key=natural)]
+    panels = lay.panels_for(trows, [("tasks_finished", "tasks finished"),
+                                    ("tasks_last_min", "throughput (tasks in the last minute)")],
+                            "sim time (s)")
+    for panel in panels:
+        panel["kind"] = "time"
+    figure(out_dir, "throughput_time", lay.title("Lifelong throughput over time", trows),
+           panels, written, described)
+
+
 def write_table(rows, out_dir, written):
     """The paper-style table: repeats folded into mean +- sd (n = runs)."""
     keys = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock"]
+    lifelong = any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows)
+    if lifelong:
+        keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
     groups = defaultdict(list)
     for r in rows:
         groups[tuple(r.get(k, "") for k in keys)].append(r)
@@ -326,14 +413,17 @@ def write_table(rows, out_dir, written):
         return (fmt + " \u00b1 " + fmt).format(m, sd) if sd is not None else fmt.format(m)
 
     lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
-             "collisions | planner (s) |", "|" + "---|" * (len(keys) + 7)]
+             "collisions | planner (s) |" + (" throughput (tasks/min) |" if lifelong else ""),
+             "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0))]
     for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
         rs = groups[key]
         ok = sum(1 for r in rs if r.get("success") == "true")
         lines.append("| " + " | ".join(str(k) for k in key) + f" | {len(rs)} | {ok}/{len(rs)} | "
                      + " | ".join([stat(rs, "aet_s"), stat(rs, "makespan_s"),
                                    stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}"),
-                                   stat(rs[:1], "planner_runtime_s", "{:.2f}")])
+                                   stat(rs[:1], "planner_runtime_s", "{:.2f}")]
+                                  + ([stat(rs, "lifelong.throughput_per_min")] if lifelong
+                                     else []))
                      + " |")
     path = os.path.join(out_dir, "table.md")
     with open(path, "w") as f:
@@ -353,6 +443,7 @@ def main():
     robots_figures(rows, out_dir, written, described)
     planner_figure(rows, out_dir, written, described)
     sweep_figures(rows, out_dir, written, described)
+    lifelong_figures(results_dir, rows, out_dir, written, described)
     write_table(rows, out_dir, written)
     path = os.path.join(out_dir, "figures.json")
     with open(path, "w") as f:

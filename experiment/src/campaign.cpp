@@ -118,7 +118,38 @@ std::pair<fs::path, std::optional<double>> make_plan(Campaign& c, const Cell& ce
   return c.plans[key] = {plan, *read_runtime(plan)};
 }
 
+// A lifelong cell: its task stream, duration, replanning period and planner.
+std::vector<std::string> lifelong_argv(const Campaign& c, const Cell& cell) {
+  const auto& l = *c.spec.lifelong;
+  const auto& source = c.files[cell.instance].first.string();
+  std::vector<std::string> argv;
+  if (l.problem.empty()) {
+    argv = {"--tasks", "random", "--map", source, "--agents", std::to_string(cell.agents)};
+  } else {
+    argv = {"--lifelong", source};
+  }
+  if (l.task_errands) argv.insert(argv.end(), {"--task-errands", std::to_string(*l.task_errands)});
+  argv.insert(argv.end(), {"--duration-s", nlohmann::json(l.duration_s).dump(), "--replan-period-s",
+                           nlohmann::json(l.replan_period_s.at(cell.period)).dump()});
+  const auto& planner = c.spec.plans.at(cell.plan);
+  if (planner.source == PlanSource::kCommand) {
+    argv.insert(argv.end(), {"--planner-cmd", planner.text});
+  }
+  return argv;
+}
+
 std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
+  if (c.spec.lifelong) {
+    std::vector<std::string> argv{c.smart.string(), "--log-level", "error", "run"};
+    const auto what = lifelong_argv(c, cell);
+    argv.insert(argv.end(), what.begin(), what.end());
+    argv.insert(argv.end(),
+                {"--robot", cell.robot, "--qos", cell.qos, "--clock", c.spec.clock, "--domain",
+                 std::to_string(domain), "--out", c.cell_dir(cell).string(), "--no-progress"});
+    const auto flags = uncertainty_flags(c.spec, cell);
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    return argv;
+  }
   const auto& [map, scen] = c.files[cell.instance];
   std::vector<std::string> argv{c.smart.string(), "--log-level",
                                 "error",          "run",
@@ -231,7 +262,9 @@ std::size_t write_results(Campaign& c) {
     std::ifstream in(c.cell_dir(cell) / results::kSummaryJson);
     const auto summary = nlohmann::json::parse(in, nullptr, false);
     if (!in || !summary.is_object()) continue;
-    rows.push_back(result_row(c.spec, cell, summary, make_plan(c, cell).second));
+    const auto runtime_s =
+        c.spec.lifelong ? std::nullopt : std::optional<double>(make_plan(c, cell).second);
+    rows.push_back(result_row(c.spec, cell, summary, runtime_s));
     jsonl << rows.back().dump() << "\n";
   }
   std::ofstream(c.out / "results.csv") << results_csv(rows);
@@ -259,6 +292,11 @@ Campaign load_campaign(const CampaignOptions& o) {
   c.spec = parse_spec(grid::read_text_file(o.spec.string(), "experiment spec"), o.spec.string());
   const auto spec_dir = o.spec.parent_path();
   for (const auto& [map, scen] : c.spec.instances) {
+    if (c.spec.lifelong) {  // a map, or a LoRR problem ($SMART_BENCHMARKS/lorr-2026/...)
+      const bool problem = !c.spec.lifelong->problem.empty();
+      c.files.emplace_back(resolve(map, spec_dir, problem ? "lorr-2026" : "maps"), fs::path());
+      continue;
+    }
     auto map_file = resolve(map, spec_dir, "maps");  // named first when both are missing
     c.files.emplace_back(std::move(map_file), resolve(scen, spec_dir, "scens"));
   }
@@ -298,10 +336,10 @@ CampaignReport run_campaign(const CampaignOptions& options, std::ostream& log) {
 void plot_campaign(const fs::path& results_dir, fs::path out_dir) {
   // Installed beside the executable (<prefix>/share/smart-dds), else the source tree's.
   const auto share = common::installed_share_dir();
-  const fs::path script = share && fs::exists(*share / "experiment_plot.py")
-                              ? *share / "experiment_plot.py"
-                              : fs::path(SMART_SOURCE_DIR) / "experiment" / "plot" /
-                                    "experiment_plot.py";
+  const fs::path script =
+      share && fs::exists(*share / "experiment_plot.py")
+          ? *share / "experiment_plot.py"
+          : fs::path(SMART_SOURCE_DIR) / "experiment" / "plot" / "experiment_plot.py";
   if (!fs::is_regular_file(results_dir / "results.csv")) {
     throw std::invalid_argument("experiment plot: no results.csv in " + results_dir.string() +
                                 "; give the folder `smart experiment` wrote");

@@ -139,11 +139,11 @@ void read_instances(const YAML::Node& root, const std::string& src, Spec& s) {
 }
 
 // Uncertainty keys and their ranges (agent/robot_model.cpp reads the same in robot YAML).
+// LoRR-style delay events (agent/uncertainty.hpp) as `smart run` takes them.
 const std::vector<std::tuple<std::string, double, double>> kUncertaintyKeys{
-    {"stall_probability", 0.0, 1.0},
-    {"stall_s", 0.0, 3600.0},
-    {"speed_sigma", 0.0, 1.0},
-    {"slip_sigma", 0.0, 0.5}};
+    {"stall_probability", 0.0, 1.0}, {"stall_s", 0.0, 3600.0},        {"speed_sigma", 0.0, 1.0},
+    {"slip_sigma", 0.0, 0.5},        {"delay_probability", 0.0, 1.0}, {"delay_rate_hz", 0.0, 10.0},
+    {"delay_min_s", 0.0, 3600.0},    {"delay_max_s", 0.0, 3600.0}};
 
 void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   const auto list = root["uncertainty"];
@@ -161,7 +161,8 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
                                    [&](const auto& k) { return std::get<0>(k) == key; });
       if (it == kUncertaintyKeys.end()) {
         fail(src, kv.first, "uncertainty." + key,
-             "unknown; use stall_probability, stall_s, speed_sigma, slip_sigma");
+             "unknown; use stall_probability, stall_s, speed_sigma, slip_sigma, "
+             "delay_probability, delay_rate_hz, delay_min_s, delay_max_s");
       }
       double v = -1;
       try {
@@ -197,20 +198,120 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     s.repeats = static_cast<std::size_t>(k);
   }
   for (const auto& kv : root) {
-    static const std::set<std::string> known{"name",  "maps",    "scens",      "agents",
-                                             "plan",  "plans",   "robots",     "qos",
-                                             "clock", "repeats", "uncertainty"};
+    static const std::set<std::string> known{
+        "name", "maps",  "scens",   "agents",      "plan",     "plans",   "robots",
+        "qos",  "clock", "repeats", "uncertainty", "lifelong", "planners"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
-           "clock, "
-           "uncertainty, repeats");
+           "clock, uncertainty, repeats (lifelong: lifelong, agents, planners)");
     }
   }
 }
 
+double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
+                 double hi) {
+  double v = -1;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+  }
+  if (!(v >= lo && v <= hi)) {
+    fail(src, n, field, "a number from " + json(lo).dump() + " to " + json(hi).dump());
+  }
+  return v;
+}
+
+// planners: [{planner: builtin}, {name: x, command: "..."}] (a lifelong run's --planner-cmd).
+void read_lifelong_planners(const YAML::Node& root, const std::string& src, Spec& s) {
+  const auto list = root["planners"];
+  if (!list) {
+    s.plans = {{"builtin", PlanSource::kBuiltin, "", "xy"}};
+    return;
+  }
+  if (!list.IsSequence() || list.size() == 0) {
+    fail(src, list, "planners", "a list, e.g. [{planner: builtin}, {command: \"python3 p.py\"}]");
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const auto field = "planners[" + std::to_string(i) + "]";
+    const auto p = list[i];
+    if (!p.IsMap() || (p["planner"] ? 1 : 0) + (p["command"] ? 1 : 0) != 1) {
+      fail(src, p, field,
+           "give {planner: builtin} or {command: \"...\"} (with a name: if you like)");
+    }
+    if (p["planner"] && p["planner"].as<std::string>("") != "builtin") {
+      fail(src, p["planner"], field + ".planner", "the only planner inside is 'builtin'");
+    }
+    PlanSpec plan{p["planner"] ? "builtin" : "command" + std::to_string(i),
+                  p["planner"] ? PlanSource::kBuiltin : PlanSource::kCommand,
+                  p["command"] ? p["command"].as<std::string>() : "", "xy"};
+    if (p["name"]) plan.name = p["name"].as<std::string>("");
+    if (!plain_name(plan.name)) fail(src, p, field + ".name", "1-64 of A-Z a-z 0-9 . _ -");
+    if (!names.insert(plan.name).second) {
+      fail(src, p, field + ".name", "'" + plan.name + "' names two planners; name each once");
+    }
+    s.plans.push_back(plan);
+  }
+}
+
+void read_lifelong(const YAML::Node& root, const std::string& src, Spec& s) {
+  const auto l = root["lifelong"];
+  if (!l.IsMap()) fail(src, l, "lifelong", "a mapping: {map: M.map, duration_s: 60}");
+  for (const char* key : {"maps", "scens", "plan", "plans"}) {
+    if (root[key]) {
+      fail(src, root[key], key,
+           "a lifelong experiment has no plan files: its map is lifelong.map (or "
+           "lifelong.problem) and its planners are planners:");
+    }
+  }
+  if (!root["planners"] && root["plans"]) fail(src, root["plans"], "plans", "use planners:");
+  LifelongSpec ls;
+  for (const auto& kv : l) {
+    const auto key = kv.first.as<std::string>();
+    const auto field = "lifelong." + key;
+    if (key == "map" || key == "problem") {
+      (key == "map" ? ls.map : ls.problem) = kv.second.as<std::string>("");
+    } else if (key == "duration_s") {
+      ls.duration_s = number_in(kv.second, src, field, 0.1, 1e7);
+    } else if (key == "task_errands") {
+      ls.task_errands = static_cast<int>(number_in(kv.second, src, field, 1, 64));
+    } else if (key == "replan_period_s") {
+      ls.replan_period_s.clear();
+      if (kv.second.IsSequence()) {
+        for (const auto& v : kv.second) {
+          ls.replan_period_s.push_back(number_in(v, src, field, 0.05, 3600));
+        }
+      } else {
+        ls.replan_period_s.push_back(number_in(kv.second, src, field, 0.05, 3600));
+      }
+      if (ls.replan_period_s.empty()) fail(src, kv.second, field, "give at least one period");
+    } else {
+      fail(src, kv.first, field,
+           "unknown; the fields are map or problem, duration_s, task_errands, replan_period_s");
+    }
+  }
+  if (ls.map.empty() == ls.problem.empty()) {
+    fail(src, l, "lifelong", "give map (random tasks on it) or problem (a LoRR problem), one");
+  }
+  if (!ls.problem.empty() && root["agents"]) {
+    fail(src, root["agents"], "agents", "a LoRR problem brings its team; drop agents");
+  }
+  s.instances = {{ls.map.empty() ? ls.problem : ls.map, ""}};
+  s.agents = ls.problem.empty() ? counts(root, src) : std::vector<std::size_t>{0};
+  s.lifelong = ls;
+  read_lifelong_planners(root, src, s);
+}
+
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// A plan run's scen names its instance; a lifelong run's map or problem does.
+std::string instance_stem(const Spec& s, std::size_t i) {
+  return stem(s.lifelong ? s.instances[i].first : s.instances[i].second);
+}
+
+std::size_t periods(const Spec& s) { return s.lifelong ? s.lifelong->replan_period_s.size() : 1; }
 
 void flatten(const json& j, const std::string& prefix, json& row) {
   for (const auto& [k, v] : j.items()) {
@@ -231,9 +332,19 @@ std::string csv_field(const json& v) {
   return q + "\"";
 }
 
-const std::vector<std::string> kParams{"cell",  "map",  "scen",        "agents",
-                                       "robot", "qos",  "uncertainty", "repeat",
-                                       "plan",  "axis", "clock",       "planner_runtime_s"};
+const std::vector<std::string> kParams{"cell",
+                                       "map",
+                                       "scen",
+                                       "agents",
+                                       "robot",
+                                       "qos",
+                                       "uncertainty",
+                                       "repeat",
+                                       "plan",
+                                       "axis",
+                                       "clock",
+                                       "replan_period_s",
+                                       "planner_runtime_s"};
 }  // namespace
 
 Spec parse_spec(std::string_view text, const std::string& src) {
@@ -250,9 +361,14 @@ Spec parse_spec(std::string_view text, const std::string& src) {
   if (!plain_name(s.name)) {
     fail(src, root["name"] ? root["name"] : root, "name", "1-64 of A-Z a-z 0-9 . _ -");
   }
-  read_instances(root, src, s);
-  s.agents = counts(root, src);
-  read_plan(root, src, s);
+  if (root["lifelong"]) {
+    read_lifelong(root, src, s);
+  } else {
+    if (root["planners"]) fail(src, root["planners"], "planners", "only with lifelong:");
+    read_instances(root, src, s);
+    s.agents = counts(root, src);
+    read_plan(root, src, s);
+  }
   read_options(root, src, s);
   read_uncertainty(root, src, s);
   return s;
@@ -266,13 +382,16 @@ std::vector<Cell> expand(const Spec& s) {
         for (const auto& robot : s.robots) {
           for (const auto& qos : s.qos) {
             for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
-              for (std::size_t r = 0; r < s.repeats; ++r) {
-                auto key = std::to_string(i) + "-" + stem(s.instances[i].second) + "-n" +
-                           std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
-                if (s.plans.size() > 1) key += "-" + s.plans[p].name;
-                if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
-                key += "-r" + std::to_string(r);
-                cells.push_back({i, n, p, robot, qos, u, r, key});
+              for (std::size_t t = 0; t < periods(s); ++t) {
+                for (std::size_t r = 0; r < s.repeats; ++r) {
+                  auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
+                             std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+                  if (s.plans.size() > 1) key += "-" + s.plans[p].name;
+                  if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+                  if (periods(s) > 1) key += "-p" + std::to_string(t);
+                  key += "-r" + std::to_string(r);
+                  cells.push_back({i, n, p, robot, qos, u, r, t, key});
+                }
               }
             }
           }
@@ -308,6 +427,12 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
               {"axis", s.plans.at(c.plan).axis},
               {"clock", s.clock}};
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
+  if (s.lifelong) {
+    row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);
+    row.erase("axis");
+    // A LoRR problem brings its team: its size is summary.json's robots.
+    if (c.agents == 0) row["agents"] = summary.value("robots", json(nullptr));
+  }
   json fields = json::object();
   flatten(summary, "", fields);
   for (const auto& [k, v] : fields.items()) {

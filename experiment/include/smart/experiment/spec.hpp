@@ -17,6 +17,17 @@
 //   clock: lockstep                   # or realtime
 //   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
+// A lifelong experiment (issue 28: tasks stream in; throughput is the measure) has a lifelong:
+// section instead of maps, scens and plan(s), and a planner axis of its own:
+//   lifelong:
+//     map: random-32-32-20.map        # random tasks on this map (`--tasks random`), or
+//     problem: maze-example_40.json   # a LoRR problem (`--lifelong`; its team: no agents axis)
+//     duration_s: 120                 # sim seconds per run; default 60
+//     task_errands: 1                 # errands per random task (optional)
+//     replan_period_s: [1, 2]         # an axis; default [1]
+//   planners: [{planner: builtin}, {name: greedy, command: "python3 greedy_planner.py"}]
+//                                     # --planner-cmd per command; default [{planner: builtin}]
+//   uncertainty: [{}, {delay_probability: 0.01, delay_max_s: 2}]   # LoRR-style delays too
 // Errors name the spec file, the line and the field, and say what to write instead.
 #pragma once
 
@@ -40,8 +51,17 @@ struct PlanSpec {
   std::string axis = "xy";
 };
 
+struct LifelongSpec {
+  std::string map;      // random tasks on this map, or
+  std::string problem;  // a LoRR problem file
+  double duration_s = 60;
+  std::optional<int> task_errands;
+  std::vector<double> replan_period_s{1.0};
+};
+
 struct Spec {
   std::string name;
+  std::optional<LifelongSpec> lifelong;  // set: a lifelong experiment (plans: its planners)
   std::vector<std::pair<std::string, std::string>> instances;  // (map, scen) as written
   std::vector<std::size_t> agents;
   std::vector<PlanSpec> plans;  // one (plan:) or several (plans:)
@@ -64,16 +84,18 @@ struct Cell {
   std::string robot, qos;
   std::size_t uncertainty = 0;  // index into spec.uncertainty
   std::size_t repeat = 0;       // also the uncertainty seed
+  std::size_t period = 0;       // lifelong: index into spec.lifelong->replan_period_s
   std::string key;              // folder name, unique within the experiment, stable across runs
 };
 
-// The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, repeat).
+// The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
 std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
 
-// One results row: the cell's parameters (plan: the planner's name), the wall seconds its
+// One results row: the cell's parameters (plan: the planner's name; lifelong: replan_period_s),
+// the wall seconds its
 // planner took (planner_runtime_s; absent for a plan file), then every summary.json field,
 // nested objects flattened with dots ("adg.type2"), arrays as JSON text.
 nlohmann::json result_row(const Spec& spec, const Cell& cell, const nlohmann::json& summary,
