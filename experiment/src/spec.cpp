@@ -442,8 +442,16 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
 }
 
 std::string results_csv(const std::vector<json>& rows) {
-  std::vector<std::string> columns = kParams;
+  // The parameters some row has: a lifelong run has no axis and no planner_runtime_s, a plan run
+  // no replan_period_s (but a plan run's planner_runtime_s column stays, empty for plan files).
+  const auto any_has = [&rows](const std::string& p) {
+    return std::any_of(rows.begin(), rows.end(), [&](const json& r) { return r.contains(p); });
+  };
+  std::vector<std::string> columns;
   std::set<std::string> rest;
+  for (const auto& p : kParams) {
+    if (any_has(p) || (p == "planner_runtime_s" && any_has("axis"))) columns.push_back(p);
+  }
   for (const auto& r : rows) {
     for (const auto& [k, v] : r.items()) {
       if (std::find(kParams.begin(), kParams.end(), k) == kParams.end()) rest.insert(k);

@@ -131,6 +131,48 @@ TEST_F(Campaign, APlannerCommandMakesThePlanThatIsRun) {
   EXPECT_TRUE(fs::exists(dir_ / "out" / "plans" / "0-n2.txt.runtime_s"));
 }
 
+// Issue 28: a lifelong experiment runs `smart run --tasks random` per cell with its team size,
+// planner and seed, and the figures show throughput against team size and over time.
+TEST_F(Campaign, ALifelongExperimentMeasuresThroughputOverSeeds) {
+  const auto spec = dir_ / "lifelong.yaml";
+  std::ofstream(spec) << "name: ll\nlifelong:\n  map: "
+                      << (b_ / "maps/random-32-32-20.map").string()
+                      << "\n  duration_s: 30\n  task_errands: 1\nagents: [4, 8]\nrepeats: 2\n";
+  const auto r = run(spec, kExperimentLifelong);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.with_results, 4u);
+  const auto rows = lines_of(dir_ / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_THAT(rows[0], HasSubstr(",clock,replan_period_s,"));
+  EXPECT_THAT(rows[0], HasSubstr("lifelong.throughput_per_min"));
+  EXPECT_THAT(rows[1], ::testing::StartsWith("0-random-32-32-20-n4-footbot-lan-r0,"
+                                             "random-32-32-20,,4,footbot,lan,{},0,builtin,"
+                                             "lockstep,1.0,"));
+  for (const char* cell :
+       {"0-random-32-32-20-n4-footbot-lan-r0", "0-random-32-32-20-n8-footbot-lan-r1"}) {
+    const auto summary =
+        nlohmann::json::parse(slurp(dir_ / "out" / "cells" / cell / "summary.json"));
+    EXPECT_EQ(summary["lifelong"]["duration_s"], 30.0) << cell;
+    EXPECT_EQ(summary["lifelong"]["planner"]["via"], "process") << cell;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "cells" / cell / "throughput.csv")) << cell;
+  }
+  experiment::plot_campaign(dir_ / "out", {});
+  const auto shown = nlohmann::json::parse(slurp(dir_ / "out" / "figures" / "figures.json"));
+  const auto& tp = shown["figures"]["throughput"]["panels"][0];
+  EXPECT_EQ(tp["field"], "lifelong.throughput_per_min");
+  ASSERT_EQ(tp["series"].size(), 1u);
+  ASSERT_EQ(tp["series"][0]["points"].size(), 2u);  // 4 and 8 robots, each over two seeds
+  EXPECT_EQ(tp["series"][0]["points"][1]["x"], 8.0);
+  EXPECT_EQ(tp["series"][0]["points"][1]["n"], 2);
+  const auto& over_time = shown["figures"]["throughput_time"]["panels"];
+  ASSERT_EQ(over_time.size(), 4u);  // tasks finished and last minute's, for 4 and 8 robots
+  EXPECT_EQ(over_time[0]["match"]["agents"], "4");
+  for (const char* name : {"throughput", "throughput_time"}) {
+    EXPECT_EQ(slurp(dir_ / "out" / "figures" / (std::string(name) + ".png")).substr(1, 3), "PNG");
+  }
+  EXPECT_THAT(slurp(dir_ / "out" / "figures" / "table.md"), HasSubstr("throughput (tasks/min)"));
+}
+
 TEST_F(Campaign, BadInputIsNamedBeforeAnythingRuns) {
   EXPECT_THAT([&] { run(write_spec("clock: fast\n")); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spec.yaml:")));

@@ -123,6 +123,69 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("n beside it", figures["aet_makespan"]["caption"])
         self.assertIn("Error bars", figures["aet_makespan"]["caption"])
 
+    def test_lifelong_throughput_vs_team_size_and_over_time_are_the_runs_own_numbers(self):
+        """Issue 28: throughput (tasks/min) against robots, and each cell's throughput.csv over
+        time, every point the mean (and sd) of the runs it names."""
+        root = pathlib.Path(self.enterContext(tempfile.TemporaryDirectory()))
+        columns = ["cell", "map", "scen", "agents", "robot", "qos", "uncertainty", "repeat",
+                   "plan", "clock", "replan_period_s", "success", "lifelong.throughput_per_min",
+                   "lifelong.mean_latency_s"]
+        rows, finished = [], {}
+        for n in (10, 20):
+            for plan in ("builtin", "greedy"):
+                for rep in (0, 1, 2):
+                    cell = f"n{n}-{plan}-r{rep}"
+                    tp = n / 2 + rep + (3 if plan == "greedy" else 0)
+                    rows.append({"cell": cell, "map": "m", "scen": "", "agents": n,
+                                 "robot": "footbot", "qos": "lan", "uncertainty": "{}",
+                                 "repeat": rep, "plan": plan, "clock": "lockstep",
+                                 "replan_period_s": 1.0, "success": "true",
+                                 "lifelong.throughput_per_min": tp,
+                                 "lifelong.mean_latency_s": 30 + rep})
+                    (root / "cells" / cell).mkdir(parents=True)
+                    with open(root / "cells" / cell / "throughput.csv", "w") as f:
+                        f.write("t_s,tasks_finished,tasks_last_min,planner_ms,kept_actions,"
+                                "robots_with_task\n")
+                        for t in range(4):
+                            k = t * (rep + 1) + (n if plan == "greedy" else 0)
+                            finished[(n, plan, rep, t)] = k
+                            # sim times as a real-time run reports them: near the period grid
+                            f.write(f"{t + 0.01 * rep},{k},{k},1.0,0,{n}\n")
+        with open(root / "results.csv", "w", newline="") as f:
+            w = csv.DictWriter(f, columns)
+            w.writeheader()
+            w.writerows(rows)
+        out = root / "figures"
+        done = subprocess.run([sys.executable, str(SCRIPT), str(root), str(out)],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        figures = json.loads((out / "figures.json").read_text())["figures"]
+        tp = figures["throughput"]["panels"][0]
+        self.assertEqual(tp["field"], "lifelong.throughput_per_min")
+        self.assertEqual(tp["legend_title"], "plan")
+        greedy = next(s for s in tp["series"] if s["label"] == "greedy")
+        self.assertEqual([p["x"] for p in greedy["points"]], [10, 20])
+        self.assertAlmostEqual(greedy["points"][1]["mean"], 20 / 2 + 1 + 3)  # reps 0, 1, 2
+        self.assertAlmostEqual(greedy["points"][1]["sd"], 1.0)
+        self.assertEqual(greedy["points"][1]["n"], 3)
+        over_time = figures["throughput_time"]
+        self.assertIn("Band", over_time["caption"])
+        self.assertEqual(len(over_time["panels"]), 4)  # 2 team sizes x 2 measures
+        for panel in over_time["panels"]:
+            n = int(panel["match"]["agents"])
+            for s in panel["series"]:
+                for p in s["points"]:
+                    vs = [finished[(n, s["match"]["plan"], rep, int(p["x"]))] for rep in (0, 1, 2)]
+                    where = f"{panel['field']} n={n} {s['label']} t={p['x']}"
+                    self.assertEqual(p["n"], 3, where)
+                    self.assertAlmostEqual(p["mean"], sum(vs) / 3, msg=where)
+        table = (out / "table.md").read_text()
+        self.assertIn("| replan_period_s |", table)
+        self.assertIn("| throughput (tasks/min) |", table)
+        self.assertIn("| 14.0 \u00b1 1.0 |", table)  # 20 robots, greedy: 13, 14, 15
+        for ext in ("png", "svg", "pdf"):
+            self.assertGreater((out / f"throughput_time.{ext}").stat().st_size, 1000, ext)
+
 
 if __name__ == "__main__":
     unittest.main()

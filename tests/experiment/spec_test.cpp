@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <set>
+
 namespace smart::experiment {
 namespace {
 
@@ -139,6 +141,88 @@ TEST(Spec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
       EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
     }
   }
+}
+
+// Issue 28: lifelong runs as an experiment: the map (or a LoRR problem), team sizes, planners
+// (built in or a pipe command), replanning periods and delays are the axes.
+constexpr const char* kLifelongSpec = R"(name: ll
+lifelong:
+  map: random-32-32-20.map
+  duration_s: 30
+  task_errands: 1
+  replan_period_s: [1, 2.5]
+agents: [10, 20]
+planners: [{planner: builtin}, {name: greedy, command: "python3 g.py"}]
+uncertainty: [{}, {delay_probability: 0.01, delay_max_s: 2}]
+repeats: 2
+)";
+
+TEST(Spec, ALifelongSpecHasTeamSizesPlannersPeriodsAndDelaysAsAxes) {
+  const auto s = parse_spec(kLifelongSpec, "ll.yaml");
+  ASSERT_TRUE(s.lifelong.has_value());
+  EXPECT_EQ(s.lifelong->map, "random-32-32-20.map");
+  EXPECT_DOUBLE_EQ(s.lifelong->duration_s, 30);
+  EXPECT_EQ(s.lifelong->task_errands, 1);
+  EXPECT_EQ(s.lifelong->replan_period_s, (std::vector<double>{1, 2.5}));
+  ASSERT_EQ(s.plans.size(), 2u);
+  EXPECT_EQ(s.plans[0].source, PlanSource::kBuiltin);
+  EXPECT_EQ(s.plans[1].source, PlanSource::kCommand);
+  EXPECT_EQ(s.plans[1].text, "python3 g.py");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 2u * 2 * 2 * 2 * 2);
+  EXPECT_EQ(cells[0].key, "0-random-32-32-20-n10-footbot-lan-builtin-u0-p0-r0");
+  EXPECT_EQ(cells.back().key, "0-random-32-32-20-n20-footbot-lan-greedy-u1-p1-r1");
+  EXPECT_EQ(cells.back().period, 1u);
+  EXPECT_EQ(uncertainty_flags(s, cells.back()),
+            (std::vector<std::string>{"--delay-max-s", "2.0", "--delay-probability", "0.01",
+                                      "--seed", "1"}));
+  const auto row = result_row(s, cells.back(), {{"lifelong", {{"throughput_per_min", 12.5}}}});
+  EXPECT_EQ(row["replan_period_s"], 2.5);
+  EXPECT_EQ(row["plan"], "greedy");
+  EXPECT_EQ(row["map"], "random-32-32-20");
+  EXPECT_EQ(row["lifelong.throughput_per_min"], 12.5);
+  EXPECT_FALSE(row.contains("axis"));  // no plan file to read
+  const auto csv = results_csv({row});
+  EXPECT_THAT(csv, HasSubstr("clock,replan_period_s,lifelong.throughput_per_min\n"));
+}
+
+TEST(Spec, ALorrProblemBringsItsTeam) {
+  const auto s =
+      parse_spec("name: lorr\nlifelong: {problem: maze.domain/maze-example_40.json}\n", "l.yaml");
+  ASSERT_EQ(s.agents, std::vector<std::size_t>{0});
+  EXPECT_EQ(s.plans.at(0).name, "builtin");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_EQ(cells[0].key, "0-maze-example_40-n0-footbot-lan-r0");
+  EXPECT_EQ(result_row(s, cells[0], {{"robots", 40}})["agents"], 40);
+}
+
+TEST(Spec, LifelongMistakesNameTheFileLineAndField) {
+  const auto error = [](const std::string& text) {
+    try {
+      (void)parse_spec(text, "ll.yaml");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error("name: a\nlifelong: {map: m, problem: p}\nagents: [1]\n"),
+              HasSubstr("ll.yaml:2: lifelong: give map (random tasks on it) or problem"));
+  EXPECT_THAT(error("name: a\nlifelong: {problem: p.json}\nagents: [5]\n"),
+              HasSubstr("ll.yaml:3: agents: a LoRR problem brings its team; drop agents"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m}\nagents: [1]\nmaps: [x]\n"),
+              HasSubstr("ll.yaml:4: maps: a lifelong experiment has no plan files"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m, replan_period_s: [0]}\nagents: [1]\n"),
+              HasSubstr("lifelong.replan_period_s: a number from 0.05 to 3600"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m, windows: 3}\nagents: [1]\n"),
+              HasSubstr("lifelong.windows: unknown; the fields are map or problem"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m}\nagents: [1]\nplanners: [{planner: lacam}]\n"),
+              HasSubstr("planners[0].planner: the only planner inside is 'builtin'"));
+  EXPECT_THAT(error("name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {planner: builtin}\n"
+                    "planners: [{planner: builtin}]\n"),
+              HasSubstr("planners: only with lifelong:"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m}\nagents: [1]\nuncertainty: [{delay_s: 1}]\n"),
+              HasSubstr("delay_probability, delay_rate_hz, delay_min_s, delay_max_s"));
 }
 
 TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {

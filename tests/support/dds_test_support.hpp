@@ -142,6 +142,7 @@ enum DomainId : int {
   kDdsPlanner = 99,          // tests/tools/dds_planner_test.cpp, one test after the other
   kPlannerNode = 98,         // tests/tools/planner_node_test.cpp
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
+  kExperimentLifelong = 95,  // and 96 (--jobs 2)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
