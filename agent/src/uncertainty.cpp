@@ -54,6 +54,22 @@ double delay_at(const Uncertainty& u, uint32_t robot, uint64_t tick) {
   return std::clamp(d, lo, lo + span);
 }
 
+std::vector<std::pair<int64_t, int64_t>> delay_intervals(const Uncertainty& u, uint32_t robot,
+                                                         int64_t ticks) {
+  std::vector<std::pair<int64_t, int64_t>> out;
+  if (!u.delays()) return out;
+  for (int64_t k = 0; k < ticks; ++k) {
+    const double d = delay_at(u, robot, static_cast<uint64_t>(k));
+    if (d <= 0) continue;
+    // Free again at the first tick whose time reaches k x tick + d.
+    const auto end =
+        std::max<int64_t>(k + 1, k + static_cast<int64_t>(std::ceil(d / kDelayTickS - 1e-9)));
+    out.emplace_back(k, end);
+    k = end - 1;
+  }
+  return out;
+}
+
 nlohmann::json to_json(const Uncertainty& u) {
   nlohmann::json j = {{"stall_probability", u.stall_probability},
                       {"stall_s", u.stall_s},

@@ -33,6 +33,7 @@ monitor::ProgressUpdate LifelongExecution::on_progress(uint32_t robot, int64_t f
                                                        double time_s) {
   std::vector<grid::Cell> reached;
   auto u = adg_.on_progress(robot, finished_seq, [&](const grid::Action& a) {
+    if (observer_ != nullptr) observer_->executed(robot, a, time_s);
     if (a.type == grid::ActionType::kMove && a.to.is_cell()) {
       reached.push_back({a.to.x2 / 2, a.to.y2 / 2});
     }
@@ -135,7 +136,13 @@ std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, dou
        std::to_string(st.actions) + " actions " + std::to_string(st.type2) + " type-2 edges"});
   std::vector<uint32_t> changed;
   for (uint32_t r = 0; r < before.size(); ++r) {
-    if (adg_.end(r) != before[r]) changed.push_back(r);
+    if (adg_.end(r) == before[r]) continue;
+    changed.push_back(r);
+    if (observer_ == nullptr) continue;
+    for (uint32_t seq = before[r]; seq < adg_.end(r); ++seq) {
+      const auto& a = adg_.action(r, seq);
+      observer_->planned(r, a, time_s, a.end_time - adg_.window_start());
+    }
   }
   return changed;
 }

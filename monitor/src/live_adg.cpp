@@ -376,6 +376,7 @@ std::vector<Problem> LiveAdg::append(const std::vector<std::vector<Cell>>& paths
   appended_total_ += acts.all.size();
   type2_total_ += edges.size();
   last_plan_time_s_ = t_end;
+  window_start_ = t0;
   for (uint32_t r = 0; r < robots_.size(); ++r) advance(r);
   if (stats) *stats = {acts.all.size(), edges.size()};
   return {};

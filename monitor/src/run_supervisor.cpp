@@ -226,6 +226,8 @@ void RunSupervisor::on_sim_status(const SimStatusEvent& s) {
   status_sim_time_s_ = std::max(status_sim_time_s_, s.sim_time_s);
   res_.robot_contacts = s.robot_contacts;
   if (s.first_contact_a >= 0 && s.first_contact_b >= 0) {
+    // The status after a contact comes with the sim time it was sent (it is sent on change).
+    if (!res_.first_collision) res_.first_collision_s = s.sim_time_s;
     res_.first_collision = {static_cast<uint32_t>(s.first_contact_a),
                             static_cast<uint32_t>(s.first_contact_b)};
   }

@@ -111,6 +111,39 @@ TEST(Agent, ADelayEventStopsAMovingRobotMidEdgeThenItDrivesOn) {
   EXPECT_GE(r.agent.delays(), 1u);
 }
 
+// Issue 28 (LoRR output's delayIntervals): the intervals delay_intervals() computes from the
+// seed alone are the delays an agent stepped every 0.1 s lives, tick for tick.
+TEST(Agent, DelayIntervalsAreTheDelaysTheAgentLives) {
+  auto m = footbot();
+  m.uncertainty.seed = 5;
+  m.uncertainty.delay_probability = 0.05;
+  m.uncertainty.delay_min_s = 0.3;
+  m.uncertainty.delay_max_s = 1.55;
+  Drive r(m);
+  EXPECT_TRUE(r.agent.activate().ok());
+  ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 7)), ActionQueue::Result::kAccepted);
+  constexpr int64_t kTicks = 600;
+  std::vector<bool> lived;
+  for (int64_t k = 0; k < kTicks; ++k) {
+    r.steps(1);  // the agent's update at tick k
+    lived.push_back(r.agent.delayed());
+  }
+  const auto intervals = delay_intervals(m.uncertainty, 7, kTicks);
+  ASSERT_GE(intervals.size(), 5u);
+  EXPECT_EQ(intervals.size(), r.agent.delays());
+  std::vector<bool> computed(kTicks, false);
+  for (const auto& [from, to] : intervals) {
+    ASSERT_LT(from, to);
+    for (int64_t k = from; k < std::min(to, kTicks); ++k)
+      computed[static_cast<std::size_t>(k)] = true;
+  }
+  for (int64_t k = 0; k < kTicks; ++k) {
+    EXPECT_EQ(computed[static_cast<std::size_t>(k)], lived[static_cast<std::size_t>(k)])
+        << "tick " << k;
+  }
+  EXPECT_TRUE(delay_intervals(Uncertainty{}, 7, kTicks).empty());
+}
+
 TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
   auto m = footbot();
   m.max_speed_mps = 0.5;

@@ -28,7 +28,7 @@ class Campaign : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path write_spec(const std::string& extra = "") const {
-    const auto spec = dir_ / "spec.yaml";
+    auto spec = dir_ / "spec.yaml";
     std::ofstream(spec) << "name: tiny\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
                         << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
                         << "]\nagents: [1, 2]\nplan: {file: "

@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdio>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "smart/monitor/results_format.hpp"
@@ -339,10 +342,99 @@ TEST(LifelongRun, APythonPlannerDrivesARunAndABrokenOneNeverStopsIt) {
   EXPECT_THAT(r.out, HasSubstr("late: no reply within 0.5 s (--planner-timeout-s)"));
 }
 
+// A LoRR output path string replayed: the robot's (row, col, orientation) after each tick, and
+// whether every segment's opening state matched the replay.
+struct Replay {
+  std::vector<std::array<int, 3>> after;  // per tick
+  bool snapshots_match = true;
+};
+Replay replay(const std::string& path, std::array<int, 3> state) {
+  static constexpr int kDRow[4] = {0, 1, 0, -1}, kDCol[4] = {1, 0, -1, 0};
+  Replay out;
+  std::size_t at = 0;
+  while ((at = path.find("[(", at)) != std::string::npos) {
+    int t = 0, row = 0, col = 0, ori = 0, counter = 0;
+    std::sscanf(path.c_str() + at, "[(%d,%d,%d,%d,%d)", &t, &row, &col, &ori, &counter);
+    out.snapshots_match &= static_cast<std::size_t>(t) == out.after.size() &&
+                           std::array<int, 3>{row, col, ori} == state && counter == 0;
+    const auto open = path.find(":(", at) + 2, close = path.find(")]", at);
+    std::istringstream runs(path.substr(open, close - open));
+    for (std::string run; std::getline(runs, run, ',');) {
+      const char action = run[0];
+      for (int k = std::stoi(run.substr(2)); k > 0; --k) {
+        if (action == 'F')
+          state = {state[0] + kDRow[state[2]], state[1] + kDCol[state[2]], state[2]};
+        if (action == 'R') state[2] = (state[2] + 1) % 4;
+        if (action == 'C') state[2] = (state[2] + 3) % 4;
+        out.after.push_back(state);
+      }
+    }
+    at = close;
+  }
+  return out;
+}
+
+// Issue 28: `--lorr-output` writes the run as the LoRR output JSON; replaying each robot's
+// actualPaths from its start stays on the map's free cells, every segment opens with the replayed
+// state, and at each event's tick the robot stands on the errand the event says it reached.
+TEST(LifelongRun, ALorrOutputReplaysToTheRunsOwnErrands) {
+  const auto out = temp_file("lifelong_lorr_output");
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  const auto map = benchmarks_dir() / "maps" / "random-32-32-20.map";
+  const auto r =
+      lifelong({"--tasks", "random", "--map", map.string(), "--agents", "12", "--seed", "4",
+                "--task-errands", "2", "--duration-s", "90", "--delay-probability", "0.005",
+                "--delay-max-s", "1.5", "--lorr-output", (out / "lorr.json").string()},
+               kLifelongLorrOutput, "lifelong_lorr_output");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto summary = summary_in(r.out);
+  const auto j = nlohmann::json::parse(slurp(out / "lorr.json"));
+  EXPECT_EQ(j["teamSize"], 12);
+  EXPECT_EQ(j["makespan"], 900);
+  EXPECT_EQ(j["numTaskFinished"], summary["lifelong"]["tasks_finished"]);
+  ASSERT_GT(j["numTaskFinished"].get<int>(), 0);
+  std::vector<std::string> rows;  // the map's rows: '.' free
+  {
+    std::istringstream text(slurp(map));
+    bool in_map = false;
+    for (std::string line; std::getline(text, line);) {
+      if (in_map) rows.push_back(line);
+      if (line == "map") in_map = true;
+    }
+  }
+  std::vector<Replay> robots;
+  for (std::size_t i = 0; i < 12; ++i) {
+    const auto& s = j["start"][i];
+    robots.push_back(replay(j["actualPaths"][i], {s[0].get<int>(), s[1].get<int>(), 0}));
+    EXPECT_TRUE(robots.back().snapshots_match) << "robot " << i;
+    ASSERT_EQ(robots.back().after.size(), 900u) << "robot " << i;
+    for (const auto& [row, col, ori] : robots.back().after) {
+      ASSERT_EQ(rows.at(static_cast<std::size_t>(row)).at(static_cast<std::size_t>(col)), '.')
+          << "robot " << i << " replays onto an obstacle";
+    }
+  }
+  ASSERT_FALSE(j["events"].empty());
+  for (const auto& e : j["events"]) {
+    const int tick = e[0], robot = e[1], task = e[2], done = e[3];
+    const auto& errands = j["tasks"][static_cast<std::size_t>(task)][2];
+    ASSERT_EQ(j["tasks"][static_cast<std::size_t>(task)][0], task);
+    const auto where =
+        robots[static_cast<std::size_t>(robot)].after[static_cast<std::size_t>(tick)];
+    const auto at = static_cast<std::size_t>(done - 1) * 2;  // row, col of errand done - 1
+    EXPECT_EQ(where[0], errands[at]) << e.dump();
+    EXPECT_EQ(where[1], errands[at + 1]) << e.dump();
+  }
+  std::size_t delays = 0;
+  for (const auto& d : j["delayIntervals"]) delays += d.size();
+  EXPECT_GT(delays, 0u);
+  std::filesystem::remove_all(out);
+}
+
 // `smart args...` in the background with its log (stderr) in `out` too.
 common::ChildProcess start_logged(const std::vector<std::string>& args,
                                   const std::filesystem::path& out) {
-  std::vector<std::string> argv{"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>&1", smart_exe().string()};
+  std::vector<std::string> argv{"/bin/sh", "-c", R"(exec "$0" "$@" 2>&1)", smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
   return common::ChildProcess(argv, out);
 }

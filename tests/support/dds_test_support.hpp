@@ -143,6 +143,7 @@ enum DomainId : int {
   kPlannerNode = 98,         // tests/tools/planner_node_test.cpp
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
   kExperimentLifelong = 95,  // and 96 (--jobs 2)
+  kLifelongLorrOutput = 94,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

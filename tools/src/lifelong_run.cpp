@@ -38,9 +38,14 @@ class LifelongFiles {
     open(tasks_, dir, results::kTasksCsv, results::kTasksHeader);
     open(throughput_, dir, results::kThroughputCsv, results::kThroughputHeader);
   }
+  // The LoRR output, told every event and planning call as they are drained.
+  void feed(lifelong::LorrOutput* lorr) { lorr_ = lorr; }
   void drain(lifelong::LifelongExecution& exec) {
     std::string text;
-    for (const auto& e : exec.take_events()) results::append_row(text, e);
+    for (const auto& e : exec.take_events()) {
+      if (lorr_ != nullptr) lorr_->on_event(e);
+      results::append_row(text, e);
+    }
     write(events_, text);
     text.clear();
     for (const auto& t : exec.tasks().take_finished()) {
@@ -51,6 +56,7 @@ class LifelongFiles {
     write(tasks_, text);
     text.clear();
     for (const auto& r : exec.take_throughput()) {
+      if (lorr_ != nullptr) lorr_->on_planner_call(r);
       robots_with_task_sum += static_cast<double>(r.robots_with_task);
       ++rows;
       results::append_row(text, r);
@@ -76,7 +82,35 @@ class LifelongFiles {
     if (f.is_open() && !text.empty()) f << text << std::flush;
   }
   std::ofstream events_, tasks_, throughput_;
+  lifelong::LorrOutput* lorr_ = nullptr;
 };
+
+// The run as a LoRR output JSON (--lorr-output): its delays as the agents drew them (the same
+// pure draws, agent/uncertainty.hpp), its first collision.
+void write_lorr_output(const MonitorCliOptions& o, const lifelong::LorrOutput& lorr,
+                       const lifelong::LifelongExecution& exec,
+                       const monitor::MonitorResult& result) {
+  lifelong::LorrRunEnd end;
+  end.duration_s = result.sim_time_s;
+  end.tasks_finished = exec.stats().tasks_finished;
+  const auto u = run_robot_model(o.sim).uncertainty;
+  const auto ticks = lifelong::lorr_tick(end.duration_s);
+  for (uint32_t r = 0; r < exec.robots(); ++r) {
+    end.delay_intervals.push_back(agent::delay_intervals(u, r, ticks));
+  }
+  if (result.first_collision) {
+    end.collisions.push_back(
+        {result.first_collision->first, result.first_collision->second, result.first_collision_s});
+  } else if (const auto& c = result.first_pose_contact) {
+    end.collisions.push_back({c->a, c->b, c->t_s});
+  }
+  std::ofstream f(o.lifelong.lorr_output);
+  f << lorr.json(end).dump() << "\n";
+  if (!f) {
+    throw std::runtime_error("--lorr-output " + o.lifelong.lorr_output +
+                             ": cannot be written; give a path in a folder that exists");
+  }
+}
 
 nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& o,
                              const lifelong::LifelongExecution& exec, const LifelongFiles& f,
@@ -330,6 +364,12 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   lifelong::LifelongExecution exec(problem.grid, problem.starts, problem.tasks, options,
                                    std::move(planner));
   LifelongFiles files(o.out);
+  std::optional<lifelong::LorrOutput> lorr;
+  if (!o.lifelong.lorr_output.empty()) {
+    lorr.emplace(problem.grid, problem.starts, options.initial_heading, problem.tasks);
+    exec.observe(&*lorr);
+    files.feed(&*lorr);
+  }
   spdlog::info("lifelong: {} robots on {} ({}x{}), {} tasks in the source, pool {}, {} s",
                problem.starts.size(), problem.source, problem.grid.width(), problem.grid.height(),
                problem.tasks.size(), problem.pool, o.lifelong.duration_s);
@@ -346,6 +386,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
     info.sim_cpu_s = common::cpu_seconds_children();
     monitor::apply_sim_reports(result, sim_words(o));
   }
+  if (lorr) write_lorr_output(o, *lorr, exec, result);
   auto summary = monitor::run_summary_json(result, info);
   summary[results::summary_key::kLifelong] =
       lifelong_json(problem, o, exec, files, result.sim_time_s);

@@ -218,6 +218,9 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
                   "cell), 'paths' (a shortest path per robot, A* with landmarks: maps too large "
                   "for tables), 'auto' (tables when one per robot fits --distance-budget-mb)")
       ->capture_default_str();
+  cmd->add_option("--lorr-output", o.lorr_output,
+                  "also write the run as a League of Robot Runners output JSON (PlanViz, LoRR "
+                  "tools): actions discretised to 0.1 s ticks, as the file says");
   static const EnumNames<LifelongCliOptions::Planner> kPlannerNames{
       {"builtin", LifelongCliOptions::Planner::kBuiltin},
       {"external", LifelongCliOptions::Planner::kExternal}};

@@ -22,6 +22,8 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 namespace smart::agent {
 
@@ -52,6 +54,11 @@ double slip_factor(const Uncertainty& u, uint32_t robot, uint64_t tick, int whee
 inline constexpr double kDelayTickS = 0.1;  // LoRR's tick: delay events are drawn per tick
 // The delay a robot starts at delay tick `tick` (its own clock / kDelayTickS), in seconds; 0: none.
 double delay_at(const Uncertainty& u, uint32_t robot, uint64_t tick);
+// The delay events of `robot` in its first `ticks` ticks as an agent updated at every tick
+// lives them (Agent::maybe_delay: one event at a time, drawn at the first tick it is free):
+// [the tick it starts, the first tick it is free again], for LoRR's delayIntervals.
+std::vector<std::pair<int64_t, int64_t>> delay_intervals(const Uncertainty& u, uint32_t robot,
+                                                         int64_t ticks);
 
 // {"stall_probability", "stall_s", "speed_sigma", "slip_sigma", "seed"} and, with delays, the
 // delay_* keys, for summary.json.

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "smart/lifelong/lorr_output.hpp"
 #include "smart/lifelong/scheduler.hpp"
 #include "smart/lifelong/task_manager.hpp"
 #include "smart/lifelong/window_planner.hpp"
@@ -93,6 +94,9 @@ class LifelongExecution final : public monitor::Execution {
   const LifelongStats& stats() const { return stats_; }
   TaskManager& tasks() { return tasks_; }
   const monitor::LiveAdg& adg() const { return adg_; }
+  // Told every action as it finishes (robots' reports) and as it is appended (planned); null:
+  // nobody (the LoRR output, lorr_output.hpp, when asked for). Must outlive the run.
+  void observe(ActionObserver* observer) { observer_ = observer; }
   std::vector<results::EventRow> take_events();
   std::vector<results::ThroughputRow> take_throughput();
 
@@ -104,6 +108,7 @@ class LifelongExecution final : public monitor::Execution {
   void refuse(double time_s, const std::string& why);
 
   LifelongOptions options_;
+  ActionObserver* observer_ = nullptr;
   monitor::LiveAdg adg_;
   GreedyNearestScheduler scheduler_;
   TaskManager tasks_;

@@ -102,6 +102,9 @@ class LiveAdg final : public Execution {
   // Problems name the robots and locations of a refused window (nothing appended then).
   std::vector<Problem> append(const std::vector<std::vector<Cell>>& paths, double plan_time_s,
                               AppendStats* stats = nullptr);
+  // The plan time of the last appended window's first step (its steps are one plan time unit
+  // apart; a window starts where the previous one ended or at its append time, the later).
+  double window_start() const { return window_start_; }
 
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
@@ -154,6 +157,7 @@ class LiveAdg final : public Execution {
   std::size_t appended_total_ = 0;
   std::size_t type2_total_ = 0;
   double last_plan_time_s_ = 0;
+  double window_start_ = 0;
 };
 
 }  // namespace smart::monitor

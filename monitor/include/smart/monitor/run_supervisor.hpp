@@ -107,6 +107,7 @@ struct MonitorResult {
   std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
   std::optional<std::pair<uint32_t, uint32_t>> first_collision;  // robots, from the sim host
+  double first_collision_s = 0;  // sim time of the status that first reported it
   double goal_tolerance_m = 0;
   std::vector<uint32_t> off_goal;         // robots seen away from their goal after finishing
   std::vector<uint32_t> goal_unverified;  // robots not seen after finishing

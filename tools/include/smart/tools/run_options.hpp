@@ -87,6 +87,7 @@ struct LifelongCliOptions {
   double planner_timeout_s = 2.0;           // wall seconds per window
   enum class Fallback { kStop, kBuiltin };  // a refused external window: wait, or built-in
   Fallback planner_fallback = Fallback::kStop;
+  std::string lorr_output;  // a LoRR output JSON at the run's end (lifelong/lorr_output.hpp)
   bool external() const { return planner == Planner::kExternal || !planner_cmd.empty(); }
 };
 
