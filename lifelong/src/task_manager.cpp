@@ -31,6 +31,7 @@ void TaskManager::update(double time_s, const std::vector<grid::Cell>& cells) {
     o.row.source_task = src.id;
     o.row.errands = static_cast<uint32_t>(src.errands.size());
     o.row.revealed_s = time_s;
+    for (const auto c : src.errands) o.row.cells.emplace_back(c.x, c.y);
     o.errands = src.errands;
     open_.emplace(next_id_, std::move(o));
     order_.push_back(next_id_);

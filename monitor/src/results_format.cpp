@@ -116,6 +116,26 @@ bool optional_number(std::string_view f, std::optional<double>& out) {
   return true;
 }
 
+// "x y;x y" (at most kMaxTaskCells pairs; empty: none).
+constexpr std::size_t kMaxTaskCells = 1024;
+bool cells_of(std::string_view f, std::vector<std::pair<int32_t, int32_t>>& out) {
+  out.clear();
+  if (!f.empty() && f.back() == ';') return false;
+  while (!f.empty()) {
+    const auto semi = std::min(f.find(';'), f.size());
+    auto pair = f.substr(0, semi);
+    f.remove_prefix(std::min(semi + 1, f.size()));
+    const auto space = pair.find(' ');
+    std::pair<int32_t, int32_t> c;
+    if (space == std::string_view::npos || !number(pair.substr(0, space), c.first) ||
+        !number(pair.substr(space + 1), c.second) || out.size() >= kMaxTaskCells) {
+      return false;
+    }
+    out.push_back(c);
+  }
+  return true;
+}
+
 std::invalid_argument bad_row(std::string_view file, std::size_t line, std::string_view expected) {
   return std::invalid_argument(std::string(file) + " line " + std::to_string(line) + ": expected " +
                                std::string(expected));
@@ -273,7 +293,13 @@ void append_row(std::string& out, const TaskRow& r) {
   put(out, r.assigned_s);
   put(out, r.opened_s);
   put(out, r.finished_s);
-  put(out, r.finished_s ? std::optional<double>(*r.finished_s - r.revealed_s) : std::nullopt, '\n');
+  put(out, r.finished_s ? std::optional<double>(*r.finished_s - r.revealed_s) : std::nullopt);
+  for (std::size_t i = 0; i < r.cells.size(); ++i) {
+    if (i > 0) out.push_back(';');
+    put(out, r.cells[i].first, ' ');
+    put(out, r.cells[i].second, 0);
+  }
+  out.push_back('\n');
 }
 
 std::vector<TaskRow> parse_tasks_csv(std::string_view text) {
@@ -287,8 +313,10 @@ std::vector<TaskRow> parse_tasks_csv(std::string_view text) {
         !optional_number(next_field(line), r.assigned_s) ||
         !optional_number(next_field(line), r.opened_s) ||
         !optional_number(next_field(line), r.finished_s) ||
-        !optional_number(next_field(line), latency) || !line.empty()) {
-      throw bad_row(kTasksCsv, line_no, std::string(kTasksHeader) + " (numbers, some empty)");
+        !optional_number(next_field(line), latency) || !cells_of(next_field(line), r.cells) ||
+        !line.empty()) {
+      throw bad_row(kTasksCsv, line_no,
+                    std::string(kTasksHeader) + " (numbers, some empty; cells \"x y;x y\")");
     }
     out.push_back(r);
   });
@@ -313,6 +341,26 @@ void append_row(std::string& out, const ThroughputRow& r) {
   put(out, r.planner_ms);
   put(out, r.kept_actions);
   put(out, r.robots_with_task, '\n');
+}
+
+std::vector<EventRow> parse_events_csv(std::string_view text) {
+  std::vector<EventRow> out;
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    EventRow r;
+    std::optional<uint64_t> robot, errand;
+    const bool ok = number(next_field(line), r.t_s);
+    r.event = std::string(next_field(line));
+    if (!ok || r.event.empty() || !optional_count(next_field(line), r.task) ||
+        !optional_count(next_field(line), robot) || !optional_count(next_field(line), errand) ||
+        (robot && *robot > UINT32_MAX) || (errand && *errand > UINT32_MAX)) {
+      throw bad_row(kEventsCsv, line_no, std::string(kEventsHeader) + " (t_s, a word, counts)");
+    }
+    if (robot) r.robot = static_cast<uint32_t>(*robot);
+    if (errand) r.errand = static_cast<uint32_t>(*errand);
+    r.detail = std::string(line);  // the rest: commas were written as ';'
+    out.push_back(std::move(r));
+  });
+  return out;
 }
 
 std::vector<ThroughputRow> parse_throughput_csv(std::string_view text) {

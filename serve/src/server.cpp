@@ -19,6 +19,8 @@
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
+#include "smart/serve/task_timeline.hpp"
+#include "smart/serve/task_timeline.hpp"
 #include "smart/serve/upload_budget.hpp"
 #include "uploads.hpp"
 
@@ -359,6 +361,25 @@ struct Server::Impl {
     }
   }
 
+  // A lifelong run's tasks and throughput (task_timeline.hpp), from its results files.
+  void get_tasks(const std::string& id, httplib::Response& res) {
+    const auto e = entry(id);
+    const auto tasks = store.results_file(id, results::kTasksCsv);
+    if (!e || e->state != RunState::kDone || !fs::exists(tasks)) {
+      return reply(res, 404, {{"error", "no tasks of " + id + " (not a finished lifelong run)"}});
+    }
+    const auto text = [&](std::string_view name) {
+      const auto f = store.results_file(id, name);
+      return fs::exists(f) ? slurp(f) : std::string();
+    };
+    try {
+      reply(res, 200,
+            task_timeline(slurp(tasks), text(results::kEventsCsv), text(results::kThroughputCsv)));
+    } catch (const std::invalid_argument& ex) {
+      reply(res, 422, {{"error", ex.what()}});
+    }
+  }
+
   // robots.csv's row of `robot` as JSON (finish and waiting time, stops, lower bound), if the
   // run wrote one; an unknown value (not finished, bound unknown) is null.
   json robot_results(const std::string& id, uint32_t robot) const {
@@ -550,6 +571,8 @@ struct Server::Impl {
     });
     http.Get(R"(/api/runs/([^/]+)/progress)",
              [this](const auto& req, auto& res) { get_progress(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/tasks)",
+             [this](const auto& req, auto& res) { get_tasks(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/results/([^/]+))", [this](const auto& req, auto& res) {
       get_result_file(req.matches[1], req.matches[2], res);
     });

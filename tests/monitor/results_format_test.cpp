@@ -163,12 +163,14 @@ TEST(ResultsFormat, FinishedCountsRoundTripAndATornFileIsNothing) {
 TEST(ResultsFormat, LifelongTaskAndThroughputRowsRoundTrip) {
   std::string tasks(kTasksHeader);
   tasks += '\n';
-  append_row(tasks, TaskRow{3, 1, 7u, 2, 2, 0.5, 0.5, 4.25, 9.75});
+  append_row(tasks, TaskRow{3, 1, 7u, 2, 2, 0.5, 0.5, 4.25, 9.75, {{4, 7}, {12, 0}}});
   append_row(tasks, TaskRow{4, 2, std::nullopt, 1, 0, 1, std::nullopt, std::nullopt, std::nullopt});
-  EXPECT_NE(tasks.find("3,1,7,2,2,0.5,0.5,4.25,9.75,9.25\n"), std::string::npos) << tasks;
+  EXPECT_NE(tasks.find("3,1,7,2,2,0.5,0.5,4.25,9.75,9.25,4 7;12 0\n"), std::string::npos) << tasks;
   const auto rows = parse_tasks_csv(tasks);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].robot, 7u);
+  EXPECT_EQ(rows[0].cells, (std::vector<std::pair<int32_t, int32_t>>{{4, 7}, {12, 0}}));
+  EXPECT_TRUE(rows[1].cells.empty());
   EXPECT_EQ(rows[0].finished_s, 9.75);
   EXPECT_FALSE(rows[1].robot.has_value());
   EXPECT_FALSE(rows[1].assigned_s.has_value());
@@ -181,8 +183,13 @@ TEST(ResultsFormat, LifelongTaskAndThroughputRowsRoundTrip) {
   std::string ev;
   append_row(ev, EventRow{2.5, "refused", std::nullopt, 3u, std::nullopt, "a, b\nc"});
   EXPECT_EQ(ev, "2.5,refused,,3,,a; b c\n");
-  EXPECT_THROW(parse_tasks_csv(std::string(kTasksHeader) + "\n1,2,x,1,0,0,,,,\n"),
+  EXPECT_THROW(parse_tasks_csv(std::string(kTasksHeader) + "\n1,2,x,1,0,0,,,,,\n"),
                std::invalid_argument);
+  for (const char* cells : {"4", "4 x", "4 7;", "4 7 8", "4;7"}) {
+    EXPECT_THROW(parse_tasks_csv(std::string(kTasksHeader) + "\n1,2,,1,0,0,,,,," + cells + "\n"),
+                 std::invalid_argument)
+        << cells;
+  }
 }
 
 }  // namespace

@@ -33,8 +33,12 @@ inline constexpr std::string_view kProgressCsv = "progress.csv";
 // Also for live views: each robot's finished actions, replaced whole about once a second.
 inline constexpr std::string_view kFinishedCsv = "finished.csv";
 // Every file of a results folder that a viewer lists, downloads or replays, in that order.
-inline constexpr std::array<std::string_view, 5> kFiles = {kSummaryJson, kStatsCsv, kRobotsCsv,
-                                                           kActionsCsv, kStatesCsv};
+inline constexpr std::string_view kTasksCsv = "tasks.csv";
+inline constexpr std::string_view kEventsCsv = "events.csv";
+inline constexpr std::string_view kThroughputCsv = "throughput.csv";
+inline constexpr std::array<std::string_view, 8> kFiles = {kSummaryJson, kStatsCsv,     kRobotsCsv,
+                                                           kActionsCsv,  kStatesCsv,    kTasksCsv,
+                                                           kEventsCsv,   kThroughputCsv};
 bool is_results_file(std::string_view name);
 // A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json,
 // the JSON line `smart sim` prints last on its standard output. Its keys that others read:
@@ -147,16 +151,15 @@ std::string finished_csv(const std::vector<uint32_t>& finished);
 // The counts by robot; empty when the text is not such a file (e.g. torn).
 std::vector<uint32_t> parse_finished_csv(std::string_view text);
 
-// Lifelong runs (`smart run --lifelong`, lifelong/): three more files, streamed while the run goes.
-inline constexpr std::string_view kTasksCsv = "tasks.csv";
-inline constexpr std::string_view kEventsCsv = "events.csv";
-inline constexpr std::string_view kThroughputCsv = "throughput.csv";
+// Lifelong runs (`smart run --lifelong`, lifelong/): three more files (kTasksCsv, kEventsCsv,
+// kThroughputCsv), streamed while the run goes.
 
 // tasks.csv: a row per task once it finished (and, at the run's end, every task still open).
 // latency_s = finished_s - revealed_s (LoRR's task latency); empty fields: not (yet) happened.
+// cells: the errands' cells in order, "x y" pairs (MovingAI column and row) separated by ';'.
 inline constexpr std::string_view kTasksHeader =
     "task,source_task,robot,errands,errands_done,revealed_s,assigned_s,opened_s,finished_s,"
-    "latency_s";
+    "latency_s,cells";
 struct TaskRow {
   uint64_t task = 0;         // revealed order (LoRR's task_id)
   uint32_t source_task = 0;  // line of the tasks file / generated task it repeats
@@ -164,6 +167,7 @@ struct TaskRow {
   uint32_t errands = 0, errands_done = 0;
   double revealed_s = 0;
   std::optional<double> assigned_s, opened_s, finished_s;
+  std::vector<std::pair<int32_t, int32_t>> cells = {};  // the errands' (x, y), in order
 };
 void append_row(std::string& out, const TaskRow& row);
 std::vector<TaskRow> parse_tasks_csv(std::string_view text);
@@ -181,6 +185,7 @@ struct EventRow {
   std::string detail;  // commas and newlines replaced by ';' and ' '
 };
 void append_row(std::string& out, const EventRow& row);
+std::vector<EventRow> parse_events_csv(std::string_view text);
 
 // throughput.csv: a row per planning call: tasks finished so far and over the last sim minute,
 // the planner's wall time, the actions kept by the commit cut, robots with a task.
