@@ -36,6 +36,8 @@ void TaskManager::update(double time_s, const std::vector<grid::Cell>& cells) {
     open_.emplace(next_id_, std::move(o));
     order_.push_back(next_id_);
     event(time_s, "revealed", next_id_, std::nullopt, std::nullopt);
+    // Where it is, so a live view can draw it (tasks.csv has it only once it finished).
+    events_.back().detail = results::cells_text(open_.at(next_id_).row.cells);
     ++next_id_;
   }
   std::vector<uint32_t> free;

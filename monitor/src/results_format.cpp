@@ -294,12 +294,24 @@ void append_row(std::string& out, const TaskRow& r) {
   put(out, r.opened_s);
   put(out, r.finished_s);
   put(out, r.finished_s ? std::optional<double>(*r.finished_s - r.revealed_s) : std::nullopt);
-  for (std::size_t i = 0; i < r.cells.size(); ++i) {
-    if (i > 0) out.push_back(';');
-    put(out, r.cells[i].first, ' ');
-    put(out, r.cells[i].second, 0);
-  }
+  out += cells_text(r.cells);
   out.push_back('\n');
+}
+
+std::string cells_text(const std::vector<std::pair<int32_t, int32_t>>& cells) {
+  std::string out;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i > 0) out.push_back(';');
+    put(out, cells[i].first, ' ');
+    put(out, cells[i].second, 0);
+  }
+  return out;
+}
+
+std::optional<std::vector<std::pair<int32_t, int32_t>>> parse_cells(std::string_view text) {
+  std::vector<std::pair<int32_t, int32_t>> out;
+  if (!cells_of(text, out)) return std::nullopt;
+  return out;
 }
 
 std::vector<TaskRow> parse_tasks_csv(std::string_view text) {

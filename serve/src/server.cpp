@@ -20,7 +20,6 @@
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
 #include "smart/serve/task_timeline.hpp"
-#include "smart/serve/task_timeline.hpp"
 #include "smart/serve/upload_budget.hpp"
 #include "uploads.hpp"
 
@@ -165,7 +164,8 @@ struct Server::Impl {
     auto bad = upload::write_robot(staged.path(), opt.config_dir, r);  // first: with its robot
     if (!bad) bad = upload::check_run(req, staged.path(), r);
     if (bad) return reply(res, 400, *bad);
-    std::ofstream(staged.path() / "request.json") << upload::request_json(r).dump();
+    if (!r.lifelong)
+      std::ofstream(staged.path() / "request.json") << upload::request_json(r).dump();
     const auto id = store.add_queued(
         staged.path(), req.get_file_value("map").filename, r.agents,
         [&](const std::string& run) { return upload::run_argv(opt, dir(run), r); });
@@ -364,17 +364,20 @@ struct Server::Impl {
   // A lifelong run's tasks and throughput (task_timeline.hpp), from its results files.
   void get_tasks(const std::string& id, httplib::Response& res) {
     const auto e = entry(id);
-    const auto tasks = store.results_file(id, results::kTasksCsv);
-    if (!e || e->state != RunState::kDone || !fs::exists(tasks)) {
-      return reply(res, 404, {{"error", "no tasks of " + id + " (not a finished lifelong run)"}});
+    if (!e || !fs::exists(store.results_file(id, results::kEventsCsv))) {
+      return reply(res, 404, {{"error", "no tasks of " + id + " (not a lifelong run)"}});
     }
+    // Whole lines only: a running run may be writing its last one.
     const auto text = [&](std::string_view name) {
       const auto f = store.results_file(id, name);
-      return fs::exists(f) ? slurp(f) : std::string();
+      auto t = fs::exists(f) ? slurp(f) : std::string();
+      t.resize(t.rfind('\n') == std::string::npos ? 0 : t.rfind('\n') + 1);
+      return t;
     };
     try {
       reply(res, 200,
-            task_timeline(slurp(tasks), text(results::kEventsCsv), text(results::kThroughputCsv)));
+            task_timeline(text(results::kTasksCsv), text(results::kEventsCsv),
+                          text(results::kThroughputCsv)));
     } catch (const std::invalid_argument& ex) {
       reply(res, 422, {{"error", ex.what()}});
     }

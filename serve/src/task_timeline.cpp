@@ -25,19 +25,40 @@ json task_json(const results::TaskRow& t) {
           {"done_s", json::array()}};
 }
 
+// A running run's task as its events tell it (tasks.csv has only the finished ones yet).
+void apply_event(std::map<uint64_t, json>& tasks, const results::EventRow& e) {
+  if (!e.task) return;
+  if (e.event == "revealed" && !tasks.count(*e.task)) {
+    const auto cells = results::parse_cells(e.detail);
+    if (!cells || cells->empty()) return;
+    results::TaskRow row;
+    row.task = *e.task;
+    row.revealed_s = e.t_s;
+    row.cells = *cells;
+    tasks[*e.task] = task_json(row);
+    return;
+  }
+  const auto it = tasks.find(*e.task);
+  if (it == tasks.end()) return;
+  auto& t = it->second;
+  if (e.event == "assigned" && e.robot && t["robot"].is_null()) {
+    t["robot"] = *e.robot;
+    t["assigned_s"] = e.t_s;
+  }
+  if ((e.event == "opened" || e.event == "errand" || e.event == "finished") && e.errand) {
+    auto& done = t["done_s"];
+    if (*e.errand == done.size() && done.size() < t["cells"].size()) done.push_back(e.t_s);
+    if (e.event == "finished" && t["finished_s"].is_null()) t["finished_s"] = e.t_s;
+  }
+}
+
 }  // namespace
 
 json task_timeline(std::string_view tasks_csv, std::string_view events_csv,
                    std::string_view throughput_csv) {
   std::map<uint64_t, json> tasks;
   for (const auto& t : results::parse_tasks_csv(tasks_csv)) tasks[t.task] = task_json(t);
-  for (const auto& e : results::parse_events_csv(events_csv)) {
-    if (e.event != "opened" && e.event != "errand" && e.event != "finished") continue;
-    const auto it = e.task ? tasks.find(*e.task) : tasks.end();
-    if (it == tasks.end() || !e.errand) continue;
-    auto& done = it->second["done_s"];
-    if (*e.errand == done.size() && done.size() < it->second["cells"].size()) done.push_back(e.t_s);
-  }
+  for (const auto& e : results::parse_events_csv(events_csv)) apply_event(tasks, e);
   json out = {{"tasks", json::array()}};
   for (auto& [id, t] : tasks) out["tasks"].push_back(std::move(t));
   json t_s = json::array(), finished = json::array(), last_min = json::array();

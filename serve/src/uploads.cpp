@@ -119,12 +119,46 @@ bool plain_name(const std::string& s) {
          s.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos;
 }
 
+namespace {
+// kind=lifelong: task_errands, duration_s and seed (each optional, each in its range).
+void read_lifelong(const httplib::Request& req, RunRequest& r) {
+  LifelongRequest l;
+  const auto number = [&](const char* name, double lo, double hi, double& out) {
+    if (!req.has_file(name) || req.get_file_value(name).content.empty()) return;
+    const auto v = finite_number(req.get_file_value(name).content);
+    if (!v || *v < lo || *v > hi || (std::string(name) != "duration_s" && *v != std::floor(*v))) {
+      r.error =
+          fmt::format("{} must be {} from {:g} to {:g}", name,
+                      std::string(name) == "duration_s" ? "a number" : "a whole number", lo, hi);
+      return;
+    }
+    out = *v;
+  };
+  double errands = l.task_errands, seed = static_cast<double>(l.seed);
+  number("task_errands", 1, 64, errands);
+  number("duration_s", 1, 3600, l.duration_s);
+  number("seed", 0, 1e9, seed);
+  l.task_errands = static_cast<int>(errands);
+  l.seed = static_cast<uint64_t>(seed);
+  if (r.agents == 0) r.error = "agents: a lifelong run needs its fleet size (1 to 100000)";
+  r.lifelong = l;
+}
+}  // namespace
+
 RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) {
   RunRequest r;
   auto field = [&](const char* name) {
     return req.has_file(name) ? std::optional(req.get_file_value(name).content) : std::nullopt;
   };
-  for (const char* f : {"plan", "scen", "map"}) {  // the first missing one is named
+  const auto kind = field("kind").value_or("plan");
+  if (kind != "plan" && kind != "lifelong") {
+    r.error = "kind must be plan (map, scen and plan) or lifelong (a map and random tasks)";
+    return r;
+  }
+  const std::vector<const char*> needed = kind == "plan"
+                                              ? std::vector<const char*>{"plan", "scen", "map"}
+                                              : std::vector<const char*>{"map"};
+  for (const char* f : needed) {  // the first missing one is named
     if (!req.has_file(f)) r.error = "missing the '" + std::string(f) + "' file field";
   }
   if (auto a = field("axis")) r.axis = *a;
@@ -151,6 +185,7 @@ RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) 
       r.real_time_factor = *v;
     }
   }
+  if (kind == "lifelong" && r.error.empty()) read_lifelong(req, r);
   return r;
 }
 
@@ -171,9 +206,34 @@ std::optional<json> write_robot(const fs::path& scratch, const fs::path& config_
   }
 }
 
+namespace {
+// A lifelong upload: its map, and room on it for the fleet.
+std::optional<json> check_lifelong(const httplib::Request& req, const fs::path& scratch,
+                                   const RunRequest& r) {
+  std::ofstream(scratch / "map.map", std::ios::binary) << req.get_file_value("map").content;
+  try {
+    const auto g = grid::parse_map(slurp(scratch / "map.map"), req.get_file_value("map").filename);
+    if (g.free_cells() < r.agents) {
+      return json{
+          {"error", fmt::format("the map has {} free cells for {} robots; give fewer robots",
+                                g.free_cells(), r.agents)},
+          {"problems", json::array()}};
+    }
+  } catch (const grid::InputError& e) {
+    return json{{"error", "the upload has problems"},
+                {"problems", problems_json(e.problems(), {{(scratch / "map.map").string(),
+                                                           req.get_file_value("map").filename}})}};
+  } catch (const std::exception& e) {
+    return json{{"error", e.what()}, {"problems", json::array()}};
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 // Writes the upload under a scratch folder and checks it as `smart check-plan` would.
 std::optional<json> check_run(const httplib::Request& req, const fs::path& scratch,
                               const RunRequest& r) {
+  if (r.lifelong) return check_lifelong(req, scratch, r);
   for (const auto& [field, name] : kRunFiles) {
     std::ofstream(scratch / name, std::ios::binary) << req.get_file_value(field).content;
   }
@@ -273,6 +333,35 @@ monitor::Instance load_run(const fs::path& d) {
 }
 
 std::vector<std::string> run_argv(const ServeOptions& opt, const fs::path& d, const RunRequest& r) {
+  if (r.lifelong) {
+    return {opt.smart_exe.string(),
+            "run",
+            "--tasks",
+            "random",
+            "--map",
+            (d / "map.map").string(),
+            "--agents",
+            std::to_string(r.agents),
+            "--task-errands",
+            std::to_string(r.lifelong->task_errands),
+            "--duration-s",
+            fmt::format("{:g}", r.lifelong->duration_s),
+            "--seed",
+            std::to_string(r.lifelong->seed),
+            "--robot",
+            (d / "robot.yaml").string(),
+            "--cell-m",
+            std::to_string(kCellM),
+            "--domain",
+            std::to_string(opt.domain),
+            "--qos",
+            opt.qos,
+            "--out",
+            (d / "results").string(),
+            "--real-time-factor",
+            std::to_string(r.real_time_factor),
+            "--no-progress"};
+  }
   return {opt.smart_exe.string(),
           "run",
           "--map",

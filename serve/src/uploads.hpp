@@ -31,7 +31,14 @@ inline constexpr uint64_t kMaxReplayRobots = 100000;
 bool plain_name(const std::string& s);
 
 // What a run upload asks for beyond its files; `error` names the first wrong field.
+// A lifelong run from the form (issue 28): random tasks on the uploaded map, no scen or plan.
+struct LifelongRequest {
+  int task_errands = 1;     // errands per task
+  double duration_s = 120;  // sim seconds
+  uint64_t seed = 1;
+};
 struct RunRequest {
+  std::optional<LifelongRequest> lifelong;  // set: `smart run --tasks random` on the map
   std::string axis = "xy";
   std::size_t agents = 0;
   std::string robot = "footbot";
@@ -48,7 +55,7 @@ std::optional<nlohmann::json> write_robot(const std::filesystem::path& staged,
 // The upload's files written into `staged` and checked.
 std::optional<nlohmann::json> check_run(const httplib::Request& req,
                                         const std::filesystem::path& staged, const RunRequest& r);
-// request.json of a run: how its plan is read again.
+// request.json of a run: how its plan is read again (a lifelong run has none: no plan files).
 nlohmann::json request_json(const RunRequest& r);
 // The `smart run` command of a run in `run_dir`.
 std::vector<std::string> run_argv(const ServeOptions& opt, const std::filesystem::path& run_dir,

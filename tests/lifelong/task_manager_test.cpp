@@ -53,8 +53,11 @@ TEST(TaskManager, ErrandsInOrderOpenThenFinishAndFreeTheRobot) {
   ASSERT_EQ(done.size(), 1u);
   EXPECT_EQ(done[0].opened_s, 2.0);
   EXPECT_EQ(done[0].finished_s, 5.0);
-  EXPECT_EQ(kinds(tm.take_events()),
+  EXPECT_EQ(done[0].cells, (std::vector<std::pair<int32_t, int32_t>>{{5, 0}, {9, 0}}));
+  const auto events = tm.take_events();
+  EXPECT_EQ(kinds(events),
             (std::vector<std::string>{"revealed", "assigned", "opened", "finished"}));
+  EXPECT_EQ(events[0].detail, "5 0;9 0");  // where the revealed task is (regression: empty)
   tm.update(6, {{9, 0}});  // a new task is revealed (task 1 repeats source 0) and assigned
   EXPECT_EQ(tm.task_of(0), 1u);
 }

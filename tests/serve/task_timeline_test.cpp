@@ -60,6 +60,30 @@ TEST(TaskTimeline, EveryTaskWithItsCellsRobotTimesAndErrandsDone) {
   EXPECT_EQ(j["throughput"]["last_min"], nlohmann::json::parse("[0, 1]"));
 }
 
+// A running run: tasks.csv has none of its open tasks yet; events.csv tells them, their cells
+// with the revealed event.
+TEST(TaskTimeline, ARunningRunsTasksComeFromItsEvents) {
+  std::string e(results::kEventsHeader);
+  e += '\n';
+  for (const auto& row :
+       {results::EventRow{0, "revealed", 1, std::nullopt, std::nullopt, "2 3;4 5"},
+        results::EventRow{0, "revealed", 2, std::nullopt, std::nullopt, "7 7"},
+        results::EventRow{0.5, "assigned", 1, 6u, std::nullopt, ""},
+        results::EventRow{2.0, "opened", 1, 6u, 0u, ""},
+        results::EventRow{3.0, "revealed", 3, std::nullopt, std::nullopt, "x"}}) {
+    results::append_row(e, row);
+  }
+  std::string header(results::kTasksHeader);
+  const auto j = task_timeline(header + "\n", e, "");
+  ASSERT_EQ(j["tasks"].size(), 2u);  // task 3's cells are malformed: not drawn
+  EXPECT_EQ(j["tasks"][0]["robot"], 6);
+  EXPECT_EQ(j["tasks"][0]["assigned_s"], 0.5);
+  EXPECT_EQ(j["tasks"][0]["cells"], nlohmann::json::parse("[[2, 3], [4, 5]]"));
+  EXPECT_EQ(j["tasks"][0]["done_s"], nlohmann::json::parse("[2.0]"));
+  EXPECT_TRUE(j["tasks"][0]["finished_s"].is_null());
+  EXPECT_TRUE(j["tasks"][1]["robot"].is_null());
+}
+
 TEST(TaskTimeline, AMalformedFileIsNamedWithItsLine) {
   EXPECT_THAT([] { (void)task_timeline(tasks_csv() + "x,y\n", "", ""); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("tasks.csv line 4")));

@@ -144,6 +144,7 @@ enum DomainId : int {
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
   kExperimentLifelong = 95,  // and 96 (--jobs 2)
   kLifelongLorrOutput = 94,
+  kWebLifelong = 93,  // web/test/lifelong.test.mjs (given on its command line)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -2,14 +2,17 @@
 // live stream (Server-Sent Events, GET /api/runs/{id}/live, about 4 a second), coloured by state
 // as the replay colours them (moving, waiting, idle), a click or the search field selects a
 // robot and shows its panel, and the finished-actions curve grows as the run goes (issue 26:
-// every robot blue, nothing selectable, no progress); when the run ended, the page reloads into
+// every robot blue, nothing selectable, no progress); a lifelong run's tasks (tasks.js, polled
+// as they stream in) and the minimap as in the replay; when the run ended, the page reloads into
 // the replay.
 import { readMap } from './recording.js';
 import { liveStatus } from './panel.js';
 import { drawProgress } from './plot.js';
+import { minimap } from './minimap.js';
+import { TASK_MARKS, taskLayer, taskRows } from './tasks.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
 import { COLORS, buildMap, buildRobots, onRobotClick, placeRobot, resize, robotsMoved, setLabel, showLegend,
-         startLoop } from './view.js';
+         startLoop, viewTarget } from './view.js';
 
 export const LIVE_LEGEND = [['moving', COLORS.moving], ['waiting', COLORS.waiting],
   ['idle (done, or between windows)', COLORS.idle], ['selected', COLORS.selected]];
@@ -40,13 +43,45 @@ function showStats(id, ev) {
   $('clock').textContent = `${ev.t_s.toFixed(1)} s (live)`;
 }
 
+// A lifelong run's tasks at the newest event: markers, lines, finished tasks and throughput.
+function showLiveTasks(tasks, ev) {
+  tasks.update(ev.t_s, (i, out) => { out[0] = ev.poses[i][0]; out[1] = ev.poses[i][1]; });
+  const { finished, lastMin } = tasks.throughputAt(ev.t_s);
+  $('plot').hidden = false;
+  drawProgress($('plot'), tasks.curve, ev.t_s, finished, 'tasks');
+  setRows($('throughput'), [['finished', `tasks finished: ${finished}`], ['rate', `throughput: ${lastMin} tasks in the last minute`],
+    ['open', `open tasks: ${tasks.open}, robots with a task: ${tasks.lines}`]]);
+  viewer.tasks = { open: tasks.open, lines: tasks.lines, finished, lastMin };
+}
+
 export async function startLive(id) {
   const [, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
   const cell = 1;
-  buildMap(readMap(mapText), cell);
+  const map = readMap(mapText);
+  buildMap(map, cell);
   resize();
   Object.assign(viewer, { live: true, liveEvents: 0 });
   showLegend(LIVE_LEGEND);
+  const mini = minimap($('minimap'), map, cell);
+  $('minimap').hidden = false;
+  viewer.minimap = mini;
+  let tasks = null;
+  // A lifelong run's tasks, polled while it goes (none: not a lifelong run).
+  const pollTasks = async () => {
+    const d = await fetchJson(`/api/runs/${id}/tasks`).catch(() => null);
+    if (d && last) {
+      if (!tasks) {
+        tasks = taskLayer(d, map, cell, last.poses.length);
+        $('throughput').hidden = false;
+        showLegend(LIVE_LEGEND.concat([['errand (open)', TASK_MARKS.open], ['errand (assigned)', TASK_MARKS.assigned],
+          ['robot to its next errand', TASK_MARKS.line]]));
+      } else {
+        tasks.setData(d);
+      }
+    }
+    setTimeout(pollTasks, 1000);
+  };
+  pollTasks();
   let mesh = null, last = null, detail = null;
   const curve = { t_s: [], finished: [] };
   viewer.select = (i) => {
@@ -67,15 +102,18 @@ export async function startLive(id) {
     if (!mesh && ev.poses.length) mesh = buildRobots(ev.poses.length, cell);
     ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw, COLORS[i === viewer.selected ? 'selected' : ev.status[i]]));
     if (mesh) robotsMoved(mesh);
+    if (tasks) showLiveTasks(tasks, ev);
+    mini.draw(ev.poses.length, (i, out) => { out[0] = ev.poses[i][0]; out[1] = ev.poses[i][1]; },
+      (i) => COLORS[i === viewer.selected ? 'selected' : ev.status[i]], viewTarget());
     if (viewer.selected >= 0 && viewer.selected < ev.poses.length) {
-      setRows($('robot'), liveRobotRows(ev, viewer.selected, detail));
+      setRows($('robot'), liveRobotRows(ev, viewer.selected, detail).concat(tasks ? taskRows(tasks, viewer.selected, ev.t_s) : []));
       setLabel(`robot ${viewer.selected}`, ev.poses[viewer.selected][0], ev.poses[viewer.selected][1]);
     }
     if (ev.progress && ev.progress.finished !== curve.finished[curve.finished.length - 1]) {
       curve.t_s.push(ev.progress.t_s);
       curve.finished.push(ev.progress.finished);
     }
-    if (curve.t_s.length) {
+    if (curve.t_s.length && !tasks) {
       $('plot').hidden = false;
       drawProgress($('plot'), curve, ev.t_s, ev.progress.total);
     }

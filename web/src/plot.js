@@ -1,4 +1,5 @@
-// Finished actions over time (GET /api/runs/{id}/progress, or a live run's progress) as a step
+// Finished actions over time (GET /api/runs/{id}/progress, or a live run's progress; a lifelong
+// run's finished tasks, tasks.js) as a step
 // curve on a canvas, with axes (sim seconds, actions; issue 26: the plot had none), tick labels
 // at round numbers, and a marker at the view's time. Plain 2D canvas: a few hundred points need
 // no chart library.
@@ -13,7 +14,8 @@ export function ticks(max, most = 4) {
   return out;
 }
 
-export function drawProgress(canvas, curve, t, total) {
+// label: what the curve counts ('actions'; a lifelong run's 'tasks').
+export function drawProgress(canvas, curve, t, total, label = 'actions') {
   const ctx = canvas.getContext('2d');
   const w = canvas.width, h = canvas.height;
   const left = 42, right = 6, top = 6, bottom = 26;
@@ -45,7 +47,7 @@ export function drawProgress(canvas, curve, t, total) {
   ctx.translate(9, top + (h - top - bottom) / 2);
   ctx.rotate(-Math.PI / 2);
   ctx.textAlign = 'center';
-  ctx.fillText('actions', 0, 0);
+  ctx.fillText(label, 0, 0);
   ctx.restore();
   // The curve and the time marker.
   if (ts.length) {

@@ -1,16 +1,23 @@
 // Replay mode: a finished run's recording (SMRC, recording.js) played back, scrubbed, stepped;
 // robots coloured moving, waiting, done or collided; a click shows a robot's panel (panel.js),
-// its path, trail and the robots it waits for; the finished-actions curve (plot.js).
+// its path, trail and the robots it waits for; the finished-actions curve (plot.js). A lifelong
+// run also shows its tasks (tasks.js: errand markers, robot-to-errand lines, the robot's task,
+// finished tasks and throughput); every run has the minimap (minimap.js), robot search and
+// camera follow.
 import * as THREE from 'three';
 import { firstFrameBytes, readMap, readRecording } from './recording.js';
 import { robotList, robotStatus } from './panel.js';
 import { drawProgress } from './plot.js';
+import { minimap } from './minimap.js';
+import { TASK_MARKS, taskLayer, taskRows } from './tasks.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
-import { COLORS, MARKS, buildMap, buildRobots, controls, onRobotClick, placeRobot, pngDataUrl,
-         renderOnce, resize, robotsMoved, scene, setLabel, showLegend, showMarks, startLoop } from './view.js';
+import { COLORS, MARKS, buildMap, buildRobots, lookAt, onRobotClick, placeRobot, pngDataUrl,
+         renderOnce, resize, robotsMoved, scene, setLabel, showLegend, showMarks, startLoop,
+         viewTarget } from './view.js';
 
 const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
-                collided: new Set(), collisionFrame: Infinity, progress: null };
+                collided: new Set(), collisionFrame: Infinity, progress: null, tasks: null,
+                minimap: null, colors: null };
 // Scratch poses, written by rec.pose().
 const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
 
@@ -30,14 +37,30 @@ function showFrame(t) {
     const hit = state.collided.has(i) && f >= state.collisionFrame;
     const kind = i === viewer.selected ? 'selected' : hit ? 'collided' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
     placeRobot(mesh, i, pose[0], pose[1], pose[2], COLORS[kind]);
+    if (state.colors) state.colors[i] = COLORS[kind];
   }
   robotsMoved(mesh);
+  if (state.tasks) showTasks(t, f);
+  if (state.minimap) state.minimap.draw(rec.robots, (i, out) => rec.pose(f, i, out), (i) => state.colors[i], viewTarget());
   viewer.t = t;
   viewer.frameT = rec.times[f];
   $('clock').textContent = `${t.toFixed(1)} s`;
   $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
   if (viewer.selected >= 0) showRobot(viewer.selected, f);
   if (state.progress) drawProgress($('plot'), state.progress, t, state.summary.total_actions);
+}
+
+// A lifelong run's tasks at time t (frame f): markers, lines, the finished-tasks curve and the
+// last minute's throughput.
+function showTasks(t, f) {
+  const { tasks, rec } = state;
+  tasks.update(t, (i, out) => rec.pose(f, i, out));
+  const { finished, lastMin } = tasks.throughputAt(t);
+  const total = tasks.curve.finished.length ? tasks.curve.finished[tasks.curve.finished.length - 1] : 0;
+  drawProgress($('plot'), tasks.curve, t, total, 'tasks');
+  setRows($('throughput'), [['finished', `tasks finished: ${finished}`], ['rate', `throughput: ${lastMin} tasks in the last minute`],
+    ['open', `open tasks: ${tasks.open}, robots with a task: ${tasks.lines}`]]);
+  viewer.tasks = { open: tasks.open, lines: tasks.lines, finished, lastMin };
 }
 
 // The pair the sim host reported colliding (summary.first_collision) is drawn as collided from
@@ -85,7 +108,8 @@ function showRobot(id, f) {
   const d = state.detail && state.detail.robot === id ? state.detail : null;
   let rows = [].concat(row('id', `robot ${id}`), row('pose', `x ${p[0].toFixed(2)} m, y ${p[1].toFixed(2)} m`),
     row('heading', `heading ${(p[2] * 180 / Math.PI).toFixed(0)}°`), row('queue', `queue: ${state.rec.queue(f, id)}`),
-    offGoal ? row('off-goal', 'NOT AT GOAL') : [], state.collided.has(id) ? row('collided', 'COLLIDED') : []);
+    offGoal ? row('off-goal', 'NOT AT GOAL') : [], state.collided.has(id) ? row('collided', 'COLLIDED') : [],
+    state.tasks ? taskRows(state.tasks, id, state.t) : []);
   if (d) {
     const s = robotStatus(d, state.rec.times[f]);
     viewer.status = s;
@@ -94,7 +118,7 @@ function showRobot(id, f) {
   }
   setRows($('robot'), rows);
   drawTrail(id, f);
-  if ($('follow').checked) controls.target.set(p[0], 0, -p[1]);
+  if ($('follow').checked) lookAt(p[0], p[1]);
   setLabel(`robot ${id}`, p[0], p[1]);
 }
 
@@ -202,6 +226,17 @@ async function markStartsAndGoals(id) {
   return 'last position';
 }
 
+// A lifelong run's tasks (GET /api/runs/{id}/tasks; none for a plan run).
+async function loadTasks(id, map) {
+  const data = await fetchJson(`/api/runs/${id}/tasks`).catch(() => null);
+  if (!data) return;
+  state.tasks = taskLayer(data, map, state.cell, state.rec.robots);
+  $('throughput').hidden = false;
+  viewer.taskOf = (r) => state.tasks.taskOf(r, state.t);
+  showLegend(replayLegend('last position').concat([['errand (open)', TASK_MARKS.open],
+    ['errand (assigned)', TASK_MARKS.assigned], ['robot to its next errand', TASK_MARKS.line]]));
+}
+
 export const replayLegend = (goal) => [['moving', COLORS.moving], ['waiting', COLORS.waiting], ['done', COLORS.done],
   ['collided', COLORS.collided], ['selected', COLORS.selected], ['start', MARKS.start], [goal, MARKS.goal],
   ['planned path', MARKS.path], ['waits for (Type-2)', MARKS.waitsFor], ['waited for by (Type-2)', MARKS.waitedBy]];
@@ -262,8 +297,13 @@ export async function startReplay(id) {
   const [run, mapText] = await Promise.all([fetchJson(`/api/runs/${id}`), fetch(`/api/runs/${id}/map`).then((r) => r.text())]);
   const { first, rest } = await loadRecording(id, run.summary.robots);
   Object.assign(state, { summary: run.summary, run: id, cell: run.summary.cell_m || 1, rec: first });
-  buildMap(readMap(mapText), state.cell);
+  const map = readMap(mapText);
+  buildMap(map, state.cell);
   state.mesh = buildRobots(state.rec.robots, state.cell);
+  state.colors = new Uint32Array(state.rec.robots);
+  state.minimap = minimap($('minimap'), map, state.cell);
+  $('minimap').hidden = false;
+  viewer.minimap = state.minimap;
   showStats(run.summary);
   showFiles(id, run.files);
   resize();
@@ -277,7 +317,8 @@ export async function startReplay(id) {
   findCollision();
   showLegend(replayLegend(await markStartsAndGoals(id)));
   state.progress = await fetchJson(`/api/runs/${id}/progress`).catch(() => null);
-  $('plot').hidden = !state.progress;
+  await loadTasks(id, map);
+  $('plot').hidden = !state.progress && !state.tasks;
   wireControls();
   showFrame(0);
   viewer.loadedMs = performance.now() - t0;

@@ -48,8 +48,23 @@ async function wireSliders() {
   reset();
 }
 
+// The run's kind: a plan needs its scen and plan files; a lifelong run (issue 28) a map, its
+// fleet size and task settings (POST /api/runs kind=lifelong: `smart run --tasks random`).
+function wireKind() {
+  const show = () => {
+    const lifelong = $('up-kind').value === 'lifelong';
+    for (const el of document.querySelectorAll('#upload .plan-only')) el.hidden = lifelong;
+    for (const el of document.querySelectorAll('#upload .lifelong-only')) el.hidden = !lifelong;
+    $('up-scen').required = $('up-plan').required = !lifelong;
+    $('up-scen').disabled = $('up-plan').disabled = lifelong;  // not sent
+  };
+  $('up-kind').onchange = show;
+  show();
+}
+
 export function wireUpload() {
   wireSliders();
+  wireKind();
   wireForm('upload', '/api/runs', 'upload-status', 'upload-problems');
   wireForm('replay', '/api/results', 'replay-status', 'replay-problems');
 }

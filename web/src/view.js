@@ -72,6 +72,20 @@ viewer.zoom = (k) => {
 };
 window.addEventListener('resize', resize);
 
+// Moves the view (camera and its target together, the angle kept) to look at world point
+// (x_m, y_m): the minimap's click and camera follow.
+export function lookAt(x, y) {
+  const dx = x - controls.target.x, dz = -y - controls.target.z;
+  controls.target.x += dx;
+  controls.target.z += dz;
+  camera.position.x += dx;
+  camera.position.z += dz;
+  controls.update();
+}
+// The world point the view looks at: [x_m, y_m].
+export function viewTarget() { return [controls.target.x, -controls.target.z]; }
+viewer.target = viewTarget;
+
 // The floor, its grid and the walls of `map` (readMap's shape: width, height, blocked(x, y)),
 // the camera above it.
 export function buildMap(map, cell) {

@@ -171,10 +171,14 @@ struct TaskRow {
 };
 void append_row(std::string& out, const TaskRow& row);
 std::vector<TaskRow> parse_tasks_csv(std::string_view text);
+// A task's cells as tasks.csv writes them ("x y;x y"), and back (nothing: malformed).
+std::string cells_text(const std::vector<std::pair<int32_t, int32_t>>& cells);
+std::optional<std::vector<std::pair<int32_t, int32_t>>> parse_cells(std::string_view text);
 
-// events.csv: what happened to tasks and windows, in order. event: revealed, assigned, opened
-// (first errand done), errand (a later errand done), finished, window (a plan appended), refused
-// (a window refused: detail says why). task/robot/errand empty where they do not apply.
+// events.csv: what happened to tasks and windows, in order. event: revealed (detail: its errand
+// cells as in tasks.csv, so a running run's tasks can be drawn), assigned, opened (first errand
+// done), errand (a later errand done), finished, window (a plan appended), refused (a window
+// refused: detail says why). task/robot/errand empty where they do not apply.
 inline constexpr std::string_view kEventsHeader = "t_s,event,task,robot,errand,detail";
 struct EventRow {
   double t_s = 0;

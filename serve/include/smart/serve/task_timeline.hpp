@@ -3,8 +3,9 @@
 // each errand was done, and the tasks-finished curve with the last minute's throughput. Pure:
 // the results files' text in (tasks.csv, events.csv, throughput.csv: results_format.hpp), JSON
 // out. The files may come from an upload: a malformed one throws std::invalid_argument naming
-// the file and line (results_format's readers), an event for a task tasks.csv lacks or an errand
-// past its task's errands is skipped.
+// the file and line (results_format's readers), an errand past its task's errands is skipped.
+// While a run goes, tasks.csv holds only its finished tasks: the others come from events.csv
+// (revealed, with their cells; assigned; errands done).
 #pragma once
 
 #include <nlohmann/json.hpp>

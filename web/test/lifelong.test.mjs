@@ -1,0 +1,181 @@
+// A lifelong run in the viewer (issue 28), in Debian's Chromium headless against a real
+// `smart serve` opening a real `smart run --tasks random --out` folder. Checks, against the run's
+// own tasks.csv and throughput.csv: the open tasks' errand markers and the robot-to-errand lines
+// at a time, the selected robot's task in its panel, the finished-tasks plot and the last
+// minute's throughput, the minimap's dots, robot search and camera follow (the view's centre on
+// the robot as it plays), a click on the minimap moving the view; then a lifelong run started
+// from the upload form, shown live with its tasks and replayed.
+// Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+import puppeteer from 'puppeteer-core';
+
+const exe = process.env.SMART_EXE;
+const bench = process.env.SMART_BENCHMARKS;
+const dist = process.env.SMART_WEB_DIST;
+const domain = process.env.SMART_DOMAIN || '93';
+const artifacts = process.env.SMART_ARTIFACTS || tmpdir();
+const work = mkdtempSync(path.join(tmpdir(), 'smart-lifelong-web-'));
+const robots = 15;
+
+function lifelongRun() {
+  const out = path.join(work, 'results');
+  const r = spawnSync(exe, ['run', '--tasks', 'random', '--map', path.join(bench, 'maps/random-32-32-20.map'),
+    '--agents', String(robots), '--seed', '2', '--task-errands', '2', '--duration-s', '90',
+    '--domain', domain, '--out', out, '--no-progress'], { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  return out;
+}
+
+function startServer(results) {
+  const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'), '--web', dist,
+    '--open', results, '--domain', domain]);
+  server.stderr.on('data', () => {});  // read, or it blocks
+  return new Promise((resolve, reject) => {
+    let text = '';
+    server.stdout.on('data', (d) => {
+      text += d;
+      const m = text.match(/"listening":"(http:\/\/[^"]+)"/);
+      if (m) resolve({ server, url: m[1] });
+    });
+    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
+  });
+}
+
+// tasks.csv, read here: [{id, robot, revealed, assigned, finished, cells}] (cells [[x, y]]).
+function readTasks(out) {
+  const lines = readFileSync(path.join(out, 'tasks.csv'), 'utf8').trim().split('\n');
+  assert.match(lines[0], /,cells$/);
+  const num = (v) => (v === '' ? null : Number(v));
+  return lines.slice(1).map((l) => {
+    const c = l.split(',');
+    return { id: +c[0], robot: num(c[2]), revealed: +c[5], assigned: num(c[6]), finished: num(c[8]),
+      cells: c[10] ? c[10].split(';').map((p) => p.split(' ').map(Number)) : [] };
+  });
+}
+
+// events.csv: task -> times its errands were done, in order.
+function readErrandTimes(out) {
+  const done = new Map();
+  for (const l of readFileSync(path.join(out, 'events.csv'), 'utf8').trim().split('\n').slice(1)) {
+    const [t, what, task] = l.split(',');
+    if (!['opened', 'errand', 'finished'].includes(what)) continue;
+    if (!done.has(+task)) done.set(+task, []);
+    done.get(+task).push(+t);
+  }
+  return done;
+}
+
+const out = lifelongRun();
+const tasks = readTasks(out), errandTimes = readErrandTimes(out);
+const throughput = readFileSync(path.join(out, 'throughput.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
+const { server, url } = await startServer(out);
+const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 800 });
+  page.on('pageerror', (e) => { throw e; });
+  await page.goto(`${url}/?run=run-000001`);
+  await page.waitForFunction(() => window.__viewer && (window.__viewer.ready || window.__viewer.error), { timeout: 60000 });
+  assert.equal(await page.evaluate(() => window.__viewer.error), '');
+  assert.equal(await page.evaluate(() => window.__viewer.robots), robots);
+
+  // At t = 45 s: as many markers as tasks open then, a line per robot holding a task.
+  const t = 45;
+  await page.evaluate((t) => window.__viewer.seek(t), t);
+  const shown = await page.evaluate(() => window.__viewer.tasks);
+  const frameT = t;  // markers and lines follow the view's time, not the recording's frame
+  const openNow = tasks.filter((k) => k.revealed <= frameT && !(k.finished !== null && k.finished <= frameT));
+  const heldNow = openNow.filter((k) => k.robot !== null && k.assigned !== null && k.assigned <= frameT);
+  assert.equal(shown.open, openNow.length, `open tasks at ${frameT} s`);
+  assert.equal(shown.lines, heldNow.length, `robots with a task at ${frameT} s`);
+  assert.ok(heldNow.length > 0, 'nobody holds a task at 45 s: the fixture should have some');
+  // Finished tasks and the last minute's throughput: the last planning call at or before t.
+  const row = throughput.filter((r) => r[0] <= t).pop();
+  assert.equal(shown.finished, row[1]);
+  assert.equal(shown.lastMin, row[2]);
+  const stats = await page.$eval('#throughput', (e) => e.textContent);
+  assert.ok(stats.includes(`tasks finished: ${row[1]}`) && stats.includes(`throughput: ${row[2]} tasks in the last minute`), stats);
+  const plotted = await page.$eval('#plot', (c) => !c.hidden && c.dataset.yTicks);
+  assert.ok(plotted, 'the finished-tasks plot is not drawn');
+
+  // The selected robot's task: its id, the errand it goes to next and where, as tasks.csv and
+  // events.csv say.
+  const held = heldNow[0];
+  const next = (errandTimes.get(held.id) || []).filter((s) => s <= t).length;
+  await page.evaluate((r) => window.__viewer.select(r), held.robot);
+  const panel = await page.$eval('#robot', (e) => e.textContent);
+  const [x, y] = held.cells[next];
+  assert.ok(panel.includes(`task: #${held.id}, errand ${next + 1} of ${held.cells.length} at (${x}, ${y})`), panel);
+  const legend = await page.$$eval('#legend div', (ds) => ds.map((d) => d.textContent));
+  for (const entry of ['errand (open)', 'errand (assigned)', 'robot to its next errand']) assert.ok(legend.includes(entry), legend.join('; '));
+
+  // The minimap: a dot per robot; a click moves the view there.
+  const minimap = await page.evaluate(() => ({ dots: window.__viewer.minimap.dots, hidden: document.querySelector('#minimap').hidden }));
+  assert.equal(minimap.dots, robots);
+  assert.equal(minimap.hidden, false);
+  const box = await page.$eval('#minimap', (c) => { const r = c.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; });
+  await page.mouse.click(box.x + box.w * 0.25, box.y + box.h * 0.75);
+  const target = await page.evaluate(() => window.__viewer.target());
+  // The map is 32 x 32 cells of 1 m: a quarter across, a quarter up from the bottom.
+  assert.ok(Math.abs(target[0] - 7.5) < 1.1 && Math.abs(target[1] - 7.5) < 1.1, `view at ${target}`);
+
+  // Robot search and follow: robot 4 typed in, follow on, played: the view stays on robot 4.
+  await page.$eval('#search', (e) => { e.value = '4'; e.dispatchEvent(new Event('change')); });
+  assert.equal(await page.evaluate(() => window.__viewer.selected), 4);
+  await page.click('#follow');
+  await page.evaluate(() => window.__viewer.seek(60));
+  const [centre, at] = await page.evaluate(() => [window.__viewer.target(), window.__viewer.pose(4)]);
+  assert.ok(Math.hypot(centre[0] - at[0], centre[1] - at[1]) < 1e-6, `view at ${centre}, robot 4 at ${at}`);
+  await page.screenshot({ path: path.join(artifacts, 'viewer-lifelong.png') });
+
+  // The upload form starts a lifelong run (a map and task settings, no scen or plan): shown live
+  // with its tasks streaming in, then replayed with them.
+  await page.select('#up-kind', 'lifelong');
+  assert.equal(await page.$eval('#up-scen', (e) => e.required || !e.closest('label').hidden), false);
+  const mapInput = await page.$('#up-map');
+  await mapInput.uploadFile(path.join(bench, 'maps/random-32-32-20.map'));
+  await page.$eval('#upload input[name=agents]', (e) => { e.value = '12'; });
+  await page.$eval('#upload input[name=duration_s]', (e) => { e.value = '60'; });
+  await page.select('#upload select[name=real_time_factor]', '10');
+  await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
+    const status = await page.$eval('#upload-status', (el) => el.textContent).catch(() => '?');
+    throw new Error(`no navigation after the lifelong upload (${e.message}); the form says: ${status}`);
+  });
+  assert.match(page.url(), /run=run-000002/);
+  let sawLiveTasks = false, replay = null, last = null;
+  for (const until = Date.now() + 150000; Date.now() < until && !replay;) {
+    const v = await page.evaluate(() => window.__viewer && { ...window.__viewer }).catch(() => null);  // reloads
+    if (v && v.live && v.tasks && v.tasks.open > 0 && v.tasks.lines > 0 && v.minimap && v.minimap.dots === 12) sawLiveTasks = true;
+    if (v && v.ready) replay = v;
+    if (v) last = v;
+    if (v && v.error) break;
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  assert.ok(sawLiveTasks, `the lifelong run was never shown live with its tasks; last: ${JSON.stringify(last)}`);
+  assert.ok(replay, `the finished lifelong run was not replayed; last: ${JSON.stringify(last)}`);
+  assert.equal(replay.robots, 12);
+  assert.ok(replay.tasks && replay.tasks.open > 0, JSON.stringify(replay.tasks));
+  const run2 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000002')).json()));
+  assert.equal(run2.summary.lifelong.duration_s, 60);
+  assert.ok(run2.files.includes('tasks.csv') && run2.files.includes('throughput.csv'), run2.files.join());
+  // A lifelong upload without its fleet size is refused with the fix.
+  const bad = await page.evaluate(async () => {
+    const f = new FormData();
+    f.append('kind', 'lifelong');
+    f.append('map', new Blob(['type octile\nheight 1\nwidth 2\nmap\n..\n']), 'm.map');
+    const r = await fetch('/api/runs', { method: 'POST', body: f });
+    return { status: r.status, body: await r.json() };
+  });
+  assert.equal(bad.status, 400);
+  assert.match(bad.body.error, /agents: a lifelong run needs its fleet size/);
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  rmSync(work, { recursive: true, force: true });
+}
+console.log('lifelong viewer test passed');
