@@ -610,7 +610,11 @@ std::string Server::open_results(const fs::path& folder) {
     }
   }
   for (const auto& [field, name] : kRunFiles) {
-    const fs::path src = files.is_object() ? files.value(field, std::string()) : std::string();
+    fs::path src = files.is_object() ? files.value(field, std::string()) : std::string();
+    // A lifelong run's map is beside its results (summary.json may name a LoRR problem).
+    if (std::string(field) == "map" && fs::is_regular_file(folder / results::kLifelongMap)) {
+      src = folder / results::kLifelongMap;
+    }
     if (!src.empty() && fs::is_regular_file(src)) fs::copy_file(src, scratch / name);
   }
   if (auto bad = upload::check_results(scratch)) {

@@ -5,6 +5,7 @@
 
 #include "run_support.hpp"
 #include "smart/agent/uncertainty.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/planning/generators.hpp"
 #include "smart/planning/task_generator.hpp"
 
@@ -85,7 +86,7 @@ void apply_lorr_delays(const LifelongProblem& p, SimCliOptions& o) {
 
 void write_world(const LifelongProblem& p, const std::filesystem::path& dir, WorldCliOptions& w) {
   std::filesystem::create_directories(dir);
-  const auto map = dir / "lifelong.map", scen = dir / "lifelong.scen";
+  const auto map = dir / results::kLifelongMap, scen = dir / "lifelong.scen";
   std::ofstream(map) << planning::to_movingai_map(p.grid);
   std::ofstream out(scen);
   out << "version 1\n";

@@ -65,7 +65,7 @@ export async function startLive(id) {
   const mini = minimap($('minimap'), map, cell);
   $('minimap').hidden = false;
   viewer.minimap = mini;
-  let tasks = null;
+  let tasks = null, xy = new Float32Array(0), colors = new Uint32Array(0);
   // A lifelong run's tasks, polled while it goes (none: not a lifelong run).
   const pollTasks = async () => {
     const d = await fetchJson(`/api/runs/${id}/tasks`).catch(() => null);
@@ -103,8 +103,9 @@ export async function startLive(id) {
     ev.poses.forEach(([x, y, yaw], i) => placeRobot(mesh, i, x, y, yaw, COLORS[i === viewer.selected ? 'selected' : ev.status[i]]));
     if (mesh) robotsMoved(mesh);
     if (tasks) showLiveTasks(tasks, ev);
-    mini.draw(ev.poses.length, (i, out) => { out[0] = ev.poses[i][0]; out[1] = ev.poses[i][1]; },
-      (i) => COLORS[i === viewer.selected ? 'selected' : ev.status[i]], viewTarget());
+    if (xy.length !== 2 * ev.poses.length) { xy = new Float32Array(2 * ev.poses.length); colors = new Uint32Array(ev.poses.length); }
+    ev.poses.forEach(([x, y], i) => { xy[2 * i] = x; xy[2 * i + 1] = y; colors[i] = COLORS[i === viewer.selected ? 'selected' : ev.status[i]]; });
+    mini.draw(ev.poses.length, xy, colors, viewTarget());
     if (viewer.selected >= 0 && viewer.selected < ev.poses.length) {
       setRows($('robot'), liveRobotRows(ev, viewer.selected, detail).concat(tasks ? taskRows(tasks, viewer.selected, ev.t_s) : []));
       setLabel(`robot ${viewer.selected}`, ev.poses[viewer.selected][0], ev.poses[viewer.selected][1]);

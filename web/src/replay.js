@@ -17,9 +17,23 @@ import { COLORS, MARKS, buildMap, buildRobots, lookAt, onRobotClick, placeRobot,
 
 const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
                 collided: new Set(), collisionFrame: Infinity, progress: null, tasks: null,
-                minimap: null, colors: null };
+                minimap: null, colors: null, xy: null };
 // Scratch poses, written by rec.pose().
 const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
+
+// Every robot's last recorded (x, y), once per recording (10 000 robots: a pose read less per
+// robot and frame).
+function endPoses(rec) {
+  if (state.ends && state.endsOf === rec) return state.ends;
+  state.ends = new Float64Array(2 * rec.robots);
+  state.endsOf = rec;
+  for (let i = 0; i < rec.robots; i++) {
+    rec.pose(rec.frames - 1, i, last);
+    state.ends[2 * i] = last[0];
+    state.ends[2 * i + 1] = last[1];
+  }
+  return state.ends;
+}
 
 // Poses and colours of every robot at time t: moving, waiting (stands still before its end),
 // done (at its final pose for good).
@@ -28,20 +42,22 @@ function showFrame(t) {
   // Still: the same pose as the frame before (at the first frame, the one after: issue 26, every
   // robot was "waiting" at t = 0).
   const f = rec.frameAt(t), end = rec.frames - 1, fp = f > 0 ? f - 1 : Math.min(1, end);
+  const ends = endPoses(rec);
   for (let i = 0; i < rec.robots; i++) {
     rec.pose(f, i, pose);
     rec.pose(fp, i, prev);
-    rec.pose(end, i, last);
     const still = Math.hypot(pose[0] - prev[0], pose[1] - prev[1]) < 1e-3 && Math.abs(pose[2] - prev[2]) < 1e-3;
-    const atEnd = Math.hypot(pose[0] - last[0], pose[1] - last[1]) < 1e-3;
+    const atEnd = Math.hypot(pose[0] - ends[2 * i], pose[1] - ends[2 * i + 1]) < 1e-3;
     const hit = state.collided.has(i) && f >= state.collisionFrame;
     const kind = i === viewer.selected ? 'selected' : hit ? 'collided' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
     placeRobot(mesh, i, pose[0], pose[1], pose[2], COLORS[kind]);
-    if (state.colors) state.colors[i] = COLORS[kind];
+    state.colors[i] = COLORS[kind];
+    state.xy[2 * i] = pose[0];
+    state.xy[2 * i + 1] = pose[1];
   }
   robotsMoved(mesh);
   if (state.tasks) showTasks(t, f);
-  if (state.minimap) state.minimap.draw(rec.robots, (i, out) => rec.pose(f, i, out), (i) => state.colors[i], viewTarget());
+  if (state.minimap) state.minimap.draw(rec.robots, state.xy, state.colors, viewTarget());
   viewer.t = t;
   viewer.frameT = rec.times[f];
   $('clock').textContent = `${t.toFixed(1)} s`;
@@ -301,6 +317,7 @@ export async function startReplay(id) {
   buildMap(map, state.cell);
   state.mesh = buildRobots(state.rec.robots, state.cell);
   state.colors = new Uint32Array(state.rec.robots);
+  state.xy = new Float32Array(2 * state.rec.robots);
   state.minimap = minimap($('minimap'), map, state.cell);
   $('minimap').hidden = false;
   viewer.minimap = state.minimap;

@@ -8,7 +8,8 @@ import * as THREE from 'three';
 import { scene } from './view.js';
 
 export const TASK_MARKS = { open: 0x9aa3ad, assigned: 0xffc940, line: 0xffc940 };
-const matrix = new THREE.Matrix4(), color = new THREE.Color();
+const openColor = new THREE.Color(TASK_MARKS.open), assignedColor = new THREE.Color(TASK_MARKS.assigned);
+const OPEN = new THREE.Matrix4().elements, ASSIGNED = OPEN;  // identity; the translation is set after
 
 // The errands of task `task` done by time t.
 const doneBy = (task, t) => {
@@ -21,14 +22,16 @@ const assignedBy = (task, t) => task.robot !== null && task.assigned_s !== null 
 
 export function taskLayer(data, map, cell, robots) {
   let tasks = data.tasks;
-  const world = ([x, y]) => [x * cell, (map.height - 1 - y) * cell];
   const diamond = new THREE.RingGeometry(cell * 0.12, cell * 0.22, 4, 1).rotateX(-Math.PI / 2);
   let markers = null;
+  let markerColor = null, colorsChanged = false;  // per marker: 0 open, 1 assigned (-1 unset)
   const makeMarkers = (capacity) => {
     if (markers) scene.remove(markers);
     markers = new THREE.InstancedMesh(diamond, new THREE.MeshBasicMaterial(), Math.max(1, capacity));
     markers.frustumCulled = false;
     markers.count = 0;
+    markers.setColorAt(0, openColor);  // makes instanceColor
+    markerColor = new Int8Array(Math.max(1, capacity)).fill(-1);
     scene.add(markers);
   };
   makeMarkers(tasks.length);
@@ -46,24 +49,37 @@ export function taskLayer(data, map, cell, robots) {
   layer.update = (t, poseAt) => {
     let n = 0, m = 0;
     byRobot.fill(-1);
+    const lift = cell * 0.05, top = (map.height - 1) * cell;
+    const matrices = markers.instanceMatrix.array;
     for (let i = 0; i < tasks.length; i++) {
       const task = tasks[i];
       if (!open(task, t)) continue;
-      const k = Math.min(doneBy(task, t), task.cells.length - 1);
-      const [x, y] = world(task.cells[k]);
+      const c = task.cells[Math.min(doneBy(task, t), task.cells.length - 1)];
+      const x = c[0] * cell, z = c[1] * cell - top;  // -y_w
       const mine = assignedBy(task, t);
-      markers.setMatrixAt(n, matrix.makeTranslation(x, 0.02, -y));
-      markers.setColorAt(n, color.setHex(mine ? TASK_MARKS.assigned : TASK_MARKS.open));
+      // A translation: identity with (x, 0.02, z) in the last column (column-major).
+      matrices.set(mine ? ASSIGNED : OPEN, n * 16);
+      matrices[n * 16 + 12] = x;
+      matrices[n * 16 + 13] = 0.02;
+      matrices[n * 16 + 14] = z;
+      if (markerColor[n] !== (mine ? 1 : 0)) {
+        markerColor[n] = mine ? 1 : 0;
+        markers.setColorAt(n, mine ? assignedColor : openColor);
+        colorsChanged = true;
+      }
       n++;
       if (!mine || task.robot >= robots) continue;
       byRobot[task.robot] = i;
       poseAt(task.robot, pose);
-      positions.set([pose[0], cell * 0.05, -pose[1], x, cell * 0.05, -y], m * 6);
+      const o = m * 6;
+      positions[o] = pose[0]; positions[o + 1] = lift; positions[o + 2] = -pose[1];
+      positions[o + 3] = x; positions[o + 4] = lift; positions[o + 5] = z;
       m++;
     }
     markers.count = n;
     markers.instanceMatrix.needsUpdate = true;
-    if (markers.instanceColor) markers.instanceColor.needsUpdate = true;
+    if (markers.instanceColor && colorsChanged) markers.instanceColor.needsUpdate = true;
+    colorsChanged = false;
     geometry.attributes.position.needsUpdate = true;
     geometry.setDrawRange(0, m * 2);
     layer.open = n;

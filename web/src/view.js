@@ -135,22 +135,31 @@ export function buildRobots(count, cell) {
   mesh.frustumCulled = false;  // instances move all over the map
   mesh.userData.cell = cell;
   mesh.userData.scale = 1;
+  mesh.userData.hexes = new Uint32Array(count);  // each instance's colour + 1 (placeRobot)
   robotMeshes.add(mesh);
   for (let i = 0; i < count; i++) mesh.setColorAt(i, new THREE.Color(COLORS.moving));
+  mesh.userData.hexes.fill(COLORS.moving + 1);
   scene.add(mesh);
   return mesh;
 }
 
-const matrix = new THREE.Matrix4(), quat = new THREE.Quaternion(), up = new THREE.Vector3(0, 1, 0);
-const scale = new THREE.Vector3(1, 1, 1), where = new THREE.Vector3(), color = new THREE.Color();
+const matrix = new THREE.Matrix4(), color = new THREE.Color();
 
 // Robot i of `mesh` at world pose (x_m, y_m, yaw_rad), in colour `hex` when given. The caller
 // sets mesh.instanceMatrix/instanceColor.needsUpdate once per frame (robotsMoved).
+// Written straight into the instance arrays (a rotation about +y by yaw, column-major, as
+// Matrix4.makeRotationY; the colour only when it changed): 10 000 robots a frame (issue 28).
 export function placeRobot(mesh, i, x, y, yaw, hex) {
-  quat.setFromAxisAngle(up, yaw);
-  matrix.compose(where.set(x, mesh.userData.cell * 0.15, -y), quat, scale);
-  mesh.setMatrixAt(i, matrix);
-  if (hex !== undefined) mesh.setColorAt(i, color.setHex(hex));
+  const c = Math.cos(yaw), s = Math.sin(yaw), m = mesh.instanceMatrix.array, o = 16 * i;
+  m[o] = c; m[o + 1] = 0; m[o + 2] = -s; m[o + 3] = 0;
+  m[o + 4] = 0; m[o + 5] = 1; m[o + 6] = 0; m[o + 7] = 0;
+  m[o + 8] = s; m[o + 9] = 0; m[o + 10] = c; m[o + 11] = 0;
+  m[o + 12] = x; m[o + 13] = mesh.userData.cell * 0.15; m[o + 14] = -y; m[o + 15] = 1;
+  if (hex === undefined) return;
+  const hexes = mesh.userData.hexes;
+  if (hexes[i] === hex + 1) return;  // 0: not set yet
+  hexes[i] = hex + 1;
+  mesh.setColorAt(i, color.setHex(hex));
 }
 
 // Robots stay at least kMinRobotPx across on screen: zoomed out over 1000 robots they are grown

@@ -152,7 +152,9 @@ std::string finished_csv(const std::vector<uint32_t>& finished);
 std::vector<uint32_t> parse_finished_csv(std::string_view text);
 
 // Lifelong runs (`smart run --lifelong`, lifelong/): three more files (kTasksCsv, kEventsCsv,
-// kThroughputCsv), streamed while the run goes.
+// kThroughputCsv), streamed while the run goes, and the map the run was made on, written beside
+// them (a LoRR problem's map is not the file summary.json names).
+inline constexpr std::string_view kLifelongMap = "lifelong.map";
 
 // tasks.csv: a row per task once it finished (and, at the run's end, every task still open).
 // latency_s = finished_s - revealed_s (LoRR's task latency); empty fields: not (yet) happened.
