@@ -46,8 +46,10 @@ function showFrame(t) {
   for (let i = 0; i < rec.robots; i++) {
     rec.pose(f, i, pose);
     rec.pose(fp, i, prev);
-    const still = Math.hypot(pose[0] - prev[0], pose[1] - prev[1]) < 1e-3 && Math.abs(pose[2] - prev[2]) < 1e-3;
-    const atEnd = Math.hypot(pose[0] - ends[2 * i], pose[1] - ends[2 * i + 1]) < 1e-3;
+    // Squared distances: Math.hypot costs a third of a 10 000-robot frame in V8.
+    const dx = pose[0] - prev[0], dy = pose[1] - prev[1], ex = pose[0] - ends[2 * i], ey = pose[1] - ends[2 * i + 1];
+    const still = dx * dx + dy * dy < 1e-6 && Math.abs(pose[2] - prev[2]) < 1e-3;
+    const atEnd = ex * ex + ey * ey < 1e-6;
     const hit = state.collided.has(i) && f >= state.collisionFrame;
     const kind = i === viewer.selected ? 'selected' : hit ? 'collided' : still ? (atEnd ? 'done' : 'waiting') : 'moving';
     placeRobot(mesh, i, pose[0], pose[1], pose[2], COLORS[kind]);
