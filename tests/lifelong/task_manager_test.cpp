@@ -11,6 +11,7 @@ std::vector<grid::Task> two_tasks() { return {{0, 2, {{5, 0}, {9, 0}}}, {1, 3, {
 
 std::vector<std::string> kinds(const std::vector<results::EventRow>& events) {
   std::vector<std::string> out;
+  out.reserve(events.size());
   for (const auto& e : events) out.push_back(e.event);
   return out;
 }
