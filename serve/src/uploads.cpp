@@ -333,60 +333,22 @@ monitor::Instance load_run(const fs::path& d) {
 }
 
 std::vector<std::string> run_argv(const ServeOptions& opt, const fs::path& d, const RunRequest& r) {
-  if (r.lifelong) {
-    return {opt.smart_exe.string(),
-            "run",
-            "--tasks",
-            "random",
-            "--map",
-            (d / "map.map").string(),
-            "--agents",
-            std::to_string(r.agents),
-            "--task-errands",
-            std::to_string(r.lifelong->task_errands),
-            "--duration-s",
-            fmt::format("{:g}", r.lifelong->duration_s),
-            "--seed",
-            std::to_string(r.lifelong->seed),
-            "--robot",
-            (d / "robot.yaml").string(),
-            "--cell-m",
-            std::to_string(kCellM),
-            "--domain",
-            std::to_string(opt.domain),
-            "--qos",
-            opt.qos,
-            "--out",
-            (d / "results").string(),
-            "--real-time-factor",
-            std::to_string(r.real_time_factor),
-            "--no-progress"};
+  std::vector<std::string> argv{opt.smart_exe.string(),   "run",      "--map",
+                                (d / "map.map").string(), "--agents", std::to_string(r.agents)};
+  if (r.lifelong) {  // random tasks on the map
+    argv.insert(argv.end(),
+                {"--tasks", "random", "--task-errands", std::to_string(r.lifelong->task_errands),
+                 "--duration-s", fmt::format("{:g}", r.lifelong->duration_s), "--seed",
+                 std::to_string(r.lifelong->seed)});
+  } else {
+    argv.insert(argv.end(), {"--scen", (d / "scen.scen").string(), "--plan",
+                             (d / "plan.txt").string(), "--axis", r.axis});
   }
-  return {opt.smart_exe.string(),
-          "run",
-          "--map",
-          (d / "map.map").string(),
-          "--scen",
-          (d / "scen.scen").string(),
-          "--plan",
-          (d / "plan.txt").string(),
-          "--axis",
-          r.axis,
-          "--agents",
-          std::to_string(r.agents),
-          "--robot",
-          (d / "robot.yaml").string(),
-          "--cell-m",
-          std::to_string(kCellM),
-          "--domain",
-          std::to_string(opt.domain),
-          "--qos",
-          opt.qos,
-          "--out",
-          (d / "results").string(),
-          "--real-time-factor",
-          std::to_string(r.real_time_factor),
-          "--no-progress"};
+  argv.insert(argv.end(), {"--robot", (d / "robot.yaml").string(), "--cell-m",
+                           std::to_string(kCellM), "--domain", std::to_string(opt.domain), "--qos",
+                           opt.qos, "--out", (d / "results").string(), "--real-time-factor",
+                           std::to_string(r.real_time_factor), "--no-progress"});
+  return argv;
 }
 
 json request_json(const RunRequest& r) { return {{"axis", r.axis}, {"agents", r.agents}}; }

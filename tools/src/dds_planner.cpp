@@ -12,6 +12,7 @@
 #include "smart/dds/participant_directory.hpp"
 #include "smart/lifelong/plan_protocol.hpp"
 #include "smart/tools/cli_common.hpp"
+#include "smart/tools/external_window.hpp"
 
 namespace smart::tools {
 
@@ -219,18 +220,9 @@ std::string DdsPlanner::exchange(const planning::WindowRequest& request,
 
 void DdsPlanner::submit(planning::WindowRequest request) {
   ++window_;
-  lifelong::PlannedWindow out;
-  out.heuristic = std::string("external: ") + chosen_.name;
-  const auto t0 = Clock::now();
-  const bool was_gone = !gone_.empty();  // said once, when it went
-  out.error = was_gone ? gone_ : exchange(request, out);
-  out.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  if (!out.error.empty()) {
-    out.paths.clear();
-    out.error = "--planner external window " + std::to_string(window_) + " refused: " + out.error;
-    if (!was_gone) spdlog::warn("{}", out.error);
-  }
-  answer_ = std::move(out);
+  answer_ =
+      external_window("--planner external", window_, std::string("external: ") + chosen_.name,
+                      gone_, [&](lifelong::PlannedWindow& out) { return exchange(request, out); });
 }
 
 std::optional<lifelong::PlannedWindow> DdsPlanner::poll() {

@@ -8,6 +8,7 @@
 
 #include "smart/lifelong/plan_protocol.hpp"
 #include "smart/tools/cli_common.hpp"
+#include "smart/tools/external_window.hpp"
 
 namespace smart::tools {
 
@@ -111,18 +112,9 @@ std::string PipePlanner::exchange(const planning::WindowRequest& request,
 
 void PipePlanner::submit(planning::WindowRequest request) {
   ++window_;
-  lifelong::PlannedWindow out;
-  out.heuristic = "external" + (name_.empty() ? std::string() : ": " + name_);
-  const auto t0 = Clock::now();
-  const bool was_gone = !gone_.empty();  // said once, when it went
-  out.error = was_gone ? gone_ : exchange(request, out);
-  out.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  if (!out.error.empty()) {
-    out.paths.clear();
-    out.error = "--planner-cmd window " + std::to_string(window_) + " refused: " + out.error;
-    if (!was_gone) spdlog::warn("{}", out.error);
-  }
-  answer_ = std::move(out);
+  answer_ = external_window("--planner-cmd", window_,
+                            "external" + (name_.empty() ? std::string() : ": " + name_), gone_,
+                            [&](lifelong::PlannedWindow& out) { return exchange(request, out); });
 }
 
 std::optional<lifelong::PlannedWindow> PipePlanner::poll() {
