@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <future>
+#include <set>
 #include <thread>
 
 #include "support/dds_test_support.hpp"
@@ -86,8 +87,19 @@ TEST(DdsPlanner, TheEarliestPlannerPlansTheRunAndASecondIsRefused) {
   after_ms(first->node.info().started_ms);
   Served second(domain, "dp", stay, "second");
   dds::Participant p(domain, "dp");
+  {  // Both announcements known to p first (an event, not a guessed wait): the planner's own
+     // reader, made on p after, matches both writers at once (discovery under load is slow).
+    dds::WireReader<smart_msg_PlannerInfo> probe(p, lan());
+    std::set<uint64_t> heard;
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    while (heard.size() < 2) {
+      probe.take_each([&](const smart_msg_PlannerInfo& m) { heard.insert(m.planner_id); });
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the planners were never heard";
+      std::this_thread::sleep_for(5ms);
+    }
+  }
   auto o = options(30);
-  o.settle_s = 2;
+  o.settle_s = 1;
   auto planner = std::make_unique<DdsPlanner>(p, lan(), g, 2, 3, o);
   EXPECT_EQ(planner->chosen().planner_id, first->node.info().planner_id);
   EXPECT_STREQ(planner->chosen().name, "first");

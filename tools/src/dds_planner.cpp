@@ -122,9 +122,13 @@ std::string DdsPlanner::await_planner() {
       "--run {}",
       options_.wait_s, participant_.domain_id(), participant_.run());
   const auto deadline = after(options_.wait_s);
-  std::optional<Clock::time_point> settled;
+  std::optional<Clock::time_point> settled, latest;
   std::vector<smart_msg_PlannerInfo> heard;
-  while (!settled || Clock::now() < *settled) {
+  // Settled: settle_s after the first announcement, once every matched announcer was heard (two
+  // planners started together are discovered at about the same time, and the earlier started
+  // must win however late it is heard), and at the latest 5 x settle_s after the first.
+  const auto all_heard = [&] { return info_in_.matched_writers().size() <= writer_of_.size(); };
+  while (!settled || ((Clock::now() < *settled || !all_heard()) && Clock::now() < *latest)) {
     if (options_.stop != nullptr && options_.stop->load()) return "stopped waiting for a planner";
     if (!settled && Clock::now() >= deadline) {
       return "--planner external: no planner announced itself on run '" + participant_.run() +
@@ -134,7 +138,10 @@ std::string DdsPlanner::await_planner() {
              "` (same --qos, --run-key and --security as the run; docs/planner-protocol.md)";
     }
     take_announcements(&heard);
-    if (!heard.empty() && !settled) settled = after(options_.settle_s);
+    if (!heard.empty() && !settled) {
+      settled = after(options_.settle_s);
+      latest = after(5 * options_.settle_s);
+    }
     (void)waitset_.wait(until(settled ? *settled : deadline, std::chrono::milliseconds(100)));
   }
   chosen_ = heard[wire::choose_planner(heard)];

@@ -1,7 +1,8 @@
 // Contract: the monitor's end of lifelong planning over DDS (`smart run|monitor --lifelong
 // --planner external`; idl/smart.idl, "Lifelong planning over DDS"; docs/planner-protocol.md).
 // The edge: construction waits (at most wait_s of wall time) for planners to announce themselves
-// in the run, chooses one (wire::choose_planner), logs the others as refused and writes the run's
+// in the run (after the first, until every matched announcer was heard: settle_s to 5 x
+// settle_s), chooses one (wire::choose_planner), logs the others as refused and writes the run's
 // problem naming the chosen one, which makes every other planner of the run refuse to plan and
 // exit. Per window it writes a request and takes the chosen planner's reply to it within
 // `timeout_s` of wall time. A reply is heard only from the chosen planner's participant (and,
@@ -11,8 +12,8 @@
 // collides, jumps, leaves the map, starts elsewhere than the cut, is malformed, is the planner's
 // error or is late; once the chosen planner has left the run, every later window is refused at
 // once. Replies to earlier windows (late ones) are skipped; replies from any other participant
-// are filtered out before they reach the reader (dds/admission.hpp) and counted. submit() blocks for at most
-// timeout_s: lock-step runs call it inline, real-time runs on a ThreadedPlanner.
+// are filtered out before they reach the reader (dds/admission.hpp) and counted. submit() blocks
+// for at most timeout_s: lock-step runs call it inline, real-time runs on a ThreadedPlanner.
 // Memory: Cyclone keeps the latest reply per planner (keep-last 1); this edge one request.
 #pragma once
 
