@@ -161,6 +161,16 @@ def set_y_axis(ax, field, ys):
     return scale
 
 
+def dress_panel(ax, panel):
+    """Labels, title, grid and legend: the same on every panel."""
+    ax.set_xlabel(panel["xlabel"])
+    ax.set_ylabel(panel["ylabel"])
+    ax.set_title(panel["title"], fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if panel["legend_title"]:
+        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
+
+
 def draw_time_panel(ax, panel):
     """A line per series over time, its band one standard deviation where n >= 2."""
     ys = []
@@ -176,12 +186,7 @@ def draw_time_panel(ax, panel):
     panel["xscale"] = "linear"
     panel["yscale"] = "linear"
     ax.set_ylim(0, max(ys + [1.0]) * 1.1)
-    ax.set_xlabel(panel["xlabel"])
-    ax.set_ylabel(panel["ylabel"])
-    ax.set_title(panel["title"], fontsize=10)
-    ax.grid(True, alpha=0.3)
-    if panel["legend_title"]:
-        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
+    dress_panel(ax, panel)
 
 
 def draw_panel(ax, panel, uniform_n):
@@ -203,12 +208,7 @@ def draw_panel(ax, panel, uniform_n):
         ys += py
     panel["xscale"] = set_x_axis(ax, xs)
     panel["yscale"] = set_y_axis(ax, panel["field"], ys)
-    ax.set_xlabel(panel["xlabel"])
-    ax.set_ylabel(panel["ylabel"])
-    ax.set_title(panel["title"], fontsize=10)
-    ax.grid(True, alpha=0.3)
-    if panel["legend_title"]:
-        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
+    dress_panel(ax, panel)
 
 
 def caption_of(panels):

@@ -21,6 +21,10 @@ std::string guid_prefix(const dds_guid_t& guid) {
   return out;
 }
 
+std::string describe_sender(const std::optional<dds_guid_t>& participant) {
+  return participant ? "participant " + guid_prefix(*participant) : "a writer that left";
+}
+
 ParticipantDirectory::ParticipantDirectory(const Participant& p)
     : reader_(
           check(dds_create_reader(p.handle(), DDS_BUILTIN_TOPIC_DCPSPARTICIPANT, nullptr, nullptr),

@@ -145,8 +145,7 @@ std::optional<std::string> MonitorAnnouncer::settle(const std::function<bool()>&
 }
 
 std::string describe_sender(const std::optional<dds_guid_t>& participant) {
-  if (!participant) return "a writer that left";
-  return "participant " + dds::guid_prefix(*participant);
+  return dds::describe_sender(participant);
 }
 
 bool same_guid(const dds_guid_t& a, const dds_guid_t& b) {

@@ -37,10 +37,6 @@ uint64_t random_id() {
   return ((uint64_t{rd()} << 32) | rd()) | 1;  // never 0
 }
 
-std::string sender(const std::optional<dds_guid_t>& participant) {
-  return participant ? "participant " + dds::guid_prefix(*participant) : "a writer that left";
-}
-
 }  // namespace
 
 DdsPlanner::DdsPlanner(const dds::Participant& participant, const dds::QosProfile& profile,
@@ -80,7 +76,7 @@ void DdsPlanner::take_announcements(std::vector<smart_msg_PlannerInfo>* heard) {
   for (const auto& [writer, n] : from_planners_.take_refused()) {
     if (rejected_.count(smart_msg_TOPIC_PLANNER, dds::kNotRunMember, {}, n)) {
       spdlog::warn("lifelong: {} planner announcement(s) from {} ignored: {}", n,
-                   sender(info_in_.participant_of(writer)), dds::kNotRunMember);
+                   dds::describe_sender(info_in_.participant_of(writer)), dds::kNotRunMember);
     }
   }
   for (;;) {
@@ -110,7 +106,7 @@ void DdsPlanner::take_announcements(std::vector<smart_msg_PlannerInfo>* heard) {
         }
       } else if (rejected_.count(smart_msg_TOPIC_PLANNER, why)) {
         spdlog::warn("lifelong: a planner announcement from {} ignored: {}",
-                     sender(info_in_.participant_of(from)), why);
+                     dds::describe_sender(info_in_.participant_of(from)), why);
       }
     }
   }
@@ -160,7 +156,7 @@ std::string DdsPlanner::await_planner() {
 }
 
 void DdsPlanner::refuse_sample(const std::string& why, dds_instance_handle_t writer) {
-  const auto who = sender(reply_in_->participant_of(writer));
+  const auto who = dds::describe_sender(reply_in_->participant_of(writer));
   if (rejected_.count(kReplyTopic, why, who)) {
     spdlog::warn("lifelong: a plan reply from {} ignored: {}", who, why);
   }
@@ -171,7 +167,7 @@ std::optional<std::string> DdsPlanner::take_replies(const planning::WindowReques
   for (const auto& [writer, n] : replies_from_chosen_->take_refused()) {
     const auto why = "not from the run's chosen " + wire::describe_planner(chosen_) +
                      (participant_.run_key() ? " proven with the run's key" : "");
-    const auto who = sender(reply_in_->participant_of(writer));
+    const auto who = dds::describe_sender(reply_in_->participant_of(writer));
     if (rejected_.count(kReplyTopic, why, who, n)) {
       spdlog::warn("lifelong: {} plan reply(ies) from {} ignored: {}", n, who, why);
     }

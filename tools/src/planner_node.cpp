@@ -32,10 +32,6 @@ smart_msg_PlannerInfo self_info(const std::string& name) {
   return m;
 }
 
-std::string sender(const std::optional<dds_guid_t>& participant) {
-  return participant ? "participant " + dds::guid_prefix(*participant) : "a writer that left";
-}
-
 }  // namespace
 
 PlannerNode::PlannerNode(const dds::Participant& participant, const dds::QosProfile& profile,
@@ -86,7 +82,7 @@ std::optional<PlannerNode::Outcome> PlannerNode::take_problems() {
   for (const auto& [writer, n] : from_monitors_.take_refused()) {
     if (rejected_.count(smart_msg_TOPIC_PLAN_PROBLEM, dds::kNotRunMember, {}, n)) {
       spdlog::warn("planner: {} problem(s) from {} ignored: {}", n,
-                   sender(problem_in_.participant_of(writer)), dds::kNotRunMember);
+                   dds::describe_sender(problem_in_.participant_of(writer)), dds::kNotRunMember);
     }
   }
   for (;;) {
@@ -100,7 +96,8 @@ std::optional<PlannerNode::Outcome> PlannerNode::take_problems() {
       }
       if (!s.valid()) continue;
       if (auto why = wire::check_problem(p); !why.empty()) {
-        const auto who = sender(problem_in_.participant_of(s.info().publication_handle));
+        const auto who =
+            dds::describe_sender(problem_in_.participant_of(s.info().publication_handle));
         if (rejected_.count(smart_msg_TOPIC_PLAN_PROBLEM, why, who)) {
           spdlog::warn("planner: a problem from {} ignored: {}", who, why);
         }

@@ -17,6 +17,8 @@ namespace smart::dds {
 
 // "0110a2b3:c4d5e6f7:01020304" (the GUID prefix: the host and process that sent a sample).
 std::string guid_prefix(const dds_guid_t& guid);
+// "participant <guid_prefix>" for a matched writer's participant, or "a writer that left".
+std::string describe_sender(const std::optional<dds_guid_t>& participant);
 
 class ParticipantDirectory {
  public:
