@@ -17,7 +17,7 @@ import { COLORS, MARKS, buildMap, buildRobots, lookAt, onRobotClick, placeRobot,
 
 const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
                 collided: new Set(), collisionFrame: Infinity, progress: null, tasks: null,
-                minimap: null, colors: null, xy: null };
+                minimap: null, colors: null, xy: null, placed: {} };
 // Scratch poses, written by rec.pose().
 const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
 
@@ -42,6 +42,24 @@ function showFrame(t) {
   // Still: the same pose as the frame before (at the first frame, the one after: issue 26, every
   // robot was "waiting" at t = 0).
   const f = rec.frameAt(t), end = rec.frames - 1, fp = f > 0 ? f - 1 : Math.min(1, end);
+  if (placeRobots(f, fp)) robotsMoved(mesh);
+  if (state.tasks) showTasks(t, f);
+  if (state.minimap) state.minimap.draw(rec.robots, state.xy, state.colors, viewTarget());
+  viewer.t = t;
+  viewer.frameT = rec.times[f];
+  $('clock').textContent = `${t.toFixed(1)} s`;
+  $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
+  if (viewer.selected >= 0) showRobot(viewer.selected, f);
+  if (state.progress) drawProgress($('plot'), state.progress, t, state.summary.total_actions);
+}
+
+// Every robot of frame f (fp: the frame it is compared with) in place and colour; false when
+// they already are (same recording, frame, selection and collision: most animation frames fall
+// between two recorded frames, issue 28).
+function placeRobots(f, fp) {
+  const { rec, mesh } = state, key = state.placed;
+  if (key.rec === rec && key.f === f && key.selected === viewer.selected && key.hit === state.collisionFrame) return false;
+  state.placed = { rec, f, selected: viewer.selected, hit: state.collisionFrame };
   const ends = endPoses(rec);
   for (let i = 0; i < rec.robots; i++) {
     rec.pose(f, i, pose);
@@ -57,22 +75,14 @@ function showFrame(t) {
     state.xy[2 * i] = pose[0];
     state.xy[2 * i + 1] = pose[1];
   }
-  robotsMoved(mesh);
-  if (state.tasks) showTasks(t, f);
-  if (state.minimap) state.minimap.draw(rec.robots, state.xy, state.colors, viewTarget());
-  viewer.t = t;
-  viewer.frameT = rec.times[f];
-  $('clock').textContent = `${t.toFixed(1)} s`;
-  $('scrub').value = String(Math.round((t / rec.times[end]) * 1000));
-  if (viewer.selected >= 0) showRobot(viewer.selected, f);
-  if (state.progress) drawProgress($('plot'), state.progress, t, state.summary.total_actions);
+  return true;
 }
 
 // A lifelong run's tasks at time t (frame f): markers, lines, the finished-tasks curve and the
 // last minute's throughput.
 function showTasks(t, f) {
   const { tasks, rec } = state;
-  tasks.update(t, (i, out) => rec.pose(f, i, out));
+  tasks.update(t, (i, out) => rec.pose(f, i, out), f);
   const { finished, lastMin } = tasks.throughputAt(t);
   const total = tasks.curve.finished.length ? tasks.curve.finished[tasks.curve.finished.length - 1] : 0;
   drawProgress($('plot'), tasks.curve, t, total, 'tasks');
@@ -323,6 +333,7 @@ export async function startReplay(id) {
   state.minimap = minimap($('minimap'), map, state.cell);
   $('minimap').hidden = false;
   viewer.minimap = state.minimap;
+  viewer.redrawMinimap = () => state.minimap.draw(state.rec.robots, state.xy, state.colors, viewTarget(), true);
   showStats(run.summary);
   showFiles(id, run.files);
   resize();
@@ -340,6 +351,7 @@ export async function startReplay(id) {
   $('plot').hidden = !state.progress && !state.tasks;
   wireControls();
   showFrame(0);
+  viewer.endS = state.rec.times[state.rec.frames - 1];
   viewer.loadedMs = performance.now() - t0;
   viewer.readyAtMs = performance.now();
   viewer.ready = true;

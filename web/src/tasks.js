@@ -20,6 +20,26 @@ const doneBy = (task, t) => {
 const open = (task, t) => task.revealed_s <= t && !(task.finished_s !== null && task.finished_s <= t);
 const assignedBy = (task, t) => task.robot !== null && task.assigned_s !== null && task.assigned_s <= t;
 
+// The times at which any of `tasks` changes, sorted.
+function changeTimes(tasks) {
+  const times = [];
+  for (const task of tasks) {
+    times.push(task.revealed_s, ...task.done_s);
+    if (task.assigned_s !== null) times.push(task.assigned_s);
+    if (task.finished_s !== null) times.push(task.finished_s);
+  }
+  return Float64Array.from(times).sort();
+}
+// How many of the sorted `times` are <= t (binary search).
+function changesBefore(times, t) {
+  let lo = 0, hi = times.length;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (times[mid] <= t) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+
 export function taskLayer(data, map, cell, robots) {
   let tasks = data.tasks;
   const diamond = new THREE.RingGeometry(cell * 0.12, cell * 0.22, 4, 1).rotateX(-Math.PI / 2);
@@ -45,8 +65,16 @@ export function taskLayer(data, map, cell, robots) {
   const pose = new Float64Array(3);
   const layer = { open: 0, lines: 0, byRobot };
 
-  // Markers and lines at time t; poseAt(robot, out) writes the robot's pose at t.
-  layer.update = (t, poseAt) => {
+  // Every time at which some task changes (revealed, assigned, an errand done, finished),
+  // sorted: between two of them the markers stay as they are (changesBefore).
+  let changes = changeTimes(tasks), shown = { key: undefined, at: -1 };
+  // Markers and lines at time t; poseAt(robot, out) writes the robot's pose at t. `poses`, when
+  // given, names the poses poseAt reads (replay: the recording's frame): the same poses and no
+  // task change since the last call leave everything as it is (10 000 robots, issue 28).
+  layer.update = (t, poseAt, poses) => {
+    const at = changesBefore(changes, t);
+    if (poses !== undefined && poses === shown.key && at === shown.at) return;
+    shown = { key: poses, at };
     let n = 0, m = 0;
     byRobot.fill(-1);
     const lift = cell * 0.05, top = (map.height - 1) * cell;
@@ -106,6 +134,8 @@ export function taskLayer(data, map, cell, robots) {
   layer.setData = (d) => {
     data = d;
     tasks = d.tasks;
+    changes = changeTimes(tasks);
+    shown = { key: undefined, at: -1 };
     if (tasks.length > markers.instanceMatrix.count) makeMarkers(2 * tasks.length);
     layer.curve = { t_s: d.throughput.t_s, finished: d.throughput.finished };
   };

@@ -7,6 +7,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { $, viewer } from './page.js';
+import { wallBoxes } from './walls.js';
 
 export const COLORS = { moving: 0x3d8bfd, waiting: 0xf0a030, done: 0x3cb371, idle: 0x3cb371, collided: 0xd63384, selected: 0xff3b30 };
 // Overlays of a selected robot and the run's marks, each its own colour (none the path's red).
@@ -95,12 +96,17 @@ export function buildMap(map, cell) {
   floor.position.set((map.width - 1) * cell / 2, 0, -(map.height - 1) * cell / 2);
   scene.add(floor);
   scene.add(floorGrid(map, cell));
-  const cells = [];
-  for (let y = 0; y < map.height; y++) for (let x = 0; x < map.width; x++) if (map.blocked(x, y)) cells.push([x, y]);
+  // Merged into rectangles (walls.js): a box scaled to each, its top 0.6 cells high.
+  const boxes = wallBoxes(map), count = boxes.length / 4;
   const walls = new THREE.InstancedMesh(new THREE.BoxGeometry(cell, cell * 0.6, cell),
-                                        new THREE.MeshLambertMaterial({ color: 0x8a8f98 }), cells.length);
+                                        new THREE.MeshLambertMaterial({ color: 0x8a8f98 }), count);
   const m = new THREE.Matrix4();
-  cells.forEach(([x, y], i) => walls.setMatrixAt(i, m.makeTranslation(x * cell, cell * 0.3, -(map.height - 1 - y) * cell)));
+  for (let i = 0; i < count; i++) {
+    const [x, y, w, h] = boxes.subarray(4 * i, 4 * i + 4);
+    m.makeScale(w, 1, h).setPosition((x + (w - 1) / 2) * cell, cell * 0.3, -(map.height - 1 - (y + (h - 1) / 2)) * cell);
+    walls.setMatrixAt(i, m);
+  }
+  viewer.wallBoxes = count;
   scene.add(walls);
   frameBounds({ cx: floor.position.x, cz: floor.position.z, w: map.width * cell, d: map.height * cell });
 }
