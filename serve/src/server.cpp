@@ -153,7 +153,7 @@ struct Server::Impl {
 
   void post_run(const httplib::Request& req, httplib::Response& res) {
     if (!may_write(req, res)) return;
-    const auto r = upload::read_fields(req, opt.config_dir / "robots");
+    auto r = upload::read_fields(req, opt.config_dir / "robots");
     if (!r.error.empty()) return reply(res, 400, {{"error", r.error}, {"problems", json::array()}});
     if (store.queued() >= opt.max_queued) {
       return reply(res, 503,
@@ -167,7 +167,7 @@ struct Server::Impl {
     if (!r.lifelong)
       std::ofstream(staged.path() / "request.json") << upload::request_json(r).dump();
     const auto id = store.add_queued(
-        staged.path(), req.get_file_value("map").filename, r.agents,
+        staged.path(), upload::run_name(req, r), r.agents,
         [&](const std::string& run) { return upload::run_argv(opt, dir(run), r); });
     staged.keep();
     reply(res, 200, {{"id", id}});

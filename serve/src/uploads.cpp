@@ -7,13 +7,17 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <variant>
 
 #include "slurp.hpp"
 #include "smart/agent/robot_model.hpp"
+#include "smart/grid/lorr.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/problem.hpp"
 #include "smart/monitor/results_format.hpp"
+#include "smart/planning/generators.hpp"
 #include "smart/serve/bounded_json.hpp"
+#include "smart/serve/problem_folder.hpp"
 #include "smart/serve/recording.hpp"
 #include "smart/serve/robot_detail.hpp"
 #include "smart/serve/run_store.hpp"
@@ -121,7 +125,8 @@ bool plain_name(const std::string& s) {
 
 namespace {
 // kind=lifelong: task_errands, duration_s and seed (each optional, each in its range).
-void read_lifelong(const httplib::Request& req, RunRequest& r) {
+// kind=lorr: the same but task_errands (the problem's tasks are its own), agents 0 for its team.
+void read_lifelong(const httplib::Request& req, RunRequest& r, bool lorr) {
   LifelongRequest l;
   const auto number = [&](const char* name, double lo, double hi, double& out) {
     if (!req.has_file(name) || req.get_file_value(name).content.empty()) return;
@@ -140,7 +145,8 @@ void read_lifelong(const httplib::Request& req, RunRequest& r) {
   number("seed", 0, 1e9, seed);
   l.task_errands = static_cast<int>(errands);
   l.seed = static_cast<uint64_t>(seed);
-  if (r.agents == 0) r.error = "agents: a lifelong run needs its fleet size (1 to 100000)";
+  l.folder = lorr;
+  if (r.agents == 0 && !lorr) r.error = "agents: a lifelong run needs its fleet size (1 to 100000)";
   r.lifelong = l;
 }
 }  // namespace
@@ -151,13 +157,16 @@ RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) 
     return req.has_file(name) ? std::optional(req.get_file_value(name).content) : std::nullopt;
   };
   const auto kind = field("kind").value_or("plan");
-  if (kind != "plan" && kind != "lifelong") {
-    r.error = "kind must be plan (map, scen and plan) or lifelong (a map and random tasks)";
+  if (kind != "plan" && kind != "lifelong" && kind != "lorr") {
+    r.error =
+        "kind must be plan (map, scen and plan), lifelong (a map and random tasks) or lorr (a "
+        "LoRR problem folder)";
     return r;
   }
   const std::vector<const char*> needed = kind == "plan"
                                               ? std::vector<const char*>{"plan", "scen", "map"}
-                                              : std::vector<const char*>{"map"};
+                                          : kind == "lifelong" ? std::vector<const char*>{"map"}
+                                                               : std::vector<const char*>{"folder"};
   for (const char* f : needed) {  // the first missing one is named
     if (!req.has_file(f)) r.error = "missing the '" + std::string(f) + "' file field";
   }
@@ -185,7 +194,7 @@ RunRequest read_fields(const httplib::Request& req, const fs::path& robots_dir) 
       r.real_time_factor = *v;
     }
   }
-  if (kind == "lifelong" && r.error.empty()) read_lifelong(req, r);
+  if (kind != "plan" && r.error.empty()) read_lifelong(req, r, kind == "lorr");
   return r;
 }
 
@@ -228,11 +237,79 @@ std::optional<json> check_lifelong(const httplib::Request& req, const fs::path& 
   }
   return std::nullopt;
 }
+// A LoRR problem folder's files under scratch/problem by their paths in the folder (checked
+// first: problem_folder.hpp); scratch path -> the path the user knows, or the 400's JSON.
+std::variant<std::map<std::string, std::string>, json> stage_folder(const httplib::Request& req,
+                                                                    const fs::path& dir) {
+  const auto bad = [](std::string what) {
+    return json{{"error", std::move(what)}, {"problems", json::array()}};
+  };
+  const auto [first, last] = req.files.equal_range("folder");
+  if (static_cast<std::size_t>(std::distance(first, last)) > kMaxFolderFiles) {
+    return bad("the folder has more than " + std::to_string(kMaxFolderFiles) +
+               " files: upload the problem's folder only");
+  }
+  std::map<std::string, std::string> names;
+  for (auto it = first; it != last; ++it) {
+    const auto& rel = it->second.filename;
+    if (auto why = check_folder_path(rel); !why.empty()) return bad(why);
+    const auto to = dir / rel;
+    if (names.count(to.string())) return bad("the folder has '" + rel + "' twice");
+    fs::create_directories(to.parent_path());
+    std::ofstream(to, std::ios::binary) << it->second.content;
+    names[to.string()] = rel;
+  }
+  return names;
+}
+
+// A file's scratch paths in `text` replaced by the paths the user knows.
+std::string as_uploaded(std::string text, const fs::path& dir) {
+  const auto prefix = dir.string() + "/";
+  for (auto at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at)) {
+    text.erase(at, prefix.size());
+  }
+  return text;
+}
+
+// A LoRR folder upload: its problem read as `smart run --lifelong` reads it, the fleet no
+// larger than its team; its map written as map.map for the viewer.
+std::optional<json> check_lorr(const httplib::Request& req, const fs::path& scratch,
+                               RunRequest& r) {
+  const auto dir = scratch / "problem";
+  auto staged = stage_folder(req, dir);
+  if (auto* bad = std::get_if<json>(&staged)) return *bad;
+  const auto& names = std::get<std::map<std::string, std::string>>(staged);
+  std::vector<std::string> paths;
+  paths.reserve(names.size());
+  for (const auto& [to, rel] : names) paths.push_back(rel);
+  const auto named = req.has_file("problem_file") ? req.get_file_value("problem_file").content : "";
+  const auto choice = choose_problem(paths, named);
+  if (!choice.error.empty()) return json{{"error", choice.error}, {"problems", json::array()}};
+  try {
+    const auto lp = grid::load_lorr_problem(dir / choice.problem);
+    if (r.agents > lp.starts.size()) {
+      return json{{"error", fmt::format("agents: {} has {} robots; give at most that many (0: all)",
+                                        choice.problem, lp.starts.size())},
+                  {"problems", json::array()}};
+    }
+    if (r.agents == 0) r.agents = lp.starts.size();
+    std::ofstream(scratch / "map.map") << planning::to_movingai_map(lp.grid);
+  } catch (const grid::InputError& e) {
+    auto problems = problems_json(e.problems(), names);
+    for (auto& p : problems) p["file"] = as_uploaded(p["file"].get<std::string>(), dir);
+    return json{{"error", "the problem has problems"}, {"problems", problems}};
+  } catch (const std::exception& e) {
+    return json{{"error", as_uploaded(e.what(), dir)}, {"problems", json::array()}};
+  }
+  r.lifelong->problem = choice.problem;
+  return std::nullopt;
+}
+
 }  // namespace
 
 // Writes the upload under a scratch folder and checks it as `smart check-plan` would.
-std::optional<json> check_run(const httplib::Request& req, const fs::path& scratch,
-                              const RunRequest& r) {
+std::optional<json> check_run(const httplib::Request& req, const fs::path& scratch, RunRequest& r) {
+  if (r.lifelong && r.lifelong->folder) return check_lorr(req, scratch, r);
   if (r.lifelong) return check_lifelong(req, scratch, r);
   for (const auto& [field, name] : kRunFiles) {
     std::ofstream(scratch / name, std::ios::binary) << req.get_file_value(field).content;
@@ -333,9 +410,17 @@ monitor::Instance load_run(const fs::path& d) {
 }
 
 std::vector<std::string> run_argv(const ServeOptions& opt, const fs::path& d, const RunRequest& r) {
-  std::vector<std::string> argv{opt.smart_exe.string(),   "run",      "--map",
-                                (d / "map.map").string(), "--agents", std::to_string(r.agents)};
-  if (r.lifelong) {  // random tasks on the map
+  std::vector<std::string> argv{opt.smart_exe.string(), "run"};
+  if (r.lifelong && !r.lifelong->problem.empty()) {  // a LoRR problem: its map, robots and tasks
+    argv.insert(argv.end(), {"--lifelong", (d / "problem" / r.lifelong->problem).string()});
+  } else {
+    argv.insert(argv.end(), {"--map", (d / "map.map").string()});
+  }
+  argv.insert(argv.end(), {"--agents", std::to_string(r.agents)});
+  if (r.lifelong && !r.lifelong->problem.empty()) {
+    argv.insert(argv.end(), {"--duration-s", fmt::format("{:g}", r.lifelong->duration_s), "--seed",
+                             std::to_string(r.lifelong->seed)});
+  } else if (r.lifelong) {  // random tasks on the map
     argv.insert(argv.end(),
                 {"--tasks", "random", "--task-errands", std::to_string(r.lifelong->task_errands),
                  "--duration-s", fmt::format("{:g}", r.lifelong->duration_s), "--seed",
@@ -349,6 +434,11 @@ std::vector<std::string> run_argv(const ServeOptions& opt, const fs::path& d, co
                            opt.qos, "--out", (d / "results").string(), "--real-time-factor",
                            std::to_string(r.real_time_factor), "--no-progress"});
   return argv;
+}
+
+std::string run_name(const httplib::Request& req, const RunRequest& r) {
+  if (r.lifelong && !r.lifelong->problem.empty()) return r.lifelong->problem;
+  return req.get_file_value("map").filename;
 }
 
 json request_json(const RunRequest& r) { return {{"axis", r.axis}, {"agents", r.agents}}; }

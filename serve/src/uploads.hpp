@@ -32,10 +32,14 @@ bool plain_name(const std::string& s);
 
 // What a run upload asks for beyond its files; `error` names the first wrong field.
 // A lifelong run from the form (issue 28): random tasks on the uploaded map, no scen or plan.
+// Or a LoRR problem folder (kind=lorr): the problem JSON's path inside the uploaded folder,
+// which is staged under the run's folder as problem/ (problem_folder.hpp).
 struct LifelongRequest {
-  int task_errands = 1;     // errands per task
+  int task_errands = 1;     // errands per task (random tasks)
   double duration_s = 120;  // sim seconds
   uint64_t seed = 1;
+  bool folder = false;  // kind=lorr
+  std::string problem;  // set by check_run: `smart run --lifelong problem/<this>`
 };
 struct RunRequest {
   std::optional<LifelongRequest> lifelong;  // set: `smart run --tasks random` on the map
@@ -52,9 +56,12 @@ RunRequest read_fields(const httplib::Request& req, const std::filesystem::path&
 std::optional<nlohmann::json> write_robot(const std::filesystem::path& staged,
                                           const std::filesystem::path& config_dir,
                                           const RunRequest& r);
-// The upload's files written into `staged` and checked.
+// The upload's files written into `staged` and checked; a LoRR folder's problem and fleet size
+// are set in `r` (agents 0: the problem's team).
 std::optional<nlohmann::json> check_run(const httplib::Request& req,
-                                        const std::filesystem::path& staged, const RunRequest& r);
+                                        const std::filesystem::path& staged, RunRequest& r);
+// The name the run list shows for an accepted run upload.
+std::string run_name(const httplib::Request& req, const RunRequest& r);
 // request.json of a run: how its plan is read again (a lifelong run has none: no plan files).
 nlohmann::json request_json(const RunRequest& r);
 // The `smart run` command of a run in `run_dir`.

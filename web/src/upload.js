@@ -3,12 +3,23 @@
 // shown (a new run live until it ended, then replayed).
 import { $, authHeaders, fetchJson } from './page.js';
 
+// A folder's files keep their paths inside it (webkitRelativePath: the problem JSON names its map,
+// agents and tasks files relative to itself); the server checks each path.
+const pathOf = (file) => file.webkitRelativePath || file.name;
+
+function formData(form) {
+  const data = new FormData($(form));
+  const folder = $(form).querySelector('input[webkitdirectory]');
+  if (folder && !folder.disabled) for (const f of folder.files) data.append('folder', f, pathOf(f));
+  return data;
+}
+
 function wireForm(form, url, status, problems) {
   $(form).onsubmit = async (e) => {
     e.preventDefault();
     $(problems).replaceChildren();
     $(status).textContent = 'uploading...';
-    const r = await fetch(url, { method: 'POST', body: new FormData($(form)), headers: authHeaders() });
+    const r = await fetch(url, { method: 'POST', body: formData(form), headers: authHeaders() });
     const body = await r.json();
     if (!r.ok) {
       $(status).textContent = body.error;
@@ -49,22 +60,36 @@ async function wireSliders() {
 }
 
 // The run's kind: a plan needs its scen and plan files; a lifelong run (issue 28) a map, its
-// fleet size and task settings (POST /api/runs kind=lifelong: `smart run --tasks random`).
+// fleet size and task settings (POST /api/runs kind=lifelong: `smart run --tasks random`), or a
+// LoRR problem folder (kind=lorr: `smart run --lifelong`). The fields of other kinds are hidden
+// and disabled (not sent, not required).
 function wireKind() {
   const show = () => {
-    const lifelong = $('up-kind').value === 'lifelong';
-    for (const el of document.querySelectorAll('#upload .plan-only')) el.hidden = lifelong;
-    for (const el of document.querySelectorAll('#upload .lifelong-only')) el.hidden = !lifelong;
-    $('up-scen').required = $('up-plan').required = !lifelong;
-    $('up-scen').disabled = $('up-plan').disabled = lifelong;  // not sent
+    const kind = $('up-kind').value;
+    for (const el of document.querySelectorAll('#upload [data-kinds]')) {
+      const mine = el.dataset.kinds.split(' ').includes(kind);
+      el.hidden = !mine;
+      for (const input of el.querySelectorAll('input, select')) input.disabled = !mine;
+    }
   };
   $('up-kind').onchange = show;
   show();
 }
 
+// The folder's problem JSONs (those at its top) to choose from, the only one chosen.
+function wireFolder() {
+  $('up-folder').onchange = () => {
+    const paths = [...$('up-folder').files].map(pathOf);
+    const depth = (p) => p.split('/').length, top = Math.min(...paths.map(depth));
+    const problems = paths.filter((p) => p.endsWith('.json') && depth(p) === top).sort();
+    $('up-problem').replaceChildren(...problems.map((p) => new Option(p, p)));
+  };
+}
+
 export function wireUpload() {
   wireSliders();
   wireKind();
+  wireFolder();
   wireForm('upload', '/api/runs', 'upload-status', 'upload-problems');
   wireForm('replay', '/api/results', 'replay-status', 'replay-problems');
 }

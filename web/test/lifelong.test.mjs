@@ -136,7 +136,7 @@ try {
   // The upload form starts a lifelong run (a map and task settings, no scen or plan): shown live
   // with its tasks streaming in, then replayed with them.
   await page.select('#up-kind', 'lifelong');
-  assert.equal(await page.$eval('#up-scen', (e) => e.required || !e.closest('label').hidden), false);
+  assert.equal(await page.$eval('#up-scen', (e) => !e.disabled || !e.closest('label').hidden), false);
   const mapInput = await page.$('#up-map');
   await mapInput.uploadFile(path.join(bench, 'maps/random-32-32-20.map'));
   await page.$eval('#upload input[name=agents]', (e) => { e.value = '12'; });
@@ -173,6 +173,56 @@ try {
   });
   assert.equal(bad.status, 400);
   assert.match(bad.body.error, /agents: a lifelong run needs its fleet size/);
+
+  // A LoRR problem folder from the form (the benchmark's random.domain: its JSON with maps/,
+  // agents/ and tasks/), 10 of its robots for 20 s: run and replayed with the problem's tasks.
+  await page.goto(`${url}/`);
+  await page.waitForSelector('#up-kind');
+  await page.select('#up-kind', 'lorr');
+  assert.equal(await page.$eval('#up-map', (e) => e.disabled && e.closest('label').hidden), true);
+  await (await page.$('#up-folder')).uploadFile(path.join(bench, 'lorr-2026/random.domain'));
+  assert.equal(await page.$eval('#up-problem', (e) => e.value), 'random.domain/random-example_400.json');
+  await page.$eval('#upload input[name=agents]', (e) => { e.value = '10'; });
+  await page.$eval('#upload input[name=duration_s]', (e) => { e.value = '20'; });
+  await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
+    const status = await page.$eval('#upload-status', (el) => el.textContent).catch(() => '?');
+    throw new Error(`no navigation after the LoRR folder upload (${e.message}); the form says: ${status}`);
+  });
+  assert.match(page.url(), /run=run-000003/);
+  await page.waitForFunction(() => window.__viewer && window.__viewer.ready, { timeout: 120000 });
+  const lorr = await page.evaluate(() => ({ ...window.__viewer }));
+  assert.equal(lorr.robots, 10);
+  assert.ok(lorr.tasks && lorr.tasks.open > 0, JSON.stringify(lorr.tasks));
+  const run3 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000003')).json()));
+  assert.equal(run3.summary.lifelong.lorr.team_size, 400);
+  assert.equal(run3.summary.lifelong.duration_s, 20);
+  assert.match(run3.summary.lifelong.problem, /random\.domain\/random-example_400\.json$/);
+  // Task 0 is the tasks file's first task (after its '#' comment and count): its errand cells.
+  const tasks3 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000003/tasks')).json()));
+  const first = readFileSync(path.join(bench, 'lorr-2026/random.domain/tasks/random-example_400.tasks'), 'utf8')
+    .split(/\r?\n/).filter((l) => !l.startsWith('#'))[1].split(',').map(Number).map((id) => [id % 64, Math.floor(id / 64)]);
+  assert.deepEqual(tasks3.tasks.find((t) => t.id === 0).cells, first);
+
+  // Bad folders are refused naming the file and the fix: a path that climbs out, a problem whose
+  // map is missing (named as in the folder, not by the server's paths), two problems unnamed.
+  const refuse = (files) => page.evaluate(async (files) => {
+    const f = new FormData();
+    f.append('kind', 'lorr');
+    for (const [name, text] of files) f.append('folder', new Blob([text]), name);
+    const r = await fetch('/api/runs', { method: 'POST', body: f });
+    return { status: r.status, body: await r.json() };
+  }, files);
+  const problem = JSON.stringify({ mapFile: 'maps/m.map', agentFile: 'a.agents', taskFile: 't.tasks', teamSize: 1, numTasksReveal: 1 });
+  const climb = await refuse([['d/../../p.json', problem]]);
+  assert.equal(climb.status, 400);
+  assert.match(climb.body.error, /'d\/\.\.\/\.\.\/p\.json' is not a plain relative path/);
+  const noMap = await refuse([['d/p.json', problem], ['d/a.agents', '1\n0\n'], ['d/t.tasks', '1\n0\n']]);
+  assert.equal(noMap.status, 400);
+  assert.match(JSON.stringify(noMap.body), /maps\/m\.map/);
+  assert.doesNotMatch(JSON.stringify(noMap.body), new RegExp(work.replaceAll('/', '\\/')));
+  const two = await refuse([['d/p.json', problem], ['d/q.json', problem]]);
+  assert.equal(two.status, 400);
+  assert.match(two.body.error, /2 problem JSON files \(d\/p\.json, d\/q\.json\): choose one/);
 } finally {
   await browser.close();
   server.kill('SIGTERM');
