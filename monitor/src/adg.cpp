@@ -121,7 +121,31 @@ std::vector<Occupancy> by_location(const std::vector<Occupancy>& occ, std::size_
   return sorted;
 }
 
+// Every stay, grouped by location and in passing order (plan arrival, then robot); location l's
+// stays are [start[l], start[l + 1]).
+std::vector<Occupancy> passing_order(const ActionPlan& ap, const Grid& grid, Footprint footprint,
+                                     std::vector<uint32_t>& start) {
+  std::vector<Occupancy> sorted = by_location(
+      footprint == Footprint::kCells ? cell_occupancies(ap, grid) : half_cell_occupancies(ap, grid),
+      grid.half_cell_count(), start);
+  for (std::size_t loc = 0; loc + 1 < start.size(); ++loc) {
+    std::sort(sorted.begin() + start[loc], sorted.begin() + start[loc + 1],
+              [](const Occupancy& x, const Occupancy& y) {
+                return x.arrive != y.arrive ? x.arrive < y.arrive : x.robot < y.robot;
+              });
+  }
+  return sorted;
+}
+
 }  // namespace
+
+PassingOrders passing_orders(const ActionPlan& actions, const Grid& grid, Footprint footprint) {
+  PassingOrders out;
+  const auto sorted = passing_order(actions, grid, footprint, out.begin);
+  out.stays.reserve(sorted.size());
+  for (const auto& o : sorted) out.stays.push_back({o.robot, o.enter, o.leave});
+  return out;
+}
 
 std::optional<Footprint> footprint_for(double radius_m, double cell_m) {
   if (4 * radius_m <= cell_m) return Footprint::kHalfCells;
@@ -140,9 +164,7 @@ Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
 
   const std::size_t locations = grid.half_cell_count();
   std::vector<uint32_t> start;
-  std::vector<Occupancy> sorted = by_location(
-      footprint == Footprint::kCells ? cell_occupancies(ap, grid) : half_cell_occupancies(ap, grid),
-      locations, start);
+  const std::vector<Occupancy> sorted = passing_order(ap, grid, footprint, start);
 
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(ap.moves);
@@ -151,9 +173,6 @@ Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
     const auto b = sorted.begin() + start[loc], e = sorted.begin() + start[loc + 1];
     if (b == e) continue;
     ++adg.stats.locations;
-    std::sort(b, e, [](const Occupancy& x, const Occupancy& y) {
-      return x.arrive != y.arrive ? x.arrive < y.arrive : x.robot < y.robot;
-    });
     std::size_t index = 0;
     for (auto it = b; it != e; ++it, ++index) {
       // All-pairs rule: one edge from every earlier occupancy of another robot.

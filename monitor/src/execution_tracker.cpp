@@ -24,36 +24,42 @@ bool ExecutionTracker::advance(uint32_t robot) {
   return enqueued_[robot] != before;
 }
 
-ExecutionTracker::Update ExecutionTracker::on_progress(uint32_t robot, int64_t finished_seq) {
-  Update u;
-  if (robot >= finished_.size()) {
-    u.result = Result::kRejected;
+ProgressUpdate check_progress(const Execution& e, uint32_t robot, int64_t finished_seq) {
+  ProgressUpdate u;
+  if (robot >= e.robots()) {
+    u.result = ProgressResult::kRejected;
     u.reason = "robot " + std::to_string(robot) + " does not exist (the plan has " +
-               std::to_string(finished_.size()) + " robots)";
+               std::to_string(e.robots()) + " robots)";
     return u;
   }
-  const int64_t count = actions_.count(robot);
+  const int64_t count = e.known(robot);
   if (finished_seq >= count) {
-    u.result = Result::kRejected;
+    u.result = ProgressResult::kRejected;
     u.reason = "robot " + std::to_string(robot) + " reports action " +
                std::to_string(finished_seq) + " finished but has only " + std::to_string(count) +
                " actions";
     return u;
   }
-  if (finished_seq < static_cast<int64_t>(finished_[robot])) {
-    u.result = Result::kStale;
+  if (finished_seq < static_cast<int64_t>(e.finished(robot))) {
+    u.result = ProgressResult::kStale;
     u.reason = "robot " + std::to_string(robot) + " already finished " +
-               std::to_string(finished_[robot]) + " actions";
+               std::to_string(e.finished(robot)) + " actions";
     return u;
   }
-  if (finished_seq >= static_cast<int64_t>(enqueued_[robot])) {
-    u.result = Result::kRejected;
+  if (finished_seq >= static_cast<int64_t>(e.enqueued(robot))) {
+    u.result = ProgressResult::kRejected;
     u.reason = "robot " + std::to_string(robot) + " reports action " +
                std::to_string(finished_seq) + " finished but only actions below " +
-               std::to_string(enqueued_[robot]) + " were enqueued";
+               std::to_string(e.enqueued(robot)) + " were enqueued";
     return u;
   }
-  u.result = Result::kAdvanced;
+  u.result = ProgressResult::kAdvanced;
+  return u;
+}
+
+ExecutionTracker::Update ExecutionTracker::on_progress(uint32_t robot, int64_t finished_seq) {
+  Update u = check_progress(*this, robot, finished_seq);
+  if (u.result != Result::kAdvanced) return u;
   u.robots_changed.push_back(robot);
   const uint32_t base = actions_.offset[robot];
   const auto upto = static_cast<uint32_t>(finished_seq + 1);

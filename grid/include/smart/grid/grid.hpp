@@ -24,6 +24,7 @@ struct Cell {
 struct HalfCell {
   int32_t x2 = 0;
   int32_t y2 = 0;
+  // NOLINTNEXTLINE(modernize-use-nullptr): as Cell's (LLVM #46235)
   auto operator<=>(const HalfCell&) const = default;
   static HalfCell of(Cell c) { return {2 * c.x, 2 * c.y}; }
   static HalfCell midpoint(Cell a, Cell b) { return {a.x + b.x, a.y + b.y}; }

@@ -59,6 +59,23 @@ struct Adg {
   std::size_t nodes() const { return out_begin.empty() ? 0 : out_begin.size() - 1; }
 };
 
+// Every location's passing order: the robots' stays there (entered by action `enter`, left by
+// `leave`; kNoAction: its start, or never left) in the order build_adg chains them, consecutive
+// stays of different robots being its Type-2 edges (leave -> next enter). What switchable
+// execution reorders (switchable_tracker.hpp).
+inline constexpr uint32_t kNoAction = 0xffffffffu;
+struct Stay {
+  uint32_t robot = 0;
+  uint32_t enter = kNoAction;
+  uint32_t leave = kNoAction;
+};
+struct PassingOrders {
+  std::vector<uint32_t> begin;  // per location (half-cell index) + 1: its stays' range
+  std::vector<Stay> stays;
+};
+PassingOrders passing_orders(const ActionPlan& actions, const Grid& grid,
+                             Footprint footprint = Footprint::kHalfCells);
+
 // `source` names the plan in Problems. Problems found are appended to `problems`.
 Adg build_adg(const ActionPlan& actions, const Grid& grid, const std::string& source,
               std::vector<Problem>& problems, Footprint footprint = Footprint::kHalfCells);

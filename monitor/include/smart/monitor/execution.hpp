@@ -59,4 +59,9 @@ class Execution {
   virtual bool lifelong() const { return false; }
 };
 
+// The checks every Execution makes of a robot's progress report: kAdvanced when `finished_seq`
+// is new and was enqueued, otherwise kRejected (unknown robot, action out of range or never
+// enqueued) or kStale (not newer), with the reason.
+ProgressUpdate check_progress(const Execution& e, uint32_t robot, int64_t finished_seq);
+
 }  // namespace smart::monitor

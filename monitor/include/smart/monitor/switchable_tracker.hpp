@@ -1,0 +1,106 @@
+// Contract: executes a plan as ExecutionTracker does (execution_tracker.hpp), but the passing
+// order at a location may switch while the run goes (issue 29): when the robot meant to pass
+// first has not been sent the action that enters the location and the robot after it is ready to
+// enter, and the location is free, the two swap places (first come, first served; the
+// bidirectional pairs of BTPG, Su, Veerapaneni and Li, AAAI 2024, decided online on this ADG's
+// rotate/move actions and footprint-dependent locations instead of precomputed on a TPG).
+//
+// The ADG's Type-2 edges are kept as each location's passing order (adg.hpp: PassingOrders):
+// consecutive stays of different robots, leave -> next enter; swapping two adjacent stays h, i, j,
+// k -> h, j, i, k replaces i.leave -> j.enter, j.leave -> k.enter with j.leave -> i.enter,
+// i.leave -> k.enter. A swap is made only when it is safe:
+// - no collision: h has left (the location is free) and i's entering action was never sent
+//   (an action that enters a location with someone after it is sent only when its robot is
+//   within `commit_actions` of it, so a delayed robot has not been sent it yet);
+// - no deadlock: no path of unfinished actions leads from i.enter to j.leave without the edge
+//   being reversed (searched over at most `search_budget` actions; past it, no swap);
+// - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
+// Deterministic: the waiting robots are tried in id order after every progress. Pure.
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <vector>
+
+#include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/adg.hpp"
+#include "smart/monitor/execution.hpp"
+
+namespace smart::monitor {
+
+struct SwitchOptions {
+  uint32_t commit_actions = 1;       // a switchable entry is sent this many actions ahead
+  std::size_t search_budget = 4096;  // actions the deadlock search may visit per candidate
+};
+
+// One switch: at `location` (half-cell index), `first` now passes before `second`, at `time_s`.
+struct PassingSwitch {
+  double time_s = 0;
+  uint32_t location = 0;
+  uint32_t first = 0;   // the robot that was ready
+  uint32_t second = 0;  // the robot that was meant to pass first
+};
+
+class SwitchableTracker final : public Execution {
+ public:
+  SwitchableTracker(const ActionPlan& actions, PassingOrders orders, SwitchOptions options = {});
+
+  ProgressUpdate on_progress(uint32_t robot, int64_t finished_seq, double time_s) override;
+  ActionWindowRange window(uint32_t robot, uint32_t cap) const override;
+  uint32_t finished(uint32_t robot) const override { return finished_[robot]; }
+  uint32_t enqueued(uint32_t robot) const override { return enqueued_[robot]; }
+  uint32_t known(uint32_t robot) const override { return actions_.count(robot); }
+  const grid::Action& action(uint32_t robot, uint32_t seq) const override {
+    return actions_.at(robot, seq);
+  }
+  std::size_t robots() const override { return finished_.size(); }
+  std::size_t finished_total() const override { return finished_total_; }
+  std::size_t total() const override { return actions_.actions.size(); }
+  bool robot_done(uint32_t robot) const override {
+    return finished_[robot] == actions_.count(robot);
+  }
+  bool complete() const override { return finished_total_ == actions_.actions.size(); }
+  bool deadlocked() const override;
+
+  const std::vector<PassingSwitch>& switches() const { return switches_; }
+  // The robots in location `location`'s current passing order (tests, the viewer).
+  std::vector<uint32_t> order_at(uint32_t location) const;
+  // Unfinished Type-2 predecessors of an action (node id), as the current orders give them.
+  uint32_t pending(uint32_t node) const { return pending_[node]; }
+
+ private:
+  struct Neighbour {
+    uint32_t stay = kNoAction;
+    bool edge = false;  // a different robot: a Type-2 edge
+  };
+  Neighbour before(uint32_t stay) const;
+  Neighbour after(uint32_t stay) const;
+  bool finished_node(uint32_t node) const;
+  bool enqueued_node(uint32_t node) const;
+  bool needs_commit(uint32_t node) const;
+  bool advance(uint32_t robot);
+  void release(uint32_t node, std::vector<uint32_t>& changed);
+  bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
+  bool reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to);
+  void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
+  uint32_t blocking_stay(uint32_t node) const;
+
+  const ActionPlan& actions_;
+  PassingOrders orders_;                             // stays in their current order per location
+  std::vector<uint32_t> id_at_;                      // position in orders_.stays -> stay id
+  std::vector<uint32_t> position_;                   // stay id -> position in orders_.stays
+  std::vector<uint32_t> location_;                   // stay id -> location
+  std::vector<Stay> stay_;                           // stay id -> the stay
+  std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
+  std::vector<uint32_t> leave_begin_, leave_stays_;  // node -> stays it leaves (CSR)
+  SwitchOptions options_;
+  std::vector<uint32_t> pending_;
+  std::vector<uint32_t> finished_, enqueued_;
+  std::size_t finished_total_ = 0;
+  std::set<uint32_t> waiting_;  // robots ready at an entry someone else holds
+  std::vector<uint32_t> seen_;  // search stamps
+  uint32_t stamp_ = 0;
+  std::vector<PassingSwitch> switches_;
+};
+
+}  // namespace smart::monitor

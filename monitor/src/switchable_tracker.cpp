@@ -1,0 +1,259 @@
+#include "smart/monitor/switchable_tracker.hpp"
+
+#include <algorithm>
+
+namespace smart::monitor {
+
+namespace {
+
+// Node -> the stays whose `enter` (or `leave`) it is, as compressed sparse rows.
+void index_stays(const std::vector<Stay>& stays, std::size_t nodes, bool enter,
+                 std::vector<uint32_t>& begin, std::vector<uint32_t>& list) {
+  begin.assign(nodes + 1, 0);
+  for (const auto& s : stays) {
+    const uint32_t node = enter ? s.enter : s.leave;
+    if (node != kNoAction) ++begin[node + 1];
+  }
+  for (std::size_t i = 0; i < nodes; ++i) begin[i + 1] += begin[i];
+  list.resize(begin[nodes]);
+  std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+  for (uint32_t id = 0; id < stays.size(); ++id) {
+    const uint32_t node = enter ? stays[id].enter : stays[id].leave;
+    if (node != kNoAction) list[fill[node]++] = id;
+  }
+}
+
+}  // namespace
+
+SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders orders,
+                                     SwitchOptions options)
+    : actions_(actions),
+      orders_(std::move(orders)),
+      options_(options),
+      pending_(actions.actions.size(), 0),
+      finished_(actions.robots(), 0),
+      enqueued_(actions.robots(), 0),
+      seen_(actions.actions.size(), 0) {
+  const auto count = static_cast<uint32_t>(orders_.stays.size());
+  stay_ = orders_.stays;
+  id_at_.resize(count);
+  position_.resize(count);
+  location_.resize(count);
+  for (uint32_t loc = 0; loc + 1 < orders_.begin.size(); ++loc) {
+    for (uint32_t p = orders_.begin[loc]; p < orders_.begin[loc + 1]; ++p) {
+      id_at_[p] = position_[p] = p;
+      location_[p] = loc;
+    }
+  }
+  const std::size_t nodes = actions.actions.size();
+  index_stays(stay_, nodes, true, enter_begin_, enter_stays_);
+  index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
+  for (uint32_t s = 0; s < count; ++s) {
+    const auto b = before(s);
+    if (b.edge && stay_[b.stay].leave != kNoAction && stay_[s].enter != kNoAction) {
+      ++pending_[stay_[s].enter];
+    }
+  }
+  for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
+}
+
+SwitchableTracker::Neighbour SwitchableTracker::before(uint32_t stay) const {
+  const uint32_t p = position_[stay];
+  if (p == orders_.begin[location_[stay]]) return {};
+  const uint32_t other = id_at_[p - 1];
+  return {other, stay_[other].robot != stay_[stay].robot};
+}
+
+SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
+  const uint32_t p = position_[stay];
+  if (p + 1 == orders_.begin[location_[stay] + 1]) return {};
+  const uint32_t other = id_at_[p + 1];
+  return {other, stay_[other].robot != stay_[stay].robot};
+}
+
+bool SwitchableTracker::finished_node(uint32_t node) const {
+  const auto& a = actions_.actions[node];
+  return a.seq < finished_[a.robot];
+}
+
+bool SwitchableTracker::enqueued_node(uint32_t node) const {
+  const auto& a = actions_.actions[node];
+  return a.seq < enqueued_[a.robot];
+}
+
+// An entry that another robot's stay follows (it could still switch with it) waits to be sent
+// until its robot is near (commit_actions): sent actions are never taken back.
+bool SwitchableTracker::needs_commit(uint32_t node) const {
+  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
+    const auto next = after(enter_stays_[i]);
+    if (next.edge && stay_[next.stay].leave != kNoAction) return true;
+  }
+  return false;
+}
+
+bool SwitchableTracker::advance(uint32_t robot) {
+  const uint32_t base = actions_.offset[robot], count = actions_.count(robot);
+  const uint32_t before_count = enqueued_[robot];
+  while (enqueued_[robot] < count) {
+    const uint32_t seq = enqueued_[robot], node = base + seq;
+    if (pending_[node] > 0) break;
+    if (finished_[robot] + options_.commit_actions < seq && needs_commit(node)) break;
+    ++enqueued_[robot];
+  }
+  return enqueued_[robot] != before_count;
+}
+
+// `node` finished: the entries that waited for it lose a pending predecessor.
+void SwitchableTracker::release(uint32_t node, std::vector<uint32_t>& changed) {
+  for (uint32_t i = leave_begin_[node]; i < leave_begin_[node + 1]; ++i) {
+    const auto next = after(leave_stays_[i]);
+    if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
+    const uint32_t target = stay_[next.stay].enter;
+    if (--pending_[target] == 0) {
+      const uint32_t other = actions_.actions[target].robot;
+      if (advance(other)) changed.push_back(other);
+    }
+  }
+}
+
+ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_seq, double time_s) {
+  ProgressUpdate u = check_progress(*this, robot, finished_seq);
+  if (u.result != ProgressResult::kAdvanced) return u;
+  u.robots_changed.push_back(robot);
+  const uint32_t base = actions_.offset[robot];
+  const auto upto = static_cast<uint32_t>(finished_seq + 1);
+  const uint32_t from = finished_[robot];
+  finished_total_ += upto - from;
+  finished_[robot] = upto;  // first: release() reads finished_node()
+  for (uint32_t s = from; s < upto; ++s) release(base + s, u.robots_changed);
+  advance(robot);
+  if (enqueued_[robot] < actions_.count(robot)) waiting_.insert(robot);
+  // Try every waiting robot, in id order, until no switch is made (one may enable another); a
+  // switch sends the switching robot its entry, so each robot switches at most once per pass
+  // and the passes are bounded (guarded all the same).
+  const std::size_t passes = waiting_.size() + 1;
+  bool switched = true;
+  for (std::size_t pass = 0; switched && pass < passes; ++pass) {
+    switched = false;
+    for (auto it = waiting_.begin(); it != waiting_.end();) {
+      const uint32_t r = *it;
+      if (enqueued_[r] == actions_.count(r)) {
+        it = waiting_.erase(it);
+        continue;
+      }
+      switched = try_switch(r, time_s, u.robots_changed) || switched;
+      ++it;
+    }
+  }
+  std::sort(u.robots_changed.begin(), u.robots_changed.end());
+  u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
+                         u.robots_changed.end());
+  return u;
+}
+
+// The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
+// all `node` waits for; kNoAction otherwise.
+uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
+  if (pending_[node] != 1) return kNoAction;
+  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
+    const uint32_t s = enter_stays_[i];
+    const auto b = before(s);
+    if (b.edge && stay_[b.stay].leave != kNoAction && !finished_node(stay_[b.stay].leave)) return s;
+  }
+  return kNoAction;
+}
+
+bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed) {
+  const uint32_t seq = enqueued_[robot], node = actions_.offset[robot] + seq;
+  if (finished_[robot] + options_.commit_actions < seq) return false;  // not near yet
+  const uint32_t mine = blocking_stay(node);
+  if (mine == kNoAction || stay_[mine].leave == kNoAction) return false;
+  const uint32_t theirs = before(mine).stay;
+  const Stay& first = stay_[theirs];
+  if (first.enter == kNoAction || enqueued_node(first.enter)) return false;  // sent: committed
+  const auto h = before(theirs);
+  if (h.stay != kNoAction &&
+      (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
+    return false;  // the location is not free
+  }
+  if (reaches(first.enter, stay_[mine].leave, first.leave, node)) return false;  // would deadlock
+  switches_.push_back({time_s, location_[mine], robot, first.robot});
+  swap_with_next(theirs, changed);
+  return true;
+}
+
+// Is there a path of actions from `from` to `to` (Type-1 and the current Type-2 edges, but
+// skip_from -> skip_to)? Past the search budget, assumed so.
+bool SwitchableTracker::reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to) {
+  if (++stamp_ == 0) {
+    std::fill(seen_.begin(), seen_.end(), 0);
+    stamp_ = 1;
+  }
+  std::vector<uint32_t> stack{from};
+  seen_[from] = stamp_;
+  std::size_t visited = 0;
+  const auto push = [&](uint32_t v) {
+    if (seen_[v] != stamp_) {
+      seen_[v] = stamp_;
+      stack.push_back(v);
+    }
+  };
+  while (!stack.empty()) {
+    const uint32_t u = stack.back();
+    stack.pop_back();
+    if (u == to || ++visited > options_.search_budget) return true;
+    const auto& a = actions_.actions[u];
+    if (a.seq + 1 < actions_.count(a.robot)) push(u + 1);
+    for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
+      const auto next = after(leave_stays_[i]);
+      if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
+      const uint32_t v = stay_[next.stay].enter;
+      if (!(u == skip_from && v == skip_to)) push(v);
+    }
+  }
+  return false;
+}
+
+// h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
+void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& changed) {
+  const uint32_t i = stay, j = after(stay).stay;
+  const uint32_t h = before(i).stay, k = after(j).stay;
+  const auto edge = [&](uint32_t from, uint32_t to, int delta) {
+    if (from == kNoAction || to == kNoAction || stay_[from].robot == stay_[to].robot) return;
+    if (stay_[from].leave == kNoAction || stay_[to].enter == kNoAction) return;
+    if (finished_node(stay_[from].leave)) return;
+    pending_[stay_[to].enter] += delta;
+  };
+  edge(h, i, -1);
+  edge(i, j, -1);
+  edge(j, k, -1);
+  std::swap(id_at_[position_[i]], id_at_[position_[j]]);
+  std::swap(position_[i], position_[j]);
+  edge(h, j, +1);
+  edge(j, i, +1);
+  edge(i, k, +1);
+  const uint32_t robot = stay_[j].robot;
+  if (advance(robot)) changed.push_back(robot);
+}
+
+ActionWindowRange SwitchableTracker::window(uint32_t robot, uint32_t cap) const {
+  return {finished_[robot], std::min(enqueued_[robot], finished_[robot] + cap)};
+}
+
+bool SwitchableTracker::deadlocked() const {
+  if (complete()) return false;
+  for (std::size_t r = 0; r < finished_.size(); ++r) {
+    if (enqueued_[r] > finished_[r]) return false;
+  }
+  return true;
+}
+
+std::vector<uint32_t> SwitchableTracker::order_at(uint32_t location) const {
+  std::vector<uint32_t> out;
+  for (uint32_t p = orders_.begin[location]; p < orders_.begin[location + 1]; ++p) {
+    out.push_back(stay_[id_at_[p]].robot);
+  }
+  return out;
+}
+
+}  // namespace smart::monitor

@@ -1,0 +1,218 @@
+// monitor/switchable_tracker.hpp: a delayed robot's passing place is taken by the robot that is
+// ready (scripted, exact), and the proof obligations of switching as properties over seeded
+// random plans and random delays, for both footprints: no two robots ever hold one location,
+// every run finishes (switching never makes a cycle, never strands a robot), every switch is
+// between a robot that was ready and one that had not been sent its entry.
+#include "smart/monitor/switchable_tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <set>
+
+#include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/adg.hpp"
+#include "smart/monitor/execution_tracker.hpp"
+#include "smart/planning/random_plan.hpp"
+
+namespace smart::monitor {
+namespace {
+
+Plan plan_of(std::vector<std::vector<Cell>> paths) {
+  Plan plan;
+  for (auto& cells : paths) {
+    grid::RobotPath p;
+    p.robot = static_cast<int>(plan.paths.size());
+    for (std::size_t t = 0; t < cells.size(); ++t) {
+      p.steps.push_back({cells[t], static_cast<double>(t)});
+    }
+    plan.paths.push_back(std::move(p));
+  }
+  return plan;
+}
+
+// Finishes robot r's actions up to `seq` (all of them: -1) as far as enqueued.
+int64_t run_robot(SwitchableTracker& t, uint32_t r, double time_s) {
+  int64_t last = -1;
+  while (t.enqueued(r) > t.finished(r)) {
+    last = t.enqueued(r) - 1;
+    EXPECT_EQ(t.on_progress(r, last, time_s).result, ProgressResult::kAdvanced);
+  }
+  return last;
+}
+
+// A 4 x 3 room: robot 0 crosses cell (2, 1) west to east at t = 2, robot 1 north to south at
+// t = 3, so the plan has robot 0 pass first. Robot 0 stalls before its first move; robot 1,
+// near (2, 1), takes its place: it crosses and finishes while robot 0 has done nothing, then
+// robot 0 goes. Plain ADG keeps robot 1 at the cell's edge until robot 0 has passed.
+Plan crossing(bool robot1_parks) {
+  std::vector<Cell> one{{2, 0}, {2, 0}, {2, 0}, {2, 1}};
+  if (!robot1_parks) one.push_back({2, 2});
+  return plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}}, one});
+}
+
+TEST(SwitchableTracker, TheReadyRobotPassesFirstWhenTheOtherIsDelayed) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  std::vector<Problem> problems;
+  const auto adg = build_adg(actions, grid, "test", problems);
+  ASSERT_TRUE(problems.empty());
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+
+  ExecutionTracker plain(actions, adg);
+  SwitchableTracker t(actions, passing_orders(actions, grid));
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
+  // Robot 1: rotate to south (seq 0), half-move to the cell's edge (1); its entry (2) waits.
+  EXPECT_EQ(plain.enqueued(1), 2u);
+  EXPECT_EQ(t.enqueued(1), 2u);
+  // Robot 0's entry into the cell (seq 3) is not sent before it is one action away.
+  EXPECT_EQ(plain.enqueued(0), 6u);
+  EXPECT_EQ(t.enqueued(0), 3u);
+
+  t.on_progress(1, 0, 1.0);  // rotated: robot 1 is on its last action before the cell
+  ASSERT_EQ(t.switches().size(), 1u);
+  EXPECT_EQ(t.switches()[0].location, cell);
+  EXPECT_EQ(t.switches()[0].first, 1u);
+  EXPECT_EQ(t.switches()[0].second, 0u);
+  EXPECT_DOUBLE_EQ(t.switches()[0].time_s, 1.0);
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(t.enqueued(1), 5u);
+  EXPECT_EQ(run_robot(t, 1, 2.0), 4);
+  EXPECT_TRUE(t.robot_done(1));
+  EXPECT_EQ(t.finished(0), 0u);
+  // Robot 0 now goes: its entry waited only until robot 1 had left the cell.
+  run_robot(t, 0, 3.0);
+  EXPECT_TRUE(t.complete());
+  EXPECT_EQ(t.switches().size(), 1u);
+  // Plain ADG: robot 1 cannot finish before robot 0 has passed.
+  plain.on_progress(1, 1);
+  EXPECT_EQ(plain.enqueued(1), 2u);
+}
+
+// Robot 1 is ready while robot 0 was already sent its entry: no switch.
+TEST(SwitchableTracker, ARobotThatWasSentItsEntryKeepsItsPlace) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid));
+  t.on_progress(0, 1, 0.5);      // robot 0 on its half-move to the cell's edge: its entry is sent
+  EXPECT_EQ(t.enqueued(0), 6u);  // its entry and the rest
+  t.on_progress(1, 0, 1.0);
+  EXPECT_TRUE(t.switches().empty());
+  EXPECT_EQ(t.pending(actions.offset[1] + 2), 1u);
+}
+
+// A robot that parks for good on the location is never let in before the other: the other
+// would be stranded behind it.
+TEST(SwitchableTracker, NoSwitchBehindARobotThatParksThere) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(true), Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid));
+  run_robot(t, 1, 1.0);
+  EXPECT_TRUE(t.switches().empty());
+  EXPECT_FALSE(t.robot_done(1));
+  run_robot(t, 0, 2.0);
+  run_robot(t, 1, 3.0);
+  EXPECT_TRUE(t.complete());
+}
+
+// The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
+// or the cells of it (both cells of an edge midpoint).
+std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
+  if (footprint == Footprint::kHalfCells || h.is_cell()) return {h};
+  if (h.x2 % 2 != 0) return {{h.x2 - 1, h.y2}, {h.x2 + 1, h.y2}};
+  return {{h.x2, h.y2 - 1}, {h.x2, h.y2 + 1}};
+}
+
+struct Outcome {
+  std::size_t switches = 0;
+};
+
+// One seeded random plan executed in a random order the tracker allows, a third of the robots
+// delayed (chosen ten times less often): robots start only enqueued actions, claim what they
+// enter when they start a move and release what they left when they finish it, report late.
+Outcome run_random(uint64_t seed, Footprint footprint) {
+  std::mt19937_64 rng(seed);
+  const auto w = static_cast<int32_t>(6 + rng() % 8), h = static_cast<int32_t>(6 + rng() % 8);
+  const auto grid = planning::generate_random_grid(w, h, 0.15, seed);
+  const std::size_t n = std::min<std::size_t>(grid.free_cells() / 2, 4 + rng() % 24);
+  const auto inst = planning::generate_random_plan(grid, {n, 10 + rng() % 25, seed, 0.7, 0.3});
+  const auto actions = build_actions(inst.plan, static_cast<Heading>(seed % 4));
+  std::vector<Problem> problems;
+  const auto adg = build_adg(actions, grid, "random", problems, footprint);
+  if (!problems.empty() || !check_acyclic(adg, actions, "random").empty()) return {};  // kCells
+  SwitchableTracker t(actions, passing_orders(actions, grid, footprint));
+  const auto robots = static_cast<uint32_t>(actions.robots());
+  std::map<HalfCell, uint32_t> occupied;
+  for (uint32_t r = 0; r < robots; ++r) {
+    for (const auto c : held(actions.start[r], footprint)) occupied[c] = r;
+  }
+  std::vector<uint32_t> started(robots, 0), done(robots, 0), weight(robots, 10);
+  for (uint32_t r = 0; r < robots; ++r) weight[r] = rng() % 3 == 0 ? 1 : 10;
+  std::size_t steps = 0;
+  double time_s = 0;
+  while (!t.complete()) {
+    EXPECT_FALSE(t.deadlocked()) << "seed " << seed;
+    if (t.deadlocked()) return {};
+    std::vector<std::pair<uint32_t, int>> options;
+    for (uint32_t r = 0; r < robots; ++r) {
+      for (uint32_t k = 0; k < weight[r]; ++k) {
+        if (started[r] == done[r] && started[r] < t.enqueued(r)) options.emplace_back(r, 0);
+        if (started[r] > done[r]) options.emplace_back(r, 1);
+        if (done[r] > t.finished(r)) options.emplace_back(r, 2);
+      }
+    }
+    EXPECT_FALSE(options.empty()) << "seed " << seed;
+    if (options.empty()) return {};
+    const auto [r, kind] = options[rng() % options.size()];
+    const Action& a = actions.at(r, kind == 0 ? started[r] : done[r]);
+    if (kind == 0 && a.type == ActionType::kMove) {
+      for (const auto c : held(a.to, footprint)) {
+        const auto it = occupied.find(c);
+        EXPECT_TRUE(it == occupied.end() || it->second == r)
+            << "seed " << seed << ": robot " << r << " enters " << to_string(c) << " held by robot "
+            << it->second;
+        occupied[c] = r;
+      }
+    }
+    if (kind == 1 && a.type == ActionType::kMove) {
+      const auto now = held(a.to, footprint);
+      for (const auto c : held(a.from, footprint)) {
+        if (std::find(now.begin(), now.end(), c) == now.end()) occupied.erase(c);
+      }
+    }
+    if (kind == 0) ++started[r];
+    if (kind == 1) ++done[r];
+    if (kind == 2) {
+      EXPECT_EQ(t.on_progress(r, done[r] - 1, time_s).result, ProgressResult::kAdvanced);
+    }
+    time_s += 0.1;
+    if (++steps > 1'000'000u) return {};
+  }
+  for (uint32_t r = 0; r < robots; ++r) {
+    EXPECT_EQ(occupied.at(HalfCell::of(inst.scen.agents[r].goal)), r) << "seed " << seed;
+  }
+  for (const auto& s : t.switches()) EXPECT_NE(s.first, s.second) << "seed " << seed;
+  return {t.switches().size()};
+}
+
+TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinishOnHalfCells) {
+  std::size_t switches = 0;
+  for (uint64_t seed = 1; seed <= 150; ++seed) {
+    switches += run_random(seed, Footprint::kHalfCells).switches;
+    if (HasFailure()) FAIL() << "seed " << seed;
+  }
+  EXPECT_GT(switches, 100u) << "the delays should make robots switch";
+}
+
+TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinishOnCells) {
+  std::size_t switches = 0;
+  for (uint64_t seed = 1; seed <= 150; ++seed) {
+    switches += run_random(seed, Footprint::kCells).switches;
+    if (HasFailure()) FAIL() << "seed " << seed;
+  }
+  EXPECT_GT(switches, 20u) << "the delays should make robots switch";
+}
+
+}  // namespace
+}  // namespace smart::monitor
