@@ -343,7 +343,7 @@ struct MonitorNode::Impl {
   void publish_plan_view(bool now) {
     if (!plan_view || (!now && now_s() - plan_view_s < 1.0 / opt.ros_plan_hz)) return;
     plan_view_s = now_s();
-    plan_view->publish(snapshot(in->actions, in->adg, sup.tracker()), poses, plan_view_s);
+    plan_view->publish(sup.plan_snapshot(), poses, plan_view_s);
   }
 
   // Tell every host the run is over, make sure it was delivered, and take the sim's final

@@ -24,33 +24,40 @@ uint32_t robot_of(const grid::ActionPlan& plan, uint32_t node) {
 
 }  // namespace
 
-PlanSnapshot snapshot(const grid::ActionPlan& plan, const Adg& adg,
-                      const ExecutionTracker& tracker) {
+PlanSnapshot snapshot(const grid::ActionPlan& plan, const Execution& execution,
+                      const Type2Predecessors& predecessors) {
   PlanSnapshot s;
   const auto robots = static_cast<uint32_t>(plan.robots());
   s.activity.resize(robots, Activity::kDone);
+  std::vector<uint32_t> from;
   for (uint32_t r = 0; r < robots; ++r) {
-    if (tracker.robot_done(r)) continue;
-    const uint32_t next = tracker.finished(r);
-    if (tracker.state(r, next) != ActionState::kStaged) {
+    if (execution.robot_done(r)) continue;
+    const uint32_t next = execution.finished(r);
+    if (next < execution.enqueued(r)) {
       s.activity[r] = Activity::kMoving;
       continue;
     }
     s.activity[r] = Activity::kWaiting;
-    const uint32_t node = plan.offset[r] + next;
+    from.clear();
+    predecessors(plan.offset[r] + next, from);
     std::vector<uint32_t> blockers;
-    for (uint32_t e = adg.in_begin[node]; e < adg.in_begin[node + 1]; ++e) {
-      const uint32_t from = adg.in[e];
-      const uint32_t other = robot_of(plan, from);
-      if (tracker.state(other, from - plan.offset[other]) != ActionState::kFinished) {
-        blockers.push_back(other);
-      }
+    for (const uint32_t node : from) {
+      const uint32_t other = robot_of(plan, node);
+      if (node - plan.offset[other] >= execution.finished(other)) blockers.push_back(other);
     }
     std::sort(blockers.begin(), blockers.end());
     blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
     for (const uint32_t b : blockers) s.waits.push_back({r, b});
   }
   return s;
+}
+
+PlanSnapshot snapshot(const grid::ActionPlan& plan, const Adg& adg,
+                      const ExecutionTracker& tracker) {
+  return snapshot(plan, tracker, [&adg](uint32_t node, std::vector<uint32_t>& out) {
+    out.insert(out.end(), adg.in.begin() + adg.in_begin[node],
+               adg.in.begin() + adg.in_begin[node + 1]);
+  });
 }
 
 }  // namespace smart::monitor

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -282,6 +283,7 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
     stops += m.stops;
   }
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
+  j["execution"] = {{"mode", r.execution}, {"switches", r.switches.size()}};
   j["stops"] = stops;
   j.update(resources_json(r, info));
   if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
@@ -387,6 +389,22 @@ void append_stats(const std::filesystem::path& file, const Instance& in, const M
   out << stats_row(in, r, info);
 }
 
+// Each switch of a passing order, its location in cells (half-cell index: x2 + y2 * (2w - 1)).
+void write_switches_csv(const std::filesystem::path& dir, const Instance& in,
+                        const MonitorResult& r) {
+  auto out = open_out(dir / results::kSwitchesCsv);
+  out << results::kSwitchesHeader << '\n';
+  const auto across = static_cast<uint32_t>(2 * in.grid.width() - 1);
+  for (const auto& s : r.switches) {
+    const uint32_t x2 = s.location % across, y2 = s.location / across;  // half cells
+    std::ostringstream row;
+    row << std::fixed << std::setprecision(3) << s.time_s << std::defaultfloat << ','
+        << static_cast<double>(x2) / 2.0 << ',' << static_cast<double>(y2) / 2.0 << ',' << s.first
+        << ',' << s.second << '\n';
+    out << row.str();
+  }
+}
+
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,
                    const RunInfo& info) {
   create_out_dir(dir);
@@ -394,6 +412,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
   open_out(dir / results::kStatsCsv) << results::kStatsHeader << '\n' << stats_row(in, r, info);
   write_robots_csv(dir, in, r, info);
   write_actions_csv(dir, in, r);
+  if (r.execution == "switchable") write_switches_csv(dir, in, r);
 }
 
 }  // namespace smart::monitor

@@ -36,8 +36,16 @@ std::string_view to_string(Outcome o) {
 RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& config,
                              RunWriter& writer)
     : in_(&instance), config_(config), writer_(writer) {
-  tracker_.emplace(instance.actions, instance.adg);
-  exec_ = &*tracker_;
+  if (config.switchable) {
+    switchable_.emplace(instance.actions,
+                        passing_orders(instance.actions, instance.grid, instance.adg.footprint),
+                        config.switch_options);
+    exec_ = &*switchable_;
+    res_.execution = "switchable";
+  } else {
+    tracker_.emplace(instance.actions, instance.adg);
+    exec_ = &*tracker_;
+  }
   const std::size_t n = instance.actions.robots();
   init(n);
   for (uint32_t r = 0; r < n; ++r) {
@@ -155,6 +163,21 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
     if (exec_->robot_done(r)) mark_done(r, sim_time_s);
   }
   res_.finished_actions = exec_->finished_total();
+  if (switchable_ && switchable_->switches().size() > res_.switches.size()) {
+    const auto& all = switchable_->switches();
+    res_.switches.insert(res_.switches.end(),
+                         all.begin() + static_cast<std::ptrdiff_t>(res_.switches.size()),
+                         all.end());
+  }
+}
+
+PlanSnapshot RunSupervisor::plan_snapshot() const {
+  if (switchable_) {
+    return snapshot(in_->actions, *switchable_, [this](uint32_t node, std::vector<uint32_t>& out) {
+      switchable_->predecessors(node, out);
+    });
+  }
+  return snapshot(in_->actions, in_->adg, *tracker_);
 }
 
 void RunSupervisor::try_answer() {

@@ -248,6 +248,13 @@ bool SwitchableTracker::deadlocked() const {
   return true;
 }
 
+void SwitchableTracker::predecessors(uint32_t node, std::vector<uint32_t>& out) const {
+  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
+    const auto b = before(enter_stays_[i]);
+    if (b.edge && stay_[b.stay].leave != kNoAction) out.push_back(stay_[b.stay].leave);
+  }
+}
+
 std::vector<uint32_t> SwitchableTracker::order_at(uint32_t location) const {
   std::vector<uint32_t> out;
   for (uint32_t p = orders_.begin[location]; p < orders_.begin[location + 1]; ++p) {

@@ -144,7 +144,8 @@ enum DomainId : int {
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
   kExperimentLifelong = 95,  // and 96 (--jobs 2)
   kLifelongLorrOutput = 94,
-  kWebLifelong = 93,  // web/test/lifelong.test.mjs (given on its command line)
+  kWebLifelong = 93,    // web/test/lifelong.test.mjs (given on its command line)
+  kSwitchableRun = 92,  // and 91, 90: the plain run and the switchable run twice
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

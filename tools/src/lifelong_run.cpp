@@ -218,6 +218,11 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  if (o.execution != MonitorCliOptions::Execution::kAdg) {
+    throw std::invalid_argument(
+        "--execution switchable: lifelong runs execute their growing ADG in plan order for now "
+        "(switching is for one-shot plans); drop --execution");
+  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "

@@ -151,6 +151,20 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
   cmd->add_option("--window-cap", o.window_cap, "most actions sent to a robot at once")
       ->check(CLI::Range(1u, dds::kMaxWindowActions))
       ->capture_default_str();
+  static const EnumNames<MonitorCliOptions::Execution> kExecutionNames{
+      {"adg", MonitorCliOptions::Execution::kAdg},
+      {"switchable", MonitorCliOptions::Execution::kSwitchable}};
+  add_enum_option(cmd, "--execution", o.execution, kExecutionNames,
+                  "'adg': every shared location passed in the plan's order; 'switchable': a robot "
+                  "ready at a free location may pass before one that is late and was not sent "
+                  "its way in yet (docs/execution.md)")
+      ->capture_default_str();
+  cmd->add_option(
+         "--switch-commit-actions", o.switch_commit_actions,
+         "--execution switchable: a robot is sent a way into a shared location this many "
+         "actions ahead (fewer: more room to switch, but robots brake before such entries)")
+      ->check(CLI::Range(1u, 1000u))
+      ->capture_default_str();
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
       ->check(finite_in(0.1, 1e9))
@@ -345,6 +359,8 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   monitor::MonitorOptions mo;
   mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;
   mo.run.window_cap = o.window_cap;
+  mo.run.switchable = o.execution == MonitorCliOptions::Execution::kSwitchable;
+  mo.run.switch_options.commit_actions = o.switch_commit_actions;
   mo.run.timeout_s = o.sim.timeout_s;
   mo.run.stall_timeout_s = o.stall_timeout_s;
   mo.run.max_sim_time_s = o.max_sim_time_s;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "smart/grid/action.hpp"
@@ -34,6 +35,12 @@ struct PlanSnapshot {
 std::vector<grid::WorldPoint> planned_path(const grid::ActionPlan& plan, const grid::Grid& grid,
                                            uint32_t robot, double cell_m);
 
+// The Type-2 predecessors (node ids) of an action, as the run orders them now: the ADG's
+// (a plain run) or the current passing orders (switchable_tracker.hpp).
+using Type2Predecessors = std::function<void(uint32_t node, std::vector<uint32_t>& out)>;
+
+PlanSnapshot snapshot(const grid::ActionPlan& plan, const Execution& execution,
+                      const Type2Predecessors& predecessors);
 PlanSnapshot snapshot(const grid::ActionPlan& plan, const Adg& adg,
                       const ExecutionTracker& tracker);
 

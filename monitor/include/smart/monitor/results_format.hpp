@@ -36,9 +36,13 @@ inline constexpr std::string_view kFinishedCsv = "finished.csv";
 inline constexpr std::string_view kTasksCsv = "tasks.csv";
 inline constexpr std::string_view kEventsCsv = "events.csv";
 inline constexpr std::string_view kThroughputCsv = "throughput.csv";
-inline constexpr std::array<std::string_view, 8> kFiles = {kSummaryJson, kStatsCsv,     kRobotsCsv,
-                                                           kActionsCsv,  kStatesCsv,    kTasksCsv,
-                                                           kEventsCsv,   kThroughputCsv};
+// A switchable run's switches of passing orders (issue 29): time_s, x, y (the location, cells;
+// .5 on an edge midpoint), first (the robot that passed first), second (the one planned first).
+inline constexpr std::string_view kSwitchesCsv = "switches.csv";
+inline constexpr std::string_view kSwitchesHeader = "time_s,x,y,first,second";
+inline constexpr std::array<std::string_view, 9> kFiles = {
+    kSummaryJson, kStatsCsv,  kRobotsCsv,     kActionsCsv, kStatesCsv,
+    kTasksCsv,    kEventsCsv, kThroughputCsv, kSwitchesCsv};
 bool is_results_file(std::string_view name);
 // A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json,
 // the JSON line `smart sim` prints last on its standard output. Its keys that others read:

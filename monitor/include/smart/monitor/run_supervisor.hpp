@@ -46,8 +46,10 @@
 
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/instance.hpp"
+#include "smart/monitor/plan_view.hpp"
 #include "smart/monitor/results_format.hpp"
 #include "smart/monitor/separation_watch.hpp"
+#include "smart/monitor/switchable_tracker.hpp"
 #include "smart/wire/lockstep.hpp"
 
 namespace smart::monitor {
@@ -107,6 +109,9 @@ struct MonitorResult {
   std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
   std::optional<std::pair<uint32_t, uint32_t>> first_collision;  // robots, from the sim host
+  // A switchable run (issue 29): "switchable", and every switch of a passing order; else "adg".
+  std::string execution = "adg";
+  std::vector<PassingSwitch> switches;
   double first_collision_s = 0;  // sim time of the status that first reported it
   double goal_tolerance_m = 0;
   std::vector<uint32_t> off_goal;         // robots seen away from their goal after finishing
@@ -144,6 +149,9 @@ struct SupervisorConfig {
   double robot_radius_m = 0;
   // A simulated run: success needs the sim host's final status (results: sim_status_received).
   bool require_sim_status = false;
+  // A plan's run: passing orders may switch while it goes (issue 29, switchable_tracker.hpp).
+  bool switchable = false;
+  SwitchOptions switch_options = {};
 };
 
 // Samples as the supervisor sees them (the edge converts the wire types).
@@ -212,8 +220,9 @@ class RunSupervisor {
   bool wants_progress() const { return !config_.lockstep || handshake_.pending().has_value(); }
   const MonitorResult& result() const { return res_; }
   const Execution& execution() const { return *exec_; }
-  // A plan's run: its fixed ADG's tracker (the plan view reads it).
-  const ExecutionTracker& tracker() const { return *tracker_; }
+  // A plan's run: each robot's activity and waits now, as its ADG or passing orders have them
+  // (the plan view draws it).
+  PlanSnapshot plan_snapshot() const;
   std::size_t robots_done() const;
   // Things worth a log line (rejected progress, the resume), taken by the edge.
   std::vector<std::string> take_notes();
@@ -237,7 +246,8 @@ class RunSupervisor {
   const Instance* in_ = nullptr;  // a plan's run; nullptr in a lifelong run
   SupervisorConfig config_;
   RunWriter& writer_;
-  std::optional<ExecutionTracker> tracker_;  // a plan's run
+  std::optional<ExecutionTracker> tracker_;      // a plan's run
+  std::optional<SwitchableTracker> switchable_;  // a plan's run with --execution switchable
   Execution* exec_ = nullptr;
   wire::MonitorHandshake handshake_;
   wire::SyncCounter sent_;                     // end of the windows published, per robot

@@ -99,6 +99,10 @@ struct MonitorCliOptions {
   std::optional<grid::AxisOrder> axis;
   grid::PlanFormat format = grid::PlanFormat::kAuto;
   uint32_t window_cap = 32;
+  // --execution: the plan's passing orders fixed (adg) or switched while it goes (issue 29).
+  enum class Execution { kAdg, kSwitchable };
+  Execution execution = Execution::kAdg;
+  uint32_t switch_commit_actions = 6;  // --switch-commit-actions
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
   // Success needs a sim host's final status: lock-step, `smart run`, or --require-sim-status.
