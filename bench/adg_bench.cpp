@@ -12,8 +12,10 @@
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
+#include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/plan_reader.hpp"
 #include "smart/monitor/plan_validator.hpp"
+#include "smart/monitor/switchable_tracker.hpp"
 #include "smart/planning/random_plan.hpp"
 #include "smart/tools/machine.hpp"
 
@@ -116,6 +118,53 @@ void BM_ParsePlan(benchmark::State& state, const std::string& file) {
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * text.size()));
 }
+
+// A whole run's dispatch decisions (issue 29: switching must stay cheap): every robot reports
+// one finished action per round unless delayed (a seeded tenth of robots and rounds), until the
+// plan is done; plain ADG (ExecutionTracker) against switchable passing orders. The monitor's
+// own CPU for the same run is in docs/performance.md; the difference of the two is what
+// switching costs.
+template <class Tracker, class Make>
+void execute(benchmark::State& state, const Make& make) {
+  const auto& plan = smart_plan("scen_1_1000_paths.txt");
+  const auto actions = build_actions(plan);
+  std::vector<Problem> problems;
+  const auto adg = build_adg(actions, map("warehouse-10-20-10-2-1"), plan.source, problems);
+  std::size_t reports = 0, switches = 0;
+  for (auto _ : state) {
+    Tracker t = make(actions, adg);
+    reports = 0;
+    for (uint64_t round = 0; !t.complete(); ++round) {
+      for (uint32_t r = 0; r < actions.robots(); ++r) {
+        const uint64_t draw = uint64_t{r} * 2654435761u + round * 40503u;  // a seeded tenth
+        if (t.enqueued(r) == t.finished(r) || draw % 10 == 0) continue;
+        t.on_progress(r, t.finished(r), static_cast<double>(round));
+        ++reports;
+      }
+    }
+    if constexpr (std::is_same_v<Tracker, SwitchableTracker>) switches = t.switches().size();
+  }
+  state.counters["robots"] = static_cast<double>(actions.robots());
+  state.counters["reports"] = static_cast<double>(reports);
+  state.counters["switches"] = static_cast<double>(switches);
+  state.counters["ns_per_report"] = benchmark::Counter(
+      static_cast<double>(reports),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_ExecutePlainAdg(benchmark::State& state) {
+  execute<ExecutionTracker>(
+      state, [](const ActionPlan& a, const Adg& g) { return ExecutionTracker(a, g); });
+}
+
+void BM_ExecuteSwitchable(benchmark::State& state) {
+  execute<SwitchableTracker>(state, [](const ActionPlan& a, const Adg& g) {
+    return SwitchableTracker(a, passing_orders(a, map("warehouse-10-20-10-2-1"), g.footprint));
+  });
+}
+
+BENCHMARK(BM_ExecutePlainAdg)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExecuteSwitchable)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_AdgRandomWalk, warehouse, std::string("warehouse-10-20-10-2-1"))
     ->Arg(100)

@@ -43,12 +43,12 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
-LINE_AXES = ["plan", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
+LINE_AXES = ["plan", "execution", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
 PANEL_AXES = ["map"]
 POOLED_AXES = ["scen"]
 AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
               "clock": "clock", "map": "map", "scen": "scen", "agents": "robots",
-              "replan_period_s": "replan period (s)"}
+              "replan_period_s": "replan period (s)", "execution": "execution"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")
 
@@ -304,6 +304,9 @@ def robots_figures(rows, out_dir, written, described):
              [("aet_s", "AET (s)"), ("makespan_s", "makespan (s)")]),
             ("sim_speed", "Sim speed", [("sim_speed", "sim speed (\u00d7 real time)")]),
             ("success", "Success rate", [("success_rate", "success rate")]),
+            ("waiting", "Total waiting time",
+             [("waiting_time_s.total", "total waiting (s)"),
+              ("execution.switches", "passing orders switched")]),
             ("memory", "Memory and CPU",
              [("peak_rss_mb.monitor", "monitor peak RSS (MB)"),
               ("peak_rss_mb.sim", "sim peak RSS (MB)"),
@@ -399,6 +402,9 @@ def write_table(rows, out_dir, written):
     """The paper-style table: repeats folded into mean +- sd (n = runs)."""
     keys = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock"]
     lifelong = any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows)
+    switching = len(values_of(rows, "execution")) > 1
+    if switching:
+        keys.insert(keys.index("plan") + 1, "execution")
     if lifelong:
         keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
     groups = defaultdict(list)
@@ -413,8 +419,9 @@ def write_table(rows, out_dir, written):
         return (fmt + " \u00b1 " + fmt).format(m, sd) if sd is not None else fmt.format(m)
 
     lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
-             "collisions | planner (s) |" + (" throughput (tasks/min) |" if lifelong else ""),
-             "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0))]
+             "collisions | planner (s) |" + (" throughput (tasks/min) |" if lifelong else "")
+             + (" waiting (s) | switches |" if switching else ""),
+             "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0) + (2 if switching else 0))]
     for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
         rs = groups[key]
         ok = sum(1 for r in rs if r.get("success") == "true")
@@ -423,7 +430,9 @@ def write_table(rows, out_dir, written):
                                    stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}"),
                                    stat(rs[:1], "planner_runtime_s", "{:.2f}")]
                                   + ([stat(rs, "lifelong.throughput_per_min")] if lifelong
-                                     else []))
+                                     else [])
+                                  + ([stat(rs, "waiting_time_s.total"),
+                                      stat(rs, "execution.switches")] if switching else []))
                      + " |")
     path = os.path.join(out_dir, "table.md")
     with open(path, "w") as f:

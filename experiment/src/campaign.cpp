@@ -161,6 +161,7 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
                                 "--robot",        cell.robot,
                                 "--qos",          cell.qos,
                                 "--clock",        c.spec.clock,
+                                "--execution",    cell.execution,
                                 "--domain",       std::to_string(domain),
                                 "--out",          c.cell_dir(cell).string(),
                                 "--no-progress"};

@@ -183,6 +183,15 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
 void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   s.robots = strings(root, "robots", src, {"footbot"});
   s.qos = strings(root, "qos", src, {"lan"});
+  s.executions = strings(root, "executions", src, {"adg"});
+  for (const auto& e : s.executions) {
+    if (e != "adg" && e != "switchable")
+      fail(src, root["executions"], "executions", "adg or switchable");
+  }
+  if (s.lifelong && s.executions != std::vector<std::string>{"adg"}) {
+    fail(src, root["executions"], "executions",
+         "only adg in a lifelong experiment (switching is for one-shot plans); drop executions");
+  }
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
     fail(src, root["clock"], "clock", "lockstep or realtime");
@@ -199,13 +208,13 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   }
   for (const auto& kv : root) {
     static const std::set<std::string> known{
-        "name", "maps",  "scens",   "agents",      "plan",     "plans",   "robots",
-        "qos",  "clock", "repeats", "uncertainty", "lifelong", "planners"};
+        "name", "maps",  "scens",   "agents",      "plan",     "plans",    "robots",
+        "qos",  "clock", "repeats", "uncertainty", "lifelong", "planners", "executions"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
-           "clock, uncertainty, repeats (lifelong: lifelong, agents, planners)");
+           "clock, uncertainty, executions, repeats (lifelong: lifelong, agents, planners)");
     }
   }
 }
@@ -343,6 +352,7 @@ const std::vector<std::string> kParams{"cell",
                                        "plan",
                                        "axis",
                                        "clock",
+                                       "execution",
                                        "replan_period_s",
                                        "planner_runtime_s"};
 }  // namespace
@@ -383,14 +393,17 @@ std::vector<Cell> expand(const Spec& s) {
           for (const auto& qos : s.qos) {
             for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
               for (std::size_t t = 0; t < periods(s); ++t) {
-                for (std::size_t r = 0; r < s.repeats; ++r) {
-                  auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
-                             std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
-                  if (s.plans.size() > 1) key += "-" + s.plans[p].name;
-                  if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
-                  if (periods(s) > 1) key += "-p" + std::to_string(t);
-                  key += "-r" + std::to_string(r);
-                  cells.push_back({i, n, p, robot, qos, u, r, t, key});
+                for (const auto& e : s.executions) {
+                  for (std::size_t r = 0; r < s.repeats; ++r) {
+                    auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
+                               std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+                    if (s.plans.size() > 1) key += "-" + s.plans[p].name;
+                    if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+                    if (periods(s) > 1) key += "-p" + std::to_string(t);
+                    if (e != "adg") key += "-" + e;  // plain cells keep their folders
+                    key += "-r" + std::to_string(r);
+                    cells.push_back({i, n, p, robot, qos, u, r, t, key, e});
+                  }
                 }
               }
             }
@@ -425,11 +438,13 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
               {"repeat", c.repeat},
               {"plan", s.plans.at(c.plan).name},
               {"axis", s.plans.at(c.plan).axis},
-              {"clock", s.clock}};
+              {"clock", s.clock},
+              {"execution", c.execution}};
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);
     row.erase("axis");
+    row.erase("execution");
     // A LoRR problem brings its team: its size is summary.json's robots.
     if (c.agents == 0) row["agents"] = summary.value("robots", json(nullptr));
   }

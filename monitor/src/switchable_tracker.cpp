@@ -33,7 +33,9 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       pending_(actions.actions.size(), 0),
       finished_(actions.robots(), 0),
       enqueued_(actions.robots(), 0),
-      seen_(actions.actions.size(), 0) {
+      seen_(actions.actions.size(), 0),
+      parent_(actions.actions.size(), 0),
+      refused_(actions.robots()) {
   const auto count = static_cast<uint32_t>(orders_.stays.size());
   stay_ = orders_.stays;
   id_at_.resize(count);
@@ -103,6 +105,20 @@ bool SwitchableTracker::advance(uint32_t robot) {
   return enqueued_[robot] != before_count;
 }
 
+// A robot near its next unsent action that waits for exactly one other robot's leave: one that
+// might switch.
+bool SwitchableTracker::candidate(uint32_t robot) const {
+  const uint32_t seq = enqueued_[robot];
+  if (seq >= actions_.count(robot) || finished_[robot] + options_.commit_actions < seq)
+    return false;
+  return pending_[actions_.offset[robot] + seq] == 1;
+}
+
+void SwitchableTracker::consider(uint32_t node) {
+  const auto& a = actions_.actions[node];
+  if (a.seq == enqueued_[a.robot] && candidate(a.robot)) dirty_.insert(a.robot);
+}
+
 // `node` finished: the entries that waited for it lose a pending predecessor.
 void SwitchableTracker::release(uint32_t node, std::vector<uint32_t>& changed) {
   for (uint32_t i = leave_begin_[node]; i < leave_begin_[node + 1]; ++i) {
@@ -112,6 +128,17 @@ void SwitchableTracker::release(uint32_t node, std::vector<uint32_t>& changed) {
     if (--pending_[target] == 0) {
       const uint32_t other = actions_.actions[target].robot;
       if (advance(other)) changed.push_back(other);
+    } else if (pending_[target] == 1) {
+      consider(target);
+    }
+  }
+  // The location `node` left may be free now for the stay after next to pass the next one.
+  for (uint32_t i = leave_begin_[node]; i < leave_begin_[node + 1]; ++i) {
+    const auto next = after(leave_stays_[i]);
+    if (next.stay == kNoAction) continue;
+    const auto later = after(next.stay);
+    if (later.stay != kNoAction && stay_[later.stay].enter != kNoAction) {
+      consider(stay_[later.stay].enter);
     }
   }
 }
@@ -127,28 +154,27 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
   finished_[robot] = upto;  // first: release() reads finished_node()
   for (uint32_t s = from; s < upto; ++s) release(base + s, u.robots_changed);
   advance(robot);
-  if (enqueued_[robot] < actions_.count(robot)) waiting_.insert(robot);
-  // Try every waiting robot, in id order, until no switch is made (one may enable another); a
-  // switch sends the switching robot its entry, so each robot switches at most once per pass
-  // and the passes are bounded (guarded all the same).
-  const std::size_t passes = waiting_.size() + 1;
-  bool switched = true;
-  for (std::size_t pass = 0; switched && pass < passes; ++pass) {
-    switched = false;
-    for (auto it = waiting_.begin(); it != waiting_.end();) {
-      const uint32_t r = *it;
-      if (enqueued_[r] == actions_.count(r)) {
-        it = waiting_.erase(it);
-        continue;
-      }
-      switched = try_switch(r, time_s, u.robots_changed) || switched;
-      ++it;
-    }
-  }
+  if (candidate(robot)) dirty_.insert(robot);
+  try_switches(time_s, u.robots_changed);
   std::sort(u.robots_changed.begin(), u.robots_changed.end());
   u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
                          u.robots_changed.end());
   return u;
+}
+
+// Tries the robots whose situation changed (dirty_), in id order: the only ones that could
+// switch now. A switch may let refused robots switch: they are tried again. Bounded.
+void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& changed) {
+  std::size_t budget = 4 * finished_.size() + 16;
+  while (!dirty_.empty() && budget-- > 0) {
+    const uint32_t r = *dirty_.begin();
+    dirty_.erase(dirty_.begin());
+    if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
+    for (uint32_t other = 0; other < refused_.size(); ++other) {
+      if (refused_[other].node != kNoAction) dirty_.insert(other);
+    }
+  }
+  dirty_.clear();
 }
 
 // The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
@@ -176,15 +202,49 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
       (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
     return false;  // the location is not free
   }
-  if (reaches(first.enter, stay_[mine].leave, first.leave, node)) return false;  // would deadlock
+  if (still_refused(robot, node, theirs)) return false;
+  // Would deadlock: remembered with the path that shows it (valid while its Type-2 edges are:
+  // nodes downstream of an unfinished entry stay unfinished), or, past the search budget, until
+  // the next switch.
+  auto& refusal = refused_[robot];
+  refusal = {node, theirs, static_cast<uint32_t>(switches_.size()), {}, false};
+  switch (reaches(first.enter, stay_[mine].leave, first.leave, node, refusal.path)) {
+    case Reach::kPath:
+      refusal.by_path = true;
+      return false;
+    case Reach::kBudget:
+      return false;
+    case Reach::kNone:
+      break;
+  }
+  refusal.node = kNoAction;
   switches_.push_back({time_s, location_[mine], robot, first.robot});
   swap_with_next(theirs, changed);
   return true;
 }
 
+bool SwitchableTracker::has_edge(uint32_t from, uint32_t to) const {
+  for (uint32_t i = leave_begin_[from]; i < leave_begin_[from + 1]; ++i) {
+    const auto next = after(leave_stays_[i]);
+    if (next.edge && stay_[next.stay].enter == to) return true;
+  }
+  return false;
+}
+
+// The last search for this robot's entry behind the same stay refused it, and still would.
+bool SwitchableTracker::still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const {
+  const auto& r = refused_[robot];
+  if (r.node != node || r.theirs != theirs) return false;
+  if (!r.by_path) return r.epoch == switches_.size();
+  return std::all_of(r.path.begin(), r.path.end(),
+                     [this](const auto& e) { return has_edge(e.first, e.second); });
+}
+
 // Is there a path of actions from `from` to `to` (Type-1 and the current Type-2 edges, but
-// skip_from -> skip_to)? Past the search budget, assumed so.
-bool SwitchableTracker::reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to) {
+// skip_from -> skip_to)? kPath with its Type-2 edges in `path`; kBudget past the search budget.
+SwitchableTracker::Reach SwitchableTracker::reaches(
+    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+    std::vector<std::pair<uint32_t, uint32_t>>& path) {
   if (++stamp_ == 0) {
     std::fill(seen_.begin(), seen_.end(), 0);
     stamp_ = 1;
@@ -192,26 +252,33 @@ bool SwitchableTracker::reaches(uint32_t from, uint32_t to, uint32_t skip_from, 
   std::vector<uint32_t> stack{from};
   seen_[from] = stamp_;
   std::size_t visited = 0;
-  const auto push = [&](uint32_t v) {
+  const auto push = [&](uint32_t v, uint32_t parent) {
     if (seen_[v] != stamp_) {
       seen_[v] = stamp_;
+      parent_[v] = parent;
       stack.push_back(v);
     }
   };
   while (!stack.empty()) {
     const uint32_t u = stack.back();
     stack.pop_back();
-    if (u == to || ++visited > options_.search_budget) return true;
+    if (u == to) {
+      for (uint32_t v = to; v != from; v = parent_[v]) {
+        if (parent_[v] + 1 != v) path.emplace_back(parent_[v], v);  // Type-2 (Type-1: next seq)
+      }
+      return Reach::kPath;
+    }
+    if (++visited > options_.search_budget) return Reach::kBudget;
     const auto& a = actions_.actions[u];
-    if (a.seq + 1 < actions_.count(a.robot)) push(u + 1);
+    if (a.seq + 1 < actions_.count(a.robot)) push(u + 1, u);
     for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
       const auto next = after(leave_stays_[i]);
       if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
       const uint32_t v = stay_[next.stay].enter;
-      if (!(u == skip_from && v == skip_to)) push(v);
+      if (!(u == skip_from && v == skip_to)) push(v, u);
     }
   }
-  return false;
+  return Reach::kNone;
 }
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
@@ -232,6 +299,8 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);
+  consider(stay_[i].enter);
+  if (k != kNoAction && stay_[k].enter != kNoAction) consider(stay_[k].enter);
   const uint32_t robot = stay_[j].robot;
   if (advance(robot)) changed.push_back(robot);
 }

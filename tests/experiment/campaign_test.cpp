@@ -125,7 +125,7 @@ TEST_F(Campaign, APlannerCommandMakesThePlanThatIsRun) {
   const auto row = lines_of(dir_ / "out" / "results.csv").at(1);
   EXPECT_THAT(row, HasSubstr(",command,xy,lockstep,"));
   // The planner's wall seconds follow, kept beside the plan for a resumed campaign.
-  const auto runtime = std::stod(row.substr(row.find(",lockstep,") + 10));
+  const auto runtime = std::stod(row.substr(row.find(",lockstep,adg,") + 14));
   EXPECT_GT(runtime, 0.0);
   EXPECT_LT(runtime, 600.0);
   EXPECT_TRUE(fs::exists(dir_ / "out" / "plans" / "0-n2.txt.runtime_s"));

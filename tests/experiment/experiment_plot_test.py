@@ -30,10 +30,10 @@ def row(**kw):
 
 
 class ExperimentPlot(unittest.TestCase):
-    def plot(self, rows):
+    def plot(self, rows, columns=COLUMNS):
         root = pathlib.Path(self.enterContext(tempfile.TemporaryDirectory()))
         with open(root / "results.csv", "w", newline="") as f:
-            w = csv.DictWriter(f, COLUMNS)
+            w = csv.DictWriter(f, columns)
             w.writeheader()
             w.writerows(rows)
         out = root / "figures"
@@ -115,6 +115,26 @@ class ExperimentPlot(unittest.TestCase):
         self.assertEqual({p["n"] for s in runtime["series"] for p in s["points"]}, {2})
         self.assertTrue((out / "planner_runtime.pdf").exists())
         self.assertIn("| planner (s) |", (out / "table.md").read_text())
+
+    def test_plain_and_switchable_execution_are_lines_with_waiting_and_switches(self):
+        columns = COLUMNS + ["execution", "waiting_time_s.total", "execution.switches"]
+        rows = [row(agents=n, repeat=k, execution=e, **{
+            "waiting_time_s.total": (100 if e == "adg" else 90) * n + k,
+            "execution.switches": 0 if e == "adg" else n})
+            for n in (10, 100) for k in (0, 1) for e in ("adg", "switchable")]
+        for r in rows:
+            r["cell"] += "-" + r["execution"]
+        out, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        waiting = figures["waiting"]["panels"][0]
+        self.assertEqual(waiting["field"], "waiting_time_s.total")
+        self.assertEqual(waiting["legend_title"], "execution")
+        self.assertEqual([s["label"] for s in waiting["series"]], ["adg", "switchable"])
+        self.assertEqual([p["mean"] for p in waiting["series"][1]["points"]], [900.5, 9000.5])
+        text = (out / "table.md").read_text()
+        self.assertIn("| plan | execution |", text)
+        self.assertIn("| waiting (s) | switches |", text)
+        self.assertIn("| 9000.5 ± 0.7 | 100.0 ± 0.0 |", text)
 
     def test_points_with_different_counts_say_their_n(self):
         rows = [row(agents=5), row(agents=5, repeat=1), row(agents=10)]

@@ -143,6 +143,34 @@ TEST(Spec, UncertaintySettingsAreAnAxisSeededByTheRepeat) {
   }
 }
 
+// Issue 29: plain and switchable execution side by side on the same seeds; plain cells keep
+// the folders they had before the axis existed.
+TEST(Spec, ExecutionsAreAnAxisOnTheSameSeeds) {
+  const std::string base =
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
+  const auto s = parse_spec(base + "executions: [adg, switchable]\nrepeats: 2\n", "e.yaml");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[0].key, "0-s-n5-footbot-lan-r0");
+  EXPECT_EQ(cells[0].execution, "adg");
+  EXPECT_EQ(cells[3].key, "0-s-n5-footbot-lan-switchable-r1");
+  EXPECT_EQ(cells[3].execution, "switchable");
+  EXPECT_EQ(uncertainty_flags(s, cells[1]), uncertainty_flags(s, cells[3]));  // same seed
+  EXPECT_EQ(result_row(s, cells[3], nlohmann::json::object())["execution"], "switchable");
+  EXPECT_EQ(expand(parse_spec(base, "e.yaml"))[0].execution, "adg");
+  for (const auto& [yaml, expected] :
+       {std::pair{base + "executions: [fast]\n", "e.yaml:6: executions: adg or switchable"},
+        {std::string("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable]\n"),
+         "executions: only adg in a lifelong experiment"}}) {
+    try {
+      (void)parse_spec(yaml, "e.yaml");
+      ADD_FAILURE() << yaml;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+    }
+  }
+}
+
 // Issue 28: lifelong runs as an experiment: the map (or a LoRR problem), team sizes, planners
 // (built in or a pipe command), replanning periods and delays are the axes.
 constexpr const char* kLifelongSpec = R"(name: ll
@@ -242,10 +270,10 @@ TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
   other["extra"] = "q\"uote";
   const auto csv = results_csv({row, other});
   EXPECT_THAT(csv, ::testing::StartsWith("cell,map,scen,agents,robot,qos,uncertainty,repeat,plan,"
-                                         "axis,clock,planner_runtime_s,"
+                                         "axis,clock,execution,planner_runtime_s,"
                                          "adg.type2,aet_s,extra,machine,"));
-  EXPECT_THAT(csv, HasSubstr(",lockstep,,7,12.5,,\"x, y\","));  // no runtime (a file); no extra
-  EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));   // row 2: no AET
+  EXPECT_THAT(csv, HasSubstr(",lockstep,adg,,7,12.5,,\"x, y\","));  // no runtime (a file); no extra
+  EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));       // row 2: no AET
 }
 
 }  // namespace

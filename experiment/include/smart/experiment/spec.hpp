@@ -16,6 +16,7 @@
 //   qos: [lan, sim-lossy-wifi]            # default [lan]
 //   clock: lockstep                   # or realtime
 //   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
+//   executions: [adg, switchable]     # `smart run --execution`; default [adg] (issue 29)
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
 // A lifelong experiment (issue 28: tasks stream in; throughput is the measure) has a lifelong:
 // section instead of maps, scens and plan(s), and a planner axis of its own:
@@ -71,6 +72,7 @@ struct Spec {
   // Execution uncertainty settings, each an object of stall_probability, stall_s, speed_sigma,
   // slip_sigma (default: one empty object, the robot model's own).
   std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
+  std::vector<std::string> executions{"adg"};  // plan experiments: adg, switchable
   std::size_t repeats = 1;
 };
 
@@ -86,9 +88,11 @@ struct Cell {
   std::size_t repeat = 0;       // also the uncertainty seed
   std::size_t period = 0;       // lifelong: index into spec.lifelong->replan_period_s
   std::string key;              // folder name, unique within the experiment, stable across runs
+  std::string execution = "adg";
 };
 
-// The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period, repeat).
+// The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period,
+// execution, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.

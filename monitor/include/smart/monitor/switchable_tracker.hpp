@@ -15,11 +15,13 @@
 // - no deadlock: no path of unfinished actions leads from i.enter to j.leave without the edge
 //   being reversed (searched over at most `search_budget` actions; past it, no swap);
 // - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
-// Deterministic: the waiting robots are tried in id order after every progress. Pure.
+// Deterministic: the robots whose situation changed are tried in id order after each progress.
+// Pure.
 #pragma once
 
 #include <cstdint>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
@@ -85,9 +87,16 @@ class SwitchableTracker final : public Execution {
   bool enqueued_node(uint32_t node) const;
   bool needs_commit(uint32_t node) const;
   bool advance(uint32_t robot);
+  bool candidate(uint32_t robot) const;
+  void consider(uint32_t node);
   void release(uint32_t node, std::vector<uint32_t>& changed);
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
-  bool reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to);
+  void try_switches(double time_s, std::vector<uint32_t>& changed);
+  enum class Reach : uint8_t { kNone, kPath, kBudget };
+  Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+                std::vector<std::pair<uint32_t, uint32_t>>& path);
+  bool has_edge(uint32_t from, uint32_t to) const;
+  bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
   uint32_t blocking_stay(uint32_t node) const;
 
@@ -103,10 +112,19 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> pending_;
   std::vector<uint32_t> finished_, enqueued_;
   std::size_t finished_total_ = 0;
-  std::set<uint32_t> waiting_;  // robots ready at an entry someone else holds
+  std::set<uint32_t> dirty_;    // robots to try: their situation changed since they were tried
   std::vector<uint32_t> seen_;  // search stamps
   uint32_t stamp_ = 0;
   std::vector<PassingSwitch> switches_;
+  // Per robot, its last refused switch: the entry, the stay it would pass, and why.
+  struct Refusal {
+    uint32_t node = kNoAction, theirs = kNoAction;
+    uint32_t epoch = 0;                               // switches made when searched
+    std::vector<std::pair<uint32_t, uint32_t>> path;  // the Type-2 edges of a path found
+    bool by_path = false;
+  };
+  std::vector<uint32_t> parent_;  // search tree
+  std::vector<Refusal> refused_;
 };
 
 }  // namespace smart::monitor
