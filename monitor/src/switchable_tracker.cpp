@@ -200,7 +200,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   const auto h = before(theirs);
   if (h.stay != kNoAction &&
       (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
-    return false;  // the location is not free
+    return false;  // not free: j would still wait for h (safe, but no gain now)
   }
   if (still_refused(robot, node, theirs)) return false;
   // Would deadlock: remembered with the path that shows it (valid while its Type-2 edges are:

@@ -9,9 +9,10 @@
 // consecutive stays of different robots, leave -> next enter; swapping two adjacent stays h, i, j,
 // k -> h, j, i, k replaces i.leave -> j.enter, j.leave -> k.enter with j.leave -> i.enter,
 // i.leave -> k.enter. A swap is made only when it is safe:
-// - no collision: h has left (the location is free) and i's entering action was never sent
-//   (an action that enters a location with someone after it is sent only when its robot is
-//   within `commit_actions` of it, so a delayed robot has not been sent it yet);
+// - no collision: i's entering action was never sent (an action that enters a location with
+//   someone after it is sent only when its robot is within `commit_actions` of it, so a delayed
+//   robot has not been sent it yet); the chain h -> j -> i -> k keeps one robot at a time;
+// - of use now: h has left (the location is free), so j may go at once;
 // - no deadlock: no path of unfinished actions leads from i.enter to j.leave without the edge
 //   being reversed (searched over at most `search_budget` actions; past it, no swap);
 // - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
