@@ -106,5 +106,17 @@ TEST_F(SwitchableRun, LifelongRunsRefuseSwitchingNamingTheFlag) {
   EXPECT_NE(r.out.find("--execution switchable: lifelong runs"), std::string::npos) << r.out;
 }
 
+// A monitor taking over a run cannot know the switches made: refused, with the fix.
+TEST_F(SwitchableRun, ResumeRefusesSwitchingNamingTheFlags) {
+  const auto r = run_smart({"monitor", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
+                            "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
+                            "--plan", (b_ / "smart-examples/scen_1_paths.txt").string(), "--axis",
+                            "rowcol", "--agents", "10", "--resume", "--execution", "switchable",
+                            "--domain", std::to_string(kSwitchableRun), "--no-progress"},
+                           60s, "switchable_resume", true);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--resume with --execution switchable"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace smart::test

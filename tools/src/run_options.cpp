@@ -356,6 +356,11 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
 }
 
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
+  if (o.resume && o.execution == MonitorCliOptions::Execution::kSwitchable) {
+    throw std::invalid_argument(
+        "--resume with --execution switchable: the switches made are not in the robots' "
+        "reports, so a new monitor could not rebuild the passing orders; start the run again");
+  }
   monitor::MonitorOptions mo;
   mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;
   mo.run.window_cap = o.window_cap;
