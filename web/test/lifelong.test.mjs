@@ -181,6 +181,12 @@ try {
   await page.select('#up-kind', 'lorr');
   assert.equal(await page.$eval('#up-map', (e) => e.disabled && e.closest('label').hidden), true);
   await (await page.$('#up-folder')).uploadFile(path.join(bench, 'lorr-2026/random.domain'));
+  // The problem list is filled by the folder input's change event: wait for it.
+  await page.waitForFunction(() => document.querySelector('#up-problem').options.length > 0, { timeout: 30000 })
+    .catch(async () => {
+      const files = await page.$eval('#up-folder', (e) => [...e.files].map((f) => f.webkitRelativePath || f.name));
+      throw new Error(`the folder's problems were never listed; the input holds ${JSON.stringify(files)}`);
+    });
   assert.equal(await page.$eval('#up-problem', (e) => e.value), 'random.domain/random-example_400.json');
   await page.$eval('#upload input[name=agents]', (e) => { e.value = '10'; });
   await page.$eval('#upload input[name=duration_s]', (e) => { e.value = '20'; });
