@@ -271,6 +271,26 @@ std::string as_uploaded(std::string text, const fs::path& dir) {
   return text;
 }
 
+// The files the problem names (relative to its own folder) must be files of the upload: an
+// uploaded problem naming "/etc/passwd" or "../../x" must not make the server read it.
+std::optional<json> check_named_files(const fs::path& dir, const std::string& problem,
+                                      const std::map<std::string, std::string>& names) {
+  const auto spec = grid::parse_lorr_spec(slurp(dir / problem), problem);
+  const auto folder = fs::path(problem).parent_path();
+  for (const auto& [field, file] : {std::pair{"mapFile", spec.map_file},
+                                    {"agentFile", spec.agent_file},
+                                    {"taskFile", spec.task_file}}) {
+    const auto path = (folder / file).lexically_normal().string();
+    if (!check_folder_path(file).empty() || !names.count((dir / path).string())) {
+      return json{{"error", problem + ": " + field + " '" + file +
+                                "' is not a file of the uploaded folder; name one of its files, "
+                                "relative to the problem (e.g. maps/x.map)"},
+                  {"problems", json::array()}};
+    }
+  }
+  return std::nullopt;
+}
+
 // A LoRR folder upload: its problem read as `smart run --lifelong` reads it, the fleet no
 // larger than its team; its map written as map.map for the viewer.
 std::optional<json> check_lorr(const httplib::Request& req, const fs::path& scratch,
@@ -286,6 +306,7 @@ std::optional<json> check_lorr(const httplib::Request& req, const fs::path& scra
   const auto choice = choose_problem(paths, named);
   if (!choice.error.empty()) return json{{"error", choice.error}, {"problems", json::array()}};
   try {
+    if (auto bad = check_named_files(dir, choice.problem, names)) return bad;
     const auto lp = grid::load_lorr_problem(dir / choice.problem);
     if (r.agents > lp.starts.size()) {
       return json{{"error", fmt::format("agents: {} has {} robots; give at most that many (0: all)",

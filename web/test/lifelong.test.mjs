@@ -209,8 +209,9 @@ try {
     .split(/\r?\n/).filter((l) => !l.startsWith('#'))[1].split(',').map(Number).map((id) => [id % 64, Math.floor(id / 64)]);
   assert.deepEqual(tasks3.tasks.find((t) => t.id === 0).cells, first);
 
-  // Bad folders are refused naming the file and the fix: a path that climbs out, a problem whose
-  // map is missing (named as in the folder, not by the server's paths), two problems unnamed.
+  // Bad folders are refused naming the file and the fix: a path that climbs out, a robot on a
+  // wall (named as in the folder, not by the server's paths), files outside the folder, two
+  // problems unnamed.
   const refuse = (files) => page.evaluate(async (files) => {
     const f = new FormData();
     f.append('kind', 'lorr');
@@ -222,10 +223,18 @@ try {
   const climb = await refuse([['d/../../p.json', problem]]);
   assert.equal(climb.status, 400);
   assert.match(climb.body.error, /'d\/\.\.\/\.\.\/p\.json' is not a plain relative path/);
-  const noMap = await refuse([['d/p.json', problem], ['d/a.agents', '1\n0\n'], ['d/t.tasks', '1\n0\n']]);
-  assert.equal(noMap.status, 400);
-  assert.match(JSON.stringify(noMap.body), /maps\/m\.map/);
-  assert.doesNotMatch(JSON.stringify(noMap.body), new RegExp(work.replaceAll('/', '\\/')));
+  const onWall = await refuse([['d/p.json', problem], ['d/a.agents', '1\n1\n'], ['d/t.tasks', '1\n0\n'],
+    ['d/maps/m.map', 'type octile\nheight 1\nwidth 2\nmap\n.@\n']]);
+  assert.equal(onWall.status, 400);
+  assert.ok(onWall.body.problems.some((p) => p.file === 'd/a.agents'), JSON.stringify(onWall.body));
+  assert.doesNotMatch(JSON.stringify(onWall.body), new RegExp(work.replaceAll('/', '\\/')));
+  // A problem naming a file outside the upload (the server's own files) is refused unread.
+  for (const mapFile of ['/etc/passwd', '../../../etc/passwd', 'maps/none.map']) {
+    const outside = await refuse([['d/p.json', problem.replace('maps/m.map', mapFile)], ['d/a.agents', '1\n0\n'],
+      ['d/t.tasks', '1\n0\n']]);
+    assert.equal(outside.status, 400);
+    assert.ok(outside.body.error.includes(`mapFile '${mapFile}' is not a file of the uploaded folder`), outside.body.error);
+  }
   const two = await refuse([['d/p.json', problem], ['d/q.json', problem]]);
   assert.equal(two.status, 400);
   assert.match(two.body.error, /2 problem JSON files \(d\/p\.json, d\/q\.json\): choose one/);
