@@ -142,7 +142,7 @@ void execute(benchmark::State& state, const Make& make) {
         ++reports;
       }
     }
-    if constexpr (std::is_same_v<Tracker, SwitchableTracker>) switches = t.switches().size();
+    if constexpr (std::is_same_v<Tracker, SwitchableTracker>) switches = t.switches()->size();
   }
   state.counters["robots"] = static_cast<double>(actions.robots());
   state.counters["reports"] = static_cast<double>(reports);

@@ -188,10 +188,6 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     if (e != "adg" && e != "switchable")
       fail(src, root["executions"], "executions", "adg or switchable");
   }
-  if (s.lifelong && s.executions != std::vector<std::string>{"adg"}) {
-    fail(src, root["executions"], "executions",
-         "only adg in a lifelong experiment (switching is for one-shot plans); drop executions");
-  }
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
     fail(src, root["clock"], "clock", "lockstep or realtime");
@@ -444,7 +440,6 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);
     row.erase("axis");
-    row.erase("execution");
     // A LoRR problem brings its team: its size is summary.json's robots.
     if (c.agents == 0) row["agents"] = summary.value("robots", json(nullptr));
   }

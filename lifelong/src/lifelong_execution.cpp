@@ -27,12 +27,14 @@ LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<g
     : options_(options),
       adg_(grid, starts, options.initial_heading),
       tasks_(std::move(tasks), starts.size(), pool_of(options, starts.size()), scheduler_),
-      planner_(std::move(planner)) {}
+      planner_(std::move(planner)) {
+  if (options.switching) adg_.enable_switching(*options.switching);
+}
 
 monitor::ProgressUpdate LifelongExecution::on_progress(uint32_t robot, int64_t finished_seq,
                                                        double time_s) {
   std::vector<grid::Cell> reached;
-  auto u = adg_.on_progress(robot, finished_seq, [&](const grid::Action& a) {
+  auto u = adg_.on_progress(robot, finished_seq, time_s, [&](const grid::Action& a) {
     if (observer_ != nullptr) observer_->executed(robot, a, time_s);
     if (a.type == grid::ActionType::kMove && a.to.is_cell()) {
       reached.push_back({a.to.x2 / 2, a.to.y2 / 2});

@@ -12,12 +12,6 @@ namespace {
 
 constexpr double kStanding = -std::numeric_limits<double>::infinity();
 
-template <class Refs>
-void erase_ref(Refs& v, NodeRef x) {
-  const auto it = std::find(v.begin(), v.end(), x);
-  if (it != v.end()) v.erase(it);
-}
-
 // Sorts `location << 32 | index` keys by location (stable LSD radix, 12 bits a pass: two passes
 // for maps under 16.7 million half cells). Linear: with it instead of Boost.Sort's integer_sort a
 // 10 000-robot window's append takes 20 ms instead of 28 (iron), 34 instead of 42 (sortation).
@@ -44,8 +38,8 @@ std::string describe(NodeRef n) {
 
 // One robot's stay at a location, as the append links them (32 bytes; a 10 000-robot window has
 // a quarter million): rank 0 a kept unfinished move leaving the location (an old action, ordered
-// by its start time, so the last of them leaves last), rank 1 a stay of the window (ordered by
-// arrival: the robot standing there first).
+// by its pass key: its start time, exchanged by switches, so the last of them leaves last), rank 1
+// a stay of the window (ordered by arrival: the robot standing there first).
 struct LiveAdg::Occupancy {
   uint32_t location = 0;
   uint32_t robot = 0;
@@ -59,8 +53,13 @@ struct LiveAdg::Occupancy {
   auto key() const { return std::tie(rank, order, robot, enter_seq, leave_seq); }
 };
 
+void LiveAdg::erase_ref(Refs& v, NodeRef x) {
+  const auto it = std::find(v.begin(), v.end(), x);
+  if (it != v.end()) v.erase(it);
+}
+
 LiveAdg::LiveAdg(const Grid& grid, const std::vector<Cell>& start, Heading initial_heading)
-    : grid_(grid), robots_(start.size()) {
+    : grid_(grid), robots_(start.size()), refused_(start.size()) {
   for (std::size_t r = 0; r < start.size(); ++r) {
     auto& rb = robots_[r];
     rb.done = HalfCell::of(start[r]);
@@ -72,7 +71,9 @@ LiveAdg::LiveAdg(const Grid& grid, const std::vector<Cell>& start, Heading initi
 bool LiveAdg::advance(uint32_t r) {
   auto& rb = robots_[r];
   const uint32_t before = rb.enqueued;
-  while (rb.enqueued < end(r) && node(r, rb.enqueued).pending == 0) ++rb.enqueued;
+  while (rb.enqueued < end(r) && node(r, rb.enqueued).pending == 0 && !held(r, rb.enqueued)) {
+    ++rb.enqueued;
+  }
   return rb.enqueued != before;
 }
 
@@ -82,10 +83,11 @@ void LiveAdg::finish(uint32_t r, uint32_t seq, Update& u) {
     Node& m = node(t.robot, t.seq);
     erase_ref(m.in, {r, seq});
     if (--m.pending == 0 && advance(t.robot)) u.robots_changed.push_back(t.robot);
+    if (switching_) dirty_after_release(t);
   }
 }
 
-LiveAdg::Update LiveAdg::on_progress(uint32_t robot, int64_t finished_seq,
+LiveAdg::Update LiveAdg::on_progress(uint32_t robot, int64_t finished_seq, double time_s,
                                      const std::function<void(const Action&)>& finished) {
   Update u;
   auto reject = [&](ExecutionTracker::Result why, std::string reason) {
@@ -122,6 +124,11 @@ LiveAdg::Update LiveAdg::on_progress(uint32_t robot, int64_t finished_seq,
   }
   finished_total_ += upto - rb.finished;
   rb.finished = upto;
+  if (switching_) {
+    advance(robot);  // a held move may be near enough now
+    dirty_.insert(robot);
+    try_switches(time_s, u.robots_changed);
+  }
   std::sort(u.robots_changed.begin(), u.robots_changed.end());
   u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
                          u.robots_changed.end());
@@ -205,6 +212,7 @@ void LiveAdg::truncate(const CommitCut& cut) {
     rb.tail_cell = cut.cell[r];
     rb.tail_heading = cut.heading[r];
   }
+  ++epoch_;
 }
 
 std::vector<Problem> LiveAdg::build_window(const std::vector<std::vector<Cell>>& paths, double t0,
@@ -252,8 +260,8 @@ std::vector<LiveAdg::Occupancy> LiveAdg::occupancies(const NewActions& acts) con
     for (uint32_t s = robots_[r].finished; s < end(r); ++s) {
       const Action& a = action(r, s);
       if (a.type != ActionType::kMove) continue;
-      occ.push_back(
-          {static_cast<uint32_t>(grid_.half_index(a.from)), r, 0, s, a.start_time, 0, false, true});
+      occ.push_back({static_cast<uint32_t>(grid_.half_index(a.from)), r, 0, s, node(r, s).pass_key,
+                     0, false, true});
     }
   }
   for (uint32_t r = 0; r < robots_.size(); ++r) {
@@ -377,7 +385,10 @@ std::vector<Problem> LiveAdg::append(const std::vector<std::vector<Cell>>& paths
   type2_total_ += edges.size();
   last_plan_time_s_ = t_end;
   window_start_ = t0;
-  for (uint32_t r = 0; r < robots_.size(); ++r) advance(r);
+  for (uint32_t r = 0; r < robots_.size(); ++r) {
+    advance(r);
+    if (switching_) dirty_.insert(r);  // tried at the next progress (its time stamps a switch)
+  }
   if (stats) *stats = {acts.all.size(), edges.size()};
   return {};
 }
@@ -390,6 +401,8 @@ void LiveAdg::insert(const NewActions& acts,
     for (uint32_t i = acts.first[r]; i < acts.first[r + 1]; ++i) {
       Node& n = nodes.push_back();  // a reused slot: its edge lists keep their storage
       n.action = acts.all[i];
+      n.pass_key = n.action.start_time;
+      n.stamp = 0;
       n.pending = 0;
       n.in.clear();
       n.out.clear();

@@ -390,12 +390,12 @@ void append_stats(const std::filesystem::path& file, const Instance& in, const M
 }
 
 // Each switch of a passing order, its location in cells (half-cell index: x2 + y2 * (2w - 1)).
-void write_switches_csv(const std::filesystem::path& dir, const Instance& in,
-                        const MonitorResult& r) {
+void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
+                        const std::vector<PassingSwitch>& switches) {
   auto out = open_out(dir / results::kSwitchesCsv);
   out << results::kSwitchesHeader << '\n';
-  const auto across = static_cast<uint32_t>(2 * in.grid.width() - 1);
-  for (const auto& s : r.switches) {
+  const auto across = static_cast<uint32_t>(2 * grid.width() - 1);
+  for (const auto& s : switches) {
     const uint32_t x2 = s.location % across, y2 = s.location / across;  // half cells
     std::ostringstream row;
     row << std::fixed << std::setprecision(3) << s.time_s << std::defaultfloat << ','
@@ -412,7 +412,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
   open_out(dir / results::kStatsCsv) << results::kStatsHeader << '\n' << stats_row(in, r, info);
   write_robots_csv(dir, in, r, info);
   write_actions_csv(dir, in, r);
-  if (r.execution == "switchable") write_switches_csv(dir, in, r);
+  if (r.execution == "switchable") write_switches_csv(dir, in.grid, r.switches);
 }
 
 }  // namespace smart::monitor

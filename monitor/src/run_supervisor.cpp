@@ -61,6 +61,7 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
 RunSupervisor::RunSupervisor(Execution& execution, const SupervisorConfig& config,
                              RunWriter& writer)
     : config_(config), writer_(writer), exec_(&execution) {
+  if (execution.switches() != nullptr) res_.execution = "switchable";
   init(execution.robots());
 }
 
@@ -163,11 +164,10 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
     if (exec_->robot_done(r)) mark_done(r, sim_time_s);
   }
   res_.finished_actions = exec_->finished_total();
-  if (switchable_ && switchable_->switches().size() > res_.switches.size()) {
-    const auto& all = switchable_->switches();
+  if (const auto* all = exec_->switches(); all && all->size() > res_.switches.size()) {
     res_.switches.insert(res_.switches.end(),
-                         all.begin() + static_cast<std::ptrdiff_t>(res_.switches.size()),
-                         all.end());
+                         all->begin() + static_cast<std::ptrdiff_t>(res_.switches.size()),
+                         all->end());
   }
 }
 

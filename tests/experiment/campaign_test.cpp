@@ -143,11 +143,11 @@ TEST_F(Campaign, ALifelongExperimentMeasuresThroughputOverSeeds) {
   EXPECT_EQ(r.with_results, 4u);
   const auto rows = lines_of(dir_ / "out" / "results.csv");
   ASSERT_EQ(rows.size(), 5u);
-  EXPECT_THAT(rows[0], HasSubstr(",clock,replan_period_s,"));
+  EXPECT_THAT(rows[0], HasSubstr(",clock,execution,replan_period_s,"));
   EXPECT_THAT(rows[0], HasSubstr("lifelong.throughput_per_min"));
   EXPECT_THAT(rows[1], ::testing::StartsWith("0-random-32-32-20-n4-footbot-lan-r0,"
                                              "random-32-32-20,,4,footbot,lan,{},0,builtin,"
-                                             "lockstep,1.0,"));
+                                             "lockstep,adg,1.0,"));
   for (const char* cell :
        {"0-random-32-32-20-n4-footbot-lan-r0", "0-random-32-32-20-n8-footbot-lan-r1"}) {
     const auto summary =

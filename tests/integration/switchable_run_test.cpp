@@ -95,15 +95,39 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
   EXPECT_FALSE(std::filesystem::exists(plain_dir / "switches.csv"));
 }
 
-// A lifelong run grows its ADG as it goes: switching is refused there, with the fix.
-TEST_F(SwitchableRun, LifelongRunsRefuseSwitchingNamingTheFlag) {
-  const auto r =
-      run_smart({"run", "--map", (b_ / "maps/random-32-32-20.map").string(), "--tasks", "random",
-                 "--agents", "5", "--duration-s", "5", "--execution", "switchable", "--domain",
-                 std::to_string(kSwitchableRun), "--no-progress"},
-                60s, "switchable_lifelong", true);
-  EXPECT_EQ(r.code, 2);  // bad input (README, exit codes)
-  EXPECT_NE(r.out.find("--execution switchable: lifelong runs"), std::string::npos) << r.out;
+// Lifelong (LiveAdg switching): the LoRR 2026 random-domain problem (400 robots on
+// random-64-64-10, its own delay events: p = 0.01 per robot per 0.1 s, 1-4 s), 60 sim s, plain
+// and switchable on the same seed: both run clean; switching passes late robots, the fleet waits
+// less, and lock-step makes the switches the same every time.
+TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
+  auto lifelong = [&](int domain, const std::string& execution, const std::filesystem::path& out) {
+    const auto r = run_smart(
+        {"run", "--lifelong", (b_ / "lorr-2026/random.domain/random-example_400.json").string(),
+         "--duration-s", "60", "--seed", "1", "--execution", execution, "--domain",
+         std::to_string(domain), "--out", out.string(), "--no-progress"},
+        180s, "switchable_lifelong_" + execution);
+    EXPECT_EQ(r.code, 0) << r.out;
+    return r.last_json();
+  };
+  const auto plain_dir = temp_file("ll_switch_plain"), a_dir = temp_file("ll_switch_a"),
+             b_dir = temp_file("ll_switch_b");
+  const auto plain = lifelong(kSwitchableLifelong, "adg", plain_dir);
+  const auto a = lifelong(kSwitchableLifelong - 1, "switchable", a_dir);
+  const auto b = lifelong(kSwitchableLifelong - 2, "switchable", b_dir);
+  for (const auto* j : {&plain, &a}) {
+    EXPECT_TRUE((*j)["success"].get<bool>()) << j->dump();
+    EXPECT_EQ((*j)["collisions"], 0);
+    EXPECT_EQ((*j)["lifelong"]["windows_refused"], 0);
+  }
+  EXPECT_EQ(a["execution"]["mode"], "switchable");
+  const auto switches = a["execution"]["switches"].get<std::size_t>();
+  EXPECT_GT(switches, 10u);
+  EXPECT_LT(a["waiting_time_s"]["total"].get<double>(),
+            plain["waiting_time_s"]["total"].get<double>());
+  const auto csv = slurp(a_dir / "switches.csv");
+  EXPECT_EQ(csv, slurp(b_dir / "switches.csv"));
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
+  EXPECT_EQ(slurp(a_dir / "tasks.csv"), slurp(b_dir / "tasks.csv"));
 }
 
 // A monitor taking over a run cannot know the switches made: refused, with the fix.

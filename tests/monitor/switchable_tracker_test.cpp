@@ -74,11 +74,11 @@ TEST(SwitchableTracker, TheReadyRobotPassesFirstWhenTheOtherIsDelayed) {
   EXPECT_EQ(t.enqueued(0), 3u);
 
   t.on_progress(1, 0, 1.0);  // rotated: robot 1 is on its last action before the cell
-  ASSERT_EQ(t.switches().size(), 1u);
-  EXPECT_EQ(t.switches()[0].location, cell);
-  EXPECT_EQ(t.switches()[0].first, 1u);
-  EXPECT_EQ(t.switches()[0].second, 0u);
-  EXPECT_DOUBLE_EQ(t.switches()[0].time_s, 1.0);
+  ASSERT_EQ(t.switches()->size(), 1u);
+  EXPECT_EQ((*t.switches())[0].location, cell);
+  EXPECT_EQ((*t.switches())[0].first, 1u);
+  EXPECT_EQ((*t.switches())[0].second, 0u);
+  EXPECT_DOUBLE_EQ((*t.switches())[0].time_s, 1.0);
   EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{1, 0}));
   EXPECT_EQ(t.enqueued(1), 5u);
   EXPECT_EQ(run_robot(t, 1, 2.0), 4);
@@ -87,7 +87,7 @@ TEST(SwitchableTracker, TheReadyRobotPassesFirstWhenTheOtherIsDelayed) {
   // Robot 0 now goes: its entry waited only until robot 1 had left the cell.
   run_robot(t, 0, 3.0);
   EXPECT_TRUE(t.complete());
-  EXPECT_EQ(t.switches().size(), 1u);
+  EXPECT_EQ(t.switches()->size(), 1u);
   // Plain ADG: robot 1 cannot finish before robot 0 has passed.
   plain.on_progress(1, 1);
   EXPECT_EQ(plain.enqueued(1), 2u);
@@ -101,7 +101,7 @@ TEST(SwitchableTracker, ARobotThatWasSentItsEntryKeepsItsPlace) {
   t.on_progress(0, 1, 0.5);      // robot 0 on its half-move to the cell's edge: its entry is sent
   EXPECT_EQ(t.enqueued(0), 6u);  // its entry and the rest
   t.on_progress(1, 0, 1.0);
-  EXPECT_TRUE(t.switches().empty());
+  EXPECT_TRUE(t.switches()->empty());
   EXPECT_EQ(t.pending(actions.offset[1] + 2), 1u);
 }
 
@@ -112,7 +112,7 @@ TEST(SwitchableTracker, NoSwitchBehindARobotThatParksThere) {
   const auto actions = build_actions(crossing(true), Heading::kEast);
   SwitchableTracker t(actions, passing_orders(actions, grid), kNear);
   run_robot(t, 1, 1.0);
-  EXPECT_TRUE(t.switches().empty());
+  EXPECT_TRUE(t.switches()->empty());
   EXPECT_FALSE(t.robot_done(1));
   run_robot(t, 0, 2.0);
   run_robot(t, 1, 3.0);
@@ -195,8 +195,8 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
   for (uint32_t r = 0; r < robots; ++r) {
     EXPECT_EQ(occupied.at(HalfCell::of(inst.scen.agents[r].goal)), r) << "seed " << seed;
   }
-  for (const auto& s : t.switches()) EXPECT_NE(s.first, s.second) << "seed " << seed;
-  return {t.switches().size()};
+  for (const auto& s : *t.switches()) EXPECT_NE(s.first, s.second) << "seed " << seed;
+  return {t.switches()->size()};
 }
 
 TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinishOnHalfCells) {

@@ -144,8 +144,9 @@ enum DomainId : int {
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
   kExperimentLifelong = 95,  // and 96 (--jobs 2)
   kLifelongLorrOutput = 94,
-  kWebLifelong = 93,    // web/test/lifelong.test.mjs (given on its command line)
-  kSwitchableRun = 92,  // and 91, 90: the plain run and the switchable run twice
+  kWebLifelong = 93,         // web/test/lifelong.test.mjs (given on its command line)
+  kSwitchableRun = 92,       // and 91, 90: the plain run and the switchable run twice
+  kSwitchableLifelong = 89,  // and 88, 87: the same for a lifelong run
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -187,6 +187,9 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.heuristic = l.heuristic;
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
+  if (o.execution == MonitorCliOptions::Execution::kSwitchable) {
+    lo.switching = monitor::SwitchOptions{o.switch_commit_actions};
+  }
   return lo;
 }
 
@@ -218,11 +221,6 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
-  if (o.execution != MonitorCliOptions::Execution::kAdg) {
-    throw std::invalid_argument(
-        "--execution switchable: lifelong runs execute their growing ADG in plan order for now "
-        "(switching is for one-shot plans); drop --execution");
-  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "
@@ -397,6 +395,9 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
       lifelong_json(problem, o, exec, files, result.sim_time_s);
   if (!o.out.empty()) {
     std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
+    if (result.execution == "switchable") {
+      monitor::write_switches_csv(o.out, problem.grid, result.switches);
+    }
   }
   if (temp) std::filesystem::remove_all(*temp);
   std::cout << summary.dump(2) << std::endl;

@@ -7,7 +7,7 @@
 // from the upload form, shown live with its tasks and replayed.
 // Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
@@ -18,6 +18,7 @@ const bench = process.env.SMART_BENCHMARKS;
 const dist = process.env.SMART_WEB_DIST;
 const domain = process.env.SMART_DOMAIN || '93';
 const artifacts = process.env.SMART_ARTIFACTS || tmpdir();
+mkdirSync(artifacts, { recursive: true });  // run alone, no other test has made it
 const work = mkdtempSync(path.join(tmpdir(), 'smart-lifelong-web-'));
 const robots = 15;
 

@@ -47,6 +47,8 @@ struct LifelongOptions {
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
   uint64_t seed = 1;
   grid::Heading initial_heading = grid::Heading::kEast;
+  // Passing orders may switch while the run goes (issue 29, live_adg.hpp); empty: plan order.
+  std::optional<monitor::SwitchOptions> switching = {};
 };
 
 struct LifelongStats {
@@ -90,6 +92,7 @@ class LifelongExecution final : public monitor::Execution {
   bool complete() const override { return now_s_ >= options_.duration_s; }
   bool deadlocked() const override { return adg_.deadlocked(); }
   bool lifelong() const override { return true; }
+  const std::vector<monitor::PassingSwitch>* switches() const override { return adg_.switches(); }
 
   const LifelongStats& stats() const { return stats_; }
   TaskManager& tasks() { return tasks_; }

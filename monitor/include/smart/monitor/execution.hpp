@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "smart/grid/action.hpp"
+#include "smart/monitor/switching.hpp"
 
 namespace smart::monitor {
 
@@ -57,6 +58,9 @@ class Execution {
   virtual bool deadlocked() const = 0;
   // A lifelong run never brings robots to a final goal (the goal check is skipped).
   virtual bool lifelong() const { return false; }
+  // The passing orders switched so far, in order (issue 29: switching.hpp); null when this
+  // execution never switches (plain ADG).
+  virtual const std::vector<PassingSwitch>* switches() const { return nullptr; }
 };
 
 // The checks every Execution makes of a robot's progress report: kAdvanced when `finished_seq`

@@ -25,11 +25,24 @@
 //   window; Kahn's algorithm over the new actions checks it, and a window that is cyclic, or has a
 //   robot enter a location where another stays for good, is refused whole (nothing appended).
 // Locations are half cells (Footprint::kHalfCells); robots of the cells footprint are refused.
+//
+// Switching (enable_switching, issue 29; the rule of switchable_tracker.hpp on the growing
+// graph): robot j's next unsent move into location L waits only for robot i leaving L; i's move
+// into L was never sent (a move beginning a stay someone follows is sent only within
+// `commit_actions` of its robot), i is not at L and has no earlier stay there, whoever was before
+// i has left, j leaves L again and never comes back within the graph, and no path of unfinished
+// actions leads from i's entry to j's leave (bounded search) -> the order becomes j, i: j.leave ->
+// i.enter replaces i.leave -> j.enter, and whoever followed j now follows i. The stays' order keys
+// (the leaves' pass keys, by which a later window finds the last occupant) are exchanged, so the
+// next append links behind the order as it is now. Robots to try are those whose situation
+// changed, in id order: deterministic.
 #pragma once
 
 #include <boost/container/small_vector.hpp>
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,6 +50,7 @@
 #include "smart/monitor/execution.hpp"
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/ring.hpp"
+#include "smart/monitor/switching.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
@@ -67,11 +81,12 @@ class LiveAdg final : public Execution {
   LiveAdg(const Grid& grid, const std::vector<Cell>& start, Heading initial_heading);
 
   // --- execution ---
-  // `finished` sees each action this progress finishes, in order, before it is dropped.
-  Update on_progress(uint32_t robot, int64_t finished_seq,
+  // `finished` sees each action this progress finishes, in order, before it is dropped;
+  // `time_s` stamps the switches it allows.
+  Update on_progress(uint32_t robot, int64_t finished_seq, double time_s,
                      const std::function<void(const Action&)>& finished);
-  Update on_progress(uint32_t robot, int64_t finished_seq, double /*time_s*/) override {
-    return on_progress(robot, finished_seq, std::function<void(const Action&)>{});
+  Update on_progress(uint32_t robot, int64_t finished_seq, double time_s) override {
+    return on_progress(robot, finished_seq, time_s, std::function<void(const Action&)>{});
   }
   Window window(uint32_t robot, uint32_t cap) const override;
   std::size_t robots() const override { return robots_.size(); }
@@ -106,6 +121,12 @@ class LiveAdg final : public Execution {
   // apart; a window starts where the previous one ended or at its append time, the later).
   double window_start() const { return window_start_; }
 
+  // --- switching (before the first append) ---
+  void enable_switching(SwitchOptions options) { switching_ = options; }
+  const std::vector<PassingSwitch>* switches() const override {
+    return switching_ ? &switches_ : nullptr;
+  }
+
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
   // boost::container::small_vector), which halves an append's time at 10 000 robots.
@@ -113,6 +134,8 @@ class LiveAdg final : public Execution {
   // NOLINTNEXTLINE(bugprone-exception-escape): clang-tidy 14 flags the implicit special members
   struct Node {
     Action action;
+    double pass_key = 0;   // a move: orders its leave among the location's last occupants
+    uint32_t stamp = 0;    // the deadlock search's visit mark
     uint32_t pending = 0;  // unfinished Type-2 predecessors
     Refs in;               // unfinished Type-2 predecessors
     Refs out;              // Type-2 successors
@@ -151,6 +174,20 @@ class LiveAdg final : public Execution {
       const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges) const;
   void insert(const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges);
 
+  static void erase_ref(Refs& v, NodeRef x);
+  // Switching (live_adg_switching.cpp).
+  bool held(uint32_t r, uint32_t seq) const;
+  std::optional<uint32_t> next_move(uint32_t r, uint32_t after_seq) const;
+  bool stays_before(uint32_t r, uint32_t seq, uint32_t location) const;
+  bool comes_back(uint32_t r, uint32_t after_seq, uint32_t location) const;
+  void dirty_after_release(NodeRef target);
+  void try_switches(double time_s, std::vector<uint32_t>& changed);
+  bool try_switch(uint32_t j, double time_s, std::vector<uint32_t>& changed);
+  bool reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to);
+  void add_edge(NodeRef from, NodeRef to);
+  void remove_edge(NodeRef from, NodeRef to);
+  void swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave);
+
   const Grid& grid_;
   std::vector<Robot> robots_;
   std::size_t finished_total_ = 0;
@@ -158,6 +195,19 @@ class LiveAdg final : public Execution {
   std::size_t type2_total_ = 0;
   double last_plan_time_s_ = 0;
   double window_start_ = 0;
+  std::optional<SwitchOptions> switching_;
+  std::vector<PassingSwitch> switches_;
+  std::set<uint32_t> dirty_;  // robots to try: their situation changed since they were tried
+  // Per robot, its last refused switch (the move and the leave it waits for), valid while the
+  // graph's orders are unchanged (`epoch_`: switches and truncations).
+  struct Refusal {
+    NodeRef mine{}, theirs{};
+    uint64_t epoch = 0;
+    bool valid = false;
+  };
+  std::vector<Refusal> refused_;
+  uint64_t epoch_ = 0;
+  uint32_t stamp_ = 0;
 };
 
 }  // namespace smart::monitor

@@ -97,6 +97,11 @@ void append_stats(const std::filesystem::path& file, const Instance& instance,
 
 // Writes summary.json, stats.csv, robots.csv and actions.csv into `dir` (created if missing).
 // Throws std::runtime_error naming the file when it cannot be written.
+// switches.csv (results_format.hpp kSwitchesCsv): every switch of a passing order, located in
+// cells of `grid` (.5 on an edge midpoint).
+void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
+                        const std::vector<PassingSwitch>& switches);
+
 void write_results(const std::filesystem::path& dir, const Instance& instance,
                    const MonitorResult& result, const RunInfo& info);
 

@@ -28,25 +28,9 @@
 #include "smart/monitor/action_builder.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/execution.hpp"
+#include "smart/monitor/switching.hpp"
 
 namespace smart::monitor {
-
-// commit_actions: how near its robot a switchable entry is sent. Near (1) leaves the most room
-// to switch, but a robot that does not know its next actions brakes before each such entry: on
-// SMART's 100-robot warehouse plan it cost 16 % AET without delays; 6 keeps AET
-// (docs/execution.md).
-struct SwitchOptions {
-  uint32_t commit_actions = 6;       // a switchable entry is sent this many actions ahead
-  std::size_t search_budget = 4096;  // actions the deadlock search may visit per candidate
-};
-
-// One switch: at `location` (half-cell index), `first` now passes before `second`, at `time_s`.
-struct PassingSwitch {
-  double time_s = 0;
-  uint32_t location = 0;
-  uint32_t first = 0;   // the robot that was ready
-  uint32_t second = 0;  // the robot that was meant to pass first
-};
 
 class SwitchableTracker final : public Execution {
  public:
@@ -69,7 +53,7 @@ class SwitchableTracker final : public Execution {
   bool complete() const override { return finished_total_ == actions_.actions.size(); }
   bool deadlocked() const override;
 
-  const std::vector<PassingSwitch>& switches() const { return switches_; }
+  const std::vector<PassingSwitch>* switches() const override { return &switches_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
   // Unfinished Type-2 predecessors of an action (node id), as the current orders give them.

@@ -1,0 +1,27 @@
+// Contract: what switching passing orders (issue 29) is told and what it records, shared by the
+// one-shot SwitchableTracker (switchable_tracker.hpp) and the lifelong LiveAdg (live_adg.hpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace smart::monitor {
+
+// commit_actions: how near its robot a switchable entry is sent. Near (1) leaves the most room
+// to switch, but a robot that does not know its next actions brakes before each such entry: on
+// SMART's 100-robot warehouse plan it cost 16 % AET without delays; 6 keeps AET
+// (docs/execution.md).
+struct SwitchOptions {
+  uint32_t commit_actions = 6;       // a switchable entry is sent this many actions ahead
+  std::size_t search_budget = 4096;  // actions the deadlock search may visit per candidate
+};
+
+// One switch: at `location` (half-cell index), `first` now passes before `second`, at `time_s`.
+struct PassingSwitch {
+  double time_s = 0;
+  uint32_t location = 0;
+  uint32_t first = 0;   // the robot that was ready
+  uint32_t second = 0;  // the robot that was meant to pass first
+};
+
+}  // namespace smart::monitor

@@ -1,0 +1,177 @@
+// LiveAdg's switching of passing orders (live_adg.hpp, "Switching"; the one-shot rule and its
+// proof obligations: switchable_tracker.hpp). In half cells a robot's stay at a location begins
+// with the move that enters it and ends with the robot's next move, so a Type-2 edge's location
+// is the one its target enters.
+#include <algorithm>
+
+#include "smart/monitor/live_adg.hpp"
+
+namespace smart::monitor {
+
+std::optional<uint32_t> LiveAdg::next_move(uint32_t r, uint32_t after_seq) const {
+  for (uint32_t s = after_seq + 1; s < end(r); ++s) {
+    if (action(r, s).type == ActionType::kMove) return s;
+  }
+  return std::nullopt;
+}
+
+// A move beginning a stay that another robot follows is sent only when its robot is near: sent
+// actions are never taken back, so only unsent entries can still switch.
+bool LiveAdg::held(uint32_t r, uint32_t seq) const {
+  if (!switching_ || robots_[r].finished + switching_->commit_actions >= seq) return false;
+  if (action(r, seq).type != ActionType::kMove) return false;
+  const auto leave = next_move(r, seq);
+  return leave && !node(r, *leave).out.empty();
+}
+
+// Robot r is at `location`, or goes through it before its action `seq`.
+bool LiveAdg::stays_before(uint32_t r, uint32_t seq, uint32_t location) const {
+  if (grid_.half_index(robots_[r].done) == location) return true;
+  for (uint32_t s = robots_[r].finished; s < seq; ++s) {
+    const Action& a = action(r, s);
+    if (a.type == ActionType::kMove &&
+        (grid_.half_index(a.from) == location || grid_.half_index(a.to) == location)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool LiveAdg::comes_back(uint32_t r, uint32_t after_seq, uint32_t location) const {
+  for (uint32_t s = after_seq + 1; s < end(r); ++s) {
+    const Action& a = action(r, s);
+    if (a.type == ActionType::kMove && grid_.half_index(a.to) == location) return true;
+  }
+  return false;
+}
+
+// `target` lost a predecessor: its robot may switch now (it waits for one robot only), or, when
+// it waits for nobody but is held back (its robot is delayed), the robots behind its stay may
+// pass it.
+void LiveAdg::dirty_after_release(NodeRef target) {
+  const Node& m = node(target.robot, target.seq);
+  if (m.pending == 1) {
+    if (target.seq == robots_[target.robot].enqueued) dirty_.insert(target.robot);
+    return;
+  }
+  if (m.pending != 0 || target.seq < robots_[target.robot].enqueued) return;
+  if (const auto leave = next_move(target.robot, target.seq)) {
+    for (const NodeRef k : node(target.robot, *leave).out) dirty_.insert(k.robot);
+  }
+}
+
+// The robots whose situation changed, in id order; a switch may let refused robots switch:
+// they are tried again. Bounded.
+void LiveAdg::try_switches(double time_s, std::vector<uint32_t>& changed) {
+  std::size_t budget = 4 * robots_.size() + 16;
+  while (!dirty_.empty() && budget-- > 0) {
+    const uint32_t r = *dirty_.begin();
+    dirty_.erase(dirty_.begin());
+    if (!try_switch(r, time_s, changed)) continue;
+    for (uint32_t other = 0; other < refused_.size(); ++other) {
+      if (refused_[other].valid) dirty_.insert(other);
+    }
+  }
+  dirty_.clear();
+}
+
+bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& changed) {
+  const uint32_t seq = robots_[j].enqueued;
+  if (seq >= end(j) || robots_[j].finished + switching_->commit_actions < seq) return false;
+  const Node& mine = node(j, seq);
+  if (mine.pending != 1 || mine.in.size() != 1 || mine.action.type != ActionType::kMove) {
+    return false;
+  }
+  const NodeRef j_enter{j, seq}, i_leave = mine.in[0];
+  const uint32_t i = i_leave.robot;
+  const auto location = static_cast<uint32_t>(grid_.half_index(mine.action.to));
+  // i's entry: its move before the leave, unfinished and never sent.
+  uint32_t e = i_leave.seq;
+  while (e > robots_[i].finished && action(i, e - 1).type != ActionType::kMove) --e;
+  if (e == robots_[i].finished || e - 1 < robots_[i].enqueued) return false;
+  const NodeRef i_enter{i, e - 1};
+  if (grid_.half_index(action(i, i_enter.seq).to) != location) return false;
+  if (node(i, i_enter.seq).pending != 0 || stays_before(i, i_enter.seq, location)) return false;
+  const auto leave = next_move(j, seq);
+  if (!leave || comes_back(j, *leave, location)) return false;
+  const NodeRef j_leave{j, *leave};
+  auto& refusal = refused_[j];
+  if (refusal.valid && refusal.epoch == epoch_ && refusal.mine == j_enter &&
+      refusal.theirs == i_leave) {
+    return false;
+  }
+  if (reaches(i_enter, j_leave, i_leave, j_enter)) {
+    refusal = {j_enter, i_leave, epoch_, true};
+    return false;
+  }
+  refusal.valid = false;
+  switches_.push_back({time_s, location, j, i});
+  swap_order(i_enter, i_leave, j_enter, j_leave);
+  if (advance(j)) changed.push_back(j);
+  return true;
+}
+
+// A path of unfinished actions (Type-1 and Type-2 edges but skip_from -> skip_to) from `from`
+// to `to`; past the search budget, assumed (the switch is refused).
+bool LiveAdg::reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to) {
+  if (++stamp_ == 0) {
+    for (uint32_t r = 0; r < robots_.size(); ++r) {
+      for (uint32_t s = robots_[r].finished; s < end(r); ++s) node(r, s).stamp = 0;
+    }
+    stamp_ = 1;
+  }
+  std::vector<NodeRef> stack;
+  const auto push = [&](NodeRef v) {
+    Node& n = node(v.robot, v.seq);
+    if (n.stamp != stamp_) {
+      n.stamp = stamp_;
+      stack.push_back(v);
+    }
+  };
+  push(from);
+  std::size_t visited = 0;
+  while (!stack.empty()) {
+    const NodeRef u = stack.back();
+    stack.pop_back();
+    if (u == to || ++visited > switching_->search_budget) return true;
+    if (u.seq + 1 < end(u.robot)) push({u.robot, u.seq + 1});
+    for (const NodeRef v : node(u.robot, u.seq).out) {
+      if (!(u == skip_from && v == skip_to)) push(v);
+    }
+  }
+  return false;
+}
+
+void LiveAdg::add_edge(NodeRef from, NodeRef to) {
+  node(from.robot, from.seq).out.push_back(to);
+  Node& m = node(to.robot, to.seq);
+  m.in.push_back(from);
+  ++m.pending;
+  ++type2_total_;
+}
+
+void LiveAdg::remove_edge(NodeRef from, NodeRef to) {
+  erase_ref(node(from.robot, from.seq).out, to);
+  Node& m = node(to.robot, to.seq);
+  erase_ref(m.in, from);
+  --m.pending;
+  --type2_total_;
+}
+
+// i, j -> j, i at their location: j.leave -> i.enter replaces i.leave -> j.enter, whoever
+// followed j follows i (robot i's own later stay needs no edge), and the leaves' pass keys are
+// exchanged so the order's last occupant is still the one with the greatest key.
+void LiveAdg::swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave) {
+  remove_edge(i_leave, j_enter);
+  const Refs followers = node(j_leave.robot, j_leave.seq).out;
+  for (const NodeRef k : followers) {
+    remove_edge(j_leave, k);
+    if (k.robot != i_leave.robot) add_edge(i_leave, k);
+    dirty_.insert(k.robot);
+  }
+  add_edge(j_leave, i_enter);
+  std::swap(node(i_leave.robot, i_leave.seq).pass_key, node(j_leave.robot, j_leave.seq).pass_key);
+  ++epoch_;
+}
+
+}  // namespace smart::monitor
