@@ -392,17 +392,14 @@ void append_stats(const std::filesystem::path& file, const Instance& in, const M
 // Each switch of a passing order, its location in cells (half-cell index: x2 + y2 * (2w - 1)).
 void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
                         const std::vector<PassingSwitch>& switches) {
-  auto out = open_out(dir / results::kSwitchesCsv);
-  out << results::kSwitchesHeader << '\n';
+  std::string text(results::kSwitchesHeader);
+  text += '\n';
   const auto across = static_cast<uint32_t>(2 * grid.width() - 1);
   for (const auto& s : switches) {
     const uint32_t x2 = s.location % across, y2 = s.location / across;  // half cells
-    std::ostringstream row;
-    row << std::fixed << std::setprecision(3) << s.time_s << std::defaultfloat << ','
-        << static_cast<double>(x2) / 2.0 << ',' << static_cast<double>(y2) / 2.0 << ',' << s.first
-        << ',' << s.second << '\n';
-    out << row.str();
+    results::append_row(text, results::SwitchRow{s.time_s, x2 / 2.0, y2 / 2.0, s.first, s.second});
   }
+  open_out(dir / results::kSwitchesCsv) << text;
 }
 
 void write_results(const std::filesystem::path& dir, const Instance& in, const MonitorResult& r,

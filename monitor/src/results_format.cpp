@@ -390,4 +390,28 @@ std::vector<ThroughputRow> parse_throughput_csv(std::string_view text) {
   return out;
 }
 
+void append_row(std::string& out, const SwitchRow& r) {
+  put(out, r.time_s);
+  put(out, r.x);
+  put(out, r.y);
+  put(out, r.first);
+  put(out, r.second, '\n');
+}
+
+std::vector<SwitchRow> parse_switches_csv(std::string_view text) {
+  std::vector<SwitchRow> out;
+  rows_of(text, [&](std::string_view line, std::size_t line_no) {
+    SwitchRow r;
+    if (!number(next_field(line), r.time_s) || !number(next_field(line), r.x) ||
+        !number(next_field(line), r.y) || !number(next_field(line), r.first) ||
+        !number(next_field(line), r.second) || !line.empty() || r.time_s < 0 || r.x < 0 ||
+        r.y < 0) {
+      throw bad_row(kSwitchesCsv, line_no,
+                    std::string(kSwitchesHeader) + " (time and cells >= 0, robot ids)");
+    }
+    out.push_back(r);
+  });
+  return out;
+}
+
 }  // namespace smart::results

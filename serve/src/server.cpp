@@ -383,6 +383,30 @@ struct Server::Impl {
     }
   }
 
+  // A switchable run's switches of passing orders (issue 29), column-wise for the viewer:
+  // {t_s, x, y, first, second} (x, y in cells); 404 for a run that never switched.
+  void get_switches(const std::string& id, httplib::Response& res) {
+    const auto e = entry(id);
+    const auto f = store.results_file(id, results::kSwitchesCsv);
+    if (!e || e->state != RunState::kDone || !fs::is_regular_file(f)) {
+      return reply(res, 404, {{"error", "no switches of " + id + " (not a switchable run)"}});
+    }
+    try {
+      json t = json::array(), x = json::array(), y = json::array(), first = json::array(),
+           second = json::array();
+      for (const auto& r : results::parse_switches_csv(slurp(f))) {
+        t.push_back(r.time_s);
+        x.push_back(r.x);
+        y.push_back(r.y);
+        first.push_back(r.first);
+        second.push_back(r.second);
+      }
+      reply(res, 200, {{"t_s", t}, {"x", x}, {"y", y}, {"first", first}, {"second", second}});
+    } catch (const std::invalid_argument& ex) {
+      reply(res, 422, {{"error", ex.what()}});
+    }
+  }
+
   // robots.csv's row of `robot` as JSON (finish and waiting time, stops, lower bound), if the
   // run wrote one; an unknown value (not finished, bound unknown) is null.
   json robot_results(const std::string& id, uint32_t robot) const {
@@ -576,6 +600,8 @@ struct Server::Impl {
              [this](const auto& req, auto& res) { get_progress(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/tasks)",
              [this](const auto& req, auto& res) { get_tasks(req.matches[1], res); });
+    http.Get(R"(/api/runs/([^/]+)/switches)",
+             [this](const auto& req, auto& res) { get_switches(req.matches[1], res); });
     http.Get(R"(/api/runs/([^/]+)/results/([^/]+))", [this](const auto& req, auto& res) {
       get_result_file(req.matches[1], req.matches[2], res);
     });

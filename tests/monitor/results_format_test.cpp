@@ -192,5 +192,27 @@ TEST(ResultsFormat, LifelongTaskAndThroughputRowsRoundTrip) {
   }
 }
 
+// switches.csv (issue 29): written and read by one definition; a bad row names its line.
+TEST(ResultsFormat, SwitchRowsRoundTripAndABadRowNamesItsLine) {
+  std::string csv(kSwitchesHeader);
+  csv += '\n';
+  append_row(csv, SwitchRow{12.25, 3, 4.5, 7, 2});
+  EXPECT_EQ(csv, "time_s,x,y,first,second\n12.25,3,4.5,7,2\n");
+  const auto rows = parse_switches_csv(csv);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].y, 4.5);
+  EXPECT_EQ(rows[0].first, 7u);
+  EXPECT_EQ(rows[0].second, 2u);
+  for (const char* bad :
+       {"1,2,3,4\n", "1,2,3,4,x\n", "-1,2,3,4,5\n", "1,nan,3,4,5\n", "1,2,3,4,5,6\n"}) {
+    try {
+      (void)parse_switches_csv(csv + bad);
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr("switches.csv line 3")) << bad;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace smart::results

@@ -10,6 +10,7 @@ import { robotList, robotStatus } from './panel.js';
 import { drawProgress } from './plot.js';
 import { minimap } from './minimap.js';
 import { TASK_MARKS, taskLayer, taskRows } from './tasks.js';
+import { SWITCH_MARK, switchLayer } from './switches.js';
 import { $, fetchJson, setRows, viewer } from './page.js';
 import { COLORS, MARKS, buildMap, buildRobots, lookAt, onRobotClick, placeRobot, pngDataUrl,
          renderOnce, resize, robotsMoved, scene, setLabel, showLegend, showMarks, startLoop,
@@ -17,7 +18,7 @@ import { COLORS, MARKS, buildMap, buildRobots, lookAt, onRobotClick, placeRobot,
 
 const state = { rec: null, mesh: null, cell: 1, playing: false, speed: 8, t: 0, summary: null,
                 collided: new Set(), collisionFrame: Infinity, progress: null, tasks: null,
-                minimap: null, colors: null, xy: null, placed: {} };
+                minimap: null, colors: null, xy: null, placed: {}, switches: null };
 // Scratch poses, written by rec.pose().
 const pose = new Float64Array(3), prev = new Float64Array(3), last = new Float64Array(3);
 
@@ -44,6 +45,10 @@ function showFrame(t) {
   const f = rec.frameAt(t), end = rec.frames - 1, fp = f > 0 ? f - 1 : Math.min(1, end);
   if (placeRobots(f, fp)) robotsMoved(mesh);
   if (state.tasks) showTasks(t, f);
+  if (state.switches) {
+    state.switches.update(t, f, (i, out) => rec.pose(f, i, out));
+    viewer.switches = { count: state.switches.count, shown: state.switches.shown };
+  }
   if (state.minimap) state.minimap.draw(rec.robots, state.xy, state.colors, viewTarget());
   viewer.t = t;
   viewer.frameT = rec.times[f];
@@ -261,8 +266,17 @@ async function loadTasks(id, map) {
   state.tasks = taskLayer(data, map, state.cell, state.rec.robots);
   $('throughput').hidden = false;
   viewer.taskOf = (r) => state.tasks.taskOf(r, state.t);
-  showLegend(replayLegend('last position').concat([['errand (open)', TASK_MARKS.open],
-    ['errand (assigned)', TASK_MARKS.assigned], ['robot to its next errand', TASK_MARKS.line]]));
+  state.legend = replayLegend('last position').concat([['errand (open)', TASK_MARKS.open],
+    ['errand (assigned)', TASK_MARKS.assigned], ['robot to its next errand', TASK_MARKS.line]]);
+  showLegend(state.legend);
+}
+
+// A switchable run's switches of passing orders (GET /api/runs/{id}/switches; none otherwise).
+async function loadSwitches(id, map) {
+  const data = await fetchJson(`/api/runs/${id}/switches`).catch(() => null);
+  if (!data || !Array.isArray(data.t_s)) return null;
+  state.switches = switchLayer(data, map.height, state.cell);
+  return [['switched passing order (passed first → planned first)', SWITCH_MARK]];
 }
 
 export const replayLegend = (goal) => [['moving', COLORS.moving], ['waiting', COLORS.waiting], ['done', COLORS.done],
@@ -345,9 +359,12 @@ export async function startReplay(id) {
   startLoop({ update: play, rendered });
   state.rec = await rest;
   findCollision();
-  showLegend(replayLegend(await markStartsAndGoals(id)));
+  state.legend = replayLegend(await markStartsAndGoals(id));
+  showLegend(state.legend);
   state.progress = await fetchJson(`/api/runs/${id}/progress`).catch(() => null);
   await loadTasks(id, map);
+  const switchLegend = await loadSwitches(id, map);
+  if (switchLegend) showLegend(state.legend.concat(switchLegend));
   $('plot').hidden = !state.progress && !state.tasks;
   wireControls();
   showFrame(0);

@@ -26,7 +26,7 @@ function lifelongRun() {
   const out = path.join(work, 'results');
   const r = spawnSync(exe, ['run', '--tasks', 'random', '--map', path.join(bench, 'maps/random-32-32-20.map'),
     '--agents', String(robots), '--seed', '2', '--task-errands', '2', '--duration-s', '90',
-    '--domain', domain, '--out', out, '--no-progress'], { encoding: 'utf8' });
+    '--execution', 'switchable', '--domain', domain, '--out', out, '--no-progress'], { encoding: 'utf8' });
   assert.equal(r.status, 0, r.stderr);
   return out;
 }
@@ -133,6 +133,29 @@ try {
   const [centre, at] = await page.evaluate(() => [window.__viewer.target(), window.__viewer.pose(4)]);
   assert.ok(Math.hypot(centre[0] - at[0], centre[1] - at[1]) < 1e-6, `view at ${centre}, robot 4 at ${at}`);
   await page.screenshot({ path: path.join(artifacts, 'viewer-lifelong.png') });
+
+  // Switched passing orders (issue 29): every row of switches.csv, each drawn for 3 s from its
+  // time at its location (a ring) with a line from the robot that passed first to the one planned
+  // first, at their poses.
+  const switches = readFileSync(path.join(out, 'switches.csv'), 'utf8').trim().split('\n').slice(1)
+    .map((l) => l.split(',').map(Number));
+  assert.ok(switches.length > 0, 'the fixture run switched no passing order: it should (lock-step, seed 2)');
+  assert.equal(await page.evaluate(() => window.__viewer.switches.count), switches.length);
+  const [ts, sx, sy, passed, late] = switches[0];
+  await page.evaluate((t) => window.__viewer.seek(t), ts + 0.5);
+  const drawn = await page.evaluate(() => window.__viewer.switches.shown);
+  assert.equal(drawn.length, switches.filter((s) => s[0] <= ts + 0.5 && s[0] > ts - 2.5).length);
+  assert.deepEqual([drawn[0].first, drawn[0].second], [passed, late]);
+  assert.deepEqual(drawn[0].at, [sx, 31 - sy]);  // 1 m cells, random-32-32-20 has 32 rows
+  const [pf, ps] = await page.evaluate((a, b) => [window.__viewer.pose(a), window.__viewer.pose(b)], passed, late);
+  assert.ok(Math.hypot(drawn[0].from[0] - pf[0], drawn[0].from[1] - pf[1]) < 1e-5, `line from ${drawn[0].from}, robot at ${pf}`);
+  assert.ok(Math.hypot(drawn[0].to[0] - ps[0], drawn[0].to[1] - ps[1]) < 1e-5, `line to ${drawn[0].to}, robot at ${ps}`);
+  const legendNow = await page.$$eval('#legend div', (ds) => ds.map((d) => d.textContent));
+  assert.ok(legendNow.includes('switched passing order (passed first → planned first)'), legendNow.join('; '));
+  await page.screenshot({ path: path.join(artifacts, 'viewer-switch.png') });
+  await page.evaluate((t) => window.__viewer.seek(t), ts + 3.5);
+  assert.equal((await page.evaluate(() => window.__viewer.switches.shown)).filter((d) => d.first === passed && d.second === late).length,
+    switches.filter((s) => s[0] <= ts + 3.5 && s[0] > ts + 0.5 && s[3] === passed && s[4] === late).length);
 
   // The upload form starts a lifelong run (a map and task settings, no scen or plan): shown live
   // with its tasks streaming in, then replayed with them.

@@ -210,4 +210,15 @@ struct ThroughputRow {
 void append_row(std::string& out, const ThroughputRow& row);
 std::vector<ThroughputRow> parse_throughput_csv(std::string_view text);
 
+// switches.csv (kSwitchesHeader): a row per switch of a passing order (issue 29): when, where (in
+// cells, .5 on an edge midpoint), the robot that passed first and the robot planned first.
+struct SwitchRow {
+  double time_s = 0;
+  double x = 0, y = 0;
+  uint32_t first = 0, second = 0;
+};
+void append_row(std::string& out, const SwitchRow& row);
+// Throws std::invalid_argument naming the line of a malformed row (times and cells >= 0).
+std::vector<SwitchRow> parse_switches_csv(std::string_view text);
+
 }  // namespace smart::results
