@@ -168,7 +168,10 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     EXPECT_FALSE(options.empty()) << "seed " << seed;
     if (options.empty()) return {};
     const auto [r, kind] = options[rng() % options.size()];
-    const Action& a = actions.at(r, kind == 0 ? started[r] : done[r]);
+    // A report (kind 2) reads no action: done[r] may be past the robot's last (regression: the
+    // sanitized build's checked vector caught the read).
+    const Action no_action{};
+    const Action& a = kind == 2 ? no_action : actions.at(r, kind == 0 ? started[r] : done[r]);
     if (kind == 0 && a.type == ActionType::kMove) {
       for (const auto c : held(a.to, footprint)) {
         const auto it = occupied.find(c);
