@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -213,6 +214,52 @@ Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
   adg.stats.moves = ap.moves;
   adg.stats.rotations = ap.rotations;
   return adg;
+}
+
+Adg adg_of_orders(const PassingOrders& orders, const ActionPlan& actions, Footprint footprint) {
+  Adg adg;
+  adg.footprint = footprint;
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (std::size_t loc = 0; loc + 1 < orders.begin.size(); ++loc) {
+    for (uint32_t k = orders.begin[loc] + 1; k < orders.begin[loc + 1]; ++k) {
+      const Stay& p = orders.stays[k - 1];
+      const Stay& q = orders.stays[k];
+      if (p.robot != q.robot && p.leave != kNoAction && q.enter != kNoAction) {
+        edges.emplace_back(p.leave, q.enter);
+      }
+    }
+  }
+  const std::size_t n = actions.actions.size();
+  build_csr(n, edges, true, adg.out_begin, adg.out);
+  build_csr(n, edges, false, adg.in_begin, adg.in);
+  adg.stats.nodes = n;
+  adg.stats.type2 = edges.size();
+  return adg;
+}
+
+std::size_t apply_switches(PassingOrders& orders, const std::vector<PassingSwitch>& switches,
+                           const std::vector<double>& finish_s) {
+  std::size_t unmatched = 0;
+  const auto entered_by = [&](uint32_t node, double t) {
+    return node != kNoAction && node < finish_s.size() && !std::isnan(finish_s[node]) &&
+           finish_s[node] <= t;
+  };
+  for (const auto& sw : switches) {
+    bool matched = false;
+    // size_t: location + 1 wraps for the largest uint32 (a row naming no location).
+    if (std::size_t{sw.location} + 1 < orders.begin.size()) {
+      for (uint32_t k = orders.begin[sw.location] + 1;
+           !matched && k < orders.begin[sw.location + 1]; ++k) {
+        auto& a = orders.stays[k - 1];
+        auto& b = orders.stays[k];
+        if (a.robot != sw.second || b.robot != sw.first || entered_by(b.enter, sw.time_s)) continue;
+        std::swap(a, b);
+        matched = true;
+      }
+    }
+    unmatched += matched ? 0 : 1;
+  }
+  return unmatched;
 }
 
 std::vector<Problem> check_acyclic(const Adg& adg, const ActionPlan& ap,

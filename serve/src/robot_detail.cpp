@@ -19,8 +19,7 @@ json point(const monitor::Instance& in, grid::HalfCell h, double cell_m) {
 }
 
 // Other robot -> number of Type-2 edges between it and `robot`, in one direction.
-json partners(const monitor::Instance& in, uint32_t robot, bool incoming) {
-  const auto& adg = in.adg;
+json partners(const monitor::Instance& in, const monitor::Adg& adg, uint32_t robot, bool incoming) {
   const auto& edges = incoming ? adg.in : adg.out;
   const auto& begin = incoming ? adg.in_begin : adg.out_begin;
   std::map<uint32_t, uint32_t> count;
@@ -45,8 +44,15 @@ json ready_time(const monitor::Instance& in, const std::vector<double>& finish_s
   return time_or_null(finish_s, node - 1);
 }
 
-json steps(const monitor::Instance& in, uint32_t robot, const std::vector<double>& finish_s) {
-  const auto& adg = in.adg;
+// The plan's ADG has the Type-2 edge from -> to.
+bool planned(const monitor::Adg& adg, uint32_t from, uint32_t to) {
+  const auto b = adg.in.begin() + adg.in_begin[to], e = adg.in.begin() + adg.in_begin[to + 1];
+  return std::find(b, e, from) != e;
+}
+
+json steps(const monitor::Instance& in, const monitor::Adg& adg, uint32_t robot,
+           const std::vector<double>& finish_s) {
+  const bool switched = &adg != &in.adg;
   json out = json::array();
   for (uint32_t node = in.actions.offset[robot]; node < in.actions.offset[robot + 1]; ++node) {
     const auto& a = in.actions.actions[node];
@@ -54,10 +60,12 @@ json steps(const monitor::Instance& in, uint32_t robot, const std::vector<double
     for (uint32_t e = adg.in_begin[node]; e < adg.in_begin[node + 1]; ++e) {
       const auto& o = in.actions.actions[adg.in[e]];
       waits.push_back({o.robot, o.seq, time_or_null(finish_s, adg.in[e])});
+      if (switched && !planned(in.adg, adg.in[e], node)) waits.back().push_back(true);
     }
     for (uint32_t e = adg.out_begin[node]; e < adg.out_begin[node + 1]; ++e) {
       const auto& o = in.actions.actions[adg.out[e]];
       waited.push_back({o.robot, o.seq, ready_time(in, finish_s, adg.out[e])});
+      if (switched && !planned(in.adg, node, adg.out[e])) waited.back().push_back(true);
     }
     out.push_back({{"type", a.type == grid::ActionType::kMove ? "move" : "rotate"},
                    {"finish_s", time_or_null(finish_s, node)},
@@ -115,8 +123,28 @@ json starts_and_goals(const monitor::Instance& in, double cell_m) {
   return {{"starts", starts}, {"goals", goals}};
 }
 
+monitor::Adg ended_adg(const monitor::Instance& in, const std::vector<results::SwitchRow>& rows,
+                       const std::vector<double>& finish_s, std::size_t* unmatched) {
+  std::vector<monitor::PassingSwitch> switches;
+  const double w = in.grid.width(), h = in.grid.height();
+  for (const auto& r : rows) {
+    const double x2 = 2 * r.x, y2 = 2 * r.y;
+    const bool on_map =
+        x2 == std::floor(x2) && y2 == std::floor(y2) && r.x <= w - 1 && r.y <= h - 1;
+    const auto location = on_map ? static_cast<uint32_t>(in.grid.half_index(
+                                       {static_cast<int32_t>(x2), static_cast<int32_t>(y2)}))
+                                 : monitor::kNoAction;  // matches no location
+    switches.push_back({r.time_s, location, r.first, r.second});
+  }
+  auto orders = monitor::passing_orders(in.actions, in.grid, in.adg.footprint);
+  const std::size_t missed = monitor::apply_switches(orders, switches, finish_s);
+  if (unmatched != nullptr) *unmatched = missed;
+  return monitor::adg_of_orders(orders, in.actions, in.adg.footprint);
+}
+
 json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m,
-                  const std::vector<double>& finish_s) {
+                  const std::vector<double>& finish_s, const monitor::Adg* ended) {
+  const monitor::Adg& adg = ended != nullptr ? *ended : in.adg;
   if (robot >= in.actions.robots()) {
     throw std::out_of_range("robot " + std::to_string(robot) + " is not in this run");
   }
@@ -129,9 +157,9 @@ json robot_detail(const monitor::Instance& in, uint32_t robot, double cell_m,
   return {{"robot", robot},
           {"actions", in.actions.count(robot)},
           {"path", path},
-          {"waits_for", partners(in, robot, true)},
-          {"waited_by", partners(in, robot, false)},
-          {"steps", steps(in, robot, finish_s)}};
+          {"waits_for", partners(in, adg, robot, true)},
+          {"waited_by", partners(in, adg, robot, false)},
+          {"steps", steps(in, adg, robot, finish_s)}};
 }
 
 }  // namespace smart::serve

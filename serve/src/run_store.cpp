@@ -187,6 +187,22 @@ std::shared_ptr<const std::vector<double>> RunStore::action_times(const std::str
   return action_times_.emplace(id, std::move(t)).first->second;
 }
 
+std::shared_ptr<const monitor::Adg> RunStore::ended_adg(const std::string& id,
+                                                        const monitor::Instance& in) {
+  {
+    std::lock_guard lock(m_);
+    if (auto it = ended_adgs_.find(id); it != ended_adgs_.end()) return it->second;
+  }
+  const auto csv = results_file(id, results::kSwitchesCsv);
+  const auto e = entry(id);
+  if (!e || e->state != RunState::kDone || !fs::is_regular_file(csv)) return nullptr;
+  const auto times = action_times(id, in);
+  auto adg = std::make_shared<const monitor::Adg>(
+      serve::ended_adg(in, results::parse_switches_csv(slurp(csv)), *times));
+  std::lock_guard lock(m_);
+  return ended_adgs_.emplace(id, std::move(adg)).first->second;
+}
+
 void RunStore::tend(std::size_t max_running) {
   std::lock_guard lock(m_);
   for (const auto& id : registry_.start_ready(max_running)) {

@@ -432,7 +432,8 @@ struct Server::Impl {
     try {
       const auto robot = static_cast<uint32_t>(std::stoul(robot_text));
       const auto in = instance(id);
-      json j = robot_detail(*in, robot, summary_cell_m(id), *times(id));
+      const auto ended = store.ended_adg(id, *in);
+      json j = robot_detail(*in, robot, summary_cell_m(id), *times(id), ended.get());
       j["results"] = robot_results(id, robot);
       reply(res, 200, j);
     } catch (const std::exception& ex) {

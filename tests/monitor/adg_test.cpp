@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "smart/planning/random_plan.hpp"
 #include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {
@@ -166,6 +167,41 @@ TEST(Adg, WideRobotsParkedForGoodAndSharedStartsAreStillReported) {
   const auto shared = build(kGrid, plan_of({{{1, 1}, {2, 1}}, {{1, 1}}}), Footprint::kCells);
   ASSERT_EQ(shared.problems.size(), 1u);
   EXPECT_THAT(shared.problems[0].message, HasSubstr("also starts"));
+}
+
+// adg_of_orders over the plan's own passing orders is build_adg's graph (the viewer draws a
+// switchable run's edges from it, serve/robot_detail).
+TEST(Adg, TheEdgesOfThePlansPassingOrdersAreBuildAdgs) {
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    const auto grid = planning::generate_random_grid(10, 8, 0.15, seed);
+    const auto inst = planning::generate_random_plan(grid, {12, 20, seed, 0.7, 0.3});
+    const auto actions = build_actions(inst.plan, Heading::kEast);
+    for (const auto fp : {Footprint::kHalfCells, Footprint::kCells}) {
+      std::vector<Problem> problems;
+      const auto adg = build_adg(actions, grid, "random", problems, fp);
+      if (!problems.empty()) continue;
+      const auto same = adg_of_orders(passing_orders(actions, grid, fp), actions, fp);
+      EXPECT_EQ(same.out_begin, adg.out_begin) << "seed " << seed;
+      EXPECT_EQ(same.out, adg.out) << "seed " << seed;
+      EXPECT_EQ(same.in, adg.in) << "seed " << seed;
+    }
+  }
+}
+
+// A switch names robots that are not adjacent there: skipped and counted.
+TEST(Adg, ASwitchMatchingNoPairIsCounted) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(
+      plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}}, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 2}}}),
+      Heading::kEast);
+  auto orders = passing_orders(actions, grid);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  // Regression: the largest location (what a row naming no location gets) wrapped to 0 in the
+  // bounds check and read far past the orders.
+  EXPECT_EQ(apply_switches(orders, {{1.0, cell, 0, 1}, {1.0, 99999, 1, 0}, {1.0, kNoAction, 1, 0}}),
+            3u);
+  EXPECT_EQ(apply_switches(orders, {{1.0, cell, 1, 0}}), 0u);
+  EXPECT_EQ(orders.stays[orders.begin[cell]].robot, 1u);
 }
 
 }  // namespace

@@ -151,6 +151,7 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     for (const auto c : held(actions.start[r], footprint)) occupied[c] = r;
   }
   std::vector<uint32_t> started(robots, 0), done(robots, 0), weight(robots, 10);
+  std::vector<double> finish_s(actions.actions.size(), std::nan(""));
   for (uint32_t r = 0; r < robots; ++r) weight[r] = rng() % 3 == 0 ? 1 : 10;
   std::size_t steps = 0;
   double time_s = 0;
@@ -190,6 +191,7 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     if (kind == 0) ++started[r];
     if (kind == 1) ++done[r];
     if (kind == 2) {
+      for (uint32_t s = t.finished(r); s < done[r]; ++s) finish_s[actions.offset[r] + s] = time_s;
       EXPECT_EQ(t.on_progress(r, done[r] - 1, time_s).result, ProgressResult::kAdvanced);
     }
     time_s += 0.1;
@@ -199,6 +201,28 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     EXPECT_EQ(occupied.at(HalfCell::of(inst.scen.agents[r].goal)), r) << "seed " << seed;
   }
   for (const auto& s : *t.switches()) EXPECT_NE(s.first, s.second) << "seed " << seed;
+  // The viewer's replay of switches.csv (adg.hpp apply_switches) ends with the tracker's orders,
+  // and their edges are the ones the tracker ended with.
+  auto replayed = passing_orders(actions, grid, footprint);
+  EXPECT_EQ(apply_switches(replayed, *t.switches(), finish_s), 0u) << "seed " << seed;
+  for (uint32_t loc = 0; loc + 1 < replayed.begin.size(); ++loc) {
+    std::vector<uint32_t> order;
+    for (uint32_t k = replayed.begin[loc]; k < replayed.begin[loc + 1]; ++k) {
+      order.push_back(replayed.stays[k].robot);
+    }
+    EXPECT_EQ(order, t.order_at(loc)) << "seed " << seed << " location " << loc;
+    if (order != t.order_at(loc)) return {};
+  }
+  const Adg ended = adg_of_orders(replayed, actions, footprint);
+  for (uint32_t node = 0; node < actions.actions.size(); ++node) {
+    std::vector<uint32_t> want,
+        got(ended.in.begin() + ended.in_begin[node], ended.in.begin() + ended.in_begin[node + 1]);
+    t.predecessors(node, want);
+    std::sort(want.begin(), want.end());
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, want) << "seed " << seed << " node " << node;
+    if (got != want) return {};
+  }
   return {t.switches()->size()};
 }
 

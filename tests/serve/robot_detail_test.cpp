@@ -93,5 +93,33 @@ TEST(FinishedCurve, CountsFinishedActionsOverTimeInAtMostMaxPoints) {
   EXPECT_TRUE(finished_curve({}, 10)["t_s"].empty());
 }
 
+// Issue 29: a switchable run shown with the orders it ended with. Robot 0 crosses (2,1) west to
+// east before robot 1 goes north to south in the plan; switches.csv says robot 1 passed first.
+// The flipped edge carries `true`; a row off the map or naming robots not adjacent is skipped.
+TEST(RobotDetail, ASwitchableRunShowsItsFlippedEdges) {
+  monitor::Instance in;
+  in.grid = test::grid_of({"....", "....", "...."});
+  in.plan =
+      test::plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}}, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 2}}});
+  in.scen = test::scen_of(in.plan, in.grid);
+  in.actions = monitor::build_actions(in.plan, monitor::Heading::kEast);
+  std::vector<monitor::Problem> problems;
+  in.adg = monitor::build_adg(in.actions, in.grid, "fixture", problems);
+  ASSERT_TRUE(problems.empty());
+  // Plan: robot 1's entry into (2,1) (its action 2, after a turn south and a half-move) waits for
+  // robot 0's leaving it (action 4).
+  EXPECT_EQ(robot_detail(in, 1, 1.0)["steps"][2]["in"], json::parse("[[0, 4, null]]"));
+  std::size_t unmatched = 0;
+  const auto ended =
+      ended_adg(in, {{1.0, 2, 1, 1, 0}, {1.0, 7, 1, 1, 0}, {1.0, 2, 0, 1, 0}}, {}, &unmatched);
+  EXPECT_EQ(unmatched, 2u);  // (7, 1) is off the 4-wide map; (2, 0) has no such pair
+  const auto late = robot_detail(in, 0, 1.0, {}, &ended);
+  EXPECT_EQ(late["steps"][3]["in"], json::parse("[[1, 3, null, true]]"));  // waits for robot 1
+  EXPECT_EQ(late["waits_for"], json::parse(R"([{"robot": 1, "edges": 1}])"));
+  const auto ready = robot_detail(in, 1, 1.0, {}, &ended);
+  EXPECT_TRUE(ready["steps"][2]["in"].empty());
+  EXPECT_EQ(ready["steps"][3]["out"], json::parse("[[0, 3, null, true]]"));  // no times given
+}
+
 }  // namespace
 }  // namespace smart::serve

@@ -147,6 +147,7 @@ enum DomainId : int {
   kWebLifelong = 93,         // web/test/lifelong.test.mjs (given on its command line)
   kSwitchableRun = 92,       // and 91, 90: the plain run and the switchable run twice
   kSwitchableLifelong = 89,  // and 88, 87: the same for a lifelong run
+  kWebSwitchable = 86,       // web/test/switchable.test.mjs (given on its command line)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

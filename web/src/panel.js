@@ -11,12 +11,15 @@ export function robotStatus(detail, t) {
   const current = finished < steps.length ? finished : -1;
   // The current action cannot start before its Type-2 predecessors finished: those not finished
   // by t are who it waits for now.
+  // A 4th element true: an edge a switch of passing orders made (issue 29), drawn differently.
   const waitsNow = current < 0 ? [] : steps[current].in.filter(([, , f]) => !done(f))
-    .map(([robot, action]) => ({ robot, action }));
+    .map(([robot, action, , switched]) => ({ robot, action, switched: switched === true }));
   // Another robot ready for an action that needs one of ours not finished yet waits for us.
   const waitedByNow = [];
   for (let k = finished; k < steps.length; k++) {
-    for (const [robot, action, ready] of steps[k].out) if (done(ready)) waitedByNow.push({ robot, action });
+    for (const [robot, action, ready, switched] of steps[k].out) {
+      if (done(ready)) waitedByNow.push({ robot, action, switched: switched === true });
+    }
   }
   const timed = steps.some((s) => s.finish_s !== null);
   return { finished, total: steps.length, current, type: current >= 0 ? steps[current].type : null,

@@ -187,13 +187,16 @@ function drawEdges(id, f, d, status) {
   const groups = status.timed ? [[status.waitsNow, MARKS.waitsFor, 'waits'], [status.waitedByNow, MARKS.waitedBy, 'waited']]
     : [[d.waits_for, MARKS.waitsFor, 'waits'], [d.waited_by, MARKS.waitedBy, 'waited']];
   viewer.edgeLines = [];
+  const flipped = new THREE.Color(SWITCH_MARK);  // an edge a switch made (switches.js)
   for (const [group, hex, kind] of groups) {
     const c = new THREE.Color(hex);
     for (const robot of new Set(group.map((g) => g.robot))) {
+      const switched = group.some((g) => g.robot === robot && g.switched);
+      const col = switched ? flipped : c;
       state.rec.pose(f, robot, other);
       pts.push(me[0], h, -me[1], other[0], h, -other[1]);
-      colors.push(c.r, c.g, c.b, c.r, c.g, c.b);
-      viewer.edgeLines.push({ kind, robot, from: [me[0], me[1]], to: [other[0], other[1]] });
+      colors.push(col.r, col.g, col.b, col.r, col.g, col.b);
+      viewer.edgeLines.push({ kind, robot, switched, from: [me[0], me[1]], to: [other[0], other[1]] });
     }
   }
   const g = new THREE.BufferGeometry();

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/switching.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
 namespace smart::monitor {
@@ -75,6 +76,19 @@ struct PassingOrders {
 };
 PassingOrders passing_orders(const ActionPlan& actions, const Grid& grid,
                              Footprint footprint = Footprint::kHalfCells);
+
+// The ADG whose Type-2 edges `orders` give: consecutive stays of different robots at a location,
+// leave -> next enter (stays without either are skipped). For passing_orders() these are
+// build_adg's edges; after apply_switches(), a switchable run's edges as they ended.
+Adg adg_of_orders(const PassingOrders& orders, const ActionPlan& actions, Footprint footprint);
+
+// Replays a switchable run's switches (switchable_tracker.hpp; switches.csv) in order on the
+// plan's passing orders: each puts `first`'s stay directly before `second`'s at its location,
+// where second's came directly before it; of such pairs, the first whose `first` stay was not yet
+// entered at the switch time (`finish_s` by node, NaN: never finished; empty: the first pair).
+// Returns how many switches matched no pair (skipped: e.g. a results folder of another plan).
+std::size_t apply_switches(PassingOrders& orders, const std::vector<PassingSwitch>& switches,
+                           const std::vector<double>& finish_s = {});
 
 // `source` names the plan in Problems. Problems found are appended to `problems`.
 Adg build_adg(const ActionPlan& actions, const Grid& grid, const std::string& source,

@@ -66,6 +66,10 @@ class RunStore {
   std::shared_ptr<const std::vector<double>> action_times(const std::string& id,
                                                           const monitor::Instance& in);
 
+  // The ADG a switchable run ended with (robot_detail.hpp ended_adg, from switches.csv); null
+  // for any other run. Throws std::invalid_argument naming a malformed switches.csv row.
+  std::shared_ptr<const monitor::Adg> ended_adg(const std::string& id, const monitor::Instance& in);
+
   // Starts what may start, collects what ended.
   void tend(std::size_t max_running);
   void stop_all();
@@ -85,6 +89,7 @@ class RunStore {
   std::map<std::string, common::ChildProcess> children_;  // running ones
   std::map<std::string, std::shared_ptr<const monitor::Instance>> instances_;
   std::map<std::string, std::shared_ptr<const std::vector<double>>> action_times_;
+  std::map<std::string, std::shared_ptr<const monitor::Adg>> ended_adgs_;
 };
 
 }  // namespace smart::serve
