@@ -213,6 +213,7 @@ void LiveAdg::truncate(const CommitCut& cut) {
     rb.tail_heading = cut.heading[r];
   }
   ++epoch_;
+  ++truncations_;
 }
 
 std::vector<Problem> LiveAdg::build_window(const std::vector<std::vector<Cell>>& paths, double t0,

@@ -95,13 +95,18 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   const auto leave = next_move(j, seq);
   if (!leave || comes_back(j, *leave, location)) return false;
   const NodeRef j_leave{j, *leave};
+  if (still_refused(j, j_enter, i_leave)) return false;
   auto& refusal = refused_[j];
-  if (refusal.valid && refusal.epoch == epoch_ && refusal.mine == j_enter &&
-      refusal.theirs == i_leave) {
-    return false;
-  }
-  if (reaches(i_enter, j_leave, i_leave, j_enter)) {
-    refusal = {j_enter, i_leave, epoch_, true};
+  refusal.path.clear();
+  const Reach reach = reaches(i_enter, j_leave, i_leave, j_enter, refusal.path);
+  if (reach != Reach::kNone) {
+    refusal = {j_enter,
+               i_leave,
+               epoch_,
+               truncations_,
+               true,
+               reach == Reach::kPath,
+               std::move(refusal.path)};
     return false;
   }
   refusal.valid = false;
@@ -112,8 +117,10 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
 }
 
 // A path of unfinished actions (Type-1 and Type-2 edges but skip_from -> skip_to) from `from`
-// to `to`; past the search budget, assumed (the switch is refused).
-bool LiveAdg::reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to) {
+// to `to`: kPath with its Type-2 edges in `path`; kBudget past the search budget (the switch is
+// refused then too).
+LiveAdg::Reach LiveAdg::reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to,
+                                std::vector<std::pair<NodeRef, NodeRef>>& path) {
   if (++stamp_ == 0) {
     for (uint32_t r = 0; r < robots_.size(); ++r) {
       for (uint32_t s = robots_[r].finished; s < end(r); ++s) node(r, s).stamp = 0;
@@ -121,25 +128,53 @@ bool LiveAdg::reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_
     stamp_ = 1;
   }
   std::vector<NodeRef> stack;
-  const auto push = [&](NodeRef v) {
+  const auto push = [&](NodeRef v, NodeRef parent) {
     Node& n = node(v.robot, v.seq);
     if (n.stamp != stamp_) {
       n.stamp = stamp_;
+      n.parent = parent;
       stack.push_back(v);
     }
   };
-  push(from);
+  push(from, from);
   std::size_t visited = 0;
   while (!stack.empty()) {
     const NodeRef u = stack.back();
     stack.pop_back();
-    if (u == to || ++visited > switching_->search_budget) return true;
-    if (u.seq + 1 < end(u.robot)) push({u.robot, u.seq + 1});
+    if (u == to) {
+      for (NodeRef v = to; !(v == from);) {
+        const NodeRef p = node(v.robot, v.seq).parent;
+        if (p.robot != v.robot || p.seq + 1 != v.seq) path.emplace_back(p, v);
+        v = p;
+      }
+      return Reach::kPath;
+    }
+    if (++visited > switching_->search_budget) return Reach::kBudget;
+    if (u.seq + 1 < end(u.robot)) push({u.robot, u.seq + 1}, u);
     for (const NodeRef v : node(u.robot, u.seq).out) {
-      if (!(u == skip_from && v == skip_to)) push(v);
+      if (!(u == skip_from && v == skip_to)) push(v, u);
     }
   }
-  return false;
+  return Reach::kNone;
+}
+
+bool LiveAdg::has_edge(NodeRef from, NodeRef to) const {
+  if (from.seq < robots_[from.robot].finished || from.seq >= end(from.robot)) return false;
+  const auto& out = node(from.robot, from.seq).out;
+  return std::find(out.begin(), out.end(), to) != out.end();
+}
+
+// The robot's last search for this move behind this leave refused it, and still would: the
+// Type-2 edges of the path it found are all there (the nodes of a path from an unfinished entry
+// stay unfinished, so only a switch removes them, or a truncation, after which seqs past the cut
+// name other actions), or, past the budget, no switch or truncation happened since.
+bool LiveAdg::still_refused(uint32_t j, NodeRef mine, NodeRef theirs) const {
+  const auto& r = refused_[j];
+  if (!r.valid || !(r.mine == mine) || !(r.theirs == theirs)) return false;
+  if (r.truncations != truncations_) return false;
+  if (!r.by_path) return r.epoch == epoch_;
+  return std::all_of(r.path.begin(), r.path.end(),
+                     [this](const auto& e) { return has_edge(e.first, e.second); });
 }
 
 void LiveAdg::add_edge(NodeRef from, NodeRef to) {

@@ -136,6 +136,7 @@ class LiveAdg final : public Execution {
     Action action;
     double pass_key = 0;   // a move: orders its leave among the location's last occupants
     uint32_t stamp = 0;    // the deadlock search's visit mark
+    NodeRef parent{};      // and the action it came from
     uint32_t pending = 0;  // unfinished Type-2 predecessors
     Refs in;               // unfinished Type-2 predecessors
     Refs out;              // Type-2 successors
@@ -183,7 +184,11 @@ class LiveAdg final : public Execution {
   void dirty_after_release(NodeRef target);
   void try_switches(double time_s, std::vector<uint32_t>& changed);
   bool try_switch(uint32_t j, double time_s, std::vector<uint32_t>& changed);
-  bool reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to);
+  enum class Reach : uint8_t { kNone, kPath, kBudget };
+  Reach reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to,
+                std::vector<std::pair<NodeRef, NodeRef>>& path);
+  bool has_edge(NodeRef from, NodeRef to) const;
+  bool still_refused(uint32_t j, NodeRef mine, NodeRef theirs) const;
   void add_edge(NodeRef from, NodeRef to);
   void remove_edge(NodeRef from, NodeRef to);
   void swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave);
@@ -198,15 +203,20 @@ class LiveAdg final : public Execution {
   std::optional<SwitchOptions> switching_;
   std::vector<PassingSwitch> switches_;
   std::set<uint32_t> dirty_;  // robots to try: their situation changed since they were tried
-  // Per robot, its last refused switch (the move and the leave it waits for), valid while the
-  // graph's orders are unchanged (`epoch_`: switches and truncations).
+  // Per robot, its last refused switch (the move and the leave it waits for): still refused
+  // while the Type-2 edges of the path that showed the cycle are there and nothing was truncated
+  // (live_adg_switching.cpp still_refused), or, past the search budget, while the graph's orders
+  // are unchanged (`epoch_`: switches and truncations).
   struct Refusal {
     NodeRef mine{}, theirs{};
-    uint64_t epoch = 0;
+    uint64_t epoch = 0, truncations = 0;
     bool valid = false;
+    bool by_path = false;
+    std::vector<std::pair<NodeRef, NodeRef>> path;
   };
   std::vector<Refusal> refused_;
   uint64_t epoch_ = 0;
+  uint64_t truncations_ = 0;
   uint32_t stamp_ = 0;
 };
 
