@@ -118,7 +118,8 @@ def shown(axis, value):
     except ValueError:
         return value
     if not settings:
-        return "none"
+        # No flags: a plan run has no delays then, but a LoRR problem keeps its own delayConfig.
+        return "default"
     return ", ".join(f"{k.replace('_', ' ')} {plain(v) if isinstance(v, (int, float)) else v}"
                      for k, v in settings.items())
 

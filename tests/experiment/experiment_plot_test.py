@@ -74,6 +74,9 @@ class ExperimentPlot(unittest.TestCase):
         self.assert_points_match_results(figures, table)
         aet = figures["aet_makespan"]["panels"][0]
         self.assertEqual(aet["legend_title"], "uncertainty")
+        # No flags is "default", not "none": a LoRR problem's own delays apply then.
+        self.assertEqual(sorted(s["label"] for s in aet["series"]),
+                         ["default", "stall probability 0.05"])
         at5 = sorted(s["points"][0]["mean"] for s in aet["series"])
         self.assertEqual(at5, [98, 124])  # not one pooled 111
         self.assertEqual(aet["xscale"], "linear")
