@@ -66,6 +66,10 @@ std::vector<uint32_t> LifelongExecution::on_time(double time_s, const std::vecto
     const auto more = arrive(time_s);
     changed.insert(changed.end(), more.begin(), more.end());
   }
+  // Two windows may arrive in one call (a late one, then the next planned at once): each robot
+  // once, so its window is pushed once.
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   return changed;
 }
 

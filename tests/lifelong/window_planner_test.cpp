@@ -128,8 +128,9 @@ TEST(ThreadedPlanner, CommittedActionsRunWhileTheNextWindowIsPlanned) {
                          {.duration_s = 100, .period_s = 1, .window_steps = 6, .lookahead = 2},
                          std::make_unique<ThreadedPlanner>(
                              std::make_unique<TwoGates>(g, second.get_future().share())));
-  exec.on_time(0, {0});
-  until_appended(exec, 0);
+  // Regression: window 1 may be planned and appended within this very call (the planner's thread
+  // is quick); waiting for a later call to append it then hung until the guard (flaky under -j2).
+  if (exec.on_time(0, {0}).empty()) until_appended(exec, 0);
   const uint32_t first_end = exec.known(0);
   ASSERT_GT(first_end, 2u);
   // At 1 s the cut keeps two unfinished actions and drops the rest; window 2 is late.
