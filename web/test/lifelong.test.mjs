@@ -6,12 +6,13 @@
 // the robot as it plays), a click on the minimap moving the view; then a lifelong run started
 // from the upload form, shown live with its tasks and replayed.
 // Environment: SMART_EXE, SMART_BENCHMARKS, SMART_WEB_DIST, SMART_DOMAIN, SMART_ARTIFACTS.
-import { spawn, spawnSync } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
+import { startServer } from './serve.mjs';
 
 const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
@@ -31,20 +32,6 @@ function lifelongRun() {
   return out;
 }
 
-function startServer(results) {
-  const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'), '--web', dist,
-    '--open', results, '--domain', domain]);
-  server.stderr.on('data', () => {});  // read, or it blocks
-  return new Promise((resolve, reject) => {
-    let text = '';
-    server.stdout.on('data', (d) => {
-      text += d;
-      const m = text.match(/"listening":"(http:\/\/[^"]+)"/);
-      if (m) resolve({ server, url: m[1] });
-    });
-    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
-  });
-}
 
 // tasks.csv, read here: [{id, robot, revealed, assigned, finished, cells}] (cells [[x, y]]).
 function readTasks(out) {
@@ -73,7 +60,7 @@ function readErrandTimes(out) {
 const out = lifelongRun();
 const tasks = readTasks(out), errandTimes = readErrandTimes(out);
 const throughput = readFileSync(path.join(out, 'throughput.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
-const { server, url } = await startServer(out);
+const { server, url } = await startServer({ exe, dist, work, results: out, domain });
 const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
 try {

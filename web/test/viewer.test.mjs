@@ -14,6 +14,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
+import { startServer } from './serve.mjs';
 
 const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
@@ -37,20 +38,6 @@ function runResults() {
 }
 
 let serverLog = '';  // the tail of smart serve's log, shown when a check fails
-function startServer(results) {
-  const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'),
-    '--web', dist, '--open', results, '--domain', domain]);
-  server.stderr.on('data', (d) => { serverLog = (serverLog + d).slice(-4000); });  // read, or it blocks
-  return new Promise((resolve, reject) => {
-    let text = '';
-    server.stdout.on('data', (d) => {
-      text += d;
-      const m = text.match(/"listening":"(http:\/\/[^"]+)"/);
-      if (m) resolve({ server, url: m[1] });
-    });
-    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
-  });
-}
 
 // Pixels of the canvas in robot colours (view.js COLORS): 'robots' counts moving (blue), done
 // (green) and waiting (orange); 'collided' the collided magenta.
@@ -299,7 +286,8 @@ async function checkWatch(browser) {
 }
 
 const { out, summary } = runResults();
-const { server, url } = await startServer(out);
+const { server, url } = await startServer({ exe, dist, work, results: out, domain,
+  onStderr: (d) => { serverLog = (serverLog + d).slice(-4000); } });
 const browser = await puppeteer.launch({
   executablePath: '/usr/bin/chromium', headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1280,800'],

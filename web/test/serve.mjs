@@ -1,0 +1,20 @@
+// Test support: a real `smart serve` replaying a results folder, on a free port; resolves with the
+// process and its URL once it says where it listens. `onStderr` sees its log (it must be read,
+// or the server blocks).
+import { spawn } from 'node:child_process';
+import path from 'node:path';
+
+export function startServer({ exe, dist, work, results, domain, onStderr = () => {} }) {
+  const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'), '--web', dist,
+    '--open', results, '--domain', domain]);
+  server.stderr.on('data', onStderr);
+  return new Promise((resolve, reject) => {
+    let text = '';
+    server.stdout.on('data', (d) => {
+      text += d;
+      const m = text.match(/"listening":"(http:\/\/[^"]+)"/);
+      if (m) resolve({ server, url: m[1] });
+    });
+    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
+  });
+}
