@@ -26,6 +26,7 @@ packages=(
   clang-tidy clang
   openssl libssl-dev libddsc0debian
   libcpp-httplib-dev
+  libzstd-dev zlib1g-dev
   chromium
   python3-matplotlib
   iproute2 nftables

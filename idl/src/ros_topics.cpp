@@ -1,3 +1,4 @@
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +14,30 @@ std::string ros_namespace(const std::string& pattern, uint32_t robot) {
   if (ns.empty() || ns.front() != '/') ns.insert(ns.begin(), '/');
   while (ns.size() > 1 && ns.back() == '/') ns.pop_back();
   return ns == "/" ? "" : ns;
+}
+
+void check_ros_namespace(const std::string& ros_namespace) {
+  if (ros_namespace.empty()) return;
+  auto bad = [&](const std::string& why) {
+    throw std::invalid_argument("ROS namespace '" + ros_namespace + "': " + why +
+                                " (e.g. /run_a or /lab/run_1)");
+  };
+  if (ros_namespace.front() != '/') bad("must start with '/'");
+  if (ros_namespace.back() == '/') bad("must not end with '/'");
+  bool start = true;
+  for (std::size_t i = 1; i < ros_namespace.size(); ++i) {
+    const char c = ros_namespace[i];
+    if (c == '/') {
+      if (start) bad("has an empty name between two '/'");
+      start = true;
+      continue;
+    }
+    const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    if (!ok) bad(std::string("has '") + c + "': names hold letters, digits and '_' only");
+    if (start && std::isdigit(static_cast<unsigned char>(c)))
+      bad("has a name starting with a digit");
+    start = false;
+  }
 }
 
 builtin_interfaces_msg_dds__Time_ ros_stamp(double t_s) {

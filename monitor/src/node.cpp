@@ -316,7 +316,7 @@ struct MonitorNode::Impl {
 
   void start_plan_view() {
     if (opt.ros_plan_hz <= 0 || !in) return;
-    plan_view.emplace(participant, *in, opt.cell_m, opt.robot_radius_m);
+    plan_view.emplace(participant, *in, opt.cell_m, opt.robot_radius_m, opt.ros_namespace);
     poses.assign(robots, std::nullopt);
     plan_view->publish_paths();
   }

@@ -50,36 +50,28 @@ std_msgs_msg_dds__ColorRGBA_ colour(Activity a) {
 }  // namespace
 
 RosPlanView::RosPlanView(const dds::Participant& participant, const Instance& instance,
-                         double cell_m, double robot_radius_m)
+                         double cell_m, double robot_radius_m, const std::string& ros_namespace)
     : in_(instance),
       cell_m_(cell_m),
       radius_m_(robot_radius_m),
-      markers_topic_(participant, dds::ros_topic(std::string(dds::kRosMarkersTopic))),
+      markers_topic_(participant, dds::ros_topic(dds::ros_view_topic(
+                                      ros_namespace, std::string(dds::kRosMarkersTopic)))),
       markers_(participant, markers_topic_, dds::ros_latched_qos().to_dds()) {
   const auto robots = static_cast<uint32_t>(in_.actions.robots());
   const auto latched = dds::ros_latched_qos().to_dds();
   path_topics_.reserve(robots);
   for (uint32_t r = 0; r < robots; ++r) {
     paths_.push_back(planned_path(in_.actions, in_.grid, r, cell_m_));
-    path_topics_.emplace_back(participant, dds::ros_topic(dds::ros_robot_plan_topic(r)));
+    path_topics_.emplace_back(participant, dds::ros_topic(dds::ros_view_topic(
+                                               ros_namespace, dds::ros_robot_plan_topic(r))));
     path_writers_.emplace_back(participant, path_topics_.back(), latched);
   }
 }
 
 void RosPlanView::publish_paths() {
-  const auto stamp = dds::ros_stamp(0.0);
   for (std::size_t r = 0; r < paths_.size(); ++r) {
-    std::vector<geometry_msgs_msg_dds__PoseStamped_> poses;
-    for (const auto& p : paths_[r]) {
-      geometry_msgs_msg_dds__PoseStamped_ s{};
-      s.header = {stamp, g_map_frame.data()};
-      s.pose = {{p.x_m, p.y_m, 0.0}, dds::yaw_quaternion(0.0)};
-      poses.push_back(s);
-    }
-    nav_msgs_msg_dds__Path_ m{};
-    m.header = {stamp, g_map_frame.data()};
-    dds::borrow(m.poses, poses);
-    path_writers_[r].write(m);
+    record::PathMessage m(paths_[r]);
+    path_writers_[r].write(m.message());
   }
 }
 

@@ -20,7 +20,7 @@ class FleetHost final : public detail::HostLoop {
             const agent::RobotModel& model, const std::vector<agent::Pose2D>& starts,
             const SimHostOptions& o)
       : core_(p, qos, grid, model, starts, o),
-        ros_view_(p, qos, starts.size(), o.ros_pose_robots),
+        ros_view_(p, qos, starts.size(), o.ros_pose_robots, o.ros_namespace),
         handshake_(o.timeout_s, dds::kClockReannounceS) {
     core_.host_robots({});
     ros_view_.publish_map(grid, o.sim.cell_m);

@@ -153,5 +153,33 @@ TEST(RosView, PublishesPosesTfAndChosenRobotsPoseTopics) {
   EXPECT_TRUE(got_pose1);
 }
 
+TEST(RosView, TwoRunsUnderTheirNamespacesPublishOnTheirOwnTopics) {
+  const auto grid = test::grid_of({".....", ".....", "....."});
+  World a(grid, model(), {}, {{1.0, 2.0, 0.0}, {3.0, 1.0, 0.0}});
+  World b(grid, model(), {}, {{4.0, 0.0, 0.0}});
+  dds::Domain domain(test::kRosViewNamespaces, test::loopback());
+  dds::Participant sim_p(domain), ros_p(domain);
+  const auto qos = dds::default_qos_profile();
+  EXPECT_THROW(RosView(sim_p, qos, 1, {}, "run_a"), std::invalid_argument);
+  RosView view_a(sim_p, qos, 2, {}, "/run_a");
+  RosView view_b(sim_p, qos, 1, {}, "/run_b");
+  dds::Topic<geometry_msgs_msg_dds__PoseArray_> ta(ros_p, "rt/run_a/smart/poses");
+  dds::Topic<geometry_msgs_msg_dds__PoseArray_> tb(ros_p, "rt/run_b/smart/poses");
+  dds::Reader<geometry_msgs_msg_dds__PoseArray_> ra(ros_p, ta, qos.state.to_dds());
+  dds::Reader<geometry_msgs_msg_dds__PoseArray_> rb(ros_p, tb, qos.state.to_dds());
+  ASSERT_TRUE(ra.wait_for_writers(1, 5s));
+  ASSERT_TRUE(rb.wait_for_writers(1, 5s));
+  std::optional<uint32_t> na, nb;
+  for (int attempt = 0; attempt < 100 && !(na && nb); ++attempt) {
+    view_a.publish(a);
+    view_b.publish(b);
+    std::this_thread::sleep_for(20ms);
+    ra.take_each([&](const geometry_msgs_msg_dds__PoseArray_& m) { na = m.poses._length; });
+    rb.take_each([&](const geometry_msgs_msg_dds__PoseArray_& m) { nb = m.poses._length; });
+  }
+  EXPECT_EQ(na, 2u);
+  EXPECT_EQ(nb, 1u);
+}
+
 }  // namespace
 }  // namespace smart::sim

@@ -148,6 +148,8 @@ enum DomainId : int {
   kSwitchableRun = 92,       // and 91, 90: the plain run and the switchable run twice
   kSwitchableLifelong = 89,  // and 88, 87: the same for a lifelong run
   kWebSwitchable = 86,       // web/test/switchable.test.mjs (given on its command line)
+  kRecordingReaders = 85,    // tests/readers/mcap.test.mjs (given on its command line)
+  kRosViewNamespaces = 84,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -4,7 +4,10 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -338,6 +341,31 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
 
 }  // namespace
 
+namespace {
+// A fresh folder under the system's temporary folder, removed with everything in it at the end.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix) {
+    std::string templ = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+    if (mkdtemp(templ.data()) == nullptr) {
+      throw std::runtime_error("cannot make a scratch folder " + templ + ": " +
+                               std::strerror(errno));
+    }
+    path_ = templ;
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+}  // namespace
+
 void register_run_commands(CLI::App& app, int& exit_code) {
   auto so = std::make_shared<SimCliOptions>();
   auto* sim = app.add_subcommand("sim",
@@ -399,10 +427,23 @@ void register_run_commands(CLI::App& app, int& exit_code) {
                   "(map strips, lock-step; docs/simulation.md \"Sharded sim\")")
       ->check(CLI::Range(1u, dds::kMaxShards))
       ->capture_default_str();
+  auto mcap = std::make_shared<std::string>();
+  run->add_option("--mcap", *mcap,
+                  "also write the run as an MCAP file (ROS 2 view and the run's topics, for "
+                  "Foxglove and `ros2 bag`; docs/ros2.md), made from its results once it ended");
   group_options(run);
-  run->callback([&exit_code, ro] {
+  run->callback([&exit_code, ro, mcap] {
     install_stop_handlers();
+    // The recording is made from the results: without --out they go to a scratch folder.
+    std::optional<TempDir> scratch;
+    if (!mcap->empty() && ro->out.empty()) ro->out = scratch.emplace("smart-run").path().string();
     exit_code = ro->sim.source.active() ? run_lifelong(*ro, true) : run_monitor(*ro, true);
+    if (!mcap->empty() && exit_code != ExitCode::kExitSystem) {
+      record::RecorderOptions o;
+      o.ros_namespace = ro->sim.ros_namespace;
+      o.pose_robots = ro->sim.ros_pose_robots;
+      record_run(ro->out, *mcap, o);
+    }
   });
 }
 

@@ -119,6 +119,17 @@ void add_common_run_options(CLI::App* cmd, SimCliOptions& o) {
   cmd->add_option("--timeout-s", o.timeout_s, "wall seconds without the other side before failing")
       ->check(finite_in(0.1, 1e6))
       ->capture_default_str();
+  cmd->add_option("--ros-namespace", o.ros_namespace,
+                  "put the ROS 2 view's topics under this namespace (e.g. /run_a: /run_a/tf, "
+                  "/run_a/smart/poses), so two runs on one domain can be shown side by side")
+      ->check([](const std::string& ns) {
+        try {
+          dds::check_ros_namespace(ns);
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      });
 }
 
 void add_sim_host_options(CLI::App* cmd, SimCliOptions& o) {
@@ -331,6 +342,7 @@ sim::SimHostOptions sim_host_options(const SimCliOptions& o) {
   ho.sim.threads = o.threads;
   ho.external_robots = o.external;
   ho.ros_pose_robots = o.ros_pose_robots;
+  ho.ros_namespace = o.ros_namespace;
   ho.shard = o.shard;
   ho.shards = o.shards;
   return ho;
@@ -373,6 +385,7 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   mo.resume = o.resume;
   mo.run.require_sim_status = mo.run.lockstep || o.require_sim_status;
   mo.ros_plan_hz = o.ros_plan_hz;
+  mo.ros_namespace = o.sim.ros_namespace;
   return mo;
 }
 
@@ -420,6 +433,7 @@ std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o
                            exact(o.real_time_factor)});
   if (!o.ros_pose_robots.empty())
     argv.insert(argv.end(), {"--ros-pose-robots", id_list(o.ros_pose_robots)});
+  if (!o.ros_namespace.empty()) argv.insert(argv.end(), {"--ros-namespace", o.ros_namespace});
   if (!o.external.empty()) argv.insert(argv.end(), {"--external-robots", id_list(o.external)});
   if (o.shards > 1) {
     argv.insert(argv.end(), {"--shard", std::to_string(o.shard) + "/" + std::to_string(o.shards)});

@@ -24,6 +24,7 @@ SMART_DDS_TOPIC_TYPE(smart_msg_PlannerInfo)
 SMART_DDS_TOPIC_TYPE(smart_msg_PlanProblem)
 SMART_DDS_TOPIC_TYPE(smart_msg_PlanRequest)
 SMART_DDS_TOPIC_TYPE(smart_msg_PlanReply)
+SMART_DDS_TOPIC_TYPE(smart_msg_RunEvent)  // recordings only (RECORD_EVENTS_TOPIC), never sent
 
 namespace smart::dds {
 
@@ -109,6 +110,19 @@ inline std::string ros_robot_frame(uint32_t robot) {
 inline std::string ros_robot_pose_topic(uint32_t robot) {
   return "/" + ros_robot_frame(robot) + "/pose";
 }
+
+// A run's ROS 2 view under its namespace (`--ros-namespace /run_a`, issue 30): "/run_a" + "/tf",
+// so two runs on one domain can be shown side by side; frames stay "map" and "robot_<i>" (each
+// run's tf tree is on its own /<ns>/tf). An empty namespace leaves the name as it is.
+inline std::string ros_view_topic(const std::string& ros_namespace, const std::string& name) {
+  return ros_namespace + name;
+}
+// Throws std::invalid_argument naming the namespace and the rule it breaks unless it is empty or
+// "/name(/name)*", each name of letters, digits and '_' not starting with a digit (ROS 2 names:
+// design.ros2.org/articles/topic_and_service_names.html).
+void check_ros_namespace(const std::string& ros_namespace);
+// The recordings' own topic for events.csv rows (smart_msg_RunEvent; never on the wire).
+inline constexpr std::string_view kRecordEventsTopic = smart_msg_RECORD_EVENTS_TOPIC;
 
 // ROS 2 topic "/a/b" is DDS topic "rt/a/b" (rmw convention).
 inline std::string ros_topic(const std::string& ros_name) {

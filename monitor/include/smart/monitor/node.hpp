@@ -44,6 +44,7 @@ struct MonitorOptions {
   // The plan view for rviz2 (ros_plan_view.hpp) at this rate in wall time; 0: off.
   double ros_plan_hz = 0;
   double robot_radius_m = 0.1;  // robot markers' size
+  std::string ros_namespace;    // the plan view's topics under it ("" or "/run_a")
 };
 
 // Called about every 100 ms of wall time with the running state (progress display).

@@ -78,6 +78,8 @@ inline constexpr const char* kScen = "scen";
 inline constexpr const char* kPlan = "plan";    // also the plan object: {axis, ...}
 inline constexpr const char* kRobot = "robot";  // in "files"
 inline constexpr const char* kAxis = "axis";    // in "plan"
+inline constexpr const char* kFormat = "format";  // in "plan"
+inline constexpr const char* kRunId = "run_id";  // the run's id on the wire (samples carry it)
 // A lifelong run's object and the keys of it that `smart experiment` reads.
 inline constexpr const char* kLifelong = "lifelong";
 inline constexpr const char* kTasksFinished = "tasks_finished";

@@ -3,7 +3,8 @@
 // (nav_msgs/Path, transient local); publish() writes one MarkerArray with the robots at their
 // last reported poses coloured by activity (green moving, orange waiting, grey done), their goals,
 // and an arrow per current Type-2 wait, after a DELETEALL of the old arrows. Frame "map", as the
-// sim host's ROS view and OccupancyGrid. config/rviz/smart.rviz shows all of it.
+// sim host's ROS view and OccupancyGrid. config/rviz/smart.rviz shows all of it. Paths are built
+// by record/ros_messages.hpp (shared with recordings); every topic is under `ros_namespace`.
 #pragma once
 
 #include <optional>
@@ -16,13 +17,14 @@
 #include "smart/dds/writer.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/plan_view.hpp"
+#include "smart/record/ros_messages.hpp"
 
 namespace smart::monitor {
 
 class RosPlanView {
  public:
   RosPlanView(const dds::Participant& participant, const Instance& instance, double cell_m,
-              double robot_radius_m);
+              double robot_radius_m, const std::string& ros_namespace = "");
   void publish_paths();
   // poses: each robot's last reported pose (nullopt: none yet; drawn at its start).
   void publish(const PlanSnapshot& snapshot,

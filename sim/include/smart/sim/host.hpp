@@ -50,6 +50,7 @@ struct SimHostOptions {
   std::vector<uint32_t> external_robots;
   // Robots that also get their own ROS 2 pose topic rt/robot_<id>/pose (ros_view.hpp).
   std::vector<uint32_t> ros_pose_robots;
+  std::string ros_namespace;  // the ROS 2 view's topics under it ("" or "/run_a")
   uint32_t shard = 0;   // this host's shard, of
   uint32_t shards = 1;  // shards (1: not sharded)
 };

@@ -5,7 +5,9 @@
 // construction, rt/robot_<i>/pose (geometry_msgs/PoseStamped). Stamps are sim time. The writers
 // use the profile's state QoS (best effort, keep last), like rmw's sensor-data profile.
 // publish_map() writes the grid once as rt/map (nav_msgs/OccupancyGrid), reliable and transient
-// local so that a viewer started later still gets it (map_server's QoS).
+// local so that a viewer started later still gets it (map_server's QoS). The messages are built
+// by record/ros_messages.hpp, which recordings share. Every topic is under `ros_namespace`
+// ("" or e.g. "/run_a", dds::ros_view_topic), so two runs on one domain can be told apart.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +20,7 @@
 #include "smart/dds/topics.hpp"
 #include "smart/dds/writer.hpp"
 #include "smart/grid/grid.hpp"
+#include "smart/record/ros_messages.hpp"
 #include "smart/sim/world.hpp"
 
 namespace smart::sim {
@@ -25,15 +28,13 @@ namespace smart::sim {
 // ROS time and heading quaternions: shared with the monitor's plan view (smart/dds/topics.hpp).
 using dds::ros_stamp;
 using dds::yaw_quaternion;
-// OccupancyGrid cells of a MovingAI grid: row-major from the bottom row (world y grows upwards),
-// 100 = blocked, 0 = free. The grid's origin is the outer corner of cell (0, height-1).
-std::vector<int8_t> occupancy_cells(const grid::Grid& grid);
+using record::occupancy_cells;
 
 class RosView {
  public:
-  // Throws std::invalid_argument for a chosen robot id >= robots.
+  // Throws std::invalid_argument for a chosen robot id >= robots or an invalid namespace.
   RosView(const dds::Participant& participant, const dds::QosProfile& qos, std::size_t robots,
-          const std::vector<uint32_t>& pose_robots);
+          const std::vector<uint32_t>& pose_robots, const std::string& ros_namespace = "");
   void publish(const World& world);
   void publish_map(const grid::Grid& grid, double cell_m);
 
@@ -47,9 +48,8 @@ class RosView {
   std::vector<uint32_t> pose_robots_;
   std::vector<dds::Topic<geometry_msgs_msg_dds__PoseStamped_>> pose_topics_;
   std::vector<dds::Writer<geometry_msgs_msg_dds__PoseStamped_>> pose_writers_;
-  std::vector<std::string> frames_;  // "robot_<i>", owned here for the C messages
-  std::vector<geometry_msgs_msg_dds__Pose_> pose_buffer_;
-  std::vector<geometry_msgs_msg_dds__TransformStamped_> tf_buffer_;
+  std::string ns_;
+  record::FleetMessages fleet_;
 };
 
 }  // namespace smart::sim

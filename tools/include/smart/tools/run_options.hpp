@@ -56,6 +56,7 @@ struct SimCliOptions {
   double real_time_factor = 0;     // lockstep: at most this many times real time; 0: unpaced
   std::vector<uint32_t> external;  // `smart sim` only: robots executed by other hosts
   std::vector<uint32_t> ros_pose_robots;
+  std::string ros_namespace;       // --ros-namespace: the ROS 2 view's topics under it
   uint32_t shard = 0, shards = 1;  // `smart sim --shard I/N` (sim/shard.hpp)
   // Execution uncertainty overrides of the robot model's `uncertainty:` section.
   std::optional<double> stall_probability, stall_s, speed_sigma, slip_sigma;

@@ -1,0 +1,23 @@
+// Contract: a sample of an idlc-generated type as the CDR bytes a ROS 2 bag and Foxglove expect:
+// the 4-byte encapsulation header (CDR_LE: 00 01 00 00) and the sample in XCDR1 little endian,
+// written by Cyclone DDS's own serializer from the type's descriptor (dds/ddsi/ddsi_cdrstream.h),
+// so the recorded bytes are the ones the live topic carries (all of idl/ is @final, XCDR1).
+// Pure: no participant, no DDS entity.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <string>
+
+#include "smart/dds/topic.hpp"
+
+namespace smart::record {
+
+std::string cdr_bytes(const void* sample, const dds_topic_descriptor_t& descriptor);
+
+template <class T>
+std::string cdr_bytes(const T& sample) {
+  return cdr_bytes(&sample, *dds::TopicTraits<T>::descriptor());
+}
+
+}  // namespace smart::record

@@ -1,0 +1,99 @@
+// Contract: an MCAP file written from the specification (https://mcap.dev/spec, version 0; no C++
+// library is packaged in Debian): magic, Header (profile, library), the data section as chunks
+// (Schema, Channel and Message records, each chunk zstd-compressed by default, followed by its
+// Message Index records), Data End with the data section's CRC-32, then the summary section
+// (Schema, Channel, Statistics, Chunk Index records), Summary Offset records for each group, the
+// Footer (with the summary's CRC-32) and the closing magic. Readers can open such a file from its
+// end at once (the summary and chunk index) or stream it from its start.
+// Pure: bytes go to a ByteSink; memory is bounded by one chunk (chunk_bytes) plus one index entry
+// per chunk and one counter per channel, whatever the number of messages.
+// Records must be added in this order: a channel's schema before the channel, a channel before
+// its messages; write() after finish() throws std::logic_error, as does an unknown channel id.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smart::record {
+
+class ByteSink {
+ public:
+  virtual ~ByteSink() = default;
+  virtual void write(std::string_view bytes) = 0;
+};
+
+// Collects the bytes in memory (tests, small exports).
+class StringSink : public ByteSink {
+ public:
+  void write(std::string_view bytes) override { bytes_.append(bytes); }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+struct McapOptions {
+  std::string profile = "ros2";  // https://mcap.dev/spec/registry#profiles
+  std::string library = "smart-dds";
+  std::size_t chunk_bytes = std::size_t{1} << 20;  // uncompressed records per chunk
+  bool compress = true;                            // zstd; false: chunks stored as they are
+};
+
+struct McapChannel {
+  uint16_t schema_id = 0;  // 0: no schema
+  std::string topic;
+  std::string message_encoding;  // "cdr" for ros2msg and omgidl schemas
+  std::map<std::string, std::string> metadata = {};
+};
+
+class McapWriter {
+ public:
+  McapWriter(ByteSink& sink, McapOptions options);  // writes the magic and the Header
+  // Ids count from 1 in the order of the calls.
+  uint16_t add_schema(std::string_view name, std::string_view encoding, std::string_view data);
+  uint16_t add_channel(const McapChannel& channel);
+  void write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publish_time_ns,
+             std::string_view data);
+  // Writes what is left and the summary; nothing may be written after it.
+  void finish();
+  uint64_t messages() const { return message_count_; }
+
+ private:
+  struct SchemaRecord {
+    std::string name, encoding, data;
+  };
+  struct ChunkIndex {
+    uint64_t start_ns, end_ns, offset, length;
+    std::map<uint16_t, uint64_t> index_offsets;
+    uint64_t index_length, compressed_size, uncompressed_size;
+  };
+  void put(std::string_view bytes);  // to the sink, counted in the data CRC and offset
+  void flush_chunk();
+  std::string schema_record(uint16_t id) const;
+  std::string channel_record(uint16_t id) const;
+  std::string statistics_record() const;
+  std::string chunk_index_record(const ChunkIndex& c) const;
+  void write_summary();
+
+  ByteSink& sink_;
+  McapOptions options_;
+  uint64_t offset_ = 0;
+  uint32_t data_crc_ = 0;
+  bool finished_ = false;
+  std::vector<SchemaRecord> schemas_;
+  std::vector<McapChannel> channels_;
+  std::vector<uint64_t> channel_counts_;
+  std::vector<ChunkIndex> chunk_indexes_;
+  // The open chunk: its records, their time span, and per channel (log time, offset) pairs.
+  std::string chunk_;
+  uint64_t chunk_start_ns_ = 0, chunk_end_ns_ = 0;
+  bool chunk_has_messages_ = false;
+  std::map<uint16_t, std::vector<std::pair<uint64_t, uint64_t>>> chunk_index_;
+  std::vector<uint32_t> sequences_;
+  uint64_t message_count_ = 0, start_ns_ = 0, end_ns_ = 0;
+};
+
+}  // namespace smart::record

@@ -1,0 +1,191 @@
+#include "smart/record/export.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "smart/grid/map_reader.hpp"
+#include "smart/grid/text_file.hpp"
+#include "smart/monitor/instance.hpp"
+#include "smart/monitor/plan_view.hpp"
+
+namespace smart::record {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+class FileSink : public ByteSink {
+ public:
+  explicit FileSink(const fs::path& path) : path_(path), out_(path, std::ios::binary) {
+    if (!out_) throw std::runtime_error(path.string() + ": cannot be written; check the folder");
+  }
+  void write(std::string_view bytes) override {
+    out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!out_) throw std::runtime_error(path_.string() + ": write failed (disk full?)");
+    bytes_ += bytes.size();
+  }
+  void close() {
+    out_.close();
+    if (!out_) throw std::runtime_error(path_.string() + ": closing failed (disk full?)");
+  }
+  uint64_t bytes() const { return bytes_; }
+
+ private:
+  fs::path path_;
+  std::ofstream out_;
+  uint64_t bytes_ = 0;
+};
+
+json read_summary(const fs::path& dir) {
+  const fs::path p = dir / results::kSummaryJson;
+  if (!fs::is_regular_file(p)) {
+    throw std::invalid_argument(p.string() +
+                                ": not found; give the results folder of a finished run "
+                                "(`smart run --out DIR`)");
+  }
+  try {
+    json s = json::parse(grid::read_text_file(p, "summary"));
+    (void)s.at(results::summary_key::kRobots).get<std::size_t>();
+    return s;
+  } catch (const json::exception& e) {
+    throw std::invalid_argument(p.string() + ": " + e.what() + "; it needs \"robots\" (a number)");
+  }
+}
+
+std::string file_of(const json& summary, const char* key) {
+  const auto files = summary.value(results::summary_key::kFiles, json::object());
+  const auto it = files.find(key);
+  return it != files.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+grid::Grid read_map(const fs::path& dir, const json& summary) {
+  fs::path map = dir / results::kLifelongMap;
+  if (!fs::is_regular_file(map)) map = file_of(summary, results::summary_key::kMap);
+  if (map.empty() || !fs::is_regular_file(map)) {
+    throw std::invalid_argument((dir / results::kSummaryJson).string() + ": the run's map '" +
+                                map.string() +
+                                "' cannot be read; put it back where summary.json's "
+                                "files.map says");
+  }
+  return grid::parse_map(grid::read_text_file(map, "map"), map.string());
+}
+
+// Each robot's planned path, or nothing (with a note) when the plan cannot be read again.
+std::vector<std::vector<grid::WorldPoint>> read_plans(const json& summary, std::size_t robots,
+                                                      double cell_m, ExportReport& report) {
+  const std::string plan = file_of(summary, results::summary_key::kPlan);
+  if (plan.empty()) return {};
+  try {
+    monitor::InstanceOptions io;
+    io.map = file_of(summary, results::summary_key::kMap);
+    io.scen = file_of(summary, results::summary_key::kScen);
+    io.plan = plan;
+    io.agents = robots;
+    const auto p = summary.value(results::summary_key::kPlan, json::object());
+    if (p.is_object() && p.contains(results::summary_key::kAxis)) {
+      io.read.axis =
+          monitor::parse_axis_order(p.at(results::summary_key::kAxis).get<std::string>());
+    }
+    if (p.is_object() && p.contains(results::summary_key::kFormat)) {
+      io.read.format =
+          monitor::parse_plan_format(p.at(results::summary_key::kFormat).get<std::string>());
+    }
+    const auto in = monitor::load_instance(io);
+    std::vector<std::vector<grid::WorldPoint>> paths;
+    for (uint32_t r = 0; r < in.actions.robots(); ++r) {
+      paths.push_back(monitor::planned_path(in.actions, in.grid, r, cell_m));
+    }
+    return paths;
+  } catch (const std::exception& e) {
+    report.notes.push_back("plans not recorded: the plan " + plan + " cannot be read again (" +
+                           e.what() + ")");
+    return {};
+  }
+}
+
+std::string read_optional(const fs::path& p, const char* what) {
+  return fs::is_regular_file(p) ? grid::read_text_file(p, what) : std::string();
+}
+
+void add_progress(const fs::path& dir, RunRecorder& rec) {
+  const fs::path p = dir / results::kActionsCsv;
+  const std::string text = read_optional(p, "actions");
+  try {
+    results::for_each_action_row(text, [&](const results::ActionRow& row, std::size_t line) {
+      if (!row.finish_time_s) return;
+      try {
+        rec.progress(*row.finish_time_s, row.robot, static_cast<int32_t>(row.action));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("line " + std::to_string(line) + ": " + e.what());
+      }
+    });
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(p.string() + ": " + e.what());
+  }
+}
+
+void add_events(const fs::path& dir, RunRecorder& rec) {
+  const fs::path p = dir / results::kEventsCsv;
+  try {
+    for (const auto& row : results::parse_events_csv(read_optional(p, "events"))) rec.event(row);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(p.string() + ": " + e.what());
+  }
+}
+
+void add_states(const fs::path& dir, RunRecorder& rec) {
+  const fs::path p = dir / results::kStatesCsv;
+  std::ifstream in(p);
+  if (!in) throw std::invalid_argument(p.string() + ": not found; the run wrote no robot states");
+  std::string line;
+  for (std::size_t n = 1; std::getline(in, line); ++n) {
+    if (n == 1 || line.empty()) continue;  // the header
+    const auto row = results::parse_state_line(line);
+    if (!row) {
+      throw std::invalid_argument(p.string() + ":" + std::to_string(n) + ": not a state row (" +
+                                  std::string(results::kStatesHeader) + "); the file is damaged");
+    }
+    try {
+      rec.state(*row);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(p.string() + ":" + std::to_string(n) + ": " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
+                         const RecorderOptions& options) {
+  ExportReport report;
+  const json summary = read_summary(results_dir);
+  report.robots = summary.at(results::summary_key::kRobots).get<std::size_t>();
+  const double cell_m = summary.value(results::summary_key::kCellM, 1.0);
+  const grid::Grid map = read_map(results_dir, summary);
+  const auto plans = read_plans(summary, report.robots, cell_m, report);
+  const fs::path part = out.string() + ".part";
+  FileSink sink(part);
+  try {
+    RunRecorder rec(sink, options, report.robots,
+                    summary.value(results::summary_key::kRunId, uint64_t{0}));
+    rec.map(map, cell_m);
+    if (!plans.empty()) rec.plans(plans);
+    add_progress(results_dir, rec);
+    add_events(results_dir, rec);
+    add_states(results_dir, rec);
+    rec.finish();
+    report.messages = rec.messages();
+    sink.close();
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(part, ec);
+    throw;
+  }
+  fs::rename(part, out);
+  report.bytes = sink.bytes();
+  return report;
+}
+
+}  // namespace smart::record

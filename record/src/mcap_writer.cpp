@@ -1,0 +1,284 @@
+#include "smart/record/mcap_writer.hpp"
+
+#include <zlib.h>
+#include <zstd.h>
+
+#include <stdexcept>
+
+namespace smart::record {
+
+namespace {
+
+// Opcodes and magic of https://mcap.dev/spec ("Records").
+constexpr std::string_view kMagic("\x89MCAP0\r\n", 8);
+enum Op : uint8_t {
+  kHeader = 0x01,
+  kFooter = 0x02,
+  kSchema = 0x03,
+  kChannel = 0x04,
+  kMessage = 0x05,
+  kChunk = 0x06,
+  kMessageIndex = 0x07,
+  kChunkIndex = 0x08,
+  kStatistics = 0x0B,
+  kSummaryOffset = 0x0E,
+  kDataEnd = 0x0F,
+};
+
+template <class T>
+void le(std::string& out, T v) {
+  for (std::size_t i = 0; i < sizeof(T); ++i) {
+    out.push_back(static_cast<char>(static_cast<uint64_t>(v) >> (8 * i) & 0xff));
+  }
+}
+void str(std::string& out, std::string_view s) {
+  le(out, static_cast<uint32_t>(s.size()));
+  out.append(s);
+}
+// A record: opcode, u64 length, content.
+std::string record(uint8_t op, std::string_view content) {
+  std::string r;
+  r.reserve(9 + content.size());
+  r.push_back(static_cast<char>(op));
+  le(r, static_cast<uint64_t>(content.size()));
+  r.append(content);
+  return r;
+}
+uint32_t crc(uint32_t running, std::string_view bytes) {
+  return static_cast<uint32_t>(
+      crc32_z(running, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
+}
+
+std::string compress_zstd(std::string_view in) {
+  std::string out(ZSTD_compressBound(in.size()), '\0');
+  const std::size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), 3);
+  if (ZSTD_isError(n)) {
+    throw std::runtime_error(std::string("MCAP chunk: zstd failed: ") + ZSTD_getErrorName(n));
+  }
+  out.resize(n);
+  return out;
+}
+
+}  // namespace
+
+McapWriter::McapWriter(ByteSink& sink, McapOptions options)
+    : sink_(sink), options_(std::move(options)) {
+  put(kMagic);
+  std::string h;
+  str(h, options_.profile);
+  str(h, options_.library);
+  put(record(kHeader, h));
+}
+
+void McapWriter::put(std::string_view bytes) {
+  sink_.write(bytes);
+  data_crc_ = crc(data_crc_, bytes);
+  offset_ += bytes.size();
+}
+
+uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding,
+                                std::string_view data) {
+  if (finished_) throw std::logic_error("MCAP: add_schema after finish");
+  schemas_.push_back({std::string(name), std::string(encoding), std::string(data)});
+  const auto id = static_cast<uint16_t>(schemas_.size());
+  chunk_ += schema_record(id);
+  return id;
+}
+
+uint16_t McapWriter::add_channel(const McapChannel& channel) {
+  if (finished_) throw std::logic_error("MCAP: add_channel after finish");
+  if (channel.schema_id > schemas_.size()) {
+    throw std::logic_error("MCAP: channel " + channel.topic + " names schema " +
+                           std::to_string(channel.schema_id) + ", which was not added");
+  }
+  channels_.push_back(channel);
+  channel_counts_.push_back(0);
+  sequences_.push_back(0);
+  const auto id = static_cast<uint16_t>(channels_.size());
+  chunk_ += channel_record(id);
+  return id;
+}
+
+std::string McapWriter::schema_record(uint16_t id) const {
+  const auto& s = schemas_[id - 1U];
+  std::string c;
+  le(c, id);
+  str(c, s.name);
+  str(c, s.encoding);
+  str(c, s.data);
+  return record(kSchema, c);
+}
+
+std::string McapWriter::channel_record(uint16_t id) const {
+  const auto& ch = channels_[id - 1U];
+  std::string c, meta;
+  le(c, id);
+  le(c, ch.schema_id);
+  str(c, ch.topic);
+  str(c, ch.message_encoding);
+  for (const auto& [k, v] : ch.metadata) {
+    str(meta, k);
+    str(meta, v);
+  }
+  str(c, meta);
+  return record(kChannel, c);
+}
+
+void McapWriter::write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publish_time_ns,
+                       std::string_view data) {
+  if (finished_) throw std::logic_error("MCAP: write after finish");
+  if (channel_id == 0 || channel_id > channels_.size()) {
+    throw std::logic_error("MCAP: message on channel " + std::to_string(channel_id) +
+                           ", which was not added");
+  }
+  if (!chunk_has_messages_) chunk_start_ns_ = chunk_end_ns_ = log_time_ns;
+  chunk_start_ns_ = std::min(chunk_start_ns_, log_time_ns);
+  chunk_end_ns_ = std::max(chunk_end_ns_, log_time_ns);
+  chunk_has_messages_ = true;
+  if (message_count_ == 0) start_ns_ = end_ns_ = log_time_ns;
+  start_ns_ = std::min(start_ns_, log_time_ns);
+  end_ns_ = std::max(end_ns_, log_time_ns);
+  chunk_index_[channel_id].emplace_back(log_time_ns, chunk_.size());
+  std::string m;
+  m.reserve(22 + data.size());
+  le(m, channel_id);
+  le(m, sequences_[channel_id - 1U]++);
+  le(m, log_time_ns);
+  le(m, publish_time_ns);
+  m.append(data);
+  chunk_ += record(kMessage, m);
+  ++channel_counts_[channel_id - 1U];
+  ++message_count_;
+  if (chunk_.size() >= options_.chunk_bytes) flush_chunk();
+}
+
+void McapWriter::flush_chunk() {
+  if (chunk_.empty()) return;
+  const std::string body = options_.compress ? compress_zstd(chunk_) : chunk_;
+  std::string c;
+  le(c, chunk_start_ns_);
+  le(c, chunk_end_ns_);
+  le(c, static_cast<uint64_t>(chunk_.size()));
+  le(c, crc(0, chunk_));
+  str(c, options_.compress ? "zstd" : "");
+  le(c, static_cast<uint64_t>(body.size()));
+  c += body;
+  ChunkIndex index{chunk_start_ns_, chunk_end_ns_, offset_, 0, {}, 0, body.size(), chunk_.size()};
+  const std::string chunk = record(kChunk, c);
+  index.length = chunk.size();
+  put(chunk);
+  const uint64_t indexes_start = offset_;
+  for (const auto& [channel, entries] : chunk_index_) {
+    std::string mi, list;
+    le(mi, channel);
+    for (const auto& [t, off] : entries) {
+      le(list, t);
+      le(list, off);
+    }
+    str(mi, list);
+    index.index_offsets[channel] = offset_;
+    put(record(kMessageIndex, mi));
+  }
+  index.index_length = offset_ - indexes_start;
+  chunk_indexes_.push_back(std::move(index));
+  chunk_.clear();
+  chunk_index_.clear();
+  chunk_has_messages_ = false;
+}
+
+std::string McapWriter::statistics_record() const {
+  std::string c, counts;
+  le(c, message_count_);
+  le(c, static_cast<uint16_t>(schemas_.size()));
+  le(c, static_cast<uint32_t>(channels_.size()));
+  le(c, uint32_t{0});  // attachments
+  le(c, uint32_t{0});  // metadata
+  le(c, static_cast<uint32_t>(chunk_indexes_.size()));
+  le(c, start_ns_);
+  le(c, end_ns_);
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    le(counts, static_cast<uint16_t>(i + 1));
+    le(counts, channel_counts_[i]);
+  }
+  str(c, counts);
+  return record(kStatistics, c);
+}
+
+std::string McapWriter::chunk_index_record(const ChunkIndex& ci) const {
+  std::string c, offsets;
+  le(c, ci.start_ns);
+  le(c, ci.end_ns);
+  le(c, ci.offset);
+  le(c, ci.length);
+  for (const auto& [channel, off] : ci.index_offsets) {
+    le(offsets, channel);
+    le(offsets, off);
+  }
+  str(c, offsets);
+  le(c, ci.index_length);
+  str(c, options_.compress ? "zstd" : "");
+  le(c, ci.compressed_size);
+  le(c, ci.uncompressed_size);
+  return record(kChunkIndex, c);
+}
+
+void McapWriter::finish() {
+  if (finished_) return;
+  flush_chunk();
+  std::string end;
+  le(end, data_crc_);
+  put(record(kDataEnd, end));
+  write_summary();
+  finished_ = true;
+}
+
+void McapWriter::write_summary() {
+  const uint64_t summary_start = offset_;
+  uint32_t summary_crc = 0;
+  std::vector<std::string> offsets;
+  auto group = [&](uint8_t op, const std::vector<std::string>& records) {
+    if (records.empty()) return;
+    const uint64_t start = offset_;
+    for (const auto& r : records) {
+      sink_.write(r);
+      summary_crc = crc(summary_crc, r);
+      offset_ += r.size();
+    }
+    std::string so;
+    le(so, op);
+    le(so, start);
+    le(so, offset_ - start);
+    offsets.push_back(record(kSummaryOffset, so));
+  };
+  std::vector<std::string> schemas, channels, chunks;
+  for (std::size_t i = 1; i <= schemas_.size(); ++i) {
+    schemas.push_back(schema_record(static_cast<uint16_t>(i)));
+  }
+  for (std::size_t i = 1; i <= channels_.size(); ++i) {
+    channels.push_back(channel_record(static_cast<uint16_t>(i)));
+  }
+  for (const auto& ci : chunk_indexes_) chunks.push_back(chunk_index_record(ci));
+  group(kSchema, schemas);
+  group(kChannel, channels);
+  group(kStatistics, {statistics_record()});
+  group(kChunkIndex, chunks);
+  const uint64_t offsets_start = offset_;
+  for (const auto& r : offsets) {
+    sink_.write(r);
+    summary_crc = crc(summary_crc, r);
+    offset_ += r.size();
+  }
+  // The footer's CRC covers the summary, the offsets and the footer up to this field.
+  std::string footer;
+  footer.push_back(static_cast<char>(kFooter));
+  le(footer, uint64_t{20});
+  le(footer, summary_start);
+  le(footer, offsets_start);
+  summary_crc = crc(summary_crc, footer);
+  le(footer, summary_crc);
+  sink_.write(footer);
+  sink_.write(kMagic);
+  offset_ += footer.size() + kMagic.size();
+}
+
+}  // namespace smart::record

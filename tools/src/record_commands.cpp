@@ -1,0 +1,57 @@
+// `smart export mcap RESULTS_DIR -o FILE`: a results folder as an MCAP recording (record/,
+// docs/ros2.md "Recordings"); `smart run --mcap FILE` calls record_run() once its run is over.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+
+#include "smart/record/export.hpp"
+#include "smart/tools/cli_common.hpp"
+#include "smart/tools/commands.hpp"
+
+namespace smart::tools {
+
+namespace fs = std::filesystem;
+
+void record_run(const fs::path& results_dir, const fs::path& mcap,
+                const record::RecorderOptions& options) {
+  const auto report = record::export_mcap(results_dir, mcap, options);
+  for (const auto& note : report.notes) spdlog::warn("{}: {}", mcap.string(), note);
+  spdlog::info("recorded {} messages of {} robots in {} ({:.1f} MB)", report.messages,
+               report.robots, mcap.string(), static_cast<double>(report.bytes) / 1e6);
+}
+
+void register_record_commands(CLI::App& app, int& exit_code) {
+  auto* exp = app.add_subcommand("export", "Convert a run's results for other tools");
+  exp->require_subcommand(1);
+  struct Args {
+    std::string dir, out, ros_namespace;
+    std::vector<uint32_t> pose_robots;
+    bool uncompressed = false;
+  };
+  auto args = std::make_shared<Args>();
+  auto* mcap = exp->add_subcommand(
+      "mcap",
+      "Write a results folder as an MCAP file (profile ros2: the ROS 2 view's topics and the "
+      "run's own, for Foxglove, Lichtblick and `ros2 bag`; docs/ros2.md)");
+  mcap->add_option("RESULTS_DIR", args->dir, "a run's results folder (`smart run --out DIR`)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  mcap->add_option("-o,--out", args->out, "the MCAP file (default: RESULTS_DIR/run.mcap)");
+  mcap->add_option("--ros-namespace", args->ros_namespace,
+                   "put the ROS 2 view's topics under this namespace (e.g. /run_a)");
+  mcap->add_option("--ros-pose-robots", args->pose_robots,
+                   "robots that also get a PoseStamped topic /robot_<id>/pose")
+      ->delimiter(',');
+  mcap->add_flag("--uncompressed", args->uncompressed, "chunks without zstd");
+  mcap->callback([&exit_code, args] {
+    record::RecorderOptions o;
+    o.ros_namespace = args->ros_namespace;
+    o.pose_robots = args->pose_robots;
+    o.mcap.compress = !args->uncompressed;
+    const fs::path out = args->out.empty() ? fs::path(args->dir) / "run.mcap" : fs::path(args->out);
+    record_run(args->dir, out, o);
+    exit_code = ExitCode::kExitSuccess;
+  });
+}
+
+}  // namespace smart::tools
