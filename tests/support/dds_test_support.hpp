@@ -150,6 +150,7 @@ enum DomainId : int {
   kWebSwitchable = 86,       // web/test/switchable.test.mjs (given on its command line)
   kRecordingReaders = 85,    // tests/readers/mcap.test.mjs (given on its command line)
   kRosViewNamespaces = 84,
+  kFoxgloveBridge = 83,  // tests/readers/bridge.test.mjs (given on its command line)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -118,6 +118,7 @@ int run(int argc, char** argv) {
   smart::tools::register_experiment_command(app, exit_code);
   smart::tools::register_planner_command(app, exit_code);
   smart::tools::register_record_commands(app, exit_code);
+  smart::tools::register_bridge_command(app, exit_code);
 #endif
   smart::tools::register_agent_command(app, exit_code);
   smart::tools::register_security_command(app, exit_code);

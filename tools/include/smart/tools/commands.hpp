@@ -29,6 +29,7 @@ void register_calibrate_command(CLI::App& app, int& exit_code);
 void register_doctor_command(CLI::App& app, int& exit_code);
 void register_planner_command(CLI::App& app, int& exit_code);
 void register_record_commands(CLI::App& app, int& exit_code);
+void register_bridge_command(CLI::App& app, int& exit_code);
 // A finished run's results folder as an MCAP file (`smart run --mcap`; record/export.hpp).
 void record_run(const std::filesystem::path& results_dir, const std::filesystem::path& mcap,
                 const record::RecorderOptions& options);

@@ -1,0 +1,121 @@
+#include "smart/bridge/ros_watch.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "smart/dds/participant.hpp"
+#include "smart/dds/reader.hpp"
+#include "smart/dds/topics.hpp"
+#include "smart/dds/waitset.hpp"
+#include "smart/record/cdr.hpp"
+#include "smart/record/schemas.hpp"
+
+namespace smart::bridge {
+
+namespace {
+
+struct ViewTopic {
+  ChannelId id;
+  const char* type;
+  std::string_view name;
+};
+constexpr ViewTopic kTopics[] = {
+    {kMapChannel, "nav_msgs/msg/OccupancyGrid", dds::kRosMapTopic},
+    {kTfChannel, "tf2_msgs/msg/TFMessage", dds::kRosTfTopic},
+    {kPosesChannel, "geometry_msgs/msg/PoseArray", dds::kRosPosesTopic},
+    {kMarkersChannel, "visualization_msgs/msg/MarkerArray", dds::kRosMarkersTopic},
+};
+
+uint64_t ns_of(const builtin_interfaces_msg_dds__Time_& t) {
+  return t.sec < 0 ? 0 : static_cast<uint64_t>(t.sec) * 1000000000ULL + t.nanosec;
+}
+
+std::string topic_name(const std::string& ns, std::string_view name) {
+  return dds::ros_topic(dds::ros_view_topic(ns, std::string(name)));
+}
+
+}  // namespace
+
+std::vector<Channel> ros_view_channels(const std::string& ros_namespace) {
+  dds::check_ros_namespace(ros_namespace);
+  std::vector<Channel> out;
+  for (const auto& t : kTopics) {
+    out.push_back({t.id, dds::ros_view_topic(ros_namespace, std::string(t.name)), t.type,
+                   record::ros2msg_definition(t.type)});
+  }
+  return out;
+}
+
+bool latched(uint32_t channel) { return channel == kMapChannel || channel == kMarkersChannel; }
+
+// Readers only: nothing here writes to the domain.
+struct RosWatch::Pump {
+  dds::Domain domain;
+  dds::Participant participant;
+  dds::Topic<nav_msgs_msg_dds__OccupancyGrid_> map_topic;
+  dds::Topic<tf2_msgs_msg_dds__TFMessage_> tf_topic;
+  dds::Topic<geometry_msgs_msg_dds__PoseArray_> poses_topic;
+  dds::Topic<visualization_msgs_msg_dds__MarkerArray_> markers_topic;
+  dds::Reader<nav_msgs_msg_dds__OccupancyGrid_> map;
+  dds::Reader<tf2_msgs_msg_dds__TFMessage_> tf;
+  dds::Reader<geometry_msgs_msg_dds__PoseArray_> poses;
+  dds::Reader<visualization_msgs_msg_dds__MarkerArray_> markers;
+  dds::WaitSet waitset;
+
+  explicit Pump(const RosWatchOptions& o)
+      : domain(o.domain, o.config),
+        participant(domain),
+        map_topic(participant, topic_name(o.ros_namespace, dds::kRosMapTopic)),
+        tf_topic(participant, topic_name(o.ros_namespace, dds::kRosTfTopic)),
+        poses_topic(participant, topic_name(o.ros_namespace, dds::kRosPosesTopic)),
+        markers_topic(participant, topic_name(o.ros_namespace, dds::kRosMarkersTopic)),
+        map(participant, map_topic, dds::ros_latched_qos().to_dds()),
+        tf(participant, tf_topic, dds::ros_sensor_qos().to_dds()),
+        poses(participant, poses_topic, dds::ros_sensor_qos().to_dds()),
+        markers(participant, markers_topic, dds::ros_latched_qos().to_dds()),
+        waitset(participant) {
+    waitset.attach_status(map.handle(), DDS_DATA_AVAILABLE_STATUS, kMapChannel);
+    waitset.attach_status(tf.handle(), DDS_DATA_AVAILABLE_STATUS, kTfChannel);
+    waitset.attach_status(poses.handle(), DDS_DATA_AVAILABLE_STATUS, kPosesChannel);
+    waitset.attach_status(markers.handle(), DDS_DATA_AVAILABLE_STATUS, kMarkersChannel);
+  }
+};
+
+RosWatch::RosWatch(const RosWatchOptions& options, Sink sink)
+    : pump_((dds::check_ros_namespace(options.ros_namespace), std::make_unique<Pump>(options))),
+      sink_(std::move(sink)),
+      thread_([this] { loop(); }) {}
+
+RosWatch::~RosWatch() {
+  stop_ = true;
+  thread_.join();
+}
+
+void RosWatch::loop() {
+  auto drop = [this](const char* what) {
+    if (dropped_++ == 0) spdlog::warn("bridge: dropped a {} sample too large for a fleet", what);
+  };
+  while (!stop_.load()) {
+    pump_->waitset.wait(std::chrono::milliseconds(100));
+    pump_->map.take_each([&](const nav_msgs_msg_dds__OccupancyGrid_& m) {
+      sink_(kMapChannel, ns_of(m.header.stamp), record::cdr_bytes(m));
+    });
+    pump_->tf.take_each([&](const tf2_msgs_msg_dds__TFMessage_& m) {
+      if (m.transforms._length > kMaxRobots) return drop("tf");
+      const uint64_t t = m.transforms._length ? ns_of(m.transforms._buffer[0].header.stamp) : 0;
+      sink_(kTfChannel, t, record::cdr_bytes(m));
+    });
+    pump_->poses.take_each([&](const geometry_msgs_msg_dds__PoseArray_& m) {
+      if (m.poses._length > kMaxRobots) return drop("PoseArray");
+      sink_(kPosesChannel, ns_of(m.header.stamp), record::cdr_bytes(m));
+    });
+    pump_->markers.take_each([&](const visualization_msgs_msg_dds__MarkerArray_& m) {
+      if (m.markers._length > 4 * kMaxRobots) return drop("MarkerArray");
+      const uint64_t t = m.markers._length ? ns_of(m.markers._buffer[0].header.stamp) : 0;
+      sink_(kMarkersChannel, t, record::cdr_bytes(m));
+    });
+  }
+}
+
+}  // namespace smart::bridge
