@@ -2,12 +2,13 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
+#include "smart/agent/robot_model.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/instance.hpp"
-#include "smart/monitor/plan_view.hpp"
 
 namespace smart::record {
 
@@ -72,11 +73,11 @@ grid::Grid read_map(const fs::path& dir, const json& summary) {
   return grid::parse_map(grid::read_text_file(map, "map"), map.string());
 }
 
-// Each robot's planned path, or nothing (with a note) when the plan cannot be read again.
-std::vector<std::vector<grid::WorldPoint>> read_plans(const json& summary, std::size_t robots,
-                                                      double cell_m, ExportReport& report) {
+// The run's instance (its plan, ADG), or nothing (with a note) when it cannot be read again.
+std::optional<monitor::Instance> read_instance(const json& summary, std::size_t robots,
+                                               ExportReport& report) {
   const std::string plan = file_of(summary, results::summary_key::kPlan);
-  if (plan.empty()) return {};
+  if (plan.empty()) return std::nullopt;
   try {
     monitor::InstanceOptions io;
     io.map = file_of(summary, results::summary_key::kMap);
@@ -92,17 +93,22 @@ std::vector<std::vector<grid::WorldPoint>> read_plans(const json& summary, std::
       io.read.format =
           monitor::parse_plan_format(p.at(results::summary_key::kFormat).get<std::string>());
     }
-    const auto in = monitor::load_instance(io);
-    std::vector<std::vector<grid::WorldPoint>> paths;
-    for (uint32_t r = 0; r < in.actions.robots(); ++r) {
-      paths.push_back(monitor::planned_path(in.actions, in.grid, r, cell_m));
-    }
-    return paths;
+    return monitor::load_instance(io);
   } catch (const std::exception& e) {
-    report.notes.push_back("plans not recorded: the plan " + plan + " cannot be read again (" +
-                           e.what() + ")");
-    return {};
+    report.notes.push_back("plans and markers not recorded: the plan " + plan +
+                           " cannot be read again (" + e.what() + ")");
+    return std::nullopt;
   }
+}
+
+// The robots' radius for their markers: the run's robot model, else a fifth of a cell.
+double robot_radius_m(const json& summary, double cell_m) {
+  try {
+    const std::string robot = file_of(summary, results::summary_key::kRobot);
+    if (!robot.empty()) return agent::load_robot_model(robot).radius_m;
+  } catch (const std::exception&) {
+  }
+  return 0.2 * cell_m;
 }
 
 std::string read_optional(const fs::path& p, const char* what) {
@@ -164,19 +170,20 @@ ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
   report.robots = summary.at(results::summary_key::kRobots).get<std::size_t>();
   const double cell_m = summary.value(results::summary_key::kCellM, 1.0);
   const grid::Grid map = read_map(results_dir, summary);
-  const auto plans = read_plans(summary, report.robots, cell_m, report);
+  const auto instance = read_instance(summary, report.robots, report);
   const fs::path part = out.string() + ".part";
   FileSink sink(part);
   try {
     RunRecorder rec(sink, options, report.robots,
                     summary.value(results::summary_key::kRunId, uint64_t{0}));
     rec.map(map, cell_m);
-    if (!plans.empty()) rec.plans(plans);
+    if (instance) rec.plan_view(*instance, cell_m, robot_radius_m(summary, cell_m));
     add_progress(results_dir, rec);
     add_events(results_dir, rec);
     add_states(results_dir, rec);
     rec.finish();
     report.messages = rec.messages();
+    report.channels = rec.channel_counts();
     sink.close();
   } catch (...) {
     std::error_code ec;

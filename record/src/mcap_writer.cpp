@@ -222,6 +222,16 @@ std::string McapWriter::chunk_index_record(const ChunkIndex& ci) const {
   return record(kChunkIndex, c);
 }
 
+std::vector<McapWriter::ChannelCount> McapWriter::channel_counts() const {
+  std::vector<ChannelCount> out;
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const auto& ch = channels_[i];
+    out.push_back(
+        {ch.topic, ch.schema_id ? schemas_[ch.schema_id - 1U].name : "", channel_counts_[i]});
+  }
+  return out;
+}
+
 void McapWriter::finish() {
   if (finished_) return;
   flush_chunk();

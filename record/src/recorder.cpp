@@ -39,7 +39,7 @@ RunRecorder::RunRecorder(ByteSink& sink, RecorderOptions options, std::size_t ro
       run_id_(run_id),
       fleet_(robots),
       starts_(robots),
-      reported_(robots, false) {
+      points_(robots) {
   dds::check_ros_namespace(options_.ros_namespace);
   for (const uint32_t r : options_.pose_robots) check_robot(r, "a chosen pose robot");
   poses_ch_ = ros_channel("geometry_msgs/msg/PoseArray", std::string(dds::kRosPosesTopic), false);
@@ -86,11 +86,24 @@ void RunRecorder::plans(const std::vector<std::vector<grid::WorldPoint>>& paths)
   for (uint32_t r = 0; r < paths.size(); ++r) {
     check_robot(r, "a plan");
     if (!paths[r].empty()) starts_[r] = paths[r].front();
-    if (!reported_[r] && starts_[r]) fleet_.set_pose(r, starts_[r]->x_m, starts_[r]->y_m, 0.0);
+    if (!points_[r] && starts_[r]) fleet_.set_pose(r, starts_[r]->x_m, starts_[r]->y_m, 0.0);
     const auto ch = ros_channel("nav_msgs/msg/Path", dds::ros_robot_plan_topic(r), true);
     PathMessage m(paths[r]);
     writer_.write(ch, 0, 0, cdr_bytes(m.message()));
   }
+}
+
+void RunRecorder::plan_view(const monitor::Instance& in, double cell_m, double robot_radius_m) {
+  std::vector<std::vector<grid::WorldPoint>> paths;
+  for (uint32_t r = 0; r < in.actions.robots(); ++r) {
+    paths.push_back(monitor::planned_path(in.actions, in.grid, r, cell_m));
+  }
+  plans(paths);
+  in_ = &in;
+  tracker_.emplace(in.actions, in.adg);
+  markers_.emplace(std::move(paths), cell_m, robot_radius_m);
+  markers_ch_ =
+      ros_channel("visualization_msgs/msg/MarkerArray", std::string(dds::kRosMarkersTopic), true);
 }
 
 void RunRecorder::progress(double t_s, uint32_t robot, int32_t finished_seq) {
@@ -116,6 +129,8 @@ void RunRecorder::drain(double up_to_s, bool all) {
 void RunRecorder::write_pending(const Pending& p) {
   const uint64_t t = ns_of(p.t_s);
   if (!p.event) {
+    if (tracker_ && p.robot < tracker_->robots())
+      (void)tracker_->on_progress(p.robot, p.finished_seq);
     smart_msg_Progress m{p.robot, run_id_, p.finished_seq, -1};
     writer_.write(progress_ch_, t, t, cdr_bytes(m));
     return;
@@ -140,6 +155,10 @@ void RunRecorder::write_fleet(double t_s) {
   for (std::size_t k = 0; k < pose_chs_.size(); ++k) {
     writer_.write(pose_chs_[k], t, t, cdr_bytes(fleet_.pose(options_.pose_robots[k], t_s)));
   }
+  if (markers_) {
+    const auto snap = monitor::snapshot(in_->actions, in_->adg, *tracker_);
+    writer_.write(markers_ch_, t, t, cdr_bytes(markers_->message(snap, points_, t_s)));
+  }
   fleet_written_ = true;
   last_fleet_s_ = t_s;
 }
@@ -156,7 +175,7 @@ void RunRecorder::state(const results::StateRow& row) {
     have_time_ = true;
   }
   fleet_.set_pose(row.robot, row.x_m, row.y_m, row.yaw_rad);
-  reported_[row.robot] = true;
+  points_[row.robot] = grid::WorldPoint{row.x_m, row.y_m};
   smart_msg_RobotState m{};
   m.robot_id = row.robot;
   m.run_id = run_id_;

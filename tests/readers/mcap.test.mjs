@@ -169,6 +169,21 @@ test('a recorded run reads back with the ROS 2 ecosystem readers, equal to its r
     assert.equal(mine.length, poses.length);
     mine.forEach(({ msg }, k) => assert.deepEqual(msg.pose, poses[k].msg.poses[r]));
   }
+  // /smart/markers with each PoseArray, as the live plan view draws it: the old waits cleared,
+  // each robot where the PoseArray has it, its goal; at the end every robot done (grey).
+  const markers = byTopic.get('/smart/markers');
+  assert.equal(markers.length, poses.length);
+  markers.forEach(({ msg }, k) => {
+    assert.equal(msg.markers[0].action, 3);  // DELETEALL
+    const robotsNs = msg.markers.filter((m) => m.ns === 'robots');
+    assert.equal(robotsNs.length, robots);
+    assert.equal(msg.markers.filter((m) => m.ns === 'goals').length, robots);
+    for (const m of robotsNs) assert.equal(m.pose.position.x, poses[k].msg.poses[m.id].position.x);
+  });
+  const waits = markers.reduce((n, { msg }) => n + msg.markers.filter((m) => m.ns === 'waits' && m.action === 0).length, 0);
+  assert.ok(waits > 0, 'some robot waited for another at a shared cell');
+  const last = markers[markers.length - 1].msg.markers.filter((m) => m.ns === 'robots');
+  assert.ok(last.every((m) => Math.abs(m.color.r - 0.6) < 1e-6 && Math.abs(m.color.g - 0.6) < 1e-6));
   // The map and every robot's plan, once at t = 0.
   const [map] = byTopic.get('/map');
   assert.equal(map.msg.info.width, 32);
@@ -188,7 +203,7 @@ test('smart export mcap puts the ROS 2 view under a namespace', async () => {
   const r = smart(['export', 'mcap', results, '-o', out, '--ros-namespace', '/run_b']);
   assert.equal(r.code, 0, r.err);
   const { byTopic } = await readAll(out);
-  for (const topic of ['/run_b/map', '/run_b/tf', '/run_b/smart/poses', '/run_b/robot_3/plan', 'smart/state']) {
+  for (const topic of ['/run_b/map', '/run_b/tf', '/run_b/smart/poses', '/run_b/smart/markers', '/run_b/robot_3/plan', 'smart/state']) {
     assert.ok(byTopic.has(topic), `${topic} in ${[...byTopic.keys()].slice(0, 8)}`);
   }
   assert.ok(!byTopic.has('/tf'));

@@ -77,7 +77,7 @@ TEST_F(ExportMcap, APlanThatCannotBeReadAgainIsANoteNotAFailure) {
             R"(", "plan": "/nonexistent/plan.txt", "scen": "/nonexistent/s.scen"}})");
   const auto report = export_mcap(dir_, dir_ / "run.mcap", {});
   ASSERT_EQ(report.notes.size(), 1u);
-  EXPECT_THAT(report.notes[0], HasSubstr("plans not recorded"));
+  EXPECT_THAT(report.notes[0], HasSubstr("plans and markers not recorded"));
 }
 
 }  // namespace

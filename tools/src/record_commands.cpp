@@ -1,8 +1,12 @@
 // `smart export mcap RESULTS_DIR -o FILE`: a results folder as an MCAP recording (record/,
 // docs/ros2.md "Recordings"); `smart run --mcap FILE` calls record_run() once its run is over.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <iostream>
+#include <regex>
+#include <tuple>
 
 #include "smart/record/export.hpp"
 #include "smart/tools/cli_common.hpp"
@@ -12,12 +16,35 @@ namespace smart::tools {
 
 namespace fs = std::filesystem;
 
+namespace {
+// The recording's topics like `mcap info` lists them, one line per robot topic family
+// (/robot_<id>/plan: 50 topics), on standard output.
+void print_topics(const std::vector<record::McapWriter::ChannelCount>& channels) {
+  static const std::regex kRobot("/robot_[0-9]+/");
+  std::vector<std::tuple<std::string, std::string, uint64_t, uint64_t>> rows;  // + topics
+  for (const auto& c : channels) {
+    const std::string topic = std::regex_replace(c.topic, kRobot, "/robot_<id>/");
+    if (!rows.empty() && std::get<0>(rows.back()) == topic) {
+      std::get<2>(rows.back()) += c.messages;
+      ++std::get<3>(rows.back());
+    } else {
+      rows.emplace_back(topic, c.schema_name, c.messages, 1);
+    }
+  }
+  for (const auto& [topic, type, messages, topics] : rows) {
+    std::cout << fmt::format("  {:<28} {:<36} {:>9} msgs{}\n", topic, type, messages,
+                             topics > 1 ? fmt::format(" ({} topics)", topics) : "");
+  }
+}
+}  // namespace
+
 void record_run(const fs::path& results_dir, const fs::path& mcap,
                 const record::RecorderOptions& options) {
   const auto report = record::export_mcap(results_dir, mcap, options);
   for (const auto& note : report.notes) spdlog::warn("{}: {}", mcap.string(), note);
-  spdlog::info("recorded {} messages of {} robots in {} ({:.1f} MB)", report.messages,
-               report.robots, mcap.string(), static_cast<double>(report.bytes) / 1e6);
+  std::cout << fmt::format("{}: {} messages of {} robots, {:.1f} MB, profile ros2\n", mcap.string(),
+                           report.messages, report.robots, static_cast<double>(report.bytes) / 1e6);
+  print_topics(report.channels);
 }
 
 void register_record_commands(CLI::App& app, int& exit_code) {

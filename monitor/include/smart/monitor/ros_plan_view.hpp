@@ -32,13 +32,11 @@ class RosPlanView {
   uint64_t marker_arrays() const { return arrays_; }
 
  private:
-  const Instance& in_;
-  double cell_m_, radius_m_;
-  std::vector<std::vector<grid::WorldPoint>> paths_;
+  record::MarkerMessages markers_;  // the plan's paths, and the markers built from them
   std::vector<dds::Topic<nav_msgs_msg_dds__Path_>> path_topics_;
   std::vector<dds::Writer<nav_msgs_msg_dds__Path_>> path_writers_;
   dds::Topic<visualization_msgs_msg_dds__MarkerArray_> markers_topic_;
-  dds::Writer<visualization_msgs_msg_dds__MarkerArray_> markers_;
+  dds::Writer<visualization_msgs_msg_dds__MarkerArray_> markers_writer_;
   uint64_t arrays_ = 0;
 };
 

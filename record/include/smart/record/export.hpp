@@ -21,6 +21,7 @@ struct ExportReport {
   uint64_t bytes = 0;
   std::size_t robots = 0;
   std::vector<std::string> notes;  // what was left out and why
+  std::vector<McapWriter::ChannelCount> channels;
 };
 
 ExportReport export_mcap(const std::filesystem::path& results_dir, const std::filesystem::path& out,

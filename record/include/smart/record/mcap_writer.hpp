@@ -60,6 +60,12 @@ class McapWriter {
   // Writes what is left and the summary; nothing may be written after it.
   void finish();
   uint64_t messages() const { return message_count_; }
+  struct ChannelCount {
+    std::string topic, schema_name;
+    uint64_t messages = 0;
+  };
+  // Each channel with its schema's name and messages so far, in channel order (`mcap info`).
+  std::vector<ChannelCount> channel_counts() const;
 
  private:
   struct SchemaRecord {

@@ -2,9 +2,10 @@
 // Channels, in this order:
 // - the ROS 2 view, ros2msg schemas (schemas.hpp), CDR, named as the live topics under the run's
 //   ROS namespace: <ns>/map (nav_msgs/OccupancyGrid, once at t = 0), <ns>/robot_<i>/plan
-//   (nav_msgs/Path, once at t = 0, when the plan is known), <ns>/smart/poses
-//   (geometry_msgs/PoseArray, robot i at index i), <ns>/tf (tf2_msgs/TFMessage) and, for the
-//   chosen robots, <ns>/robot_<i>/pose (geometry_msgs/PoseStamped);
+//   (nav_msgs/Path, once at t = 0, when the plan is known), <ns>/smart/markers
+//   (visualization_msgs/MarkerArray with each fleet write, when the plan is known),
+//   <ns>/smart/poses (geometry_msgs/PoseArray, robot i at index i), <ns>/tf (tf2_msgs/TFMessage)
+//   and, for the chosen robots, <ns>/robot_<i>/pose (geometry_msgs/PoseStamped);
 // - the run's own topics, omgidl schemas (idl/smart.idl), CDR, named as on DDS: smart/state
 //   (smart::msg::RobotState, a message per states.csv row), smart/progress (smart::msg::Progress,
 //   a message per finished action) and smart/events (smart::msg::RunEvent, events.csv rows).
@@ -27,6 +28,8 @@
 #include <vector>
 
 #include "smart/grid/grid.hpp"
+#include "smart/monitor/execution_tracker.hpp"
+#include "smart/monitor/instance.hpp"
 #include "smart/monitor/results_format.hpp"
 #include "smart/record/mcap_writer.hpp"
 #include "smart/record/ros_messages.hpp"
@@ -47,11 +50,17 @@ class RunRecorder {
   void map(const grid::Grid& grid, double cell_m);
   // Each robot's planned path (plan_view.hpp planned_path), once, before the states.
   void plans(const std::vector<std::vector<grid::WorldPoint>>& paths);
+  // The plan view: the instance's paths (plans()), and with each fleet write a MarkerArray on
+  // <ns>/smart/markers as the live monitor draws it (ros_messages.hpp MarkerMessages), from the
+  // instance's ADG replayed with the progress written so far. Once, before the states; `in`
+  // must outlive the recorder.
+  void plan_view(const monitor::Instance& in, double cell_m, double robot_radius_m);
   void progress(double t_s, uint32_t robot, int32_t finished_seq);
   void event(const results::EventRow& row);
   void state(const results::StateRow& row);
   void finish();
   uint64_t messages() const { return writer_.messages(); }
+  std::vector<McapWriter::ChannelCount> channel_counts() const { return writer_.channel_counts(); }
 
  private:
   struct Pending {
@@ -73,7 +82,11 @@ class RunRecorder {
   uint64_t run_id_;
   FleetMessages fleet_;
   std::vector<std::optional<grid::WorldPoint>> starts_;
-  std::vector<bool> reported_;
+  std::vector<std::optional<grid::WorldPoint>> points_;  // each robot's last reported position
+  const monitor::Instance* in_ = nullptr;
+  std::optional<monitor::ExecutionTracker> tracker_;
+  std::optional<MarkerMessages> markers_;
+  uint16_t markers_ch_ = 0;
   uint16_t poses_ch_ = 0, tf_ch_ = 0, state_ch_ = 0, progress_ch_ = 0, events_ch_ = 0;
   std::vector<uint16_t> pose_chs_;
   std::map<std::string, uint16_t> schemas_;  // by type name

@@ -6,12 +6,15 @@
 // next call that changes them. Pure: no DDS call.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ros2.h"
 #include "smart/grid/grid.hpp"
+#include "smart/monitor/plan_view.hpp"
 
 namespace smart::record {
 
@@ -56,6 +59,28 @@ class PathMessage {
 
  private:
   std::vector<geometry_msgs_msg_dds__PoseStamped_> poses_;
+};
+
+// The plan view's MarkerArray (rviz2's config/rviz/smart.rviz): a DELETEALL of the old wait
+// arrows, then per robot a cylinder at its pose coloured by activity (green moving, orange
+// waiting, grey done) in namespace "robots" and a cube at its goal in "goals", and an arrow per
+// current Type-2 wait from the waiting robot to the robot it waits for in "waits".
+class MarkerMessages {
+ public:
+  // paths: each robot's planned path (its start when no pose is known yet, its goal).
+  MarkerMessages(std::vector<std::vector<grid::WorldPoint>> paths, double cell_m,
+                 double robot_radius_m);
+  // poses: each robot's last pose, if any.
+  visualization_msgs_msg_dds__MarkerArray_ message(
+      const monitor::PlanSnapshot& snapshot,
+      const std::vector<std::optional<grid::WorldPoint>>& poses, double t_s);
+  const std::vector<std::vector<grid::WorldPoint>>& paths() const { return paths_; }
+
+ private:
+  std::vector<std::vector<grid::WorldPoint>> paths_;
+  double cell_m_, radius_m_;
+  std::vector<visualization_msgs_msg_dds__Marker_> markers_;
+  std::vector<std::array<geometry_msgs_msg_dds__Point_, 2>> arrows_;
 };
 
 }  // namespace smart::record
