@@ -49,9 +49,9 @@ uint32_t crc(uint32_t running, std::string_view bytes) {
       crc32_z(running, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
 }
 
-std::string compress_zstd(std::string_view in) {
+std::string compress_zstd(std::string_view in, int level) {
   std::string out(ZSTD_compressBound(in.size()), '\0');
-  const std::size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), 3);
+  const std::size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), level);
   if (ZSTD_isError(n)) {
     throw std::runtime_error(std::string("MCAP chunk: zstd failed: ") + ZSTD_getErrorName(n));
   }
@@ -154,7 +154,7 @@ void McapWriter::write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publi
 
 void McapWriter::flush_chunk() {
   if (chunk_.empty()) return;
-  const std::string body = options_.compress ? compress_zstd(chunk_) : chunk_;
+  const std::string body = options_.compress ? compress_zstd(chunk_, options_.zstd_level) : chunk_;
   std::string c;
   le(c, chunk_start_ns_);
   le(c, chunk_end_ns_);

@@ -148,14 +148,16 @@ void RunRecorder::write_pending(const Pending& p) {
   writer_.write(events_ch_, t, t, cdr_bytes(m));
 }
 
-void RunRecorder::write_fleet(double t_s) {
+void RunRecorder::write_fleet(double t_s, bool last) {
   const uint64_t t = ns_of(t_s);
   writer_.write(poses_ch_, t, t, cdr_bytes(fleet_.pose_array(t_s)));
   writer_.write(tf_ch_, t, t, cdr_bytes(fleet_.tf(t_s)));
   for (std::size_t k = 0; k < pose_chs_.size(); ++k) {
     writer_.write(pose_chs_[k], t, t, cdr_bytes(fleet_.pose(options_.pose_robots[k], t_s)));
   }
-  if (markers_) {
+  if (markers_ &&
+      (last || !last_markers_s_ || t_s - *last_markers_s_ >= options_.markers_period_s)) {
+    last_markers_s_ = t_s;
     const auto snap = monitor::snapshot(in_->actions, in_->adg, *tracker_);
     writer_.write(markers_ch_, t, t, cdr_bytes(markers_->message(snap, points_, t_s)));
   }
@@ -191,8 +193,8 @@ void RunRecorder::state(const results::StateRow& row) {
 }
 
 void RunRecorder::finish() {
-  if (have_time_ && (!fleet_written_ || last_fleet_s_ != time_s_)) write_fleet(time_s_);
-  drain(0, true);
+  drain(0, true);  // progress after the last state: the markers' final activity
+  if (have_time_) write_fleet(time_s_, true);
   writer_.finish();
 }
 

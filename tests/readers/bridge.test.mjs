@@ -4,7 +4,7 @@
 // schema (@foxglove/rosmsg2-serialization) and finds them equal to what the run wrote to
 // states.csv; a client that joins after the run still gets the latched map; hostile clients get
 // status errors or are closed, and the bridge keeps serving.
-import { test } from 'node:test';
+import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -20,6 +20,7 @@ const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
 const domain = process.env.SMART_DOMAIN;
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'smart-bridge-'));
+after(() => fs.rmSync(work, { recursive: true, force: true }));
 
 function startBridge() {
   const bridge = spawn(exe, ['bridge', '--foxglove-port', '0', '--domain', domain]);

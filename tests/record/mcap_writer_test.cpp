@@ -19,7 +19,7 @@ uint32_t crc_of(std::string_view b) {
 
 std::string small_file(bool compress, std::size_t chunk_bytes, int messages) {
   StringSink sink;
-  McapWriter w(sink, {"ros2", "test", chunk_bytes, compress});
+  McapWriter w(sink, {"ros2", "test", chunk_bytes, compress, 1});
   const auto s = w.add_schema("pkg/msg/A", "ros2msg", "int32 x\n");
   const auto a = w.add_channel({s, "/a", "cdr", {{"k", "v"}}});
   const auto b = w.add_channel({s, "/b", "cdr"});

@@ -40,6 +40,7 @@ struct McapOptions {
   std::string library = "smart-dds";
   std::size_t chunk_bytes = std::size_t{1} << 20;  // uncompressed records per chunk
   bool compress = true;                            // zstd; false: chunks stored as they are
+  int zstd_level = 3;                              // zstd's default
 };
 
 struct McapChannel {

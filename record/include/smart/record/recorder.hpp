@@ -3,7 +3,8 @@
 // - the ROS 2 view, ros2msg schemas (schemas.hpp), CDR, named as the live topics under the run's
 //   ROS namespace: <ns>/map (nav_msgs/OccupancyGrid, once at t = 0), <ns>/robot_<i>/plan
 //   (nav_msgs/Path, once at t = 0, when the plan is known), <ns>/smart/markers
-//   (visualization_msgs/MarkerArray with each fleet write, when the plan is known),
+//   (visualization_msgs/MarkerArray with a fleet write, at most one per markers_period_s, when
+//   the plan is known),
 //   <ns>/smart/poses (geometry_msgs/PoseArray, robot i at index i), <ns>/tf (tf2_msgs/TFMessage)
 //   and, for the chosen robots, <ns>/robot_<i>/pose (geometry_msgs/PoseStamped);
 // - the run's own topics, omgidl schemas (idl/smart.idl), CDR, named as on DDS: smart/state
@@ -40,6 +41,9 @@ struct RecorderOptions {
   std::string ros_namespace;          // "" or "/run_a"
   std::vector<uint32_t> pose_robots;  // robots with their own PoseStamped topic
   double fleet_period_s = 0.1;        // at most one PoseArray + TFMessage per this much sim time
+  // At most one MarkerArray per this much sim time: a fleet's markers are 600 bytes a robot, and
+  // the live plan view draws them a few times a second of wall time, i.e. far more rarely.
+  double markers_period_s = 1.0;
   McapOptions mcap;
 };
 
@@ -73,7 +77,7 @@ class RunRecorder {
   uint16_t ros_channel(const std::string& type, const std::string& topic, bool latched);
   uint16_t smart_channel(const std::string& type, const std::string& topic);
   void check_robot(uint32_t robot, const char* what) const;
-  void write_fleet(double t_s);
+  void write_fleet(double t_s, bool last = false);  // last: the markers too, whatever the period
   void drain(double up_to_s, bool all);
   void write_pending(const Pending& p);
 
@@ -94,6 +98,7 @@ class RunRecorder {
   uint64_t order_ = 0;
   bool have_time_ = false, fleet_written_ = false;
   double time_s_ = 0, last_fleet_s_ = 0;
+  std::optional<double> last_markers_s_;
 };
 
 }  // namespace smart::record
