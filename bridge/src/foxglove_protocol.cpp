@@ -62,6 +62,11 @@ ClientSubscriptions::ClientSubscriptions(std::vector<uint32_t> channel_ids)
   std::sort(channels_.begin(), channels_.end());
 }
 
+void ClientSubscriptions::add_channels(const std::vector<uint32_t>& channel_ids) {
+  channels_.insert(channels_.end(), channel_ids.begin(), channel_ids.end());
+  std::sort(channels_.begin(), channels_.end());
+}
+
 const uint32_t* ClientSubscriptions::subscription_of(uint32_t channel) const {
   const auto it = by_channel_.find(channel);
   return it == by_channel_.end() ? nullptr : &it->second;

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -181,8 +182,8 @@ void FoxgloveServer::Impl::accept() {
 
 void FoxgloveServer::Impl::publish(uint32_t channel, uint64_t stamp_ns,
                                    const std::shared_ptr<const std::string>& payload) {
-  for (const uint32_t l : options.latched) {
-    if (l == channel) last[channel] = {stamp_ns, payload};
+  if (std::find(options.latched.begin(), options.latched.end(), channel) != options.latched.end()) {
+    last[channel] = {stamp_ns, payload};
   }
   for (const auto& s : sessions) {
     if (const uint32_t* sub = s->subs.subscription_of(channel); sub && s->open) {
@@ -234,6 +235,21 @@ void FoxgloveServer::publish(uint32_t channel, uint64_t stamp_ns, std::string pa
   net::post(impl_->ioc, [impl = impl_, channel, stamp_ns,
                          p = std::make_shared<const std::string>(std::move(payload))] {
     impl->publish(channel, stamp_ns, p);
+  });
+}
+
+void FoxgloveServer::add_channels(std::vector<Channel> channels, bool latched) {
+  net::post(impl_->ioc, [impl = impl_, channels = std::move(channels), latched] {
+    std::vector<uint32_t> ids;
+    for (const auto& c : channels) ids.push_back(c.id);
+    impl->channels.insert(impl->channels.end(), channels.begin(), channels.end());
+    impl->channel_ids.insert(impl->channel_ids.end(), ids.begin(), ids.end());
+    if (latched) impl->options.latched.insert(impl->options.latched.end(), ids.begin(), ids.end());
+    const std::string advertise = advertise_json(channels);
+    for (const auto& s : impl->sessions) {
+      s->subs.add_channels(ids);
+      if (s->open) s->send_text(advertise);
+    }
   });
 }
 

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <optional>
 
 #include "smart/dds/participant.hpp"
 #include "smart/dds/reader.hpp"
@@ -37,12 +38,19 @@ std::string topic_name(const std::string& ns, std::string_view name) {
 
 }  // namespace
 
-std::vector<Channel> ros_view_channels(const std::string& ros_namespace) {
+std::vector<Channel> ros_view_channels(const std::string& ros_namespace,
+                                       const std::vector<uint32_t>& pose_robots) {
   dds::check_ros_namespace(ros_namespace);
   std::vector<Channel> out;
   for (const auto& t : kTopics) {
     out.push_back({t.id, dds::ros_view_topic(ros_namespace, std::string(t.name)), t.type,
                    record::ros2msg_definition(t.type)});
+  }
+  uint32_t id = kFirstRobotChannel;
+  for (const uint32_t r : pose_robots) {
+    out.push_back({id++, dds::ros_view_topic(ros_namespace, dds::ros_robot_pose_topic(r)),
+                   "geometry_msgs/msg/PoseStamped",
+                   record::ros2msg_definition("geometry_msgs/msg/PoseStamped")});
   }
   return out;
 }
@@ -62,6 +70,12 @@ struct RosWatch::Pump {
   dds::Reader<geometry_msgs_msg_dds__PoseArray_> poses;
   dds::Reader<visualization_msgs_msg_dds__MarkerArray_> markers;
   dds::WaitSet waitset;
+  // Per robot, once the fleet's size is known: plans, then the chosen robots' poses.
+  std::vector<dds::Topic<nav_msgs_msg_dds__Path_>> plan_topics;
+  std::vector<dds::Reader<nav_msgs_msg_dds__Path_>> plans;
+  std::vector<dds::Topic<geometry_msgs_msg_dds__PoseStamped_>> pose_topics;
+  std::vector<dds::Reader<geometry_msgs_msg_dds__PoseStamped_>> poses_of;
+  bool robot_topics = false;
 
   explicit Pump(const RosWatchOptions& o)
       : domain(o.domain, o.config),
@@ -79,12 +93,19 @@ struct RosWatch::Pump {
     waitset.attach_status(tf.handle(), DDS_DATA_AVAILABLE_STATUS, kTfChannel);
     waitset.attach_status(poses.handle(), DDS_DATA_AVAILABLE_STATUS, kPosesChannel);
     waitset.attach_status(markers.handle(), DDS_DATA_AVAILABLE_STATUS, kMarkersChannel);
+    for (const uint32_t r : o.pose_robots) {
+      pose_topics.emplace_back(participant,
+                               topic_name(o.ros_namespace, dds::ros_robot_pose_topic(r)));
+      poses_of.emplace_back(participant, pose_topics.back(), dds::ros_sensor_qos().to_dds());
+    }
   }
 };
 
-RosWatch::RosWatch(const RosWatchOptions& options, Sink sink)
-    : pump_((dds::check_ros_namespace(options.ros_namespace), std::make_unique<Pump>(options))),
+RosWatch::RosWatch(const RosWatchOptions& options, Sink sink, ChannelsSink on_channels)
+    : options_(options),
+      pump_((dds::check_ros_namespace(options.ros_namespace), std::make_unique<Pump>(options))),
       sink_(std::move(sink)),
+      on_channels_(std::move(on_channels)),
       thread_([this] { loop(); }) {}
 
 RosWatch::~RosWatch() {
@@ -106,14 +127,59 @@ void RosWatch::loop() {
       const uint64_t t = m.transforms._length ? ns_of(m.transforms._buffer[0].header.stamp) : 0;
       sink_(kTfChannel, t, record::cdr_bytes(m));
     });
+    std::optional<uint32_t> fleet;
     pump_->poses.take_each([&](const geometry_msgs_msg_dds__PoseArray_& m) {
       if (m.poses._length > kMaxRobots) return drop("PoseArray");
+      fleet = m.poses._length;
       sink_(kPosesChannel, ns_of(m.header.stamp), record::cdr_bytes(m));
     });
+    if (fleet && !pump_->robot_topics) add_robot_topics(*fleet);
+    take_robot_topics();
     pump_->markers.take_each([&](const visualization_msgs_msg_dds__MarkerArray_& m) {
       if (m.markers._length > 4 * kMaxRobots) return drop("MarkerArray");
       const uint64_t t = m.markers._length ? ns_of(m.markers._buffer[0].header.stamp) : 0;
       sink_(kMarkersChannel, t, record::cdr_bytes(m));
+    });
+  }
+}
+
+void RosWatch::add_robot_topics(uint32_t robots) {
+  auto& p = *pump_;
+  p.robot_topics = true;
+  const auto& ns = options_.ros_namespace;
+  std::vector<Channel> plans;
+  auto id = static_cast<uint32_t>(kFirstRobotChannel + options_.pose_robots.size());
+  if (robots <= kMaxPlanTopics) {
+    const auto schema = record::ros2msg_definition("nav_msgs/msg/Path");
+    for (uint32_t r = 0; r < robots; ++r) {
+      p.plan_topics.emplace_back(p.participant, topic_name(ns, dds::ros_robot_plan_topic(r)));
+      p.plans.emplace_back(p.participant, p.plan_topics.back(), dds::ros_latched_qos().to_dds());
+      plans.push_back({id++, dds::ros_view_topic(ns, dds::ros_robot_plan_topic(r)),
+                       "nav_msgs/msg/Path", schema});
+    }
+  } else {
+    spdlog::info("bridge: {} robots: their plan topics are not served (at most {})", robots,
+                 kMaxPlanTopics);
+  }
+  if (!plans.empty()) on_channels_(std::move(plans), true);
+}
+
+// Plans and chosen poses are polled with the waitset's period (their readers are not attached:
+// a fleet's thousand plan readers would make every wait scan them).
+void RosWatch::take_robot_topics() {
+  auto& p = *pump_;
+  uint32_t id = kFirstRobotChannel;
+  for (auto& reader : p.poses_of) {
+    const uint32_t channel = id++;
+    reader.take_each([&](const geometry_msgs_msg_dds__PoseStamped_& m) {
+      sink_(channel, ns_of(m.header.stamp), record::cdr_bytes(m));
+    });
+  }
+  for (auto& reader : p.plans) {
+    const uint32_t channel = id++;
+    reader.take_each([&](const nav_msgs_msg_dds__Path_& m) {
+      if (m.poses._length > 1000000) return;
+      sink_(channel, ns_of(m.header.stamp), record::cdr_bytes(m));
     });
   }
 }

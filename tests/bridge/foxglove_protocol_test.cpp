@@ -47,6 +47,11 @@ TEST(ClientSubscriptions, SubscribesAndUnsubscribesByTheClientsIds) {
   EXPECT_TRUE(out.replies.empty());
   EXPECT_EQ(c.subscription_of(2), nullptr);
   EXPECT_EQ(c.size(), 1u);
+  // A channel advertised later (a robot's plan) can be subscribed to from then on.
+  const char* later = R"({"op":"subscribe","subscriptions":[{"id":9,"channelId":20}]})";
+  EXPECT_FALSE(c.on_text(later).replies.empty());
+  c.add_channels({20});
+  EXPECT_EQ(c.on_text(later).subscribed, (std::vector<std::pair<uint32_t, uint32_t>>{{9, 20}}));
 }
 
 TEST(ClientSubscriptions, UntrustedInputGetsAStatusAndChangesNothing) {

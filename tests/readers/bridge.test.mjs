@@ -6,7 +6,7 @@
 // status errors or are closed, and the bridge keeps serving.
 import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, spawnSync } from 'node:child_process';
+import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -23,7 +23,8 @@ const work = fs.mkdtempSync(path.join(os.tmpdir(), 'smart-bridge-'));
 after(() => fs.rmSync(work, { recursive: true, force: true }));
 
 function startBridge() {
-  const bridge = spawn(exe, ['bridge', '--foxglove-port', '0', '--domain', domain]);
+  const bridge = spawn(exe, ['bridge', '--foxglove-port', '0', '--domain', domain,
+    '--ros-pose-robots', '7']);
   bridge.stderr.on('data', () => {});
   return new Promise((resolve, reject) => {
     let text = '';
@@ -80,16 +81,33 @@ function until(check, what) {
 test('Foxglove clients watch a running fleet through smart bridge', async () => {
   const { bridge, url } = await startBridge();
   try {
-    const live = connect(url, ['/smart/poses', '/tf', '/map']);
+    const live = connect(url, ['/smart/poses', '/tf', '/map', '/smart/markers', '/robot_3/plan',
+      '/robot_7/pose']);
     await live.got.subscribed;
     const results = path.join(work, 'results');
-    const run = spawnSync(exe, ['run', '--map', path.join(bench, 'maps/random-32-32-20.map'),
+    // The run in its own process, while this one reads the bridge (paced at 40x real time so the
+    // fleet is seen moving for a few seconds).
+    const run = spawn(exe, ['run', '--map', path.join(bench, 'maps/random-32-32-20.map'),
       '--scen', path.join(bench, 'scens/random-32-32-20-random-1.scen'),
       '--plan', path.join(bench, 'smart-examples/example_paths_xy.txt'), '--axis', 'xy',
-      '--agents', '50', '--domain', domain, '--out', results, '--no-progress']);
-    assert.equal(run.status, 0, String(run.stderr));
-    await until(() => live.got.byTopic.get('/smart/poses').length > 0 &&
-      live.got.byTopic.get('/map').length > 0, 'a PoseArray and the map');
+      '--agents', '50', '--domain', domain, '--out', results, '--no-progress',
+      '--ros-plan-hz', '20', '--ros-pose-robots', '7', '--real-time-factor', '40']);
+    let runErr = '';
+    run.stderr.on('data', (d) => { runErr += d; });
+    run.stdout.on('data', () => {});
+    const code = await new Promise((resolve) => run.on('exit', resolve));
+    assert.equal(code, 0, runErr);
+    const seen = (topic) => (live.got.byTopic.get(topic) ?? []).length > 0;
+    await until(() => ['/smart/poses', '/map', '/smart/markers', '/robot_3/plan', '/robot_7/pose']
+      .every(seen), 'a PoseArray, the map, markers, a plan (advertised once the fleet is known) '
+      + 'and a chosen robot\'s pose');
+    // Robot 3's plan: the monitor's path, from its start to its goal (the scen's cells).
+    const [plan3] = live.got.byTopic.get('/robot_3/plan');
+    assert.ok(plan3.msg.poses.length > 1);
+    assert.equal(plan3.msg.header.frame_id, 'map');
+    const [{ msg: markers }] = live.got.byTopic.get('/smart/markers');
+    assert.equal(markers.markers.filter((m) => m.ns === 'robots').length, 50);
+    for (const { msg } of live.got.byTopic.get('/robot_7/pose')) assert.equal(msg.header.frame_id, 'map');
 
     // Every PoseArray received is the fleet as the run recorded it at that sim time.
     const rows = fs.readFileSync(path.join(results, 'states.csv'), 'utf8').trim().split('\n').slice(1)

@@ -23,6 +23,7 @@ struct BridgeCliOptions {
   uint16_t port = 8765;  // Foxglove's default for a WebSocket connection
   std::string bind = "127.0.0.1";
   std::string ros_namespace;
+  std::vector<uint32_t> pose_robots;
 };
 
 int run_bridge(const BridgeCliOptions& o) {
@@ -30,19 +31,25 @@ int run_bridge(const BridgeCliOptions& o) {
   so.bind = o.bind;
   so.port = o.port;
   so.latched = {bridge::kMapChannel, bridge::kMarkersChannel};
-  bridge::FoxgloveServer server(so, bridge::ros_view_channels(o.ros_namespace));
+  bridge::FoxgloveServer server(so, bridge::ros_view_channels(o.ros_namespace, o.pose_robots));
   bridge::RosWatchOptions wo;
   wo.domain = o.dds.domain;
   wo.config = domain_config(o.dds, dds::find_qos_profile(o.dds.qos), "viewer");
   wo.ros_namespace = o.ros_namespace;
+  wo.pose_robots = o.pose_robots;
   uint64_t latest_ns = 0;
-  bridge::RosWatch watch(wo, [&](uint32_t channel, uint64_t t_ns, std::string cdr) {
-    server.publish(channel, t_ns, std::move(cdr));
-    if (channel == bridge::kPosesChannel && t_ns > latest_ns) {  // the fleet's sim time
-      latest_ns = t_ns;
-      server.time(t_ns);
-    }
-  });
+  bridge::RosWatch watch(
+      wo,
+      [&](uint32_t channel, uint64_t t_ns, std::string cdr) {
+        server.publish(channel, t_ns, std::move(cdr));
+        if (channel == bridge::kPosesChannel && t_ns > latest_ns) {  // the fleet's sim time
+          latest_ns = t_ns;
+          server.time(t_ns);
+        }
+      },
+      [&](std::vector<bridge::Channel> channels, bool latched) {
+        server.add_channels(std::move(channels), latched);
+      });
   const std::string url = "ws://" + o.bind + ":" + std::to_string(server.port());
   std::cout << nlohmann::json{{"listening", url}}.dump() << std::endl;
   spdlog::info(
@@ -69,6 +76,9 @@ void register_bridge_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--ros-namespace", o->ros_namespace,
                   "the run's ROS namespace (`smart run --ros-namespace`), e.g. /run_a");
+  cmd->add_option("--ros-pose-robots", o->pose_robots,
+                  "robots whose /robot_<id>/pose is served too (the run's --ros-pose-robots)")
+      ->delimiter(',');
   cmd->callback([&exit_code, o] { exit_code = run_bridge(*o); });
 }
 

@@ -52,6 +52,8 @@ class ClientSubscriptions {
   Outcome on_text(std::string_view text);
   // A binary message from the client (never accepted here).
   Outcome on_binary();
+  // Channels advertised later (a fleet's per-robot topics, once its size is known).
+  void add_channels(const std::vector<uint32_t>& channel_ids);
   // The client's subscription to a channel, if any.
   const uint32_t* subscription_of(uint32_t channel) const;
   std::size_t size() const { return by_id_.size(); }

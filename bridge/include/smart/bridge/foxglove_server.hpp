@@ -37,6 +37,9 @@ class FoxgloveServer {
   FoxgloveServer(const FoxgloveServer&) = delete;
   FoxgloveServer& operator=(const FoxgloveServer&) = delete;
   uint16_t port() const;
+  // More channels, advertised to every client now and to later ones at connection; `latched`:
+  // their last message reaches new subscribers.
+  void add_channels(std::vector<Channel> channels, bool latched);
   void publish(uint32_t channel, uint64_t stamp_ns, std::string payload);
   void time(uint64_t time_ns);
 
