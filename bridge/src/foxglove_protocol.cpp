@@ -8,6 +8,12 @@ namespace smart::bridge {
 using json = nlohmann::json;
 
 namespace {
+// Text from a client may hold anything (a name cut in the middle of a UTF-8 sequence): never
+// let it make dump() throw.
+std::string text_of(const json& j) {
+  return j.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 template <class T>
 void le(std::string& out, T v) {
   for (std::size_t i = 0; i < sizeof(T); ++i) {
@@ -17,10 +23,12 @@ void le(std::string& out, T v) {
 }  // namespace
 
 std::string server_info_json(std::string_view name, std::string_view session_id) {
-  return json{{"op", "serverInfo"},         {"name", name},
-              {"capabilities", {"time"}},   {"supportedEncodings", json::array()},
-              {"metadata", json::object()}, {"sessionId", session_id}}
-      .dump();
+  return text_of(json{{"op", "serverInfo"},
+                      {"name", name},
+                      {"capabilities", {"time"}},
+                      {"supportedEncodings", json::array()},
+                      {"metadata", json::object()},
+                      {"sessionId", session_id}});
 }
 
 std::string advertise_json(const std::vector<Channel>& channels) {
@@ -33,11 +41,11 @@ std::string advertise_json(const std::vector<Channel>& channels) {
                     {"schema", c.schema},
                     {"schemaEncoding", c.schema_encoding}});
   }
-  return json{{"op", "advertise"}, {"channels", list}}.dump();
+  return text_of(json{{"op", "advertise"}, {"channels", list}});
 }
 
 std::string status_json(StatusLevel level, std::string_view message) {
-  return json{{"op", "status"}, {"level", static_cast<int>(level)}, {"message", message}}.dump();
+  return text_of(json{{"op", "status"}, {"level", static_cast<int>(level)}, {"message", message}});
 }
 
 std::string message_frame(uint32_t subscription_id, uint64_t receive_time_ns,
@@ -135,8 +143,8 @@ void ClientSubscriptions::unsubscribe(const json& list, Outcome& out) {
                         ? by_id_.find(static_cast<uint32_t>(v.get<uint64_t>()))
                         : by_id_.end();
     if (it == by_id_.end()) {
-      out.replies.push_back(
-          status_json(StatusLevel::kWarning, "unsubscribe: no such subscription " + v.dump()));
+      out.replies.push_back(status_json(
+          StatusLevel::kWarning, "unsubscribe: no such subscription " + text_of(v).substr(0, 64)));
       continue;
     }
     by_channel_.erase(it->second);

@@ -116,9 +116,15 @@ struct FoxgloveServer::Impl::Session : std::enable_shared_from_this<Session> {
     buffer.clear();
     ws.async_read(buffer, [self = shared_from_this()](beast::error_code ec, std::size_t) {
       if (ec) return self->close();
-      const auto out = self->ws.got_text()
-                           ? self->subs.on_text(beast::buffers_to_string(self->buffer.data()))
-                           : self->subs.on_binary();
+      ClientSubscriptions::Outcome out;
+      try {
+        out = self->ws.got_text()
+                  ? self->subs.on_text(beast::buffers_to_string(self->buffer.data()))
+                  : self->subs.on_binary();
+      } catch (const std::exception& e) {  // never the bridge's end: this client's only
+        spdlog::warn("bridge: closing a client whose message could not be handled: {}", e.what());
+        return self->close();
+      }
       for (const auto& r : out.replies) self->send_text(r);
       for (const auto& [sub, channel] : out.subscribed) {
         const auto it = self->server.last.find(channel);

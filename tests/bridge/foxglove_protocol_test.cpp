@@ -78,5 +78,17 @@ TEST(ClientSubscriptions, UntrustedInputGetsAStatusAndChangesNothing) {
   EXPECT_THAT(c.on_binary().replies.at(0), HasSubstr("read-only"));
 }
 
+// Found by reading the code for the fuzz target: an op of multi-byte characters cut to 64 bytes in
+// the middle of one made the status reply's dump() throw, which would have ended the bridge.
+TEST(ClientSubscriptions, AnOpCutInAUtf8SequenceGetsAValidStatusNotAnException) {
+  ClientSubscriptions c({1});
+  std::string op = "x";
+  for (int i = 0; i < 35; ++i) op += "\xc3\xa9";  // é
+  const auto out = c.on_text(R"({"op":")" + op + R"("})");
+  ASSERT_EQ(out.replies.size(), 1u);
+  EXPECT_FALSE(json::parse(out.replies[0], nullptr, false).is_discarded());
+  EXPECT_THAT(out.replies[0], HasSubstr("unsupported op"));
+}
+
 }  // namespace
 }  // namespace smart::bridge

@@ -11,6 +11,7 @@
 #include "smart/record/export.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
+#include "smart/tools/record_run.hpp"
 
 namespace smart::tools {
 

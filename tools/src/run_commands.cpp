@@ -30,6 +30,7 @@
 #include "smart/monitor/sim_reports.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
+#include "smart/tools/record_run.hpp"
 #include "smart/tools/run_key.hpp"
 #include "smart/tools/run_options.hpp"
 

@@ -2,10 +2,6 @@
 // callback stores its process exit code in `exit_code` (0 = success).
 #pragma once
 
-#include "smart/record/recorder.hpp"
-
-#include <filesystem>
-
 #include <CLI/CLI.hpp>
 
 #include "smart/grid/grid.hpp"
@@ -30,9 +26,6 @@ void register_doctor_command(CLI::App& app, int& exit_code);
 void register_planner_command(CLI::App& app, int& exit_code);
 void register_record_commands(CLI::App& app, int& exit_code);
 void register_bridge_command(CLI::App& app, int& exit_code);
-// A finished run's results folder as an MCAP file (`smart run --mcap`; record/export.hpp).
-void record_run(const std::filesystem::path& results_dir, const std::filesystem::path& mcap,
-                const record::RecorderOptions& options);
 
 // The generation pipeline, also used by `smart demo`. Each prints one JSON line and returns an
 // exit code; bad input throws grid::InputError.
