@@ -226,11 +226,14 @@ FoxgloveServer::FoxgloveServer(ServerOptions options, std::vector<Channel> chann
 }
 
 FoxgloveServer::~FoxgloveServer() {
+  // Closing the acceptor and every socket completes their pending operations (aborted): their
+  // handlers run, start nothing new and release the Impl they hold, and run() returns once no
+  // work is left. Stopping the io_context instead would leave those handlers, and with them the
+  // Impl that owns the io_context, alive (a leak LeakSanitizer reported).
   net::post(impl_->ioc, [impl = impl_] {
     beast::error_code ignored;
     impl->acceptor.close(ignored);
     for (const auto& s : std::set(impl->sessions)) s->close();
-    impl->ioc.stop();
   });
   impl_->thread.join();
 }
