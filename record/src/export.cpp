@@ -17,6 +17,8 @@ using json = nlohmann::json;
 
 namespace {
 
+constexpr std::size_t kMaxPlanChannels = 60000;
+
 class FileSink : public ByteSink {
  public:
   explicit FileSink(const fs::path& path) : path_(path), out_(path, std::ios::binary) {
@@ -177,7 +179,13 @@ ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
     RunRecorder rec(sink, options, report.robots,
                     summary.value(results::summary_key::kRunId, uint64_t{0}));
     rec.map(map, cell_m);
-    if (instance) rec.plan_view(*instance, cell_m, robot_radius_m(summary, cell_m));
+    // A channel per robot's plan: MCAP's 16-bit channel ids bound them.
+    if (instance && report.robots > kMaxPlanChannels) {
+      report.notes.push_back("plans and markers not recorded: " + std::to_string(report.robots) +
+                             " robots, more plan channels than an MCAP file can hold");
+    } else if (instance) {
+      rec.plan_view(*instance, cell_m, robot_radius_m(summary, cell_m));
+    }
     add_progress(results_dir, rec);
     add_events(results_dir, rec);
     add_states(results_dir, rec);

@@ -79,6 +79,7 @@ void McapWriter::put(std::string_view bytes) {
 uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding,
                                 std::string_view data) {
   if (finished_) throw std::logic_error("MCAP: add_schema after finish");
+  if (schemas_.size() >= kMaxIds) throw std::length_error("MCAP: more than 65535 schemas");
   schemas_.push_back({std::string(name), std::string(encoding), std::string(data)});
   const auto id = static_cast<uint16_t>(schemas_.size());
   chunk_ += schema_record(id);
@@ -87,6 +88,9 @@ uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding
 
 uint16_t McapWriter::add_channel(const McapChannel& channel) {
   if (finished_) throw std::logic_error("MCAP: add_channel after finish");
+  if (channels_.size() >= kMaxIds) {
+    throw std::length_error("MCAP: more than 65535 channels (" + channel.topic + ")");
+  }
   if (channel.schema_id > schemas_.size()) {
     throw std::logic_error("MCAP: channel " + channel.topic + " names schema " +
                            std::to_string(channel.schema_id) + ", which was not added");

@@ -137,5 +137,12 @@ TEST(McapWriter, RefusesMessagesOnUnknownChannelsAndAfterFinish) {
   EXPECT_EQ(w.messages(), 1u);
 }
 
+TEST(McapWriter, RefusesMoreChannelsThanSixteenBitIdsHold) {
+  StringSink sink;
+  McapWriter w(sink, {});
+  for (std::size_t i = 0; i < McapWriter::kMaxIds; ++i) (void)w.add_channel({0, "/t", "cdr"});
+  EXPECT_THROW(w.add_channel({0, "/t", "cdr"}), std::length_error);
+}
+
 }  // namespace
 }  // namespace smart::record

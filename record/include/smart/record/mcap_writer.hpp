@@ -9,6 +9,7 @@
 // per chunk and one counter per channel, whatever the number of messages.
 // Records must be added in this order: a channel's schema before the channel, a channel before
 // its messages; write() after finish() throws std::logic_error, as does an unknown channel id.
+// Ids are 16 bits in MCAP: more than kMaxIds schemas or channels throw std::length_error.
 #pragma once
 
 #include <cstdint>
@@ -52,6 +53,7 @@ struct McapChannel {
 
 class McapWriter {
  public:
+  static constexpr std::size_t kMaxIds = 65535;
   McapWriter(ByteSink& sink, McapOptions options);  // writes the magic and the Header
   // Ids count from 1 in the order of the calls.
   uint16_t add_schema(std::string_view name, std::string_view encoding, std::string_view data);
