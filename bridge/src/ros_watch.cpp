@@ -18,15 +18,17 @@ namespace {
 
 struct ViewTopic {
   ChannelId id;
-  const char* type;
+  std::string type;
   std::string_view name;
 };
-constexpr ViewTopic kTopics[] = {
-    {kMapChannel, "nav_msgs/msg/OccupancyGrid", dds::kRosMapTopic},
-    {kTfChannel, "tf2_msgs/msg/TFMessage", dds::kRosTfTopic},
-    {kPosesChannel, "geometry_msgs/msg/PoseArray", dds::kRosPosesTopic},
-    {kMarkersChannel, "visualization_msgs/msg/MarkerArray", dds::kRosMarkersTopic},
-};
+std::vector<ViewTopic> view_topics() {
+  using record::ros_type_name;
+  return {{kMapChannel, ros_type_name<nav_msgs_msg_dds__OccupancyGrid_>(), dds::kRosMapTopic},
+          {kTfChannel, ros_type_name<tf2_msgs_msg_dds__TFMessage_>(), dds::kRosTfTopic},
+          {kPosesChannel, ros_type_name<geometry_msgs_msg_dds__PoseArray_>(), dds::kRosPosesTopic},
+          {kMarkersChannel, ros_type_name<visualization_msgs_msg_dds__MarkerArray_>(),
+           dds::kRosMarkersTopic}};
+}
 
 uint64_t ns_of(const builtin_interfaces_msg_dds__Time_& t) {
   return t.sec < 0 ? 0 : static_cast<uint64_t>(t.sec) * 1000000000ULL + t.nanosec;
@@ -42,15 +44,15 @@ std::vector<Channel> ros_view_channels(const std::string& ros_namespace,
                                        const std::vector<uint32_t>& pose_robots) {
   dds::check_ros_namespace(ros_namespace);
   std::vector<Channel> out;
-  for (const auto& t : kTopics) {
+  for (const auto& t : view_topics()) {
     out.push_back({t.id, dds::ros_view_topic(ros_namespace, std::string(t.name)), t.type,
                    record::ros2msg_definition(t.type)});
   }
   uint32_t id = kFirstRobotChannel;
+  const auto pose_type = record::ros_type_name<geometry_msgs_msg_dds__PoseStamped_>();
   for (const uint32_t r : pose_robots) {
     out.push_back({id++, dds::ros_view_topic(ros_namespace, dds::ros_robot_pose_topic(r)),
-                   "geometry_msgs/msg/PoseStamped",
-                   record::ros2msg_definition("geometry_msgs/msg/PoseStamped")});
+                   pose_type, record::ros2msg_definition(pose_type)});
   }
   return out;
 }
@@ -150,12 +152,12 @@ void RosWatch::add_robot_topics(uint32_t robots) {
   std::vector<Channel> plans;
   auto id = static_cast<uint32_t>(kFirstRobotChannel + options_.pose_robots.size());
   if (robots <= kMaxPlanTopics) {
-    const auto schema = record::ros2msg_definition("nav_msgs/msg/Path");
+    const auto type = record::ros_type_name<nav_msgs_msg_dds__Path_>();
+    const auto schema = record::ros2msg_definition(type);
     for (uint32_t r = 0; r < robots; ++r) {
       p.plan_topics.emplace_back(p.participant, topic_name(ns, dds::ros_robot_plan_topic(r)));
       p.plans.emplace_back(p.participant, p.plan_topics.back(), dds::ros_latched_qos().to_dds());
-      plans.push_back({id++, dds::ros_view_topic(ns, dds::ros_robot_plan_topic(r)),
-                       "nav_msgs/msg/Path", schema});
+      plans.push_back({id++, dds::ros_view_topic(ns, dds::ros_robot_plan_topic(r)), type, schema});
     }
   } else {
     spdlog::info("bridge: {} robots: their plan topics are not served (at most {})", robots,

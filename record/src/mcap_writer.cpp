@@ -250,14 +250,15 @@ void McapWriter::write_summary() {
   const uint64_t summary_start = offset_;
   uint32_t summary_crc = 0;
   std::vector<std::string> offsets;
+  auto put_summary = [&](const std::string& r) {  // not in the data CRC: in the summary's
+    sink_.write(r);
+    summary_crc = crc(summary_crc, r);
+    offset_ += r.size();
+  };
   auto group = [&](uint8_t op, const std::vector<std::string>& records) {
     if (records.empty()) return;
     const uint64_t start = offset_;
-    for (const auto& r : records) {
-      sink_.write(r);
-      summary_crc = crc(summary_crc, r);
-      offset_ += r.size();
-    }
+    for (const auto& r : records) put_summary(r);
     std::string so;
     le(so, op);
     le(so, start);
@@ -277,11 +278,7 @@ void McapWriter::write_summary() {
   group(kStatistics, {statistics_record()});
   group(kChunkIndex, chunks);
   const uint64_t offsets_start = offset_;
-  for (const auto& r : offsets) {
-    sink_.write(r);
-    summary_crc = crc(summary_crc, r);
-    offset_ += r.size();
-  }
+  for (const auto& r : offsets) put_summary(r);
   // The footer's CRC covers the summary, the offsets and the footer up to this field.
   std::string footer;
   footer.push_back(static_cast<char>(kFooter));

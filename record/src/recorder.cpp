@@ -42,11 +42,13 @@ RunRecorder::RunRecorder(ByteSink& sink, RecorderOptions options, std::size_t ro
       points_(robots) {
   dds::check_ros_namespace(options_.ros_namespace);
   for (const uint32_t r : options_.pose_robots) check_robot(r, "a chosen pose robot");
-  poses_ch_ = ros_channel("geometry_msgs/msg/PoseArray", std::string(dds::kRosPosesTopic), false);
-  tf_ch_ = ros_channel("tf2_msgs/msg/TFMessage", std::string(dds::kRosTfTopic), false);
+  poses_ch_ = ros_channel(ros_type_name<geometry_msgs_msg_dds__PoseArray_>(),
+                          std::string(dds::kRosPosesTopic), false);
+  tf_ch_ = ros_channel(ros_type_name<tf2_msgs_msg_dds__TFMessage_>(), std::string(dds::kRosTfTopic),
+                       false);
   for (const uint32_t r : options_.pose_robots) {
-    pose_chs_.push_back(
-        ros_channel("geometry_msgs/msg/PoseStamped", dds::ros_robot_pose_topic(r), false));
+    pose_chs_.push_back(ros_channel(ros_type_name<geometry_msgs_msg_dds__PoseStamped_>(),
+                                    dds::ros_robot_pose_topic(r), false));
   }
   state_ch_ = smart_channel("smart::msg::RobotState", smart_msg_TOPIC_STATE);
   progress_ch_ = smart_channel("smart::msg::Progress", smart_msg_TOPIC_PROGRESS);
@@ -77,7 +79,8 @@ uint16_t RunRecorder::smart_channel(const std::string& type, const std::string& 
 }
 
 void RunRecorder::map(const grid::Grid& grid, double cell_m) {
-  const auto ch = ros_channel("nav_msgs/msg/OccupancyGrid", std::string(dds::kRosMapTopic), true);
+  const auto ch = ros_channel(ros_type_name<nav_msgs_msg_dds__OccupancyGrid_>(),
+                              std::string(dds::kRosMapTopic), true);
   MapMessage m(grid, cell_m);
   writer_.write(ch, 0, 0, cdr_bytes(m.message()));
 }
@@ -87,7 +90,8 @@ void RunRecorder::plans(const std::vector<std::vector<grid::WorldPoint>>& paths)
     check_robot(r, "a plan");
     if (!paths[r].empty()) starts_[r] = paths[r].front();
     if (!points_[r] && starts_[r]) fleet_.set_pose(r, starts_[r]->x_m, starts_[r]->y_m, 0.0);
-    const auto ch = ros_channel("nav_msgs/msg/Path", dds::ros_robot_plan_topic(r), true);
+    const auto ch =
+        ros_channel(ros_type_name<nav_msgs_msg_dds__Path_>(), dds::ros_robot_plan_topic(r), true);
     PathMessage m(paths[r]);
     writer_.write(ch, 0, 0, cdr_bytes(m.message()));
   }
@@ -102,8 +106,8 @@ void RunRecorder::plan_view(const monitor::Instance& in, double cell_m, double r
   in_ = &in;
   tracker_.emplace(in.actions, in.adg);
   markers_.emplace(std::move(paths), cell_m, robot_radius_m);
-  markers_ch_ =
-      ros_channel("visualization_msgs/msg/MarkerArray", std::string(dds::kRosMarkersTopic), true);
+  markers_ch_ = ros_channel(ros_type_name<visualization_msgs_msg_dds__MarkerArray_>(),
+                            std::string(dds::kRosMarkersTopic), true);
 }
 
 void RunRecorder::progress(double t_s, uint32_t robot, int32_t finished_seq) {

@@ -53,5 +53,12 @@ TEST(CdrBytes, RobotStateCarriesEveryField) {
   EXPECT_EQ(at<uint32_t>(b, b.size() - 4), 9u);
 }
 
+TEST(RosTypeName, IsTheRmwNameOfTheIdlTypeBackInRos2Form) {
+  EXPECT_EQ(ros_type_name<geometry_msgs_msg_dds__PoseArray_>(), "geometry_msgs/msg/PoseArray");
+  EXPECT_EQ(ros_type_name<visualization_msgs_msg_dds__MarkerArray_>(),
+            "visualization_msgs/msg/MarkerArray");
+  EXPECT_EQ(ros_type_name<smart_msg_RobotState>(), "smart/msg/RobotState");
+}
+
 }  // namespace
 }  // namespace smart::record

@@ -20,4 +20,13 @@ std::string cdr_bytes(const T& sample) {
   return cdr_bytes(&sample, *dds::TopicTraits<T>::descriptor());
 }
 
+// A ROS 2 message type's name ("geometry_msgs/msg/PoseArray") from its idlc descriptor's rmw
+// name ("geometry_msgs::msg::dds_::PoseArray_"): the name schemas and channels carry, never
+// written a second time.
+std::string ros_type_name(const dds_topic_descriptor_t& descriptor);
+template <class T>
+std::string ros_type_name() {
+  return ros_type_name(*dds::TopicTraits<T>::descriptor());
+}
+
 }  // namespace smart::record
