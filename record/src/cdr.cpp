@@ -4,7 +4,11 @@
 #include <dds/ddsi/q_protocol.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
+#include <stdexcept>
 #include <string_view>
+#include <vector>
 
 namespace smart::record {
 
@@ -18,6 +22,35 @@ std::string cdr_bytes(const void* sample, const dds_topic_descriptor_t& descript
   out.append(reinterpret_cast<const char*>(os.x.m_buffer), os.x.m_index);
   dds_ostreamLE_fini(&os);
   return out;
+}
+
+void read_cdr(std::string_view bytes, const dds_topic_descriptor_t& descriptor, void* sample) {
+  const std::string type = descriptor.m_typename;
+  if (bytes.size() < 4 || bytes.size() - 4 > UINT32_MAX) {
+    throw std::invalid_argument(type + ": " + std::to_string(bytes.size()) +
+                                " bytes are not a CDR message (a 4-byte header and its payload)");
+  }
+  // Encapsulation identifiers (DDSI-RTPS 2.5, 10.2): 00 00 CDR_BE, 00 01 CDR_LE.
+  if (bytes[0] != 0 || (bytes[1] != 0 && bytes[1] != 1)) {
+    throw std::invalid_argument(type + ": not plain CDR (encapsulation " +
+                                std::to_string(static_cast<uint8_t>(bytes[0])) + " " +
+                                std::to_string(static_cast<uint8_t>(bytes[1])) + ")");
+  }
+  const bool little = bytes[1] == 1;
+  const auto size = static_cast<uint32_t>(bytes.size() - 4);
+  std::vector<uint64_t> aligned(size / 8 + 1);  // the normalizer swaps in place, aligned
+  auto* data = reinterpret_cast<char*>(aligned.data());
+  std::memcpy(data, bytes.data() + 4, size);
+  uint32_t used = 0;
+  const bool swap = little != (std::endian::native == std::endian::little);
+  if (!dds_stream_normalize_data(data, &used, size, swap, CDR_ENC_VERSION_1, descriptor.m_ops)) {
+    throw std::invalid_argument(type +
+                                ": the CDR payload does not hold this type (cut short, a "
+                                "length past its end, or written for another version of the IDL)");
+  }
+  dds_istream_t is;
+  dds_istream_init(&is, size, data, CDR_ENC_VERSION_1);
+  dds_stream_read(&is, static_cast<char*>(sample), descriptor.m_ops);
 }
 
 std::string ros_type_name(const dds_topic_descriptor_t& descriptor) {

@@ -9,6 +9,7 @@
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/instance.hpp"
+#include "smart/record/import.hpp"
 
 namespace smart::record {
 
@@ -42,6 +43,13 @@ class FileSink : public ByteSink {
 };
 
 json read_summary(const fs::path& dir) {
+  if (fs::is_regular_file(dir)) {
+    throw std::invalid_argument(dir.string() +
+                                ": a file, not a results folder; give the folder of "
+                                "`smart run --out DIR` (a recording opens with `smart serve "
+                                "--open " +
+                                dir.string() + "`)");
+  }
   const fs::path p = dir / results::kSummaryJson;
   if (!fs::is_regular_file(p)) {
     throw std::invalid_argument(p.string() +
@@ -163,6 +171,41 @@ void add_states(const fs::path& dir, RunRecorder& rec) {
   }
 }
 
+std::string media_type(const fs::path& name) {
+  const auto ext = name.extension().string();
+  return ext == ".json" ? "application/json" : ext == ".csv" ? "text/csv" : "text/plain";
+}
+
+// The results files (states.csv is the smart/state channel) and the run's inputs, so that the
+// recording opens in the viewer anywhere (import.hpp).
+void attach_files(const fs::path& dir, const json& summary, RunRecorder& rec,
+                  ExportReport& report) {
+  for (const auto name : results::kFiles) {
+    if (name == results::kStatesCsv || !fs::is_regular_file(dir / name)) continue;
+    rec.attach(name, media_type(name), grid::read_text_file(dir / name, std::string(name).c_str()));
+    report.attachments.emplace_back(name);
+  }
+  if (fs::is_regular_file(dir / results::kLifelongMap)) {
+    rec.attach(results::kLifelongMap, "text/plain",
+               grid::read_text_file(dir / results::kLifelongMap, "map"));
+    report.attachments.emplace_back(results::kLifelongMap);
+  }
+  for (const char* key : {results::summary_key::kMap, results::summary_key::kScen,
+                          results::summary_key::kPlan, results::summary_key::kRobot}) {
+    const fs::path file = file_of(summary, key);
+    if (file.empty()) continue;
+    if (!fs::is_regular_file(file)) {
+      report.notes.push_back(std::string("the run's ") + key + " " + file.string() +
+                             " is not attached: it cannot be read");
+      continue;
+    }
+    const std::string name =
+        std::string(kInputAttachmentPrefix) + key + "/" + file.filename().string();
+    rec.attach(name, "text/plain", grid::read_text_file(file, key));
+    report.attachments.push_back(name);
+  }
+}
+
 }  // namespace
 
 ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
@@ -179,6 +222,7 @@ ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
     RunRecorder rec(sink, options, report.robots,
                     summary.value(results::summary_key::kRunId, uint64_t{0}));
     rec.map(map, cell_m);
+    attach_files(results_dir, summary, rec, report);
     // A channel per robot's plan: MCAP's 16-bit channel ids bound them.
     if (instance && report.robots > kMaxPlanChannels) {
       report.notes.push_back("plans and markers not recorded: " + std::to_string(report.robots) +

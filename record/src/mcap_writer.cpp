@@ -20,6 +20,8 @@ enum Op : uint8_t {
   kChunk = 0x06,
   kMessageIndex = 0x07,
   kChunkIndex = 0x08,
+  kAttachment = 0x09,
+  kAttachmentIndex = 0x0A,
   kStatistics = 0x0B,
   kSummaryOffset = 0x0E,
   kDataEnd = 0x0F,
@@ -156,6 +158,24 @@ void McapWriter::write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publi
   if (chunk_.size() >= options_.chunk_bytes) flush_chunk();
 }
 
+void McapWriter::attach(std::string_view name, std::string_view media_type, std::string_view data,
+                        uint64_t log_time_ns) {
+  if (finished_) throw std::logic_error("MCAP: attach after finish");
+  flush_chunk();  // attachments live between chunks
+  std::string c;
+  le(c, log_time_ns);
+  le(c, log_time_ns);  // create time
+  str(c, name);
+  str(c, media_type);
+  le(c, static_cast<uint64_t>(data.size()));
+  c.append(data);
+  le(c, crc(0, c));  // over every field before it
+  const std::string r = record(kAttachment, c);
+  attachment_indexes_.push_back(
+      {offset_, r.size(), log_time_ns, data.size(), std::string(name), std::string(media_type)});
+  put(r);
+}
+
 void McapWriter::flush_chunk() {
   if (chunk_.empty()) return;
   const std::string body = options_.compress ? compress_zstd(chunk_, options_.zstd_level) : chunk_;
@@ -195,7 +215,7 @@ std::string McapWriter::statistics_record() const {
   le(c, message_count_);
   le(c, static_cast<uint16_t>(schemas_.size()));
   le(c, static_cast<uint32_t>(channels_.size()));
-  le(c, uint32_t{0});  // attachments
+  le(c, static_cast<uint32_t>(attachment_indexes_.size()));
   le(c, uint32_t{0});  // metadata
   le(c, static_cast<uint32_t>(chunk_indexes_.size()));
   le(c, start_ns_);
@@ -224,6 +244,18 @@ std::string McapWriter::chunk_index_record(const ChunkIndex& ci) const {
   le(c, ci.compressed_size);
   le(c, ci.uncompressed_size);
   return record(kChunkIndex, c);
+}
+
+std::string McapWriter::attachment_index_record(const AttachmentIndex& a) {
+  std::string c;
+  le(c, a.offset);
+  le(c, a.length);
+  le(c, a.log_time_ns);
+  le(c, a.log_time_ns);  // create time
+  le(c, a.data_size);
+  str(c, a.name);
+  str(c, a.media_type);
+  return record(kAttachmentIndex, c);
 }
 
 std::vector<McapWriter::ChannelCount> McapWriter::channel_counts() const {
@@ -265,7 +297,7 @@ void McapWriter::write_summary() {
     le(so, offset_ - start);
     offsets.push_back(record(kSummaryOffset, so));
   };
-  std::vector<std::string> schemas, channels, chunks;
+  std::vector<std::string> schemas, channels, chunks, attachments;
   for (std::size_t i = 1; i <= schemas_.size(); ++i) {
     schemas.push_back(schema_record(static_cast<uint16_t>(i)));
   }
@@ -273,10 +305,12 @@ void McapWriter::write_summary() {
     channels.push_back(channel_record(static_cast<uint16_t>(i)));
   }
   for (const auto& ci : chunk_indexes_) chunks.push_back(chunk_index_record(ci));
+  for (const auto& a : attachment_indexes_) attachments.push_back(attachment_index_record(a));
   group(kSchema, schemas);
   group(kChannel, channels);
   group(kStatistics, {statistics_record()});
   group(kChunkIndex, chunks);
+  group(kAttachmentIndex, attachments);
   const uint64_t offsets_start = offset_;
   for (const auto& r : offsets) put_summary(r);
   // The footer's CRC covers the summary, the offsets and the footer up to this field.

@@ -4,11 +4,14 @@
 // serialization for the ROS 2 view (ros2msg schemas) and @foxglove/omgidl-serialization for the
 // run's own topics (omgidl schemas from idl/smart.idl). Every message is decoded; poses, tf
 // frames, robot states and progress are compared with the run's states.csv and actions.csv.
+// The results files and the run's inputs ride along as attachments, so `smart serve --open
+// run.mcap` replays the run from the recording alone (its states rebuilt from smart/state).
 // Then `smart export mcap --ros-namespace` puts the ROS topics under a namespace, and bad input
-// to `smart export` fails with exit 2 naming the file, leaving no file behind.
+// to `smart export` and `smart serve --open` (a cut or damaged recording, a file where a folder
+// belongs) fails with exit 2 naming the file, leaving no file behind.
 import { after, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -77,8 +80,10 @@ async function readAll(file) {
     byTopic.get(topic).push({ logTime: m.logTime, msg: dec.get(m.channelId).readMessage(m.data) });
     ++count;
   }
+  const attached = new Map();
+  for await (const a of reader.readAttachments()) attached.set(a.name, Buffer.from(a.data));
   readable.close();
-  return { reader, byTopic, count };
+  return { reader, byTopic, count, attached };
 }
 
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'smart-mcap-'));
@@ -104,7 +109,7 @@ test('a recorded run reads back with the ROS 2 ecosystem readers, equal to its r
   assert.equal(kinds.get('Footer'), 1);
   assert.equal(kinds.get('DataEnd'), 1);
 
-  const { reader, byTopic, count } = await readAll(mcap);
+  const { reader, byTopic, count, attached } = await readAll(mcap);
   assert.equal(reader.header.profile, 'ros2');
   assert.equal(reader.statistics.messageCount, BigInt(count));
   assert.equal(kinds.get('Message'), count);
@@ -201,6 +206,82 @@ test('a recorded run reads back with the ROS 2 ecosystem readers, equal to its r
   const progress = byTopic.get('smart/progress');
   assert.equal(progress.length, finished.length);
   for (let k = 1; k < progress.length; ++k) assert.ok(progress[k].logTime >= progress[k - 1].logTime);
+
+  // Attachments: the results files but states.csv, and the run's inputs, byte for byte.
+  assert.equal(reader.statistics.attachmentCount, attached.size);
+  for (const f of ['summary.json', 'stats.csv', 'robots.csv', 'actions.csv']) {
+    assert.ok(attached.get(f).equals(fs.readFileSync(path.join(results, f))), f);
+  }
+  assert.ok(!attached.has('states.csv'));
+  const plan = attached.get('input/plan/example_paths_xy.txt');
+  assert.ok(plan.equals(fs.readFileSync(path.join(bench, 'smart-examples/example_paths_xy.txt'))));
+  assert.ok(attached.has('input/map/random-32-32-20.map') && attached.has('input/scen/random-32-32-20-random-1.scen'));
+});
+
+// `smart serve --open FILE`; resolves with its URL and the runs it opened once it listens.
+function serveOpen(file, data) {
+  const server = spawn(exe, ['serve', '--port', '0', '--data', data, '--open', file, '--domain', domain]);
+  let err = '';
+  server.stderr.on('data', (d) => { err += d; });
+  return new Promise((resolve, reject) => {
+    let text = '';
+    server.stdout.on('data', (d) => {
+      text += d;
+      const m = text.match(/^(\{.*"listening".*\})$/m);
+      if (m) resolve({ server, info: JSON.parse(m[1]) });
+    });
+    server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${err}`)));
+  });
+}
+
+test('smart serve --open replays a recording from the file alone', async () => {
+  // Elsewhere: only the recording, no results folder beside it.
+  const away = path.join(work, 'away');
+  fs.mkdirSync(away);
+  const copy = path.join(away, 'run.mcap');
+  fs.copyFileSync(mcap, copy);
+  const { server, info } = await serveOpen(copy, path.join(away, 'data'));
+  try {
+    const [id] = info.opened;
+    const base = `${info.listening}/api/runs/${id}`;
+    const states = await (await fetch(`${base}/results/states.csv`)).text();
+    assert.equal(states, fs.readFileSync(path.join(results, 'states.csv'), 'utf8'));
+    const actions = await (await fetch(`${base}/results/actions.csv`)).text();
+    assert.equal(actions, fs.readFileSync(path.join(results, 'actions.csv'), 'utf8'));
+    const run = await (await fetch(base)).json();
+    assert.equal(run.state, 'done');
+    assert.equal(run.robots, 50);
+    assert.equal(run.map, 'random-32-32-20.map');
+    // The robot panel needs the plan: it came from the attachments.
+    const robot = await (await fetch(`${base}/robots/3`)).json();
+    assert.ok(robot.path.length > 1 && robot.actions > 0, JSON.stringify(robot).slice(0, 200));
+  } finally {
+    server.kill('SIGTERM');
+  }
+});
+
+test('a cut or damaged recording given to smart serve --open or smart export is named, exit 2', () => {
+  const bytes = fs.readFileSync(mcap);
+  const cut = path.join(work, 'cut.mcap');
+  fs.writeFileSync(cut, bytes.subarray(0, Math.floor(bytes.length / 2)));
+  const damaged = path.join(work, 'damaged.mcap');
+  const flipped = Buffer.from(bytes);
+  flipped[Math.floor(bytes.length / 3)] ^= 0x40;
+  fs.writeFileSync(damaged, flipped);
+  const open = (file) => spawnSync(exe, ['serve', '--port', '0', '--data', path.join(work, 'bad-data'),
+    '--open', file, '--domain', domain], { encoding: 'utf8', timeout: 120000 });
+  const c = open(cut);
+  assert.equal(c.status, 2, c.stderr);
+  assert.match(c.stderr, new RegExp(`${cut}: the file ends at byte \\d+ inside .* cut short`));
+  const d = open(damaged);
+  assert.equal(d.status, 2, d.stderr);
+  assert.match(d.stderr, new RegExp(`${damaged}: byte \\d+: .*(CRC-32|zstd)`));
+  const csv = open(path.join(results, 'states.csv'));
+  assert.equal(csv.status, 2, csv.stderr);
+  assert.match(csv.stderr, /does not start with the MCAP magic/);
+  const e = smart(['export', 'mcap', mcap]);
+  assert.equal(e.code, 2, e.err);
+  assert.match(e.err, /run\.mcap: a file, not a results folder/);
 });
 
 test('smart export mcap puts the ROS 2 view under a namespace', async () => {

@@ -76,8 +76,11 @@ TEST_F(ExportMcap, APlanThatCannotBeReadAgainIsANoteNotAFailure) {
         R"({"robots": 2, "files": {"map": ")" + (dir_ / "tiny.map").string() +
             R"(", "plan": "/nonexistent/plan.txt", "scen": "/nonexistent/s.scen"}})");
   const auto report = export_mcap(dir_, dir_ / "run.mcap", {});
-  ASSERT_EQ(report.notes.size(), 1u);
+  ASSERT_EQ(report.notes.size(), 3u);
   EXPECT_THAT(report.notes[0], HasSubstr("plans and markers not recorded"));
+  // Nor can they be attached for the viewer (import.hpp).
+  EXPECT_THAT(report.notes[1], HasSubstr("the run's scen /nonexistent/s.scen is not attached"));
+  EXPECT_THAT(report.notes[2], HasSubstr("the run's plan /nonexistent/plan.txt is not attached"));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `smart export mcap RESULTS_DIR -o FILE`: a results folder as an MCAP recording (record/,
 // docs/ros2.md "Recordings"); `smart run --mcap FILE` calls record_run() once its run is over.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -46,6 +47,8 @@ void record_run(const fs::path& results_dir, const fs::path& mcap,
   std::cout << fmt::format("{}: {} messages of {} robots, {:.1f} MB, profile ros2\n", mcap.string(),
                            report.messages, report.robots, static_cast<double>(report.bytes) / 1e6);
   print_topics(report.channels);
+  std::cout << fmt::format("  attachments: {} (for `smart serve --open {}`)\n",
+                           fmt::join(report.attachments, ", "), mcap.string());
 }
 
 void register_record_commands(CLI::App& app, int& exit_code) {
@@ -63,7 +66,7 @@ void register_record_commands(CLI::App& app, int& exit_code) {
       "run's own, for Foxglove, Lichtblick and `ros2 bag`; docs/ros2.md)");
   mcap->add_option("RESULTS_DIR", args->dir, "a run's results folder (`smart run --out DIR`)")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(CLI::ExistingPath);  // a file is named by export_mcap with what to do instead
   mcap->add_option("-o,--out", args->out, "the MCAP file (default: RESULTS_DIR/run.mcap)");
   mcap->add_option("--ros-namespace", args->ros_namespace,
                    "put the ROS 2 view's topics under this namespace (e.g. /run_a)");

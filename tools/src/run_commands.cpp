@@ -33,6 +33,7 @@
 #include "smart/tools/record_run.hpp"
 #include "smart/tools/run_key.hpp"
 #include "smart/tools/run_options.hpp"
+#include "temp_dir.hpp"
 
 namespace smart::tools {
 
@@ -340,31 +341,6 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   return result.success() ? kExitSuccess : kExitRunFailed;
 }
 
-}  // namespace
-
-namespace {
-// A fresh folder under the system's temporary folder, removed with everything in it at the end.
-class TempDir {
- public:
-  explicit TempDir(const std::string& prefix) {
-    std::string templ = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
-    if (mkdtemp(templ.data()) == nullptr) {
-      throw std::runtime_error("cannot make a scratch folder " + templ + ": " +
-                               std::strerror(errno));
-    }
-    path_ = templ;
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 }  // namespace
 
 void register_run_commands(CLI::App& app, int& exit_code) {

@@ -9,10 +9,12 @@
 #include "smart/common/child_process.hpp"
 #include "smart/common/install_paths.hpp"
 #include "smart/monitor/instance.hpp"
+#include "smart/record/import.hpp"
 #include "smart/serve/fleet_watch.hpp"
 #include "smart/serve/server.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/run_options.hpp"
+#include "temp_dir.hpp"
 
 namespace smart::tools {
 
@@ -22,7 +24,7 @@ struct ServeCliOptions {
   DdsOptions dds;
   double max_upload_mb = 64;
   double max_upload_memory_mb = 256;
-  std::vector<std::filesystem::path> open;  // results folders to replay
+  std::vector<std::filesystem::path> open;  // results folders or recordings to replay
   bool watch = false;
   // --watch --plan: the watched run's instance (with --map, --scen, --axis, --robot, --cell-m).
   WorldCliOptions world;
@@ -71,6 +73,21 @@ std::filesystem::path default_data_dir() {
   return std::filesystem::temp_directory_path() / "smart-dds-serve";
 }
 
+// A results folder, or a recording made here (record/import.hpp) read back into a scratch folder
+// that the server copies from.
+std::string open_run(serve::Server& server, const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path)) return server.open_results(path);
+  TempDir scratch("smart-open");
+  const auto report = record::import_mcap(path, scratch.path() / "results");
+  for (const auto& note : report.notes) spdlog::warn("{}: {}", path.string(), note);
+  spdlog::info("serve: {}: {} robot states read back", path.string(), report.states);
+  try {
+    return server.open_results(scratch.path() / "results");
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(path.string() + ": the run it holds does not check: " + e.what());
+  }
+}
+
 int serve_runs(ServeCliOptions o) {
   auto& s = o.serve;
   if (s.data_dir.empty()) s.data_dir = default_data_dir();
@@ -95,7 +112,7 @@ int serve_runs(ServeCliOptions o) {
   if (watch) s.watch = [&watch](uint64_t run_id) { return watch->snapshot(run_id); };
   serve::Server server(s);
   nlohmann::json opened = nlohmann::json::array();
-  for (const auto& dir : o.open) opened.push_back(server.open_results(dir));
+  for (const auto& path : o.open) opened.push_back(open_run(server, path));
   const int port = server.bind();
   std::cout << nlohmann::json{{"listening", "http://" + s.bind + ":" + std::to_string(port)},
                               {"data", s.data_dir.string()},
@@ -119,8 +136,10 @@ void register_serve_command(CLI::App& app, int& exit_code) {
                   "folder for uploads and results (default: ~/.cache/smart-dds/serve)");
   cmd->add_option("--web", o->serve.web_dir, "built web app to serve at / (web/dist)")
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--open", o->open, "a `smart run --out` folder to replay (repeatable)")
-      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--open", o->open,
+                  "a `smart run --out` folder or a `smart run --mcap` recording to replay "
+                  "(repeatable)")
+      ->check(CLI::ExistingPath);
   cmd->add_option("--max-runs", o->serve.max_running, "runs executing at once; the rest queue")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();

@@ -1,8 +1,9 @@
 // Contract: an MCAP file written from the specification (https://mcap.dev/spec, version 0; no C++
 // library is packaged in Debian): magic, Header (profile, library), the data section as chunks
 // (Schema, Channel and Message records, each chunk zstd-compressed by default, followed by its
-// Message Index records), Data End with the data section's CRC-32, then the summary section
-// (Schema, Channel, Statistics, Chunk Index records), Summary Offset records for each group, the
+// Message Index records; Attachment records between chunks), Data End with the data section's
+// CRC-32, then the summary section (Schema, Channel, Statistics, Chunk Index, Attachment Index
+// records), Summary Offset records for each group, the
 // Footer (with the summary's CRC-32) and the closing magic. Readers can open such a file from its
 // end at once (the summary and chunk index) or stream it from its start.
 // Pure: bytes go to a ByteSink; memory is bounded by one chunk (chunk_bytes) plus one index entry
@@ -60,6 +61,10 @@ class McapWriter {
   uint16_t add_channel(const McapChannel& channel);
   void write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publish_time_ns,
              std::string_view data);
+  // An Attachment record (a file carried with the recording, with its CRC-32), written at once
+  // after the open chunk; listed in the summary's Attachment Index.
+  void attach(std::string_view name, std::string_view media_type, std::string_view data,
+              uint64_t log_time_ns = 0);
   // Writes what is left and the summary; nothing may be written after it.
   void finish();
   uint64_t messages() const { return message_count_; }
@@ -85,6 +90,11 @@ class McapWriter {
   std::string channel_record(uint16_t id) const;
   std::string statistics_record() const;
   std::string chunk_index_record(const ChunkIndex& c) const;
+  struct AttachmentIndex {
+    uint64_t offset, length, log_time_ns, data_size;
+    std::string name, media_type;
+  };
+  static std::string attachment_index_record(const AttachmentIndex& a);
   void write_summary();
 
   ByteSink& sink_;
@@ -96,6 +106,7 @@ class McapWriter {
   std::vector<McapChannel> channels_;
   std::vector<uint64_t> channel_counts_;
   std::vector<ChunkIndex> chunk_indexes_;
+  std::vector<AttachmentIndex> attachment_indexes_;
   // The open chunk: its records, their time span, and per channel (log time, offset) pairs.
   std::string chunk_;
   uint64_t chunk_start_ns_ = 0, chunk_end_ns_ = 0;

@@ -59,6 +59,10 @@ class RunRecorder {
   // instance's ADG replayed with the progress written so far. Once, before the states; `in`
   // must outlive the recorder.
   void plan_view(const monitor::Instance& in, double cell_m, double robot_radius_m);
+  // A file carried with the recording (an MCAP attachment; import.hpp names them).
+  void attach(std::string_view name, std::string_view media_type, std::string_view data) {
+    writer_.attach(name, media_type, data);
+  }
   void progress(double t_s, uint32_t robot, int32_t finished_seq);
   void event(const results::EventRow& row);
   void state(const results::StateRow& row);
