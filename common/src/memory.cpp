@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -31,5 +32,11 @@ double cpu_seconds(int who) {
 
 double cpu_seconds_self() { return cpu_seconds(RUSAGE_SELF); }
 double cpu_seconds_children() { return cpu_seconds(RUSAGE_CHILDREN); }
+
+double thread_cpu_seconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0) return 0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 }  // namespace smart::common

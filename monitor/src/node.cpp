@@ -18,15 +18,15 @@
 
 namespace smart::monitor {
 
-namespace {
-using SteadyClock = std::chrono::steady_clock;
-using std::chrono::milliseconds;
-
 uint64_t wall_clock_run_id() {
   return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
                                    std::chrono::system_clock::now().time_since_epoch())
                                    .count());
 }
+
+namespace {
+using SteadyClock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
 
 // The supervisor's decisions, written to DDS. Windows are packed (Cyclone's write batching,
 // dds/writer.hpp) and go out together when the pump's turn ends (flush) or, before a tick's
@@ -47,6 +47,10 @@ class DdsRunWriter final : public RunWriter {
     }
     actions_.write_batched(buf.view());
   }
+  void action_finished(uint32_t robot, uint32_t seq, double sim_time_s) override {
+    if (on_action_finished) on_action_finished(robot, seq, sim_time_s);
+  }
+  std::function<void(uint32_t, uint32_t, double)> on_action_finished;
   void answer_tick(const wire::Tick& answer) override {
     actions_.flush();
     clock_.write(wire::to_wire(answer, dds::kMonitorClockSource));
@@ -131,6 +135,7 @@ struct MonitorNode::Impl {
         directory(p),
         senders(robots) {
     writer.set_source(sup.execution());
+    writer.on_action_finished = o.on_action_finished;
   }
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.

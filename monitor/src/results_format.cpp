@@ -76,6 +76,18 @@ void put(std::string& out, const std::optional<T>& v, char sep = ',') {
   if (sep) out.push_back(sep);
 }
 
+}  // namespace
+
+double as_written(double v) {
+  std::string text;
+  put(text, v, 0);
+  double back = v;
+  std::from_chars(text.data(), text.data() + text.size(), back);
+  return back;
+}
+
+namespace {
+
 // Lines of `text` after the header, with their 1-based numbers; empty lines are skipped.
 template <class F>
 void rows_of(std::string_view text, F&& row) {

@@ -157,6 +157,7 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
     const uint32_t first = in_->actions.offset[p.robot];
     for (uint32_t s = before; s < exec_->finished(p.robot); ++s) {
       res_.action_finish_s[first + s] = sim_time_s;
+      writer_.action_finished(p.robot, s, sim_time_s);
     }
   }
   for (const uint32_t r : u.robots_changed) {

@@ -12,16 +12,31 @@
 
 namespace smart::record {
 
-std::string cdr_bytes(const void* sample, const dds_topic_descriptor_t& descriptor) {
-  dds_ostreamLE_t os;
-  dds_ostreamLE_init(&os, 0, CDR_ENC_VERSION_1);
+// RTPS encapsulation header, big-endian identifier CDR_LE then two option bytes (DDSI-RTPS 2.5,
+// 10.2).
+constexpr std::string_view kCdrLe("\x00\x01\x00\x00", 4);
+
+struct CdrWriter::Stream {
+  dds_ostreamLE_t os{};
+  Stream() { dds_ostreamLE_init(&os, 0, CDR_ENC_VERSION_1); }
+  ~Stream() { dds_ostreamLE_fini(&os); }
+};
+
+CdrWriter::CdrWriter() : stream_(std::make_unique<Stream>()) {}
+CdrWriter::~CdrWriter() = default;
+
+std::string_view CdrWriter::write(const void* sample, const dds_topic_descriptor_t& descriptor) {
+  auto& os = stream_->os;
+  os.x.m_index = 0;  // the buffer is kept; alignment counts from the payload's start
   dds_stream_writeLE(&os, static_cast<const char*>(sample), descriptor.m_ops);
-  // RTPS encapsulation header, big-endian identifier CDR_LE then two option bytes (DDSI-RTPS
-  // 2.5, 10.2).
-  std::string out("\x00\x01\x00\x00", 4);
-  out.append(reinterpret_cast<const char*>(os.x.m_buffer), os.x.m_index);
-  dds_ostreamLE_fini(&os);
-  return out;
+  out_.assign(kCdrLe);
+  out_.append(reinterpret_cast<const char*>(os.x.m_buffer), os.x.m_index);
+  return out_;
+}
+
+std::string cdr_bytes(const void* sample, const dds_topic_descriptor_t& descriptor) {
+  CdrWriter w;
+  return std::string(w.write(sample, descriptor));
 }
 
 void read_cdr(std::string_view bytes, const dds_topic_descriptor_t& descriptor, void* sample) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "recording_parts.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
@@ -20,27 +21,24 @@ namespace {
 
 constexpr std::size_t kMaxPlanChannels = 60000;
 
-class FileSink : public ByteSink {
- public:
-  explicit FileSink(const fs::path& path) : path_(path), out_(path, std::ios::binary) {
-    if (!out_) throw std::runtime_error(path.string() + ": cannot be written; check the folder");
-  }
-  void write(std::string_view bytes) override {
-    out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out_) throw std::runtime_error(path_.string() + ": write failed (disk full?)");
-    bytes_ += bytes.size();
-  }
-  void close() {
-    out_.close();
-    if (!out_) throw std::runtime_error(path_.string() + ": closing failed (disk full?)");
-  }
-  uint64_t bytes() const { return bytes_; }
+}  // namespace
 
- private:
-  fs::path path_;
-  std::ofstream out_;
-  uint64_t bytes_ = 0;
-};
+FileSink::FileSink(const fs::path& path) : path_(path), out_(path, std::ios::binary) {
+  if (!out_) throw std::runtime_error(path.string() + ": cannot be written; check the folder");
+}
+
+void FileSink::write(std::string_view bytes) {
+  out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out_) throw std::runtime_error(path_.string() + ": write failed (disk full?)");
+  bytes_ += bytes.size();
+}
+
+void FileSink::close() {
+  out_.close();
+  if (!out_) throw std::runtime_error(path_.string() + ": closing failed (disk full?)");
+}
+
+namespace {
 
 json read_summary(const fs::path& dir) {
   if (fs::is_regular_file(dir)) {
@@ -208,6 +206,26 @@ void attach_files(const fs::path& dir, const json& summary, RunRecorder& rec,
 
 }  // namespace
 
+void start_recording(RunRecorder& rec, const grid::Grid& map, double cell_m,
+                     const monitor::Instance* instance, double robot_radius_m,
+                     ExportReport& report) {
+  rec.map(map, cell_m);
+  // A channel per robot's plan: MCAP's 16-bit channel ids bound them.
+  if (instance && report.robots > kMaxPlanChannels) {
+    report.notes.push_back("plans and markers not recorded: " + std::to_string(report.robots) +
+                           " robots, more plan channels than an MCAP file can hold");
+  } else if (instance) {
+    rec.plan_view(*instance, cell_m, robot_radius_m);
+  }
+}
+
+void end_recording(RunRecorder& rec, const fs::path& results_dir, ExportReport& report) {
+  attach_files(results_dir, read_summary(results_dir), rec, report);
+  rec.finish();
+  report.messages = rec.messages();
+  report.channels = rec.channel_counts();
+}
+
 ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
                          const RecorderOptions& options) {
   ExportReport report;
@@ -221,21 +239,12 @@ ExportReport export_mcap(const fs::path& results_dir, const fs::path& out,
   try {
     RunRecorder rec(sink, options, report.robots,
                     summary.value(results::summary_key::kRunId, uint64_t{0}));
-    rec.map(map, cell_m);
-    attach_files(results_dir, summary, rec, report);
-    // A channel per robot's plan: MCAP's 16-bit channel ids bound them.
-    if (instance && report.robots > kMaxPlanChannels) {
-      report.notes.push_back("plans and markers not recorded: " + std::to_string(report.robots) +
-                             " robots, more plan channels than an MCAP file can hold");
-    } else if (instance) {
-      rec.plan_view(*instance, cell_m, robot_radius_m(summary, cell_m));
-    }
+    start_recording(rec, map, cell_m, instance ? &*instance : nullptr,
+                    robot_radius_m(summary, cell_m), report);
     add_progress(results_dir, rec);
     add_events(results_dir, rec);
     add_states(results_dir, rec);
-    rec.finish();
-    report.messages = rec.messages();
-    report.channels = rec.channel_counts();
+    end_recording(rec, results_dir, report);
     sink.close();
   } catch (...) {
     std::error_code ec;

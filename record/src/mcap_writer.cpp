@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "smart/common/memory.hpp"
+
 namespace smart::record {
 
 namespace {
@@ -84,7 +86,7 @@ uint16_t McapWriter::add_schema(std::string_view name, std::string_view encoding
   if (schemas_.size() >= kMaxIds) throw std::length_error("MCAP: more than 65535 schemas");
   schemas_.push_back({std::string(name), std::string(encoding), std::string(data)});
   const auto id = static_cast<uint16_t>(schemas_.size());
-  chunk_ += schema_record(id);
+  chunk_.records += schema_record(id);
   return id;
 }
 
@@ -101,7 +103,7 @@ uint16_t McapWriter::add_channel(const McapChannel& channel) {
   channel_counts_.push_back(0);
   sequences_.push_back(0);
   const auto id = static_cast<uint16_t>(channels_.size());
-  chunk_ += channel_record(id);
+  chunk_.records += channel_record(id);
   return id;
 }
 
@@ -137,31 +139,37 @@ void McapWriter::write(uint16_t channel_id, uint64_t log_time_ns, uint64_t publi
     throw std::logic_error("MCAP: message on channel " + std::to_string(channel_id) +
                            ", which was not added");
   }
-  if (!chunk_has_messages_) chunk_start_ns_ = chunk_end_ns_ = log_time_ns;
-  chunk_start_ns_ = std::min(chunk_start_ns_, log_time_ns);
-  chunk_end_ns_ = std::max(chunk_end_ns_, log_time_ns);
+  if (!chunk_has_messages_) chunk_.start_ns = chunk_.end_ns = log_time_ns;
+  chunk_.start_ns = std::min(chunk_.start_ns, log_time_ns);
+  chunk_.end_ns = std::max(chunk_.end_ns, log_time_ns);
   chunk_has_messages_ = true;
   if (message_count_ == 0) start_ns_ = end_ns_ = log_time_ns;
   start_ns_ = std::min(start_ns_, log_time_ns);
   end_ns_ = std::max(end_ns_, log_time_ns);
-  chunk_index_[channel_id].emplace_back(log_time_ns, chunk_.size());
-  std::string m;
-  m.reserve(22 + data.size());
-  le(m, channel_id);
-  le(m, sequences_[channel_id - 1U]++);
-  le(m, log_time_ns);
-  le(m, publish_time_ns);
-  m.append(data);
-  chunk_ += record(kMessage, m);
+  auto& r = chunk_.records;
+  chunk_.index[channel_id].emplace_back(log_time_ns, r.size());
+  // The Message record in place: opcode, length, channel, sequence, log and publish time, data.
+  r.push_back(static_cast<char>(kMessage));
+  le(r, static_cast<uint64_t>(22 + data.size()));
+  le(r, channel_id);
+  le(r, sequences_[channel_id - 1U]++);
+  le(r, log_time_ns);
+  le(r, publish_time_ns);
+  r.append(data);
   ++channel_counts_[channel_id - 1U];
   ++message_count_;
-  if (chunk_.size() >= options_.chunk_bytes) flush_chunk();
+  if (r.size() >= options_.chunk_bytes) flush_chunk();
+}
+
+McapWriter::~McapWriter() {
+  if (building_.valid()) building_.wait();
 }
 
 void McapWriter::attach(std::string_view name, std::string_view media_type, std::string_view data,
                         uint64_t log_time_ns) {
   if (finished_) throw std::logic_error("MCAP: attach after finish");
   flush_chunk();  // attachments live between chunks
+  drain_built();
   std::string c;
   le(c, log_time_ns);
   le(c, log_time_ns);  // create time
@@ -176,23 +184,22 @@ void McapWriter::attach(std::string_view name, std::string_view media_type, std:
   put(r);
 }
 
-void McapWriter::flush_chunk() {
-  if (chunk_.empty()) return;
-  const std::string body = options_.compress ? compress_zstd(chunk_, options_.zstd_level) : chunk_;
+McapWriter::BuiltChunk McapWriter::build_chunk(const OpenChunk& chunk, bool compress, int level,
+                                               bool own_thread) {
+  BuiltChunk b;
+  const std::string body = compress ? compress_zstd(chunk.records, level) : std::string();
+  const std::string_view stored = compress ? std::string_view(body) : chunk.records;
   std::string c;
-  le(c, chunk_start_ns_);
-  le(c, chunk_end_ns_);
-  le(c, static_cast<uint64_t>(chunk_.size()));
-  le(c, crc(0, chunk_));
-  str(c, options_.compress ? "zstd" : "");
-  le(c, static_cast<uint64_t>(body.size()));
-  c += body;
-  ChunkIndex index{chunk_start_ns_, chunk_end_ns_, offset_, 0, {}, 0, body.size(), chunk_.size()};
-  const std::string chunk = record(kChunk, c);
-  index.length = chunk.size();
-  put(chunk);
-  const uint64_t indexes_start = offset_;
-  for (const auto& [channel, entries] : chunk_index_) {
+  le(c, chunk.start_ns);
+  le(c, chunk.end_ns);
+  le(c, static_cast<uint64_t>(chunk.records.size()));
+  le(c, crc(0, chunk.records));
+  str(c, compress ? "zstd" : "");
+  le(c, static_cast<uint64_t>(stored.size()));
+  c.append(stored);
+  b.bytes = record(kChunk, c);
+  b.chunk_length = b.bytes.size();
+  for (const auto& [channel, entries] : chunk.index) {
     std::string mi, list;
     le(mi, channel);
     for (const auto& [t, off] : entries) {
@@ -200,14 +207,54 @@ void McapWriter::flush_chunk() {
       le(list, off);
     }
     str(mi, list);
-    index.index_offsets[channel] = offset_;
-    put(record(kMessageIndex, mi));
+    const std::string r = record(kMessageIndex, mi);
+    b.index_lengths.emplace_back(channel, r.size());
+    b.bytes += r;
   }
-  index.index_length = offset_ - indexes_start;
+  b.crc = crc(0, b.bytes);
+  b.compressed_size = stored.size();
+  b.uncompressed_size = chunk.records.size();
+  b.start_ns = chunk.start_ns;
+  b.end_ns = chunk.end_ns;
+  if (own_thread) b.thread_cpu_s = common::thread_cpu_seconds();  // std::async: a fresh thread
+  return b;
+}
+
+void McapWriter::put_built(const BuiltChunk& b) {
+  ChunkIndex index{b.start_ns, b.end_ns, offset_,           b.chunk_length,
+                   {},         0,        b.compressed_size, b.uncompressed_size};
+  uint64_t at = offset_ + b.chunk_length;
+  for (const auto& [channel, length] : b.index_lengths) {
+    index.index_offsets[channel] = at;
+    at += length;
+  }
+  index.index_length = b.bytes.size() - b.chunk_length;
+  sink_.write(b.bytes);
+  // The chunk's CRC was taken on the other thread: joined to the running one (zlib).
+  data_crc_ =
+      static_cast<uint32_t>(crc32_combine(data_crc_, b.crc, static_cast<z_off_t>(b.bytes.size())));
+  offset_ += b.bytes.size();
+  background_cpu_s_ += b.thread_cpu_s;
   chunk_indexes_.push_back(std::move(index));
-  chunk_.clear();
-  chunk_index_.clear();
+}
+
+void McapWriter::drain_built() {
+  if (building_.valid()) put_built(building_.get());
+}
+
+void McapWriter::flush_chunk() {
+  drain_built();
+  if (chunk_.records.empty()) return;
+  OpenChunk full = std::move(chunk_);
+  chunk_ = OpenChunk{};
+  chunk_.records.reserve(options_.chunk_bytes + (options_.chunk_bytes >> 3));
   chunk_has_messages_ = false;
+  if (options_.background_chunks) {
+    building_ = std::async(std::launch::async, &McapWriter::build_chunk, std::move(full),
+                           options_.compress, options_.zstd_level, true);
+  } else {
+    put_built(build_chunk(full, options_.compress, options_.zstd_level, false));
+  }
 }
 
 std::string McapWriter::statistics_record() const {
@@ -271,6 +318,7 @@ std::vector<McapWriter::ChannelCount> McapWriter::channel_counts() const {
 void McapWriter::finish() {
   if (finished_) return;
   flush_chunk();
+  drain_built();
   std::string end;
   le(end, data_crc_);
   put(record(kDataEnd, end));

@@ -26,8 +26,15 @@ std::string qos_yaml(bool latched) {
          "\n  avoid_ros_namespace_conventions: false\n";
 }
 
-bool later(const auto& a, const auto& b) {  // heap order: earliest on top
-  return a.t_s != b.t_s ? a.t_s > b.t_s : a.order > b.order;
+// Heap order, earliest on top: by time, then progress before events, progress by robot and
+// action, events as given, so that the file does not depend on the order progress was told in
+// (a live recording hears it as it arrives, an export in actions.csv's order).
+bool later(const auto& a, const auto& b) {
+  if (a.t_s != b.t_s) return a.t_s > b.t_s;
+  const bool a_event = a.event >= 0, b_event = b.event >= 0;
+  if (a_event != b_event) return a_event;
+  if (a_event) return a.order > b.order;
+  return a.robot != b.robot ? a.robot > b.robot : a.finished_seq > b.finished_seq;
 }
 
 }  // namespace
@@ -82,7 +89,7 @@ void RunRecorder::map(const grid::Grid& grid, double cell_m) {
   const auto ch = ros_channel(ros_type_name<nav_msgs_msg_dds__OccupancyGrid_>(),
                               std::string(dds::kRosMapTopic), true);
   MapMessage m(grid, cell_m);
-  writer_.write(ch, 0, 0, cdr_bytes(m.message()));
+  writer_.write(ch, 0, 0, cdr_.write(m.message()));
 }
 
 void RunRecorder::plans(const std::vector<std::vector<grid::WorldPoint>>& paths) {
@@ -93,7 +100,7 @@ void RunRecorder::plans(const std::vector<std::vector<grid::WorldPoint>>& paths)
     const auto ch =
         ros_channel(ros_type_name<nav_msgs_msg_dds__Path_>(), dds::ros_robot_plan_topic(r), true);
     PathMessage m(paths[r]);
-    writer_.write(ch, 0, 0, cdr_bytes(m.message()));
+    writer_.write(ch, 0, 0, cdr_.write(m.message()));
   }
 }
 
@@ -112,12 +119,13 @@ void RunRecorder::plan_view(const monitor::Instance& in, double cell_m, double r
 
 void RunRecorder::progress(double t_s, uint32_t robot, int32_t finished_seq) {
   check_robot(robot, "a progress row");
-  pending_.push_back({t_s, order_++, std::nullopt, robot, finished_seq});
+  pending_.push_back({t_s, order_++, -1, robot, finished_seq});
   std::push_heap(pending_.begin(), pending_.end(), [](auto& a, auto& b) { return later(a, b); });
 }
 
 void RunRecorder::event(const results::EventRow& row) {
-  pending_.push_back({row.t_s, order_++, row});
+  events_.push_back(row);
+  pending_.push_back({row.t_s, order_++, static_cast<int64_t>(events_.size() - 1)});
   std::push_heap(pending_.begin(), pending_.end(), [](auto& a, auto& b) { return later(a, b); });
 }
 
@@ -128,18 +136,19 @@ void RunRecorder::drain(double up_to_s, bool all) {
     write_pending(pending_.back());
     pending_.pop_back();
   }
+  if (pending_.empty()) events_.clear();
 }
 
 void RunRecorder::write_pending(const Pending& p) {
   const uint64_t t = ns_of(p.t_s);
-  if (!p.event) {
+  if (p.event < 0) {
     if (tracker_ && p.robot < tracker_->robots())
       (void)tracker_->on_progress(p.robot, p.finished_seq);
     smart_msg_Progress m{p.robot, run_id_, p.finished_seq, -1};
-    writer_.write(progress_ch_, t, t, cdr_bytes(m));
+    writer_.write(progress_ch_, t, t, cdr_.write(m));
     return;
   }
-  const auto& e = *p.event;
+  const auto& e = events_[static_cast<std::size_t>(p.event)];
   smart_msg_RunEvent m{};
   m.run_id = run_id_;
   m.sim_time_s = e.t_s;
@@ -149,21 +158,21 @@ void RunRecorder::write_pending(const Pending& p) {
   m.robot = e.robot ? static_cast<int32_t>(*e.robot) : -1;
   m.errand = e.errand ? static_cast<int32_t>(*e.errand) : -1;
   m.detail = detail.data();
-  writer_.write(events_ch_, t, t, cdr_bytes(m));
+  writer_.write(events_ch_, t, t, cdr_.write(m));
 }
 
 void RunRecorder::write_fleet(double t_s, bool last) {
   const uint64_t t = ns_of(t_s);
-  writer_.write(poses_ch_, t, t, cdr_bytes(fleet_.pose_array(t_s)));
-  writer_.write(tf_ch_, t, t, cdr_bytes(fleet_.tf(t_s)));
+  writer_.write(poses_ch_, t, t, cdr_.write(fleet_.pose_array(t_s)));
+  writer_.write(tf_ch_, t, t, cdr_.write(fleet_.tf(t_s)));
   for (std::size_t k = 0; k < pose_chs_.size(); ++k) {
-    writer_.write(pose_chs_[k], t, t, cdr_bytes(fleet_.pose(options_.pose_robots[k], t_s)));
+    writer_.write(pose_chs_[k], t, t, cdr_.write(fleet_.pose(options_.pose_robots[k], t_s)));
   }
   if (markers_ &&
       (last || !last_markers_s_ || t_s - *last_markers_s_ >= options_.markers_period_s)) {
     last_markers_s_ = t_s;
     const auto snap = monitor::snapshot(in_->actions, in_->adg, *tracker_);
-    writer_.write(markers_ch_, t, t, cdr_bytes(markers_->message(snap, points_, t_s)));
+    writer_.write(markers_ch_, t, t, cdr_.write(markers_->message(snap, points_, t_s)));
   }
   fleet_written_ = true;
   last_fleet_s_ = t_s;
@@ -193,7 +202,7 @@ void RunRecorder::state(const results::StateRow& row) {
   m.wheel_right_mps = row.right_mps;
   m.queue_length = row.queue;
   const uint64_t t = ns_of(row.t_s);
-  writer_.write(state_ch_, t, t, cdr_bytes(m));
+  writer_.write(state_ch_, t, t, cdr_.write(m));
 }
 
 void RunRecorder::finish() {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "support/monitor_fixtures.hpp"
 
@@ -36,6 +37,10 @@ struct FakeWriter : RunWriter {
     ++window_writes;
   }
   void answer_tick(const wire::Tick& a) override { answers.push_back(a); }
+  std::vector<std::tuple<uint32_t, uint32_t, double>> finished;  // robot, seq, time
+  void action_finished(uint32_t robot, uint32_t seq, double t_s) override {
+    finished.emplace_back(robot, seq, t_s);
+  }
 };
 
 constexpr uint64_t kRun = 7;
@@ -119,6 +124,10 @@ TEST(RunSupervisor, EveryActionIsTimedAtTheTickThatAnnouncedIt) {
   r.sup.on_progress({1, kRun, 1}, 0);  // robot 1's two at once at 0.9 s
   EXPECT_THAT(r.sup.result().action_finish_s,
               ::testing::Pointwise(::testing::DoubleEq(), {0.1 * 3, 0.1 * 5, 0.1 * 9, 0.1 * 9}));
+  // The writer heard each action once, as it was timed (a live recording's progress).
+  using F = std::tuple<uint32_t, uint32_t, double>;
+  EXPECT_EQ(r.out.finished,
+            (std::vector<F>{{0, 0, 0.1 * 3}, {0, 1, 0.1 * 5}, {1, 0, 0.1 * 9}, {1, 1, 0.1 * 9}}));
 }
 
 TEST(RunSupervisor, ATickIsAnsweredOnlyWhenItsProgressAddsUp) {

@@ -4,6 +4,7 @@
 // serialization for the ROS 2 view (ros2msg schemas) and @foxglove/omgidl-serialization for the
 // run's own topics (omgidl schemas from idl/smart.idl). Every message is decoded; poses, tf
 // frames, robot states and progress are compared with the run's states.csv and actions.csv.
+// `smart run --mcap` records beside the run; the file equals `smart export mcap` of the results.
 // The results files and the run's inputs ride along as attachments, so `smart serve --open
 // run.mcap` replays the run from the recording alone (its states rebuilt from smart/state).
 // Then `smart export mcap --ros-namespace` puts the ROS topics under a namespace, and bad input
@@ -216,6 +217,12 @@ test('a recorded run reads back with the ROS 2 ecosystem readers, equal to its r
   const plan = attached.get('input/plan/example_paths_xy.txt');
   assert.ok(plan.equals(fs.readFileSync(path.join(bench, 'smart-examples/example_paths_xy.txt'))));
   assert.ok(attached.has('input/map/random-32-32-20.map') && attached.has('input/scen/random-32-32-20-random-1.scen'));
+
+  // Recorded while the run went, it is the file `smart export mcap` makes of its results.
+  const again = path.join(work, 'again.mcap');
+  const e = smart(['export', 'mcap', results, '-o', again, '--ros-pose-robots', '0,7']);
+  assert.equal(e.code, 0, e.err);
+  assert.ok(fs.readFileSync(again).equals(fs.readFileSync(mcap)), 'the live recording equals the export');
 });
 
 // `smart serve --open FILE`; resolves with its URL and the runs it opened once it listens.

@@ -5,6 +5,8 @@
 
 #include <fstream>
 
+#include "record_test_files.hpp"
+
 namespace smart::record {
 namespace {
 
@@ -14,11 +16,7 @@ using ::testing::HasSubstr;
 class ExportMcap : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("smart_export_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::fresh_test_dir("smart_export_");
     write("tiny.map", "type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n");
     write("summary.json", R"({"robots": 2, "cell_m": 1.0, "run_id": 5, "files": {"map": ")" +
                               (dir_ / "tiny.map").string() + R"("}})");

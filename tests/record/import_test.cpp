@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "record_test_files.hpp"
 #include "smart/dds/topics.hpp"
 #include "smart/record/cdr.hpp"
 #include "smart/record/export.hpp"
@@ -17,20 +18,12 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 class ImportMcap : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("smart_import_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = test::fresh_test_dir("smart_import_");
     fs::create_directories(dir_ / "run");
   }
   void TearDown() override { fs::remove_all(dir_); }

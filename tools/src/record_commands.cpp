@@ -42,7 +42,17 @@ void print_topics(const std::vector<record::McapWriter::ChannelCount>& channels)
 
 void record_run(const fs::path& results_dir, const fs::path& mcap,
                 const record::RecorderOptions& options) {
-  const auto report = record::export_mcap(results_dir, mcap, options);
+  print_recording(record::export_mcap(results_dir, mcap, options), mcap);
+}
+
+record::RecorderOptions run_recorder_options(const MonitorCliOptions& o) {
+  record::RecorderOptions r;
+  r.ros_namespace = o.sim.ros_namespace;
+  r.pose_robots = o.sim.ros_pose_robots;
+  return r;
+}
+
+void print_recording(const record::ExportReport& report, const fs::path& mcap) {
   for (const auto& note : report.notes) spdlog::warn("{}: {}", mcap.string(), note);
   std::cout << fmt::format("{}: {} messages of {} robots, {:.1f} MB, profile ros2\n", mcap.string(),
                            report.messages, report.robots, static_cast<double>(report.bytes) / 1e6);

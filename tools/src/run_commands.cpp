@@ -28,6 +28,7 @@
 #include "smart/monitor/results.hpp"
 #include "smart/monitor/results_format.hpp"
 #include "smart/monitor/sim_reports.hpp"
+#include "smart/record/live_recording.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/record_run.hpp"
@@ -259,6 +260,40 @@ std::unique_ptr<PrivateRunKey> own_run_key(SimCliOptions& o) {
 namespace {
 
 // Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
+// What the monitor's callbacks feed while the run goes: the live results files and, with --mcap,
+// the recording made beside the run from the same rows (record/live_recording.hpp).
+struct ResultsTaps {
+  std::optional<monitor::StatesCsvWriter> states;
+  std::optional<monitor::ProgressCsvWriter> progress;
+  std::optional<record::LiveRecording> recording;
+};
+
+void tap_results(const MonitorCliOptions& o, const monitor::Instance& in, double robot_radius_m,
+                 monitor::MonitorOptions& mo, ResultsTaps& taps) {
+  if (o.out.empty()) return;
+  auto& recording = taps.recording;
+  if (!o.mcap.empty()) {
+    if (mo.run.run_id == 0) mo.run.run_id = monitor::wall_clock_run_id();  // in the messages
+    recording.emplace(record::LiveRecordingSetup{o.mcap, run_recorder_options(o), mo.run.run_id,
+                                                 &in, o.sim.world.cell_m, robot_radius_m});
+    mo.on_action_finished = [&recording](uint32_t robot, uint32_t seq, double t_s) {
+      recording->action_finished(robot, seq, t_s);
+    };
+  }
+  taps.states.emplace(o.out);
+  mo.on_state = [&states = taps.states, &recording](const monitor::StateRow& row) {
+    states->add(row);
+    if (recording) recording->state(row);
+  };
+  taps.progress.emplace(o.out);
+  mo.on_finished = [&progress = taps.progress](const results::ProgressRow& row) {
+    progress->add(row);
+  };
+  mo.on_robots_finished = [dir = o.out](const std::vector<uint32_t>& finished) {
+    monitor::write_finished_csv(dir, finished);
+  };
+}
+
 int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   check_plan_run_flags(o);
   // A run this process starts whole gets a run (partition) of its own unless one was named.
@@ -298,17 +333,8 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   // Its own sim host's exit is seen at once (host_check); a slow start on a loaded machine is not
   // a lost host.
   if (spawn_sim_child) mo.run.join_timeout_s = 4 * mo.run.timeout_s;
-  std::optional<monitor::StatesCsvWriter> states;
-  std::optional<monitor::ProgressCsvWriter> progress;
-  if (!o.out.empty()) {
-    states.emplace(o.out);
-    mo.on_state = [&states](const monitor::StateRow& row) { states->add(row); };
-    progress.emplace(o.out);
-    mo.on_finished = [&progress](const results::ProgressRow& row) { progress->add(row); };
-    mo.on_robots_finished = [dir = o.out](const std::vector<uint32_t>& finished) {
-      monitor::write_finished_csv(dir, finished);
-    };
-  }
+  ResultsTaps taps;  // outlives the node, whose callbacks write to it
+  tap_results(o, in, model.radius_m, mo, taps);
   if (!sims.empty()) mo.host_check = watch(sims);
   monitor::MonitorNode node(participant, profile, in, mo);
   const bool tty = o.progress && isatty(STDERR_FILENO);
@@ -320,7 +346,13 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
     if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
   }
   auto info = run_info(o, robot_file);
-  info.monitor_cpu_s = common::cpu_seconds_self();
+  auto& recording = taps.recording;
+  if (recording) {
+    recording->stop();
+    spdlog::info("recording: {:.1f} s of CPU beside the run", recording->cpu_s());
+  }
+  // The monitor's own CPU: the recording's thread is not the monitor's work.
+  info.monitor_cpu_s = common::cpu_seconds_self() - (recording ? recording->cpu_s() : 0.0);
   if (!sims.empty()) {
     info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim hosts
     const auto words = sim_words(o);
@@ -331,6 +363,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
   // The summary first, the verdict and warnings last: on a terminal the JSON buried them.
   std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
+  if (recording) print_recording(recording->finish(o.out), o.mcap);
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   if (const auto& c = result.first_pose_contact) {
     spdlog::warn(
@@ -407,19 +440,20 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   auto mcap = std::make_shared<std::string>();
   run->add_option("--mcap", *mcap,
                   "also write the run as an MCAP file (ROS 2 view and the run's topics, for "
-                  "Foxglove and `ros2 bag`; docs/ros2.md), made from its results once it ended");
+                  "Foxglove and `ros2 bag`; docs/ros2.md), recorded while the run goes (a "
+                  "lifelong run: from its results once it ended)");
   group_options(run);
   run->callback([&exit_code, ro, mcap] {
     install_stop_handlers();
-    // The recording is made from the results: without --out they go to a scratch folder.
+    // The recording ends with the results (attached): without --out they go to a scratch folder.
     std::optional<TempDir> scratch;
     if (!mcap->empty() && ro->out.empty()) ro->out = scratch.emplace("smart-run").path().string();
+    // A plan's run records while it goes; a lifelong run from its results once it ended.
+    const bool live = !mcap->empty() && !ro->sim.source.active();
+    if (live) ro->mcap = *mcap;
     exit_code = ro->sim.source.active() ? run_lifelong(*ro, true) : run_monitor(*ro, true);
-    if (!mcap->empty() && exit_code != ExitCode::kExitSystem) {
-      record::RecorderOptions o;
-      o.ros_namespace = ro->sim.ros_namespace;
-      o.pose_robots = ro->sim.ros_pose_robots;
-      record_run(ro->out, *mcap, o);
+    if (!mcap->empty() && !live && exit_code != ExitCode::kExitSystem) {
+      record_run(ro->out, *mcap, run_recorder_options(*ro));
     }
   });
 }

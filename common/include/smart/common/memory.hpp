@@ -11,5 +11,8 @@ double peak_rss_mb();
 // User + system CPU seconds (getrusage): of this process, or of its waited-for children.
 double cpu_seconds_self();
 double cpu_seconds_children();
+// CPU seconds of the calling thread (CLOCK_THREAD_CPUTIME_ID): work done on a helper thread, to
+// tell it apart from the process's (e.g. a recording beside the monitor).
+double thread_cpu_seconds();
 
 }  // namespace smart::common

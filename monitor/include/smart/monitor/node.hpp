@@ -38,6 +38,9 @@ struct MonitorOptions {
   // Finished actions so far, when the count changed (checked about every 100 ms of wall time;
   // e.g. streamed to progress.csv by ProgressCsvWriter, results.hpp): live views' progress.
   std::function<void(const results::ProgressRow&)> on_finished;
+  // Each action of a plan's run as it finishes (RunWriter::action_finished: robot, seq, sim
+  // time), on the monitor's thread: e.g. a recording made while the run goes.
+  std::function<void(uint32_t, uint32_t, double)> on_action_finished;
   // Each robot's finished actions (by robot), when any changed, at most once a second of wall
   // time: a live view's robot panel (e.g. write_finished_csv, results.hpp).
   std::function<void(const std::vector<uint32_t>&)> on_robots_finished;
@@ -46,6 +49,9 @@ struct MonitorOptions {
   double robot_radius_m = 0.1;  // robot markers' size
   std::string ros_namespace;    // the plan view's topics under it ("" or "/run_a")
 };
+
+// A run id from the wall clock, increasing run to run: what a run given run id 0 gets.
+uint64_t wall_clock_run_id();
 
 // Called about every 100 ms of wall time with the running state (progress display).
 using ProgressCallback = std::function<void(const MonitorResult&, std::size_t robots_done)>;

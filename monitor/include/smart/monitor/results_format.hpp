@@ -44,6 +44,9 @@ inline constexpr std::array<std::string_view, 9> kFiles = {
     kSummaryJson, kStatsCsv,  kRobotsCsv,     kActionsCsv, kStatesCsv,
     kTasksCsv,    kEventsCsv, kThroughputCsv, kSwitchesCsv};
 bool is_results_file(std::string_view name);
+// The number a reader of these files gets back for v: v written as above (10 digits) and read
+// again (a recording made while the run goes records what the files hold).
+double as_written(double v);
 // A sim host's own report of a run started by `smart run` (one per shard): sim-<shard>.json,
 // the JSON line `smart sim` prints last on its standard output. Its keys that others read:
 std::string sim_report_name(uint32_t shard);
@@ -75,11 +78,11 @@ inline constexpr const char* kCellM = "cell_m";
 inline constexpr const char* kFiles = "files";  // {map, scen, plan, robot}: the run's inputs
 inline constexpr const char* kMap = "map";
 inline constexpr const char* kScen = "scen";
-inline constexpr const char* kPlan = "plan";    // also the plan object: {axis, ...}
-inline constexpr const char* kRobot = "robot";  // in "files"
-inline constexpr const char* kAxis = "axis";    // in "plan"
+inline constexpr const char* kPlan = "plan";      // also the plan object: {axis, ...}
+inline constexpr const char* kRobot = "robot";    // in "files"
+inline constexpr const char* kAxis = "axis";      // in "plan"
 inline constexpr const char* kFormat = "format";  // in "plan"
-inline constexpr const char* kRunId = "run_id";  // the run's id on the wire (samples carry it)
+inline constexpr const char* kRunId = "run_id";   // the run's id on the wire (samples carry it)
 // A lifelong run's object and the keys of it that `smart experiment` reads.
 inline constexpr const char* kLifelong = "lifelong";
 inline constexpr const char* kTasksFinished = "tasks_finished";

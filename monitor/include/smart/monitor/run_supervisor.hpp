@@ -182,6 +182,10 @@ class RunWriter {
   // Publish robot's window: actions [window.first, window.end) of its plan.
   virtual void publish_window(uint32_t robot, uint64_t run_id, ExecutionTracker::Window w) = 0;
   virtual void answer_tick(const wire::Tick& answer) = 0;
+  // A plan's action `seq` of `robot` finished at sim_time_s: the time actions.csv gets
+  // (MonitorResult::action_finish_s), said once per action as it is decided (a recording made
+  // while the run goes, record/live_recording.hpp). Lifelong runs do not say it.
+  virtual void action_finished(uint32_t /*robot*/, uint32_t /*seq*/, double /*sim_time_s*/) {}
 };
 
 class RunSupervisor {

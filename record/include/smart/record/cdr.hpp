@@ -2,6 +2,8 @@
 // the 4-byte encapsulation header (CDR_LE: 00 01 00 00) and the sample in XCDR1 little endian,
 // written by Cyclone DDS's own serializer from the type's descriptor (dds/ddsi/ddsi_cdrstream.h),
 // so the recorded bytes are the ones the live topic carries (all of idl/ is @final, XCDR1).
+// CdrWriter does the same into one buffer it keeps (a recording serializes millions of samples:
+// no allocation each).
 // read_cdr is the way back for untrusted bytes: the encapsulation header is checked (CDR_LE or
 // CDR_BE), the payload is validated by Cyclone's normalizer against the descriptor's ops (every
 // length and enum within the bytes) before Cyclone's deserializer reads it.
@@ -10,6 +12,7 @@
 
 #include <dds/dds.h>
 
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -23,6 +26,25 @@ template <class T>
 std::string cdr_bytes(const T& sample) {
   return cdr_bytes(&sample, *dds::TopicTraits<T>::descriptor());
 }
+
+class CdrWriter {
+ public:
+  CdrWriter();
+  ~CdrWriter();
+  CdrWriter(const CdrWriter&) = delete;
+  CdrWriter& operator=(const CdrWriter&) = delete;
+  // The sample's CDR bytes as cdr_bytes makes them; valid until the next write.
+  std::string_view write(const void* sample, const dds_topic_descriptor_t& descriptor);
+  template <class T>
+  std::string_view write(const T& sample) {
+    return write(&sample, *dds::TopicTraits<T>::descriptor());
+  }
+
+ private:
+  struct Stream;
+  std::unique_ptr<Stream> stream_;
+  std::string out_;
+};
 
 // Fills `sample` (zero-initialized or read before) from `bytes`; throws std::invalid_argument
 // saying what is wrong (short, not CDR, not this type). Free a sample's contents with

@@ -16,7 +16,8 @@
 // the last time are written as one PoseArray and one TFMessage (every robot at its last reported
 // pose; a robot never reported stands at its plan's start, else at the origin), at most one per
 // fleet_period_s of sim time. Progress and events may be given in any order before or between
-// states: each is written once the states have passed its time, so the file is in time order.
+// states: each is written once the states have passed its time, so the file is in time order
+// (at one time: progress by robot and action, then events as given).
 // Memory: one chunk, the fleet's poses and the progress and events not yet written.
 // Throws std::invalid_argument for a chosen robot or a row's robot outside the fleet and for an
 // invalid namespace (dds::check_ros_namespace).
@@ -32,6 +33,7 @@
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/results_format.hpp"
+#include "smart/record/cdr.hpp"
 #include "smart/record/mcap_writer.hpp"
 #include "smart/record/ros_messages.hpp"
 
@@ -68,13 +70,14 @@ class RunRecorder {
   void state(const results::StateRow& row);
   void finish();
   uint64_t messages() const { return writer_.messages(); }
+  double background_cpu_s() const { return writer_.background_cpu_s(); }
   std::vector<McapWriter::ChannelCount> channel_counts() const { return writer_.channel_counts(); }
 
  private:
   struct Pending {
     double t_s;
-    uint64_t order;  // ties keep the order of the calls
-    std::optional<results::EventRow> event;
+    uint64_t order;      // ties keep the order of the calls
+    int64_t event = -1;  // in events_; -1: a progress
     uint32_t robot = 0;
     int32_t finished_seq = -1;
   };
@@ -99,6 +102,8 @@ class RunRecorder {
   std::vector<uint16_t> pose_chs_;
   std::map<std::string, uint16_t> schemas_;  // by type name
   std::vector<Pending> pending_;             // a min-heap by (t_s, order)
+  std::vector<results::EventRow> events_;    // the pending events' rows
+  CdrWriter cdr_;
   uint64_t order_ = 0;
   bool have_time_ = false, fleet_written_ = false;
   double time_s_ = 0, last_fleet_s_ = 0;

@@ -5,7 +5,9 @@
 
 #include <filesystem>
 
+#include "smart/record/export.hpp"
 #include "smart/record/recorder.hpp"
+#include "smart/tools/run_options.hpp"
 
 namespace smart::tools {
 
@@ -13,5 +15,9 @@ namespace smart::tools {
 // cannot be written.
 void record_run(const std::filesystem::path& results_dir, const std::filesystem::path& mcap,
                 const record::RecorderOptions& options);
+// What record_run prints of a recording (also of one made while the run went).
+void print_recording(const record::ExportReport& report, const std::filesystem::path& mcap);
+// The recording options `smart run` gives (its ROS namespace and chosen robots).
+record::RecorderOptions run_recorder_options(const MonitorCliOptions& o);
 
 }  // namespace smart::tools

@@ -110,6 +110,9 @@ struct MonitorCliOptions {
   bool require_sim_status = false;
   bool progress = true;
   double ros_plan_hz = 0;  // the rviz2 plan view; 0: off
+  // `smart run --mcap`: a plan's run is recorded while it goes (record/live_recording.hpp);
+  // set to "" once that is done, so the caller records the others from their results.
+  std::string mcap;
 };
 
 // --map --scen --agents --initial-heading --cell-m --robot.
