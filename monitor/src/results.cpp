@@ -311,6 +311,10 @@ void StatesCsvWriter::add(const StateRow& s) {
   std::string line;
   line.reserve(128);
   results::append_row(line, s);
+  add_line(line);
+}
+
+void StatesCsvWriter::add_line(std::string_view line) {
   out_ << line;
   ++rows_;
 }

@@ -15,13 +15,6 @@ namespace fs = std::filesystem;
 namespace {
 constexpr std::size_t kBatch = 4096;  // items handed over at once
 
-results::StateRow as_written(results::StateRow r) {
-  for (double* v :
-       {&r.t_s, &r.x_m, &r.y_m, &r.yaw_rad, &r.v_mps, &r.w_radps, &r.left_mps, &r.right_mps}) {
-    *v = results::as_written(*v);
-  }
-  return r;
-}
 }  // namespace
 
 LiveRecording::LiveRecording(LiveRecordingSetup setup)
@@ -53,20 +46,17 @@ LiveRecording::~LiveRecording() {
   }
 }
 
-void LiveRecording::push(const Item& item) {
+void LiveRecording::state(std::string_view line) {
   std::lock_guard lock(m_);
-  incoming_.push_back(item);
-  if (incoming_.size() == kBatch) cv_.notify_one();
+  incoming_.items.push_back({true, 0, 0, 0.0, incoming_.text.size(), line.size()});
+  incoming_.text.append(line);
+  if (incoming_.items.size() == kBatch) cv_.notify_one();
 }
 
-void LiveRecording::state(const results::StateRow& row) { push({true, row}); }
-
 void LiveRecording::action_finished(uint32_t robot, uint32_t seq, double t_s) {
-  results::StateRow r;
-  r.t_s = t_s;
-  r.robot = robot;
-  r.queue = seq;
-  push({false, r});
+  std::lock_guard lock(m_);
+  incoming_.items.push_back({false, robot, seq, t_s, 0, 0});
+  if (incoming_.items.size() == kBatch) cv_.notify_one();
 }
 
 void LiveRecording::loop() {
@@ -74,13 +64,13 @@ void LiveRecording::loop() {
   // has not done when the run ends, finish() does at normal priority.
   sched_param idle{};
   (void)pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
-  std::vector<Item> batch;
+  Batch batch;
   for (bool stop = false; !stop;) {
     {
       std::unique_lock lock(m_);
       cv_.wait_for(lock, std::chrono::milliseconds(50),
-                   [this] { return stop_ || incoming_.size() >= kBatch; });
-      batch.swap(incoming_);
+                   [this] { return stop_ || incoming_.items.size() >= kBatch; });
+      std::swap(batch, incoming_);
       stop = stop_;
     }
     if (!error_) {
@@ -90,7 +80,8 @@ void LiveRecording::loop() {
         error_ = std::current_exception();  // finish() throws it; the rest is dropped
       }
     }
-    batch.clear();
+    batch.items.clear();
+    batch.text.clear();
   }
   thread_cpu_s_ = common::thread_cpu_seconds();
 }
@@ -99,15 +90,20 @@ double LiveRecording::cpu_s() const {
   return thread_cpu_s_ + (rec_ ? rec_->background_cpu_s() : 0.0);
 }
 
-void LiveRecording::consume(const std::vector<Item>& batch) {
-  for (const auto& item : batch) {
+void LiveRecording::consume(const Batch& batch) {
+  for (const auto& item : batch.items) {
     if (!item.is_state) {
-      rec_->progress(results::as_written(item.row.t_s), item.row.robot,
-                     static_cast<int32_t>(item.row.queue));
+      rec_->progress(results::as_written(item.t_s), item.robot, static_cast<int32_t>(item.seq));
       continue;
     }
-    held_.push_back(as_written(item.row));
-    newest_s_ = std::max(newest_s_, held_.back().t_s);
+    auto line = std::string_view(batch.text).substr(item.at, item.length);
+    if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+    const auto row = results::parse_state_line(line);
+    if (!row) {
+      throw std::invalid_argument("recording: not a states.csv row: " + std::string(line));
+    }
+    held_.push_back(*row);
+    newest_s_ = std::max(newest_s_, row->t_s);
     release(false);  // after each state: the same file however the rows were batched
   }
 }

@@ -66,6 +66,13 @@ results::StateRow at(double t, uint32_t robot, double x) {
   return {t, robot, x, 0.0, 0.1234567890123, 0.5, 0, 0.25, 0.75, 1};
 }
 
+// A row as the monitor's states.csv writer hands it over.
+void tell(LiveRecording& live, const results::StateRow& row) {
+  std::string line;
+  results::append_row(line, row);
+  live.state(line);
+}
+
 TEST_F(LiveRecordingTest, IsTheFileTheExportMakesOfTheRunsResults) {
   // Rows as a monitor hears them: progress before and after states of its time (within the lag),
   // numbers with more digits than the files keep.
@@ -75,18 +82,18 @@ TEST_F(LiveRecordingTest, IsTheFileTheExportMakesOfTheRunsResults) {
       at(2.0, 0, 2), at(2.0, 1, 1), at(4.5, 0, 2),
       at(4.5, 1, 1)};
   LiveRecording live(setup());
-  live.state(states[0]);
-  live.state(states[1]);
+  tell(live, states[0]);
+  tell(live, states[1]);
   live.action_finished(0, 0, 0.7000000000001);
-  live.state(states[2]);
-  live.state(states[3]);
-  live.state(states[4]);
+  tell(live, states[2]);
+  tell(live, states[3]);
+  tell(live, states[4]);
   live.action_finished(1, 0, 1.2);  // told after states at 1.5: within the 2 s lag
   live.action_finished(0, 1, 1.2);
-  for (std::size_t i = 5; i < 8; ++i) live.state(states[i]);
+  for (std::size_t i = 5; i < 8; ++i) tell(live, states[i]);
   live.action_finished(1, 1, 2.0);  // after the states of its time, 2 s before 4.5
-  live.state(states[8]);
-  live.state(states[9]);
+  tell(live, states[8]);
+  tell(live, states[9]);
   write_results(states, {{0, 0, results::ActionType::kMove, 0.7000000000001},
                          {0, 1, results::ActionType::kMove, 1.2},
                          {1, 0, results::ActionType::kMove, 1.2},
@@ -101,8 +108,8 @@ TEST_F(LiveRecordingTest, IsTheFileTheExportMakesOfTheRunsResults) {
 
 TEST_F(LiveRecordingTest, ProgressHeardLaterThanTheLagIsRecordedNotLost) {
   LiveRecording live(setup());
-  live.state(at(0.5, 0, 1));
-  live.state(at(10, 0, 2));
+  tell(live, at(0.5, 0, 1));
+  tell(live, at(10, 0, 2));
   live.action_finished(0, 0, 0.7);  // 9.3 s late: the state at 0.5 was written already
   write_results({at(0.5, 0, 1), at(10, 0, 2)}, {});
   const auto report = live.finish(dir_ / "results");
@@ -112,7 +119,7 @@ TEST_F(LiveRecordingTest, ProgressHeardLaterThanTheLagIsRecordedNotLost) {
 
 TEST_F(LiveRecordingTest, ARowOutsideTheFleetFailsAtFinishAndLeavesNoFile) {
   LiveRecording live(setup());
-  live.state(at(0.5, 5, 1));
+  tell(live, at(0.5, 5, 1));
   write_results({}, {});
   try {
     (void)live.finish(dir_ / "results");
@@ -127,7 +134,7 @@ TEST_F(LiveRecordingTest, ARowOutsideTheFleetFailsAtFinishAndLeavesNoFile) {
 TEST_F(LiveRecordingTest, ARunThatEndsWithoutFinishLeavesNoFile) {
   {
     LiveRecording live(setup());
-    live.state(at(0.5, 0, 1));
+    tell(live, at(0.5, 0, 1));
     EXPECT_TRUE(fs::exists(dir_ / "live.mcap.part"));
   }
   EXPECT_FALSE(fs::exists(dir_ / "live.mcap.part"));

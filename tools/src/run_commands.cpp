@@ -281,9 +281,13 @@ void tap_results(const MonitorCliOptions& o, const monitor::Instance& in, double
     };
   }
   taps.states.emplace(o.out);
-  mo.on_state = [&states = taps.states, &recording](const monitor::StateRow& row) {
-    states->add(row);
-    if (recording) recording->state(row);
+  // The row formatted once, for the file and the recording.
+  mo.on_state = [&states = taps.states, &recording,
+                 line = std::string()](const monitor::StateRow& row) mutable {
+    line.clear();
+    results::append_row(line, row);
+    states->add_line(line);
+    if (recording) recording->state(line);
   };
   taps.progress.emplace(o.out);
   mo.on_finished = [&progress = taps.progress](const results::ProgressRow& row) {

@@ -69,6 +69,9 @@ class StatesCsvWriter {
  public:
   explicit StatesCsvWriter(const std::filesystem::path& dir);
   void add(const StateRow& row);
+  // A row already written by results::append_row (with its newline), e.g. shared with another
+  // reader of the same rows.
+  void add_line(std::string_view line);
   std::size_t rows() const { return rows_; }
 
  private:

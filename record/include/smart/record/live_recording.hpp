@@ -1,8 +1,9 @@
 // Contract: a run recorded while it goes (`smart run --mcap`; issue 30: the recording's cost
 // hidden beside the run instead of added after it). The same RunRecorder and the same start and
-// end as export.hpp, fed the rows the run's results files get: each states.csv row (the
-// monitor's on_state) and each action's finish (on_action_finished, the time actions.csv gets),
-// with their numbers as the files write them (results::as_written). The producers only queue;
+// end as export.hpp, fed the rows the run's results files get: each states.csv row as the file
+// gets it (the text results::append_row made; read back as the export reads it) and each
+// action's finish (on_action_finished, the time actions.csv gets, as_written). The producers
+// only queue;
 // the recorder runs on its own thread, compression included, at idle priority (SCHED_IDLE: it
 // takes only the CPU the run leaves; what is left when the run ends is done by finish()). The
 // queue is not bounded: a recorder that falls behind holds rows (80 bytes each), never slows the
@@ -53,7 +54,8 @@ class LiveRecording {
   LiveRecording(const LiveRecording&) = delete;
   LiveRecording& operator=(const LiveRecording&) = delete;
 
-  void state(const results::StateRow& row);                        // any thread
+  // A states.csv row as results::append_row wrote it (with its newline); any thread.
+  void state(std::string_view line);
   void action_finished(uint32_t robot, uint32_t seq, double t_s);  // any thread
   // Takes no more rows and waits for the recorder's thread (finish() does it too).
   void stop();
@@ -65,11 +67,16 @@ class LiveRecording {
  private:
   struct Item {
     bool is_state;
-    results::StateRow row;  // a progress: t_s, robot and its action seq in queue
+    uint32_t robot = 0, seq = 0;  // a progress
+    double t_s = 0;
+    std::size_t at = 0, length = 0;  // a state's line in the batch's text
   };
-  void push(const Item& item);
+  struct Batch {
+    std::vector<Item> items;
+    std::string text;
+  };
   void loop();
-  void consume(const std::vector<Item>& batch);
+  void consume(const Batch& batch);
   void release(bool all);
 
   LiveRecordingSetup setup_;
@@ -81,7 +88,7 @@ class LiveRecording {
   double newest_s_ = 0;
   std::mutex m_;
   std::condition_variable cv_;
-  std::vector<Item> incoming_;
+  Batch incoming_;
   bool stop_ = false, finished_ = false;
   std::exception_ptr error_;
   double thread_cpu_s_ = 0;
