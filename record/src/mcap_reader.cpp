@@ -1,29 +1,19 @@
 #include "smart/record/mcap_reader.hpp"
 
-#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
 #include <cstring>
 #include <memory>
 
+#include "mcap_format.hpp"
+
 namespace smart::record {
 
 namespace {
 
-// Magic and opcodes of https://mcap.dev/spec ("Records").
-constexpr std::string_view kMagic("\x89MCAP0\r\n", 8);
-enum Op : uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kAttachment = 0x09,
-  kDataEnd = 0x0F,
-};
-constexpr std::size_t kRecordHeader = 9;  // opcode, u64 length
+using namespace mcap;  // NOLINT(google-build-using-namespace): the format's own names
+
 constexpr std::size_t kPiece = std::size_t{1} << 20;
 
 const char* op_name(uint8_t op) {
@@ -47,11 +37,6 @@ const char* op_name(uint8_t op) {
     default:
       return "a";
   }
-}
-
-uint32_t crc(uint32_t running, std::string_view bytes) {
-  return static_cast<uint32_t>(
-      crc32_z(running, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
 }
 
 // Where a record is, for its errors: the file's byte, or a chunk's and the record's in it.

@@ -1,33 +1,17 @@
 #include "smart/record/mcap_writer.hpp"
 
-#include <zlib.h>
 #include <zstd.h>
 
 #include <stdexcept>
 
+#include "mcap_format.hpp"
 #include "smart/common/memory.hpp"
 
 namespace smart::record {
 
 namespace {
 
-// Opcodes and magic of https://mcap.dev/spec ("Records").
-constexpr std::string_view kMagic("\x89MCAP0\r\n", 8);
-enum Op : uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kMessageIndex = 0x07,
-  kChunkIndex = 0x08,
-  kAttachment = 0x09,
-  kAttachmentIndex = 0x0A,
-  kStatistics = 0x0B,
-  kSummaryOffset = 0x0E,
-  kDataEnd = 0x0F,
-};
+using namespace mcap;  // NOLINT(google-build-using-namespace): the format's own names
 
 template <class T>
 void le(std::string& out, T v) {
@@ -42,17 +26,12 @@ void str(std::string& out, std::string_view s) {
 // A record: opcode, u64 length, content.
 std::string record(uint8_t op, std::string_view content) {
   std::string r;
-  r.reserve(9 + content.size());
+  r.reserve(kRecordHeader + content.size());
   r.push_back(static_cast<char>(op));
   le(r, static_cast<uint64_t>(content.size()));
   r.append(content);
   return r;
 }
-uint32_t crc(uint32_t running, std::string_view bytes) {
-  return static_cast<uint32_t>(
-      crc32_z(running, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
-}
-
 std::string compress_zstd(std::string_view in, int level) {
   std::string out(ZSTD_compressBound(in.size()), '\0');
   const std::size_t n = ZSTD_compress(out.data(), out.size(), in.data(), in.size(), level);

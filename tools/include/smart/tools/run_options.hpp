@@ -110,8 +110,8 @@ struct MonitorCliOptions {
   bool require_sim_status = false;
   bool progress = true;
   double ros_plan_hz = 0;  // the rviz2 plan view; 0: off
-  // `smart run --mcap`: a plan's run is recorded while it goes (record/live_recording.hpp);
-  // set to "" once that is done, so the caller records the others from their results.
+  // `smart run --mcap` of a plan's run: recorded while it goes (record/live_recording.hpp);
+  // empty otherwise (a lifelong run is recorded from its results by the caller).
   std::string mcap;
 };
 
