@@ -5,11 +5,21 @@
 
 namespace smart::sim {
 
-ShardBarrier::ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s)
-    : shard_(shard), shards_(shards), handshake_(timeout_s, reannounce_s) {
+ShardBarrier::ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s,
+                           double join_s)
+    : shard_(shard),
+      shards_(shards),
+      handshake_(timeout_s, reannounce_s),
+      timeout_s_(timeout_s),
+      join_s_(join_s) {
   if (shards < 2 || shard >= shards) {
     throw std::invalid_argument("shard " + std::to_string(shard) + "/" + std::to_string(shards) +
                                 ": a sharded sim has at least 2 shards, numbered from 0");
+  }
+  if (!(join_s >= timeout_s)) {
+    throw std::invalid_argument("shard " + std::to_string(shard) + ": the start-up wait (" +
+                                std::to_string(join_s) + " s) is shorter than the timeout (" +
+                                std::to_string(timeout_s) + " s)");
   }
 }
 
@@ -27,7 +37,7 @@ void ShardBarrier::sent(uint64_t tick, uint64_t finished_total, double now_s) {
   own_total_ = finished_total;
   applied_ = false;
   // The lead waits from its announcement to the monitor (or the start), the others from here.
-  if (!lead() || tick == 0) handshake_.announced(tick, now_s);
+  if (!lead() || tick == 0) announced(tick, now_s);
 }
 
 bool ShardBarrier::received(uint32_t shard, uint64_t tick, uint64_t finished_total) {
@@ -56,14 +66,24 @@ void ShardBarrier::apply(double now_s) {
   applied_ = true;
   if (lead()) {
     announced_total_ = total;
-    handshake_.announced(tick_, now_s);
+    announced(tick_, now_s);
   }
 }
 
+void ShardBarrier::announced(uint64_t tick, double now_s) {
+  handshake_.announced(tick, now_s);
+  waiting_since_s_ = now_s;
+}
+
 ShardTimeout ShardBarrier::timed_out(double now_s) const {
-  if (!handshake_.timed_out(now_s)) return {};
-  if (applied_) return {ShardTimeout::Waiting::kMonitor, tick_, {}};
-  ShardTimeout t{ShardTimeout::Waiting::kShards, tick_, {}};
+  if (!started_) return {};
+  if (applied_) {
+    if (!handshake_.timed_out(now_s)) return {};
+    return {ShardTimeout::Waiting::kMonitor, tick_, {}, timeout_s_};
+  }
+  const double wait_s = tick_ <= kLastJoinPeriod ? join_s_ : timeout_s_;
+  if (now_s - waiting_since_s_ <= wait_s) return {};
+  ShardTimeout t{ShardTimeout::Waiting::kShards, tick_, {}, wait_s};
   const auto it = totals_.find(tick_);
   for (uint32_t s = 0; s < shards_; ++s) {
     if (s != shard_ && (it == totals_.end() || !it->second.count(s))) t.missing.push_back(s);

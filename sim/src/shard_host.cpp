@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -77,6 +78,15 @@ std::string ShardPeer::admit(uint32_t shard, dds_instance_handle_t from) {
   }
   it->second = from;  // the holder left: a restarted shard speaks for it now
   return {};
+}
+
+std::size_t ShardPeer::writers_discovered() const {
+  std::vector<dds_instance_handle_t> handles(2 * dds::kMaxShards);
+  const auto n = dds_get_matched_publications(in_.handle(), handles.data(), handles.size());
+  if (n < 0) return 0;
+  handles.resize(std::min(handles.size(), static_cast<std::size_t>(n)));
+  return static_cast<std::size_t>(std::count_if(
+      handles.begin(), handles.end(), [this](dds_instance_handle_t h) { return h != self_; }));
 }
 
 std::vector<const Exchange*> ShardPeer::of(uint64_t tick) const {

@@ -39,6 +39,9 @@ class ShardPeer {
   std::vector<const Exchange*> last() const;
   void forget_before(uint64_t tick);
   dds_entity_t reader() const { return in_.handle(); }
+  // Exchange writers of other processes discovered now (a timeout's message tells a shard that
+  // was never discovered from one that is up but silent).
+  std::size_t writers_discovered() const;
   const wire::Rejections& rejections() const { return rejected_; }
 
  private:

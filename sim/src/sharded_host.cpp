@@ -12,6 +12,7 @@
 #include "smart/dds/waitset.hpp"
 #include "smart/sim/shard.hpp"
 #include "smart/sim/shard_barrier.hpp"
+#include "smart/wire/lockstep.hpp"
 
 namespace smart::sim::detail {
 
@@ -38,7 +39,10 @@ class ShardedHost final : public HostLoop {
         map_(grid, o.sim, model, o.shards, starts),
         shard_(core_.fleet, map_, o.shard),
         peer_(p, qos, o.shard, o.shards, starts.size(), core_.bounds),
-        barrier_(o.shard, o.shards, o.timeout_s, dds::kClockReannounceS) {
+        // Start-up waits the monitor's join window: shards build their worlds and take the
+        // first windows at their pace.
+        barrier_(o.shard, o.shards, o.timeout_s, dds::kClockReannounceS,
+                 wire::kJoinTimeouts * o.timeout_s) {
     core_.host_robots(steps());
   }
 
@@ -182,9 +186,16 @@ std::string ShardedHost::timeout_message(const ShardTimeout& t) const {
   std::string missing;
   for (const uint32_t s : t.missing) missing += (missing.empty() ? "" : ", ") + std::to_string(s);
   const auto& o = core_.opt;
+  const std::size_t others = o.shards - 1, seen = std::min(peer_.writers_discovered(), others);
   return "shard " + std::to_string(o.shard) + ": no exchange from shard(s) " + missing +
-         " for period " + std::to_string(t.tick) + " within " + std::to_string(o.timeout_s) +
-         " s; is every `smart sim --shard I/" + std::to_string(o.shards) + "` of the run up?";
+         " for period " + std::to_string(t.tick) + " within " + std::to_string(t.waited_s) +
+         " s (" + std::to_string(seen) + " of the " + std::to_string(others) +
+         " other shards' exchange writers discovered" +
+         (seen < others ? ": a shard not discovered is not running, or on another domain, "
+                          "network or --run"
+                        : ": the missing shard is up but has not sent this period (stalled or "
+                          "starved of CPU)") +
+         "); is every `smart sim --shard I/" + std::to_string(o.shards) + "` of the run up?";
 }
 
 SimHostResult ShardedHost::run(const std::atomic<bool>& stop_requested) {

@@ -165,6 +165,20 @@ TEST_F(Sharded, ASecureShardedRunMatchesTheUnshardedRun) {
   for (const auto& d : {keys, ref, out}) std::filesystem::remove_all(d);
 }
 
+// A shard whose peer never comes up waits the join window (4 x --timeout-s), not --timeout-s,
+// and says that the peer was never discovered (not stalled).
+TEST_F(Sharded, AShardWithoutItsPeerGivesUpAfterTheJoinWindowSayingItWasNeverDiscovered) {
+  const auto r =
+      run_smart({"sim", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
+                 (b_ / "scens/random-32-32-20-random-1.scen").string(), "--agents", "10", "--shard",
+                 "1/2", "--timeout-s", "0.5", "--domain", std::to_string(kShardJoin)},
+                30s, "shard_alone", true);
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("shard 1: no exchange from shard(s) 0 for period 0 within 2.0"));
+  EXPECT_THAT(r.out, HasSubstr("(0 of the 1 other shards' exchange writers discovered: a shard "
+                               "not discovered is not running"));
+}
+
 TEST_F(Sharded, BadShardOptionsAreRefusedNamingTheFix) {
   const auto bad = run_smart({"sim", "--map", (b_ / "maps/random-32-32-20.map").string(), "--scen",
                               (b_ / "scens/random-32-32-20-random-1.scen").string(), "--shard",

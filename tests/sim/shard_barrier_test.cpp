@@ -10,7 +10,7 @@ namespace smart::sim {
 namespace {
 
 constexpr uint64_t kRun = 7;
-constexpr double kTimeoutS = 5, kReannounceS = 1;
+constexpr double kTimeoutS = 5, kReannounceS = 1, kJoinS = 20;
 
 wire::Tick answer(uint64_t k, uint64_t windows, bool stop = false) {
   return {kRun, k, 0.1 * double(k), windows, stop};
@@ -19,7 +19,7 @@ wire::Tick answer(uint64_t k, uint64_t windows, bool stop = false) {
 using Waiting = ShardTimeout::Waiting;
 
 TEST(ShardBarrier, ThePeriodIsAppliedOnceEveryShardsExchangeIsInAndTheLeadAnnouncesTheSum) {
-  ShardBarrier lead(0, 3, kTimeoutS, kReannounceS);
+  ShardBarrier lead(0, 3, kTimeoutS, kReannounceS, kJoinS);
   lead.sent(0, 4, 0.0);
   EXPECT_FALSE(lead.ready());
   EXPECT_TRUE(lead.received(2, 0, 10));
@@ -33,7 +33,7 @@ TEST(ShardBarrier, ThePeriodIsAppliedOnceEveryShardsExchangeIsInAndTheLeadAnnoun
 }
 
 TEST(ShardBarrier, AShardStepsOnlyWhenItsPeriodIsAppliedAndTheMonitorsAnswerAddsUp) {
-  ShardBarrier b(1, 2, kTimeoutS, kReannounceS);
+  ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
   b.sent(0, 0, 0.0);
   b.on_answer(answer(0, 12));
   EXPECT_FALSE(b.may_step(kRun, 12)) << "the other shard's exchange of period 0 is not in";
@@ -48,7 +48,7 @@ TEST(ShardBarrier, AShardStepsOnlyWhenItsPeriodIsAppliedAndTheMonitorsAnswerAdds
 }
 
 TEST(ShardBarrier, AFasterShardsNextExchangeWaitsForItsPeriodAndRepeatsAreIgnored) {
-  ShardBarrier b(1, 2, kTimeoutS, kReannounceS);
+  ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
   b.sent(0, 0, 0.0);
   EXPECT_TRUE(b.received(0, 0, 5));
   b.apply(0.0);
@@ -63,7 +63,7 @@ TEST(ShardBarrier, AFasterShardsNextExchangeWaitsForItsPeriodAndRepeatsAreIgnore
 }
 
 TEST(ShardBarrier, ARepeatedExchangeReplacesTheFirstInTheLeadsTotal) {
-  ShardBarrier lead(0, 2, kTimeoutS, kReannounceS);
+  ShardBarrier lead(0, 2, kTimeoutS, kReannounceS, kJoinS);
   lead.sent(0, 1, 0.0);
   lead.received(1, 0, 5);
   lead.received(1, 0, 6);
@@ -71,30 +71,74 @@ TEST(ShardBarrier, ARepeatedExchangeReplacesTheFirstInTheLeadsTotal) {
   EXPECT_EQ(lead.announced_total(), 7u);
 }
 
+// Steps shard `b` of four through periods 0 and 1 (every exchange in, answered), to period 2 sent
+// at now_s.
+void run_to_period_two(ShardBarrier& b, uint32_t shard, double now_s) {
+  for (uint64_t k = 0; k < 2; ++k) {
+    b.sent(k, 0, now_s - 2 + double(k));
+    for (uint32_t s = 0; s < 4; ++s) {
+      if (s != shard) b.received(s, k, 0);
+    }
+    b.apply(now_s - 2 + double(k));
+    b.on_answer(answer(k, 0));
+    ASSERT_TRUE(b.may_step(kRun, 0));
+  }
+  b.sent(2, 0, now_s);
+}
+
 TEST(ShardBarrier, WaitingForShardsTimesOutNamingTheMissingOnes) {
-  ShardBarrier b(2, 4, kTimeoutS, kReannounceS);
-  b.sent(0, 0, 10.0);
-  b.received(1, 0, 0);
+  ShardBarrier b(2, 4, kTimeoutS, kReannounceS, kJoinS);
+  run_to_period_two(b, 2, 10.0);
+  b.received(1, 2, 0);
   EXPECT_EQ(b.timed_out(15.0).waiting, Waiting::kNothing);
   const auto t = b.timed_out(15.5);
   EXPECT_EQ(t.waiting, Waiting::kShards);
-  EXPECT_EQ(t.tick, 0u);
+  EXPECT_EQ(t.tick, 2u);
   EXPECT_EQ(t.missing, (std::vector<uint32_t>{0, 3}));
+  EXPECT_EQ(t.waited_s, kTimeoutS);
+}
+
+// Regression (CI, stop 42): the shards of `smart run --sim-hosts 4` on a loaded machine gave up
+// on shard 0's first exchange after --timeout-s (30 s) while their monitor still waited its
+// join window; periods 0 and 1 (start-up and every shard's first step) now wait as long.
+TEST(ShardBarrier, StartUpAndTheFirstStepWaitTheJoinWindow) {
+  for (const uint64_t period : {0u, 1u}) {
+    SCOPED_TRACE(period);
+    ShardBarrier b(3, 4, kTimeoutS, kReannounceS, kJoinS);
+    b.sent(0, 0, 10.0);
+    if (period == 1) {
+      for (uint32_t s = 0; s < 3; ++s) b.received(s, 0, 0);
+      b.apply(11.0);
+      b.on_answer(answer(0, 0));
+      b.sent(1, 0, 12.0);
+    }
+    const double sent_s = period == 0 ? 10.0 : 12.0;
+    b.received(1, period, 0);
+    EXPECT_EQ(b.timed_out(sent_s + kTimeoutS + 1).waiting, Waiting::kNothing);
+    EXPECT_EQ(b.timed_out(sent_s + kJoinS).waiting, Waiting::kNothing);
+    const auto t = b.timed_out(sent_s + kJoinS + 0.5);
+    EXPECT_EQ(t.waiting, Waiting::kShards);
+    EXPECT_EQ(t.tick, period);
+    EXPECT_EQ(t.missing, (std::vector<uint32_t>{0, 2}));
+    EXPECT_EQ(t.waited_s, kJoinS);
+  }
 }
 
 TEST(ShardBarrier, AnAppliedPeriodWithoutAnAnswerTimesOutOnTheMonitor) {
-  ShardBarrier b(1, 2, kTimeoutS, kReannounceS);
+  ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
   b.sent(0, 0, 0.0);
   b.received(0, 0, 0);
   b.apply(1.0);
   const auto t = b.timed_out(5.5);
   EXPECT_EQ(t.waiting, Waiting::kMonitor) << "the wait runs from this shard's own exchange";
   EXPECT_TRUE(t.missing.empty());
+  EXPECT_EQ(t.waited_s, kTimeoutS)
+      << "the monitor's answer is waited for timeout_s, start-up or not";
 }
 
 TEST(ShardBarrier, TheLeadsWaitRunsFromItsAnnouncementAndOnlyTheLeadReannounces) {
-  ShardBarrier lead(0, 2, kTimeoutS, kReannounceS);
-  ShardBarrier other(1, 2, kTimeoutS, kReannounceS);
+  ShardBarrier lead(0, 2, kTimeoutS, kReannounceS, kJoinS);
+  ShardBarrier other(1, 2, kTimeoutS, kReannounceS, kJoinS);
   lead.sent(0, 0, 0.0);
   other.sent(0, 0, 0.0);
   lead.received(1, 0, 0);
@@ -114,7 +158,7 @@ TEST(ShardBarrier, TheLeadsWaitRunsFromItsAnnouncementAndOnlyTheLeadReannounces)
 }
 
 TEST(ShardBarrier, AStopIsKeptWhateverItsTick) {
-  ShardBarrier b(1, 2, kTimeoutS, kReannounceS);
+  ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
   b.sent(0, 0, 0.0);
   EXPECT_FALSE(b.stop());
   b.on_answer(answer(41, 0, true));
@@ -122,9 +166,11 @@ TEST(ShardBarrier, AStopIsKeptWhateverItsTick) {
 }
 
 TEST(ShardBarrier, MisuseIsAnErrorNamingTheShardAndThePeriod) {
-  EXPECT_THROW(ShardBarrier(0, 1, kTimeoutS, kReannounceS), std::invalid_argument);
-  EXPECT_THROW(ShardBarrier(2, 2, kTimeoutS, kReannounceS), std::invalid_argument);
-  ShardBarrier b(0, 2, kTimeoutS, kReannounceS);
+  EXPECT_THROW(ShardBarrier(0, 1, kTimeoutS, kReannounceS, kJoinS), std::invalid_argument);
+  EXPECT_THROW(ShardBarrier(2, 2, kTimeoutS, kReannounceS, kJoinS), std::invalid_argument);
+  EXPECT_THROW(ShardBarrier(0, 2, kTimeoutS, kReannounceS, kTimeoutS / 2), std::invalid_argument)
+      << "a start-up wait shorter than the timeout";
+  ShardBarrier b(0, 2, kTimeoutS, kReannounceS, kJoinS);
   EXPECT_THROW(b.sent(1, 0, 0.0), std::logic_error) << "the first exchange is period 0's";
   b.sent(0, 0, 0.0);
   EXPECT_THROW(b.apply(0.0), std::logic_error) << "shard 1's exchange is not in";

@@ -151,6 +151,7 @@ enum DomainId : int {
   kRecordingReaders = 85,    // tests/readers/mcap.test.mjs (given on its command line)
   kRosViewNamespaces = 84,
   kFoxgloveBridge = 83,  // tests/readers/bridge.test.mjs (given on its command line)
+  kShardJoin = 82,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -24,6 +24,7 @@
 #include "smart/tools/dds_planner.hpp"
 #include "smart/tools/machine.hpp"
 #include "smart/tools/pipe_planner.hpp"
+#include "smart/wire/lockstep.hpp"
 
 namespace smart::tools {
 
@@ -199,7 +200,7 @@ monitor::MonitorOptions lifelong_monitor_options(const MonitorCliOptions& o, dou
   mo.run.robot_radius_m = radius_m;
   mo.run.max_sim_time_s = 0;  // the run ends at --duration-s (complete), not as a failure
   mo.run.require_sim_status = true;
-  mo.run.join_timeout_s = 4 * mo.run.timeout_s;
+  mo.run.join_timeout_s = wire::kJoinTimeouts * mo.run.timeout_s;
   mo.ros_plan_hz = 0;  // the plan view shows a fixed plan
   // Bounded dispatch: a robot holds at most the cut's look-ahead, so each window can still
   // change where it goes next (the cut keeps whatever was sent).

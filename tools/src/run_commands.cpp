@@ -34,6 +34,7 @@
 #include "smart/tools/record_run.hpp"
 #include "smart/tools/run_key.hpp"
 #include "smart/tools/run_options.hpp"
+#include "smart/wire/lockstep.hpp"
 #include "temp_dir.hpp"
 
 namespace smart::tools {
@@ -336,7 +337,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   mo.run.require_sim_status = mo.run.require_sim_status || spawn_sim_child;
   // Its own sim host's exit is seen at once (host_check); a slow start on a loaded machine is not
   // a lost host.
-  if (spawn_sim_child) mo.run.join_timeout_s = 4 * mo.run.timeout_s;
+  if (spawn_sim_child) mo.run.join_timeout_s = wire::kJoinTimeouts * mo.run.timeout_s;
   ResultsTaps taps;  // outlives the node, whose callbacks write to it
   tap_results(o, in, model.radius_m, mo, taps);
   if (!sims.empty()) mo.host_check = watch(sims);

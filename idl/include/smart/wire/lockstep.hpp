@@ -20,6 +20,11 @@
 
 namespace smart::wire {
 
+// Start-up waits this many timeouts: a monitor for the sim it started, sim shards for each other
+// (periods 0 and 1, sim/shard_barrier.hpp). Building a 1000-robot world or reading a large plan
+// on a loaded machine can take longer than a running period ever should.
+inline constexpr double kJoinTimeouts = 4;
+
 // One Clock sample of the handshake, either side.
 struct Tick {
   uint64_t run_id = 0;

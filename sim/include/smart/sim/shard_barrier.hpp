@@ -18,6 +18,10 @@
 // - A shard gives up after timeout_s without progress: waiting for the named shards' exchanges
 //   while its period is not applied, else for the monitor. The wait runs from this shard's last
 //   announcement: the lead's to the monitor (or its start), another shard's own exchange.
+// - Start-up gets join_s instead (the monitor's join window, 4 x timeout_s when `smart run`
+//   starts its sim): the exchanges of periods 0 and 1 wait that long, as shards come up at
+//   different times (by hand, on several hosts, or on a loaded machine building their worlds)
+//   and period 1 is each shard's first step, which takes the run's first windows.
 #pragma once
 
 #include <cstdint>
@@ -33,12 +37,16 @@ struct ShardTimeout {
   Waiting waiting = Waiting::kNothing;
   uint64_t tick = 0;
   std::vector<uint32_t> missing;  // kShards: the shards whose exchange of `tick` is not in
+  double waited_s = 0;            // the wait that ran out: timeout_s, or join_s at start-up
 };
 
 class ShardBarrier {
  public:
-  // Throws std::invalid_argument unless 2 <= shards and shard < shards.
-  ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s);
+  // Throws std::invalid_argument unless 2 <= shards, shard < shards and join_s >= timeout_s.
+  ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s,
+               double join_s);
+  // Exchanges of periods up to this one wait join_s (start-up and every shard's first step).
+  static constexpr uint64_t kLastJoinPeriod = 1;
   bool lead() const { return shard_ == 0; }
   uint64_t tick() const { return tick_; }
   bool applied() const { return applied_; }
@@ -69,8 +77,12 @@ class ShardBarrier {
   ShardTimeout timed_out(double now_s) const;
 
  private:
+  void announced(uint64_t tick, double now_s);
+
   uint32_t shard_, shards_;
   wire::HostHandshake handshake_;
+  double timeout_s_, join_s_;
+  double waiting_since_s_ = 0;  // the handshake's: this shard's last announcement
   uint64_t tick_ = 0;
   bool started_ = false;
   bool applied_ = false;
