@@ -14,13 +14,16 @@ if (($#)); then
   files=$*
 else
   files=$(git ls-files 'common/*.cpp' 'idl/*.cpp' 'grid/*.cpp' 'planning/*.cpp' 'agent/*.cpp' \
-    'convert/*.cpp' 'monitor/*.cpp' 'sim/*.cpp' 'hw/*.cpp' 'security/*.cpp' 'commissioning/*.cpp' \
-    'experiment/*.cpp' 'serve/*.cpp' 'tools/*.cpp')
+    'convert/*.cpp' 'monitor/*.cpp' 'lifelong/*.cpp' 'record/*.cpp' 'bridge/*.cpp' 'sim/*.cpp' \
+    'hw/*.cpp' 'security/*.cpp' 'commissioning/*.cpp' 'experiment/*.cpp' 'serve/*.cpp' \
+    'tools/*.cpp')
 fi
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
-# Two at a time (the machine has two cores); each finding is printed with its file and line.
-if ! printf '%s\n' $files | xargs -P 2 -n 4 clang-tidy -p "$build" --quiet >"$out" 2>&1; then
+# Two at a time (the machine has two cores), at a lower priority than the tests that run beside
+# it in `make test` (their processes wait for events, and a lint run should not starve them);
+# each finding is printed with its file and line.
+if ! printf '%s\n' $files | nice -n 10 xargs -P 2 -n 4 clang-tidy -p "$build" --quiet >"$out" 2>&1; then
   grep -E "(warning|error):" "$out" || cat "$out"
   echo "clang-tidy failed: fix the findings above (.clang-tidy says why each check is on)"
   exit 1
