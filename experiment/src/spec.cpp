@@ -76,6 +76,9 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
   }
   const int given = (p["file"] ? 1 : 0) + (p["planner"] ? 1 : 0) + (p["command"] ? 1 : 0);
   if (given != 1) fail(src, p, field, "give exactly one of file, planner and command");
+  if (p["algorithm"] && !p["planner"]) {
+    fail(src, p["algorithm"], field + ".algorithm", "only {planner: builtin} takes an algorithm");
+  }
   PlanSpec plan;
   if (p["file"]) {
     plan.source = PlanSource::kFile, plan.text = p["file"].as<std::string>();
@@ -85,6 +88,14 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
       fail(src, p["planner"], field + ".planner", "the only planner inside is 'builtin'");
     }
     plan.source = PlanSource::kBuiltin, plan.name = "builtin";
+    if (p["algorithm"]) {
+      plan.algorithm = p["algorithm"].as<std::string>();
+      if (plan.algorithm != "pp" && plan.algorithm != "pibt") {
+        fail(src, p["algorithm"], field + ".algorithm",
+             "pp (prioritized planning) or pibt (`smart plan --algorithm`)");
+      }
+      plan.name = "builtin-" + plan.algorithm;
+    }
   } else {
     plan.source = PlanSource::kCommand, plan.text = p["command"].as<std::string>();
     plan.name = field == "plan" ? "command" : "command" + std::to_string(index);

@@ -52,6 +52,30 @@ TEST(Spec, PlannerAndCommandPlans) {
   EXPECT_EQ(s.plans.at(0).text, "p {map} {plan}");
 }
 
+TEST(Spec, TheBuiltInPlannerTakesAnAlgorithmThatNamesItsPlans) {
+  const auto s = parse_spec(
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n"
+      "plans: [{planner: builtin}, {planner: builtin, algorithm: pibt}]\n",
+      "p.yaml");
+  ASSERT_EQ(s.plans.size(), 2u);
+  EXPECT_EQ(s.plans[0].algorithm, "pp");
+  EXPECT_EQ(s.plans[0].name, "builtin");
+  EXPECT_EQ(s.plans[1].algorithm, "pibt");
+  EXPECT_EQ(s.plans[1].name, "builtin-pibt");
+  for (const auto& [yaml, expected] :
+       {std::pair{"plan: {planner: builtin, algorithm: lacam}\n",
+                  "p.yaml:5: plan.algorithm: pp (prioritized planning) or pibt"},
+        {"plan: {file: x.txt, algorithm: pibt}\n", "only {planner: builtin} takes an algorithm"}}) {
+    try {
+      (void)parse_spec(std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n") + yaml,
+                       "p.yaml");
+      ADD_FAILURE() << yaml;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+    }
+  }
+}
+
 // Issue 26: planners could not be compared (no planner axis, no planner runtime column).
 TEST(Spec, PlansAreAPlannerAxisEachNamedInTheCellsAndTheRows) {
   const auto s = parse_spec(

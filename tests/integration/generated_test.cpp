@@ -57,6 +57,41 @@ TEST(Generated, BuiltInPlannerPlansExecuteToSuccessOnEveryMapKind) {
   }
 }
 
+// `smart plan --algorithm pibt`: PIBT's long plans (robots following each other, waits, pushes)
+// pass check-plan and execute to success with switchable passing orders; a bad algorithm is a
+// usage error naming the choices.
+TEST(Generated, PibtPlansExecuteWithSwitchablePassingOrders) {
+  const auto map = temp_file("pibt.map").string(), scen = temp_file("pibt.scen").string(),
+             plan = temp_file("pibt.plan").string();
+  ASSERT_EQ(run_smart({"gen-map", "random", "--width", "16", "--height", "16", "--obstacles", "0.1",
+                       "--seed", "4", "--out", map},
+                      30s, "pibt_map")
+                .code,
+            0);
+  ASSERT_EQ(run_smart({"gen-scen", "--map", map, "--agents", "30", "--seed", "4", "--out", scen},
+                      30s, "pibt_scen")
+                .code,
+            0);
+  const auto bad =
+      run_smart({"plan", "--map", map, "--scen", scen, "--algorithm", "lacam", "--out", plan}, 30s,
+                "pibt", true);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("'lacam' is not one of pp|pibt"), std::string::npos) << bad.out;
+  const auto p = run_smart(
+      {"plan", "--map", map, "--scen", scen, "--algorithm", "pibt", "--out", plan}, 60s, "pibt");
+  ASSERT_EQ(p.code, 0) << p.out;
+  EXPECT_EQ(p.last_json()["algorithm"], "pibt");
+  const auto r =
+      run_smart({"run", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy", "--execution",
+                 "switchable", "--domain", std::to_string(kPibtPlanRun), "--no-progress"},
+                120s, "pibt_run");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(r.last_json()["success"].get<bool>());
+  EXPECT_EQ(r.last_json()["collisions"], 0);
+  EXPECT_EQ(r.last_json()["robots"], 30);
+  for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
+}
+
 // Random walks (with rotation cycles round 2x2 blocks) of 50 robots on an empty 10x10 map: the
 // plan and scenario gen-walk writes pass check-plan and execute without a collision; the same seed
 // gives the same files.

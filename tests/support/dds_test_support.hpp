@@ -152,6 +152,7 @@ enum DomainId : int {
   kRosViewNamespaces = 84,
   kFoxgloveBridge = 83,  // tests/readers/bridge.test.mjs (given on its command line)
   kShardJoin = 82,
+  kPibtPlanRun = 81,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -1,5 +1,6 @@
 // `smart gen-map`, `smart gen-scen`, `smart plan`, `smart gen-walk`: a self-contained pipeline
 // from nothing to an executable plan (no outside data needed).
+#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/planning/generators.hpp"
+#include "smart/planning/pibt_plan.hpp"
 #include "smart/planning/planner.hpp"
 #include "smart/planning/random_plan.hpp"
 #include "smart/tools/commands.hpp"
@@ -80,7 +82,11 @@ struct PlanOptions {
   std::size_t agents = 0;
   uint64_t seed = 1;
   double time_limit_s = 120;
+  PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized;
 };
+
+const EnumNames<PlanAlgorithm> kPlanAlgorithmNames{{"pp", PlanAlgorithm::kPrioritized},
+                                                   {"pibt", PlanAlgorithm::kPibt}};
 
 }  // namespace
 
@@ -130,15 +136,25 @@ int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
 }
 
 int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
-                  uint64_t seed, double time_limit_s, const std::string& out) {
+                  uint64_t seed, double time_limit_s, const std::string& out,
+                  PlanAlgorithm algorithm) {
   const auto g = grid::parse_map(grid::read_text_file(map, "map"), map);
   const auto scen =
       grid::parse_scen(grid::read_text_file(scen_file, "scenario"), scen_file, agents);
   grid::throw_if_any(grid::check_scen_against_map(scen, g));
-  planning::PlannerOptions po;
-  po.seed = seed;
-  po.time_limit_s = time_limit_s;
-  const auto r = planning::plan_prioritized(g, scen, po);
+  planning::PlannerResult r;
+  if (algorithm == PlanAlgorithm::kPibt) {
+    planning::PibtPlanOptions po;
+    po.seed = seed;
+    const auto t0 = std::chrono::steady_clock::now();
+    r = planning::plan_pibt(g, scen, po);
+    r.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } else {
+    planning::PlannerOptions po;
+    po.seed = seed;
+    po.time_limit_s = time_limit_s;
+    r = planning::plan_prioritized(g, scen, po);
+  }
   if (!r.solved) {
     std::cerr << "plan: no plan found: " << r.error
               << "; try another --seed, fewer --agents or a larger map\n";
@@ -153,6 +169,7 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
                               {"robots", st.robots},
                               {"soc", st.soc},
                               {"makespan", st.makespan},
+                              {"algorithm", enum_name(algorithm, kPlanAlgorithmNames)},
                               {"runtime_s", r.runtime_s},
                               {"restarts", r.restarts_used}}
                    .dump()
@@ -213,20 +230,24 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   auto po = std::make_shared<PlanOptions>();
   auto* pl = app.add_subcommand(
       "plan",
-      "Plan conflict-free paths (prioritized planning, space-time A*); writes a SMART "
-      "timed plan (axis xy) that passes `smart check-plan`");
+      "Plan conflict-free paths (prioritized planning with space-time A*, or PIBT); writes a "
+      "SMART timed plan (axis xy) that passes `smart check-plan`");
   pl->add_option("--map", po->map, "MovingAI .map file")->required();
   pl->add_option("--scen", po->scen, "MovingAI .scen file (starts and goals)")->required();
   pl->add_option("--agents,--robots", po->agents, "first N robots (default: all)")
       ->check(CLI::PositiveNumber);
-  pl->add_option("--seed", po->seed, "seed for priority orders after a failure")
+  add_enum_option(pl, "--algorithm", po->algorithm, kPlanAlgorithmNames,
+                  "pp: prioritized planning, short plans (planner.hpp); pibt: PIBT alone, "
+                  "LaCAM's configuration generator, long plans with waits (pibt_plan.hpp)");
+  pl->add_option("--seed", po->seed, "seed for priority orders (pp: after a failure)")
       ->capture_default_str();
   pl->add_option("--time-limit-s", po->time_limit_s, "give up after this many wall seconds")
       ->check(finite_in(0.001, 1e6))
       ->capture_default_str();
   pl->add_option("--out", po->out, "the plan file to write")->required();
   pl->callback([&exit_code, po] {
-    exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out);
+    exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out,
+                              po->algorithm);
   });
 }
 

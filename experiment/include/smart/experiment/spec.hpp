@@ -8,7 +8,7 @@
 //   maps: [a.map]                     # one map for every scen, or one map per scen (paired)
 //   scens: [a-random-1.scen]
 //   agents: [10, 100]                 # first N robots
-//   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin}, or
+//   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin} (algorithm: pp or pibt), or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
 //   plans: [{name: pp, planner: builtin}, {name: lns2, command: "...", axis: xy}]
 //                                     # instead of plan: a planner axis (names 1-64 plain)
@@ -50,6 +50,7 @@ struct PlanSpec {
   PlanSource source = PlanSource::kFile;
   std::string text;  // the file, or the command template
   std::string axis = "xy";
+  std::string algorithm = "pp";  // kBuiltin: `smart plan --algorithm` (pp or pibt)
 };
 
 struct LifelongSpec {

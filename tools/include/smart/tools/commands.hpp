@@ -40,7 +40,10 @@ enum class MapKind { kWarehouse, kRandom, kEmpty, kMaze };
 int generate_map(MapKind kind, const std::string& out, const GenMapOptionsPublic& o);
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
                   const std::string& out);
+// `smart plan`'s planners: prioritized planning (planner.hpp) or PIBT alone (pibt_plan.hpp).
+enum class PlanAlgorithm { kPrioritized, kPibt };
 int plan_instance(const std::string& map, const std::string& scen, std::size_t agents,
-                  uint64_t seed, double time_limit_s, const std::string& out);
+                  uint64_t seed, double time_limit_s, const std::string& out,
+                  PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized);
 
 }  // namespace smart::tools
