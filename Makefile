@@ -44,7 +44,7 @@ asan-test: asan
 # libFuzzer (clang) on every reader of untrusted input, FUZZ_SECONDS each, from the seed corpus
 # (tests/fuzz/corpus, replayed by `make test`); new finds go to build-fuzz/corpus/<target>.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := map scen plan robot_yaml qos_yaml samples results lorr
+FUZZ_TARGETS := map scen plan robot_yaml qos_yaml samples results lorr foxglove_client mcap
 fuzz: deps
 	@cmake -S . -B build-fuzz -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSMART_FUZZ=ON >/dev/null

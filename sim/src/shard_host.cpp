@@ -81,7 +81,7 @@ std::string ShardPeer::admit(uint32_t shard, dds_instance_handle_t from) {
 }
 
 std::size_t ShardPeer::writers_discovered() const {
-  std::vector<dds_instance_handle_t> handles(2 * dds::kMaxShards);
+  std::vector<dds_instance_handle_t> handles(std::size_t{2} * dds::kMaxShards);
   const auto n = dds_get_matched_publications(in_.handle(), handles.data(), handles.size());
   if (n < 0) return 0;
   handles.resize(std::min(handles.size(), static_cast<std::size_t>(n)));
