@@ -60,7 +60,9 @@ function readErrandTimes(out) {
 const out = lifelongRun();
 const tasks = readTasks(out), errandTimes = readErrandTimes(out);
 const throughput = readFileSync(path.join(out, 'throughput.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
-const { server, url } = await startServer({ exe, dist, work, results: out, domain });
+// Two runs at once: the lifelong upload below is watched live while it runs (at real time, for
+// longer than the test), and the LoRR upload after it runs to its end beside it.
+const { server, url } = await startServer({ exe, dist, work, results: out, domain, args: ['--max-runs', '2'] });
 const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
 try {
@@ -145,35 +147,33 @@ try {
     switches.filter((s) => s[0] <= ts + 3.5 && s[0] > ts + 0.5 && s[3] === passed && s[4] === late).length);
 
   // The upload form starts a lifelong run (a map and task settings, no scen or plan): shown live
-  // with its tasks streaming in, then replayed with them.
+  // with its tasks streaming in. At 10x real time for 600 sim s (a minute) it is still running
+  // however slowly this page loads on a loaded machine (for 60 sim s, CI once saw it end first:
+  // the page showed its replay); the server stops it when the test ends. A lifelong run replayed
+  // with its tasks and files is the LoRR upload's below.
   await page.select('#up-kind', 'lifelong');
   assert.equal(await page.$eval('#up-scen', (e) => !e.disabled || !e.closest('label').hidden), false);
   const mapInput = await page.$('#up-map');
   await mapInput.uploadFile(path.join(bench, 'maps/random-32-32-20.map'));
   await page.$eval('#upload input[name=agents]', (e) => { e.value = '12'; });
-  await page.$eval('#upload input[name=duration_s]', (e) => { e.value = '60'; });
+  await page.$eval('#upload input[name=duration_s]', (e) => { e.value = '600'; });
   await page.select('#upload select[name=real_time_factor]', '10');
   await Promise.all([page.waitForNavigation({ timeout: 90000 }), page.click('#up-go')]).catch(async (e) => {
     const status = await page.$eval('#upload-status', (el) => el.textContent).catch(() => '?');
     throw new Error(`no navigation after the lifelong upload (${e.message}); the form says: ${status}`);
   });
   assert.match(page.url(), /run=run-000002/);
-  let sawLiveTasks = false, replay = null, last = null;
-  for (const until = Date.now() + 150000; Date.now() < until && !replay;) {
+  let sawLiveTasks = false, last = null;
+  for (const until = Date.now() + 150000; Date.now() < until && !sawLiveTasks;) {
     const v = await page.evaluate(() => window.__viewer && { ...window.__viewer }).catch(() => null);  // reloads
     if (v && v.live && v.tasks && v.tasks.open > 0 && v.tasks.lines > 0 && v.minimap && v.minimap.dots === 12) sawLiveTasks = true;
-    if (v && v.ready) replay = v;
     if (v) last = v;
     if (v && v.error) break;
     await new Promise((r) => setTimeout(r, 100));
   }
   assert.ok(sawLiveTasks, `the lifelong run was never shown live with its tasks; last: ${JSON.stringify(last)}`);
-  assert.ok(replay, `the finished lifelong run was not replayed; last: ${JSON.stringify(last)}`);
-  assert.equal(replay.robots, 12);
-  assert.ok(replay.tasks && replay.tasks.open > 0, JSON.stringify(replay.tasks));
   const run2 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000002')).json()));
-  assert.equal(run2.summary.lifelong.duration_s, 60);
-  assert.ok(run2.files.includes('tasks.csv') && run2.files.includes('throughput.csv'), run2.files.join());
+  assert.equal(run2.state, 'running', JSON.stringify(run2).slice(0, 300));
   // A lifelong upload without its fleet size is refused with the fix.
   const bad = await page.evaluate(async () => {
     const f = new FormData();
@@ -213,6 +213,7 @@ try {
   const run3 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000003')).json()));
   assert.equal(run3.summary.lifelong.lorr.team_size, 400);
   assert.equal(run3.summary.lifelong.duration_s, 20);
+  assert.ok(run3.files.includes('tasks.csv') && run3.files.includes('throughput.csv'), run3.files.join());
   assert.match(run3.summary.lifelong.problem, /random\.domain\/random-example_400\.json$/);
   // Task 0 is the tasks file's first task (after its '#' comment and count): its errand cells.
   const tasks3 = await page.evaluate(async () => (await (await fetch('/api/runs/run-000003/tasks')).json()));
@@ -251,7 +252,10 @@ try {
   assert.match(two.body.error, /2 problem JSON files \(d\/p\.json, d\/q\.json\): choose one/);
 } finally {
   await browser.close();
+  // The server stops the runs still going (the 600 s lifelong upload) before it exits.
+  const exited = server.exitCode !== null || new Promise((r) => server.once('exit', r));
   server.kill('SIGTERM');
+  await exited;
   rmSync(work, { recursive: true, force: true });
 }
 console.log('lifelong viewer test passed');

@@ -4,9 +4,9 @@
 import { spawn } from 'node:child_process';
 import path from 'node:path';
 
-export function startServer({ exe, dist, work, results, domain, onStderr = () => {} }) {
+export function startServer({ exe, dist, work, results, domain, onStderr = () => {}, args = [] }) {
   const server = spawn(exe, ['serve', '--port', '0', '--data', path.join(work, 'data'), '--web', dist,
-    '--open', results, '--domain', domain]);
+    '--open', results, '--domain', domain, ...args]);
   server.stderr.on('data', onStderr);
   return new Promise((resolve, reject) => {
     let text = '';
