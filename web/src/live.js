@@ -66,10 +66,12 @@ export async function startLive(id) {
   $('minimap').hidden = false;
   viewer.minimap = mini;
   let tasks = null, xy = new Float32Array(0), colors = new Uint32Array(0);
-  // A lifelong run's tasks, polled while it goes (none: not a lifelong run).
+  // A lifelong run's tasks, polled while it goes (none: not a lifelong run). The layer is sized
+  // for the fleet, so it waits for an event with the robots' poses (at 1x real time the first
+  // events come before any state: a layer made then drew no robot's line, ever).
   const pollTasks = async () => {
     const d = await fetchJson(`/api/runs/${id}/tasks`).catch(() => null);
-    if (d && last) {
+    if (d && last && last.poses.length) {
       if (!tasks) {
         tasks = taskLayer(d, map, cell, last.poses.length);
         $('throughput').hidden = false;
