@@ -41,6 +41,16 @@ TEST(Spec, ReadsEveryAxisAndExpandsTheirProduct) {
   EXPECT_EQ(keys.size(), cells.size());  // a folder per cell
 }
 
+// `yaml` (as p.yaml) is refused with a message holding `expected`.
+void expect_refused(const std::string& yaml, const std::string& expected) {
+  try {
+    (void)parse_spec(yaml, "p.yaml");
+    ADD_FAILURE() << yaml;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
+  }
+}
+
 TEST(Spec, PlannerAndCommandPlans) {
   auto s =
       parse_spec("name: a\nmaps: [m]\nscens: [s]\nagents: 5\nplan: {planner: builtin}\n", "x.yaml");
@@ -62,18 +72,11 @@ TEST(Spec, TheBuiltInPlannerTakesAnAlgorithmThatNamesItsPlans) {
   EXPECT_EQ(s.plans[0].name, "builtin");
   EXPECT_EQ(s.plans[1].algorithm, "pibt");
   EXPECT_EQ(s.plans[1].name, "builtin-pibt");
-  for (const auto& [yaml, expected] :
-       {std::pair{"plan: {planner: builtin, algorithm: lacam}\n",
-                  "p.yaml:5: plan.algorithm: pp (prioritized planning) or pibt"},
-        {"plan: {file: x.txt, algorithm: pibt}\n", "only {planner: builtin} takes an algorithm"}}) {
-    try {
-      (void)parse_spec(std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n") + yaml,
-                       "p.yaml");
-      ADD_FAILURE() << yaml;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
-    }
-  }
+  const std::string head = "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n";
+  expect_refused(head + "plan: {planner: builtin, algorithm: lacam}\n",
+                 "p.yaml:5: plan.algorithm: pp (prioritized planning) or pibt");
+  expect_refused(head + "plan: {file: x.txt, algorithm: pibt}\n",
+                 "only {planner: builtin} takes an algorithm");
 }
 
 // Issue 26: planners could not be compared (no planner axis, no planner runtime column).
@@ -100,14 +103,8 @@ TEST(Spec, PlansAreAPlannerAxisEachNamedInTheCellsAndTheRows) {
         {"plans: []\n", "plans: a list"},
         {"plans: [{name: a b, planner: builtin}]\n", "plans[0].name: 1-64"},
         {"plan: {planner: builtin}\nplans: [{planner: builtin}]\n", "not both"}}) {
-    try {
-      (void)parse_spec(
-          std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nrepeats: 1\n") + yaml,
-          "p.yaml");
-      ADD_FAILURE() << yaml;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_THAT(e.what(), HasSubstr(expected)) << yaml;
-    }
+    expect_refused(std::string("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nrepeats: 1\n") + yaml,
+                   expected);
   }
 }
 
