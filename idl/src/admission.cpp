@@ -78,9 +78,13 @@ bool WriterAdmission::admitted(dds_instance_handle_t writer) const {
 
 void WriterAdmission::decide(dds_entity_t reader, dds_instance_handle_t writer) {
   if (!rule_ || writer == 0) return;
+  // Read before the lookup: a lookup that fails while the reader is still being made (Cyclone
+  // refuses a handle until dds_create_reader returns) says nothing about the writer, and a
+  // forget() then could undo decide_matched()'s verdict, made meanwhile on the creating thread.
+  const bool reader_made = reader_made_.load();
   dds_builtintopic_endpoint_t* e = dds_get_matched_publication_data(reader, writer);
-  if (e == nullptr) {  // it left (or the reader is still being made: decide_matched follows)
-    forget(writer);
+  if (e == nullptr) {  // it left, or the reader is still being made (decide_matched follows)
+    if (reader_made) forget(writer);
     return;
   }
   bool known = false;
@@ -110,6 +114,7 @@ void WriterAdmission::forget(dds_instance_handle_t writer) {
 
 void WriterAdmission::decide_matched(dds_entity_t reader) {
   if (!rule_) return;
+  reader_made_.store(true);
   std::vector<dds_instance_handle_t> handles(64);
   for (;;) {
     const auto n = dds_get_matched_publications(reader, handles.data(), handles.size());

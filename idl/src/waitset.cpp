@@ -25,7 +25,10 @@ WaitSet::WaitSet(const Participant& participant)
     : entity_(check(dds_create_waitset(participant.handle()), "creating wait set")) {}
 
 void WaitSet::attach_status(dds_entity_t entity, uint32_t status_mask, dds_attach_t tag) {
-  check(dds_set_status_mask(entity, status_mask), "enabling status for wait set");
+  uint32_t enabled = 0;
+  if (dds_get_status_mask(entity, &enabled) != DDS_RETCODE_OK || enabled != status_mask) {
+    check(dds_set_status_mask(entity, status_mask), "enabling status for wait set");
+  }
   attach(entity, tag);
 }
 

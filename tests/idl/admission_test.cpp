@@ -5,12 +5,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstring>
+#include <future>
 #include <map>
 #include <set>
 #include <thread>
 
+#include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "support/dds_test_support.hpp"
 
@@ -178,6 +181,59 @@ TEST(WriterAdmission, ByRuleProvenWritersAreHeardFromTheirFirstSampleACopiedProo
   EXPECT_EQ(heard.count(2), 1u) << "the first sample of a writer matched later was lost";
   EXPECT_EQ(refused, 100u);  // the copy's; the sim's samples are ignored, not counted
   EXPECT_EQ(refused_writers.size(), 1u);
+}
+
+// Regression (CI, stop 43: a `smart run` hung at its end, another's sim at its start): attaching
+// a reader to a wait set set its status mask, and Cyclone 0.10's dds_set_status_mask holds the
+// reader's lock while it waits for the reader's running listeners; the admission's listener
+// (a writer matched or left) asks the reader for the writer's data and waited for that lock. Now
+// the reader's mask is set once when it is made, and attaching leaves it alone: it returns while
+// the listener is still running (here held inside the rule until the attach is done).
+TEST(WriterAdmission, AttachingAReaderToAWaitSetNeverWaitsForItsAdmissionListener) {
+  Domain domain(test::kAdmissionListenerAttach, test::loopback());
+  Participant reader_p(domain), writer_p(domain);
+  std::promise<void> entered, release;
+  auto released = release.get_future().share();
+  std::atomic<bool> first{true};
+  WriterAdmission admission([&](const dds_builtintopic_endpoint_t&) {
+    if (first.exchange(false)) {
+      entered.set_value();
+      released.wait();
+    }
+    return Verdict::kAdmit;
+  });
+  const auto qos = find_qos_profile("lan");
+  WireReader<smart_msg_Progress> reader(reader_p, qos, admission);
+  // A writer made in this process is matched on the thread that makes it: that thread runs the
+  // reader's listener, and stays in the rule.
+  std::thread maker([&] { WireWriter<smart_msg_Progress> writer(writer_p, qos); });
+  entered.get_future().wait();
+  auto attached = std::async(std::launch::async, [&] {
+    WaitSet ws(reader_p);
+    ws.attach_status(reader.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+  });
+  const bool returned = attached.wait_for(30s) == std::future_status::ready;
+  release.set_value();
+  maker.join();
+  attached.get();
+  EXPECT_TRUE(returned) << "attaching waited for the admission listener (the deadlock)";
+}
+
+// The listener may run for a writer before the reader is made (Cyclone refuses the reader's
+// handle until then): that failed lookup never undoes the verdict decide_matched() reaches on the
+// making thread; once the reader is made, a failed lookup means the writer left.
+TEST(WriterAdmission, AFailedLookupBeforeTheReaderIsMadeNeverForgetsAnAdmittedWriter) {
+  Domain domain(test::kAdmissionLookupBeforeMade, test::loopback());
+  Participant p(domain);  // Cyclone's handles in this process, so a bad one is only refused
+  WriterAdmission admission([](const dds_builtintopic_endpoint_t&) { return Verdict::kAdmit; });
+  admission.admit(42);
+  dds_subscription_matched_status_t status{};
+  status.last_publication_handle = 42;
+  WriterAdmission::on_matched(0, status, &admission);  // no such reader (yet)
+  EXPECT_TRUE(admission.admitted(42));
+  admission.decide_matched(0);  // the reader is made (no writers matched on this handle)
+  WriterAdmission::on_matched(0, status, &admission);
+  EXPECT_FALSE(admission.admitted(42));
 }
 
 // Per robot (issue 25: "an insider key is its robot's only"): a writer in robot 3's partition is

@@ -153,6 +153,8 @@ enum DomainId : int {
   kFoxgloveBridge = 83,  // tests/readers/bridge.test.mjs (given on its command line)
   kShardJoin = 82,
   kPibtPlanRun = 81,
+  kAdmissionListenerAttach = 79,
+  kAdmissionLookupBeforeMade = 78,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

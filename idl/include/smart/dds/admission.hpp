@@ -13,8 +13,12 @@
 //   subscription-matched listener, which Cyclone calls when the writer is matched and before
 //   that writer's first sample can reach the reader (ddsi_entity_match.c, reader_add_connection
 //   runs before proxy_writer_add_connection), and once after creation for the writers matched
-//   while the reader was being made. A proven writer of another role is ignored uncounted (the
-//   sim's own ticks on the clock topic an agent reads); everyone else is refused.
+//   while the reader was being made (its listener is installed then, reader.hpp). The listener
+//   calls into the reader (dds_get_matched_publication_data), so nothing may hold the reader's
+//   lock while waiting for its listeners: Cyclone 0.10's dds_set_status_mask does, hence
+//   WaitSet::attach_status leaves a Reader<T>'s mask alone. A proven writer of another role is
+//   ignored uncounted (the sim's own ticks on the clock topic an agent reads); everyone else is
+//   refused.
 // On a per-robot topic (progress, states; idl/smart.idl "Runs") the admission also holds each
 // admitted writer to the robots its partitions name (robot_speakers.hpp), sample by sample in
 // the same filter, so an insider's key (an agent-<id> identity, the run key) neither moves
@@ -25,6 +29,7 @@
 
 #include <dds/dds.h>
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -106,6 +111,7 @@ class WriterAdmission {
   AdmitRule rule_;
   std::string run_partition_;  // per-robot topics: the run whose robot partitions count
   mutable std::mutex mutex_;
+  std::atomic<bool> reader_made_{false};  // decide_matched() ran: the reader's handle is usable
   bool closed_ = false;
   std::set<dds_instance_handle_t> admitted_, ignored_;
   std::map<dds_instance_handle_t, Speaks> speaks_;

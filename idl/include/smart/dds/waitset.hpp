@@ -6,12 +6,17 @@
 #include <dds/dds.h>
 
 #include <chrono>
+#include <cstdint>
 #include <vector>
 
 #include "smart/dds/entity.hpp"
 #include "smart/dds/participant.hpp"
 
 namespace smart::dds {
+
+// The one status a wait set waits on a reader for. Reader<T> enables it (and only it) when the
+// reader is made, before its listener can run (reader.hpp says why that order matters).
+inline constexpr uint32_t kReaderWaitStatus = DDS_DATA_AVAILABLE_STATUS;
 
 // A condition the application triggers itself, e.g. to wake a waiting thread for shutdown.
 class GuardCondition {
@@ -38,7 +43,9 @@ class ReadCondition {
 class WaitSet {
  public:
   explicit WaitSet(const Participant& participant);
-  // For a reader or writer handle, also enables `status_mask` (e.g. DDS_DATA_AVAILABLE_STATUS).
+  // For a reader or writer handle, also enables `status_mask` (e.g. DDS_DATA_AVAILABLE_STATUS)
+  // unless exactly that is enabled already, as on every Reader<T> for kReaderWaitStatus: then the
+  // reader is left alone, so attaching never waits for (or deadlocks with) its listeners.
   void attach_status(dds_entity_t entity, uint32_t status_mask, dds_attach_t tag);
   void attach(dds_entity_t condition, dds_attach_t tag);
   void detach(dds_entity_t entity_or_condition);
