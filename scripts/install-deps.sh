@@ -30,6 +30,7 @@ packages=(
   chromium
   python3-matplotlib
   iproute2 nftables
+  gdb
 )
 # The web viewer's build and browser tests need node and npm; a machine may already have them
 # from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.
