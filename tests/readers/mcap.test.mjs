@@ -302,6 +302,15 @@ test('smart export mcap puts the ROS 2 view under a namespace', async () => {
   assert.ok(!byTopic.has('/tf'));
 });
 
+test('smart export mcap writes RESULTS_DIR/run.mcap when no file is named', async () => {
+  const copy = path.join(work, 'default-name');
+  fs.cpSync(results, copy, { recursive: true });
+  const r = smart(['export', 'mcap', copy]);
+  assert.equal(r.code, 0, r.err);
+  const { byTopic } = await readAll(path.join(copy, 'run.mcap'));
+  assert.ok(byTopic.has('/tf') && byTopic.has('smart/state'), [...byTopic.keys()].slice(0, 8).join(' '));
+});
+
 test('bad input to smart export names the file and leaves no file', () => {
   const bad = path.join(work, 'bad');
   fs.mkdirSync(bad);

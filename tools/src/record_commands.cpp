@@ -77,7 +77,9 @@ void register_record_commands(CLI::App& app, int& exit_code) {
   mcap->add_option("RESULTS_DIR", args->dir, "a run's results folder (`smart run --out DIR`)")
       ->required()
       ->check(CLI::ExistingPath);  // a file is named by export_mcap with what to do instead
-  mcap->add_option("-o,--out", args->out, "the MCAP file (default: RESULTS_DIR/run.mcap)");
+  mcap->add_option(
+      "-o,--out", args->out,
+      "the MCAP file (default: RESULTS_DIR/" + std::string(record::kDefaultMcap) + ")");
   mcap->add_option("--ros-namespace", args->ros_namespace,
                    "put the ROS 2 view's topics under this namespace (e.g. /run_a)");
   mcap->add_option("--ros-pose-robots", args->pose_robots,
@@ -89,7 +91,8 @@ void register_record_commands(CLI::App& app, int& exit_code) {
     o.ros_namespace = args->ros_namespace;
     o.pose_robots = args->pose_robots;
     o.mcap.compress = !args->uncompressed;
-    const fs::path out = args->out.empty() ? fs::path(args->dir) / "run.mcap" : fs::path(args->out);
+    const fs::path out =
+        args->out.empty() ? fs::path(args->dir) / record::kDefaultMcap : fs::path(args->out);
     record_run(args->dir, out, o);
     exit_code = ExitCode::kExitSuccess;
   });

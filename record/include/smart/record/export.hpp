@@ -12,11 +12,15 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "smart/record/recorder.hpp"
 
 namespace smart::record {
+
+// `smart export mcap RESULTS_DIR`'s file when none is named: RESULTS_DIR/run.mcap.
+inline constexpr std::string_view kDefaultMcap = "run.mcap";
 
 struct ExportReport {
   uint64_t messages = 0;
