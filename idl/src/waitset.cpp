@@ -25,10 +25,16 @@ WaitSet::WaitSet(const Participant& participant)
     : entity_(check(dds_create_waitset(participant.handle()), "creating wait set")) {}
 
 void WaitSet::attach_status(dds_entity_t entity, uint32_t status_mask, dds_attach_t tag) {
-  uint32_t enabled = 0;
-  if (dds_get_status_mask(entity, &enabled) != DDS_RETCODE_OK || enabled != status_mask) {
-    check(dds_set_status_mask(entity, status_mask), "enabling status for wait set");
+  if (status_mask == DDS_DATA_AVAILABLE_STATUS) {
+    const dds_entity_t c = dds_create_readcondition(
+        entity, DDS_NOT_READ_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ANY_INSTANCE_STATE);
+    if (c > 0) {  // a reader (anything else has no read condition: its status, below)
+      conditions_.emplace_back(c);
+      attach(c, tag);
+      return;
+    }
   }
+  check(dds_set_status_mask(entity, status_mask), "enabling status for wait set");
   attach(entity, tag);
 }
 

@@ -187,8 +187,8 @@ TEST(WriterAdmission, ByRuleProvenWritersAreHeardFromTheirFirstSampleACopiedProo
 // a reader to a wait set set its status mask, and Cyclone 0.10's dds_set_status_mask holds the
 // reader's lock while it waits for the reader's running listeners; the admission's listener
 // (a writer matched or left) asks the reader for the writer's data and waited for that lock. Now
-// the reader's mask is set once when it is made, and attaching leaves it alone: it returns while
-// the listener is still running (here held inside the rule until the attach is done).
+// a wait set waits on a reader's data through a read condition and never sets its mask: the
+// attach returns while the listener is still running (held inside the rule until it is done).
 TEST(WriterAdmission, AttachingAReaderToAWaitSetNeverWaitsForItsAdmissionListener) {
   Domain domain(test::kAdmissionListenerAttach, test::loopback());
   Participant reader_p(domain), writer_p(domain);

@@ -13,10 +13,10 @@
 //   subscription-matched listener, which Cyclone calls when the writer is matched and before
 //   that writer's first sample can reach the reader (ddsi_entity_match.c, reader_add_connection
 //   runs before proxy_writer_add_connection), and once after creation for the writers matched
-//   while the reader was being made (its listener is installed then, reader.hpp). The listener
-//   calls into the reader (dds_get_matched_publication_data), so nothing may hold the reader's
-//   lock while waiting for its listeners: Cyclone 0.10's dds_set_status_mask does, hence
-//   WaitSet::attach_status leaves a Reader<T>'s mask alone. A proven writer of another role is
+//   while the reader was being made. The listener calls into the reader
+//   (dds_get_matched_publication_data), so nothing may hold the reader's lock while waiting for
+//   its listeners: Cyclone 0.10's dds_set_status_mask does, hence WaitSet::attach_status waits on
+//   a reader through a read condition (waitset.hpp). A proven writer of another role is
 //   ignored uncounted (the sim's own ticks on the clock topic an agent reads); everyone else is
 //   refused.
 // On a per-robot topic (progress, states; idl/smart.idl "Runs") the admission also holds each

@@ -23,7 +23,6 @@
 #include "smart/dds/qos.hpp"
 #include "smart/dds/status.hpp"
 #include "smart/dds/topic.hpp"
-#include "smart/dds/waitset.hpp"
 
 namespace smart::dds {
 
@@ -270,24 +269,12 @@ class Reader {
     }
   }
 
-  // The status a wait set waits on is enabled before the listener is installed, once: Cyclone
-  // 0.10's dds_set_status_mask holds the reader's lock while it waits for the reader's running
-  // listeners, and a listener that calls into the reader (admission.cpp's
-  // dds_get_matched_publication_data) then waits for that lock for ever (dds_entity.c). Regression
-  // (CI, stop 43): a monitor attached its final drain wait set while the sim host's writers
-  // left, and hung. WaitSet::attach_status leaves a reader's mask alone when it is already this.
   void create(const Participant& participant, const Topic<T>& topic, const Qos& qos,
               dds_listener_t* listener) {
     const dds_entity_t h =
-        dds_create_reader(participant.handle(), topic.handle(), qos.get(), nullptr);
-    if (h < 0 && listener != nullptr) dds_delete_listener(listener);
+        dds_create_reader(participant.handle(), topic.handle(), qos.get(), listener);
+    if (listener != nullptr) dds_delete_listener(listener);
     entity_ = Entity(check(h, "creating a reader on '" + topic.name() + "'"));
-    dds_return_t rc = dds_set_status_mask(h, kReaderWaitStatus);
-    if (listener != nullptr) {
-      if (rc == DDS_RETCODE_OK) rc = dds_set_listener(h, listener);
-      dds_delete_listener(listener);
-    }
-    check(rc, "setting up the reader on '" + topic.name() + "'");
   }
 
   LoanedSamples<T> get(std::size_t max, bool take) {

@@ -14,10 +14,6 @@
 
 namespace smart::dds {
 
-// The one status a wait set waits on a reader for. Reader<T> enables it (and only it) when the
-// reader is made, before its listener can run (reader.hpp says why that order matters).
-inline constexpr uint32_t kReaderWaitStatus = DDS_DATA_AVAILABLE_STATUS;
-
 // A condition the application triggers itself, e.g. to wake a waiting thread for shutdown.
 class GuardCondition {
  public:
@@ -43,9 +39,13 @@ class ReadCondition {
 class WaitSet {
  public:
   explicit WaitSet(const Participant& participant);
-  // For a reader or writer handle, also enables `status_mask` (e.g. DDS_DATA_AVAILABLE_STATUS)
-  // unless exactly that is enabled already, as on every Reader<T> for kReaderWaitStatus: then the
-  // reader is left alone, so attaching never waits for (or deadlocks with) its listeners.
+  // DDS_DATA_AVAILABLE_STATUS of a reader: the wait set wakes while the reader holds samples not
+  // yet read or taken, through a ReadCondition of its own, so the reader's status mask is never
+  // set. Cyclone 0.10's dds_set_status_mask holds the reader's lock while it waits for the
+  // reader's running listeners, and the admission's listener calls into the reader
+  // (admission.hpp): a monitor attaching its final wait set as the sim's writers left, or a sim
+  // host attaching at start-up as the monitor's matched, hung for ever (CI, stops 42 and 43).
+  // Any other status (or entity) is enabled on the entity and attached as before.
   void attach_status(dds_entity_t entity, uint32_t status_mask, dds_attach_t tag);
   void attach(dds_entity_t condition, dds_attach_t tag);
   void detach(dds_entity_t entity_or_condition);
@@ -53,6 +53,7 @@ class WaitSet {
 
  private:
   Entity entity_;
+  std::vector<Entity> conditions_;  // read conditions made here; declared last: deleted first
 };
 
 }  // namespace smart::dds
