@@ -183,7 +183,7 @@ TEST(WriterAdmission, ByRuleProvenWritersAreHeardFromTheirFirstSampleACopiedProo
   EXPECT_EQ(refused_writers.size(), 1u);
 }
 
-// Regression (CI, stop 43: a `smart run` hung at its end, another's sim at its start): attaching
+// Regression (CI, stop 42: a `smart run` hung at its end, another's sim at its start): attaching
 // a reader to a wait set set its status mask, and Cyclone 0.10's dds_set_status_mask holds the
 // reader's lock while it waits for the reader's running listeners; the admission's listener
 // (a writer matched or left) asks the reader for the writer's data and waited for that lock. Now

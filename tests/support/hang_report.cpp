@@ -1,6 +1,6 @@
 // Linked into every GoogleTest binary (tests/CMakeLists.txt, smart_add_test): a test still running
 // shortly before ctest's timeout is about to be killed without a word of where it hung. Two such
-// hangs in CI (stops 42 and 43, both a deadlock inside a `smart` child process) stayed
+// hangs in CI (both at stop 42, both a deadlock inside a `smart` child process) stayed
 // unexplained for a whole stop. So, kReportBeforeS before the timeout, this prints the stack of
 // every thread of the test process and of each process it started (gdb -batch, Debian's gdb, in
 // scripts/install-deps.sh), or without gdb their states, to stderr, which ctest shows with the

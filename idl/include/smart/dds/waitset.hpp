@@ -44,7 +44,7 @@ class WaitSet {
   // set. Cyclone 0.10's dds_set_status_mask holds the reader's lock while it waits for the
   // reader's running listeners, and the admission's listener calls into the reader
   // (admission.hpp): a monitor attaching its final wait set as the sim's writers left, or a sim
-  // host attaching at start-up as the monitor's matched, hung for ever (CI, stops 42 and 43).
+  // host attaching at start-up as the monitor's matched, hung for ever (CI, twice at stop 42).
   // Any other status (or entity) is enabled on the entity and attached as before.
   void attach_status(dds_entity_t entity, uint32_t status_mask, dds_attach_t tag);
   void attach(dds_entity_t condition, dds_attach_t tag);
