@@ -61,25 +61,24 @@ void LiveRecording::action_finished(uint32_t robot, uint32_t seq, double t_s) {
 
 void LiveRecording::loop() {
   // SCHED_IDLE (sched(7)): the recording takes the CPU the run leaves, never the run's. What it
-  // has not done when the run ends, finish() does at normal priority: a loaded machine gives an
-  // idle thread almost nothing, so once stop() is called this thread takes no more rows and
-  // leaves the rest of its batch (consume stops between rows).
+  // has not done when the run ends, finish() does at normal priority.
   sched_param idle{};
   (void)pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
   Batch batch;
-  for (;;) {
+  for (bool stop = false; !stop;) {
     {
       std::unique_lock lock(m_);
       cv_.wait_for(lock, std::chrono::milliseconds(50),
                    [this] { return stop_ || incoming_.items.size() >= kBatch; });
-      if (stop_) break;
       std::swap(batch, incoming_);
+      stop = stop_;
     }
-    const std::size_t done = consume_safely(batch, 0, true);
-    if (done < batch.items.size()) {
-      left_ = std::move(batch);
-      left_at_ = done;
-      break;
+    if (!error_) {
+      try {
+        consume(batch);
+      } catch (...) {
+        error_ = std::current_exception();  // finish() throws it; the rest is dropped
+      }
     }
     batch.items.clear();
     batch.text.clear();
@@ -91,35 +90,22 @@ double LiveRecording::cpu_s() const {
   return thread_cpu_s_ + (rec_ ? rec_->background_cpu_s() : 0.0);
 }
 
-// Rows from `from` on; on the recorder's thread it stops between rows once stop() is called.
-// Returns how far it got. A row the recorder refuses is kept for finish() to throw; the rest of
-// the run's rows are then dropped.
-std::size_t LiveRecording::consume_safely(const Batch& batch, std::size_t from, bool yield) {
-  std::size_t i = from;
-  if (error_) return batch.items.size();
-  try {
-    for (; i < batch.items.size(); ++i) {
-      if (yield && stopping_.load(std::memory_order_relaxed)) return i;
-      consume(batch, batch.items[i]);
+void LiveRecording::consume(const Batch& batch) {
+  for (const auto& item : batch.items) {
+    if (!item.is_state) {
+      rec_->progress(results::as_written(item.t_s), item.robot, static_cast<int32_t>(item.seq));
+      continue;
     }
-  } catch (...) {
-    error_ = std::current_exception();  // finish() throws it; the rest is dropped
+    auto line = std::string_view(batch.text).substr(item.at, item.length);
+    if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+    const auto row = results::parse_state_line(line);
+    if (!row) {
+      throw std::invalid_argument("recording: not a states.csv row: " + std::string(line));
+    }
+    held_.push_back(*row);
+    newest_s_ = std::max(newest_s_, row->t_s);
+    release(false);  // after each state: the same file however the rows were batched
   }
-  return batch.items.size();
-}
-
-void LiveRecording::consume(const Batch& batch, const Item& item) {
-  if (!item.is_state) {
-    rec_->progress(results::as_written(item.t_s), item.robot, static_cast<int32_t>(item.seq));
-    return;
-  }
-  auto line = std::string_view(batch.text).substr(item.at, item.length);
-  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
-  const auto row = results::parse_state_line(line);
-  if (!row) throw std::invalid_argument("recording: not a states.csv row: " + std::string(line));
-  held_.push_back(*row);
-  newest_s_ = std::max(newest_s_, row->t_s);
-  release(false);  // after each state: the same file however the rows were batched
 }
 
 // In states.csv's order; the front waits until the newest state is lag_s past it.
@@ -131,25 +117,17 @@ void LiveRecording::release(bool all) {
 }
 
 void LiveRecording::stop() {
-  stopping_.store(true, std::memory_order_relaxed);
   {
     std::lock_guard lock(m_);
     stop_ = true;
   }
   cv_.notify_one();
-  if (!thread_.joinable()) return;
-  // The row it is on ends at normal priority where that is allowed (root, or RLIMIT_NICE:
-  // sched(7)); elsewhere it ends at idle priority, one row.
-  sched_param normal{};
-  (void)pthread_setschedparam(thread_.native_handle(), SCHED_OTHER, &normal);
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
 }
 
 ExportReport LiveRecording::finish(const fs::path& results_dir) {
   stop();
   try {
-    consume_safely(left_, left_at_, false);  // what the recorder's thread left, then the rest
-    consume_safely(incoming_, 0, false);
     if (error_) std::rethrow_exception(error_);
     release(true);
     end_recording(*rec_, results_dir, report_);

@@ -5,8 +5,7 @@
 // action's finish (on_action_finished, the time actions.csv gets, as_written). The producers
 // only queue;
 // the recorder runs on its own thread, compression included, at idle priority (SCHED_IDLE: it
-// takes only the CPU the run leaves; what is left when the run ends, even of the batch it is on,
-// is done by finish() at the caller's priority). The
+// takes only the CPU the run leaves; what is left when the run ends is done by finish()). The
 // queue is not bounded: a recorder that falls behind holds rows (80 bytes each), never slows the
 // run. States are held until the newest state is lag_s of sim
 // time past them, so that every action finished before a state reached the recorder first
@@ -20,7 +19,6 @@
 // A plan's run only (lifelong and resumed runs are recorded from their results afterwards).
 #pragma once
 
-#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -78,8 +76,7 @@ class LiveRecording {
     std::string text;
   };
   void loop();
-  std::size_t consume_safely(const Batch& batch, std::size_t from, bool yield);
-  void consume(const Batch& batch, const Item& item);
+  void consume(const Batch& batch);
   void release(bool all);
 
   LiveRecordingSetup setup_;
@@ -92,9 +89,6 @@ class LiveRecording {
   std::mutex m_;
   std::condition_variable cv_;
   Batch incoming_;
-  Batch left_;  // what the recorder's thread had not done when stopped, from left_at_
-  std::size_t left_at_ = 0;
-  std::atomic<bool> stopping_{false};
   bool stop_ = false, finished_ = false;
   std::exception_ptr error_;
   double thread_cpu_s_ = 0;
