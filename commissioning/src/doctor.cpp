@@ -1,5 +1,6 @@
 #include "smart/commissioning/doctor.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -45,7 +46,8 @@ HeardHost* heard_from(const Reader& reader, const dds_sample_info_t& info,
   const auto who = reader.participant_of(info.publication_handle);
   if (!who) return nullptr;
   auto& h = hosts[short_guid(*who)];
-  h.min_offset_s = std::min(h.min_offset_s, static_cast<double>(dds_time() - info.source_timestamp) * 1e-9);
+  h.min_offset_s =
+      std::min(h.min_offset_s, static_cast<double>(dds_time() - info.source_timestamp) * 1e-9);
   ++h.samples;
   return &h;
 }
@@ -84,7 +86,16 @@ std::vector<CheckRow> domain_checks(const DoctorSettings& s, const dds::QosProfi
   wire::Rejections rejected;
   std::optional<smart_msg_MonitorInfo> seen;
   std::string host;
-  for (const double end = steady_s() + s.listen_s; steady_s() < end;) {
+  // Settled: nothing more to wait for (doctor.hpp, wait_s).
+  const auto settled = [&] {
+    const bool qos_known = actions.subscription_matched().current_count > 0 ||
+                           actions.requested_incompatible_qos().total_count > 0;
+    return seen && qos_known &&
+           std::ranges::all_of(hosts, [](const auto& h) { return h.second.samples >= 2; });
+  };
+  const double start = steady_s();
+  for (double now = start; now < start + s.listen_s || (now < start + s.wait_s && !settled());
+       now = steady_s()) {
     monitors.take_each_info([&](const smart_msg_MonitorInfo& m, const dds_sample_info_t& info) {
       if (auto why = wire::check_monitor_info(m); !why.empty()) {
         rejected.count("monitor", why);

@@ -6,9 +6,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstdio>
 #include <map>
+#include <thread>
 
 #include "smart/agent/robot_model.hpp"
+#include "smart/dds/wire.hpp"
 #include "support/dds_test_support.hpp"
 #include "support/emulated_robot_io.hpp"
 
@@ -76,6 +80,43 @@ TEST_F(DoctorChecks, AnEmptyDomainHasNoMonitorAndSaysWhereItListened) {
   EXPECT_EQ(rows.at("monitor").level, Level::kWarn);
   EXPECT_THAT(rows.at("monitor").measured, HasSubstr("domain 208, run doctor"));
   EXPECT_FALSE(rows.contains("qos"));
+}
+
+// Started beside a monitor that is not up yet, the doctor listens on (wait_s) until the monitor
+// was announced twice and its action writer matched, instead of reporting after a fixed time.
+TEST_F(DoctorChecks, WithWaitItListensUntilALateMonitorIsHeardTwiceAndMatched) {
+  settings_.listen_s = 0.2;
+  settings_.wait_s = 60;
+  std::atomic<bool> done{false};
+  std::thread monitor([&] {
+    std::this_thread::sleep_for(std::chrono::seconds(1));  // comes after listen_s
+    dds::WireWriter<smart_msg_MonitorInfo> info(participant_, dds::default_qos_profile(), 0);
+    dds::WireWriter<smart_msg_ActionWindow> actions(participant_, dds::default_qos_profile());
+    smart_msg_MonitorInfo m{};
+    m.monitor_id = 7;
+    m.run_id = 1;
+    std::snprintf(m.host, sizeof(m.host), "%s", "late-host");
+    m.pid = 4242;
+    m.strength = smart_msg_MONITOR_STRENGTH_MIN;
+    while (!done) {
+      info.write(m);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  const auto rows = domain_checks(settings_, dds::default_qos_profile(), participant_, "here");
+  done = true;
+  monitor.join();
+  const auto checks = by_check(rows);
+  ASSERT_TRUE(checks.contains("monitor"));
+  EXPECT_EQ(checks.at("monitor").level, Level::kOk) << checks.at("monitor").measured;
+  EXPECT_THAT(checks.at("monitor").measured, HasSubstr("late-host"));
+  ASSERT_TRUE(checks.contains("qos"));
+  EXPECT_EQ(checks.at("qos").level, Level::kOk) << checks.at("qos").measured;
+  for (const auto& r : rows) {
+    if (r.measured.rfind("the monitor;", 0) == 0) {
+      EXPECT_THAT(r.measured, ::testing::Not(HasSubstr("over 1 samples"))) << r.measured;
+    }
+  }
 }
 
 }  // namespace

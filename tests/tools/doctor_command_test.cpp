@@ -16,7 +16,7 @@ nlohmann::json doctor(const std::vector<std::string>& args, int expected_code,
                       const std::string& tag, const char* seconds = "0.5", int domain = kDoctor) {
   std::vector<std::string> all{"doctor", "--domain", std::to_string(domain), "--seconds", seconds};
   all.insert(all.end(), args.begin(), args.end());
-  const auto r = run_smart(all, 30s, tag);
+  const auto r = run_smart(all, 90s, tag);
   EXPECT_EQ(r.code, expected_code) << r.out;
   return last_json_line(r.out);
 }
@@ -95,11 +95,14 @@ TEST(DoctorCommand, FindsTheMonitorOnTheDomainAndItsQosMatches) {
   std::ofstream(map) << "type octile\nheight 1\nwidth 3\nmap\n...\n";
   std::ofstream(scen) << "version 1\n0\tm.map\t3\t1\t0\t0\t2\t0\t2\n";
   std::ofstream(plan) << "Agent 0:(0,0)->(1,0)->(2,0)->\n";
-  auto monitor = start_smart({"monitor", "--map", map.string(), "--scen", scen.string(), "--plan",
-                              plan.string(), "--axis", "xy", "--clock", "realtime", "--domain",
-                              std::to_string(kDoctorMonitor), "--timeout-s", "20", "--no-progress"},
-                             "/dev/null");
-  const auto report = doctor({}, 0, "doctor_monitor", "3", kDoctorMonitor);
+  auto monitor =
+      start_smart({"monitor", "--map", map.string(), "--scen", scen.string(), "--plan",
+                   plan.string(), "--axis", "xy", "--clock", "realtime", "--domain",
+                   std::to_string(kDoctorMonitor), "--timeout-s", "120", "--no-progress"},
+                  "/dev/null");
+  // Listens until the monitor was announced twice and matched (--wait-s), however slowly the
+  // monitor starts on a loaded machine.
+  const auto report = doctor({"--wait-s", "60"}, 0, "doctor_monitor", "0.5", kDoctorMonitor);
   monitor.terminate();
   const auto rows = by_check(report);
   EXPECT_EQ(rows.at("monitor")["level"], "OK") << rows.at("monitor");

@@ -26,6 +26,7 @@ struct DoctorOptions {
   std::optional<uint32_t> robot_id;
   std::string robot_ids;
   double seconds = 2.0;
+  double wait_s = 0;
   bool wheels = false, yes = false;
   double wheel_speed_mps = 0.15, wheel_s = 0.6;
 };
@@ -41,6 +42,7 @@ bool confirmed(const std::string& id, double wheel_s) {
 commissioning::DoctorSettings settings(const DoctorOptions& o) {
   commissioning::DoctorSettings s;
   s.listen_s = o.seconds;
+  s.wait_s = o.wait_s;
   s.pose_max_age_s = o.io.pose_max_age_s;
   s.wheels = o.wheels;
   s.wheel_speed_mps = o.wheel_speed_mps;
@@ -112,6 +114,11 @@ void register_doctor_command(CLI::App& app, int& exit_code) {
   add_backend_options(cmd, o->io);
   cmd->add_option("--seconds", o->seconds, "how long to listen (monitor, pose streams)")
       ->check(finite_in(0.2, 60.0))
+      ->capture_default_str();
+  cmd->add_option("--wait-s", o->wait_s,
+                  "listen on, up to this long, until a monitor was seen, its action writer "
+                  "matched and every host was heard twice (0: just --seconds)")
+      ->check(finite_in(0.0, 600.0))
       ->capture_default_str();
   cmd->add_flag("--wheels", o->wheels, "drive each wheel alone to check its direction");
   cmd->add_flag("--yes", o->yes, "do not ask before moving");

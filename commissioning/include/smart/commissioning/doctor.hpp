@@ -3,6 +3,10 @@
 // - domain_checks(): listens `listen_s` on a participant: the monitor of the run (MonitorInfo),
 //   whether its action writer matched this host's QoS, every host heard through its robots'
 //   states with its clock offset, and samples that failed the wire checks (never believed).
+//   With `wait_s` > `listen_s` it listens on, up to `wait_s`, until what it heard is settled: a
+//   monitor seen, its action writer matched (or refused as incompatible), and every host heard
+//   at least twice (one sample gives a clock offset with its delay unknown). Started beside a
+//   monitor that is still starting, it reports once the monitor is there, not after a guess.
 // - robot_checks(): one robot this host drives: `open` builds its hardware (hw/robot_io.hpp; a
 //   failure is a FAIL row naming it), then the motor board (a JetBot's PCA9685 answering on
 //   I2C), the pose stream (rate, jitter, gaps) and, with `wheels` and `confirm` saying yes, each
@@ -25,6 +29,7 @@ namespace smart::commissioning {
 
 struct DoctorSettings {
   double listen_s = 2.0;  // the monitor and every pose stream
+  double wait_s = 0;      // listen on, up to this long, until the domain is settled (above)
   double min_pose_rate_hz = 20.0;
   double pose_max_age_s = 0.1;  // a longer gap would stop the robot (the agent's limit)
   bool wheels = false;
