@@ -121,7 +121,8 @@ void BM_ParsePlan(benchmark::State& state, const std::string& file) {
 
 // A whole run's dispatch decisions (issue 29: switching must stay cheap): every robot reports
 // one finished action per round unless delayed (a seeded tenth of robots and rounds), until the
-// plan is done; plain ADG (ExecutionTracker) against switchable passing orders. The monitor's
+// plan is done; plain ADG (ExecutionTracker) against switchable passing orders (and
+// switchable-opt). The monitor's
 // own CPU for the same run is in docs/performance.md; the difference of the two is what
 // switching costs.
 template <class Tracker, class Make>
@@ -163,8 +164,17 @@ void BM_ExecuteSwitchable(benchmark::State& state) {
   });
 }
 
+// switchable-opt: also anticipation, by expected times (the rounds are its seconds).
+void BM_ExecuteSwitchableOpt(benchmark::State& state) {
+  execute<SwitchableTracker>(state, [](const ActionPlan& a, const Adg& g) {
+    return SwitchableTracker(a, passing_orders(a, map("warehouse-10-20-10-2-1"), g.footprint),
+                             SwitchOptions{.anticipate = true});
+  });
+}
+
 BENCHMARK(BM_ExecutePlainAdg)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExecuteSwitchable)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExecuteSwitchableOpt)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_AdgRandomWalk, warehouse, std::string("warehouse-10-20-10-2-1"))
     ->Arg(100)

@@ -196,8 +196,8 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   s.qos = strings(root, "qos", src, {"lan"});
   s.executions = strings(root, "executions", src, {"adg"});
   for (const auto& e : s.executions) {
-    if (e != "adg" && e != "switchable")
-      fail(src, root["executions"], "executions", "adg or switchable");
+    if (e != "adg" && e != "switchable" && e != "switchable-opt")
+      fail(src, root["executions"], "executions", "adg, switchable or switchable-opt");
   }
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
@@ -387,6 +387,10 @@ Spec parse_spec(std::string_view text, const std::string& src) {
     read_plan(root, src, s);
   }
   read_options(root, src, s);
+  if (s.lifelong && std::ranges::count(s.executions, "switchable-opt") > 0) {
+    fail(src, root["executions"], "executions",
+         "switchable-opt is for plan runs; lifelong runs: adg or switchable");
+  }
   read_uncertainty(root, src, s);
   return s;
 }

@@ -283,7 +283,10 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
     stops += m.stops;
   }
   j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
-  j["execution"] = {{"mode", r.execution}, {"switches", r.switches.size()}};
+  j["execution"] = {{"mode", r.execution},
+                    {"switches", r.switches.size()},
+                    {"anticipated", std::ranges::count_if(
+                                        r.switches, [](const auto& s) { return s.anticipated; })}};
   j["stops"] = stops;
   j.update(resources_json(r, info));
   if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
@@ -413,7 +416,7 @@ void write_results(const std::filesystem::path& dir, const Instance& in, const M
   open_out(dir / results::kStatsCsv) << results::kStatsHeader << '\n' << stats_row(in, r, info);
   write_robots_csv(dir, in, r, info);
   write_actions_csv(dir, in, r);
-  if (r.execution == "switchable") write_switches_csv(dir, in.grid, r.switches);
+  if (r.execution != "adg") write_switches_csv(dir, in.grid, r.switches);
 }
 
 }  // namespace smart::monitor

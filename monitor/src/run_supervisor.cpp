@@ -41,7 +41,7 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
                         passing_orders(instance.actions, instance.grid, instance.adg.footprint),
                         config.switch_options);
     exec_ = &*switchable_;
-    res_.execution = "switchable";
+    res_.execution = config.switch_options.anticipate ? "switchable-opt" : "switchable";
   } else {
     tracker_.emplace(instance.actions, instance.adg);
     exec_ = &*tracker_;

@@ -1,6 +1,8 @@
 #include "smart/monitor/switchable_tracker.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace smart::monitor {
 
@@ -35,7 +37,10 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       enqueued_(actions.robots(), 0),
       seen_(actions.actions.size(), 0),
       parent_(actions.actions.size(), 0),
-      refused_(actions.robots()) {
+      refused_(actions.robots()),
+      sent_s_(options.anticipate ? actions.actions.size() : 0, 0.0),
+      finished_s_(actions.robots(), 0.0),
+      decided_(options.anticipate ? actions.actions.size() : 0, 0) {
   const auto count = static_cast<uint32_t>(orders_.stays.size());
   stay_ = orders_.stays;
   id_at_.resize(count);
@@ -57,6 +62,8 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
+  std::vector<uint32_t> changed;  // before the first windows: all are sent then
+  try_switches(0.0, changed);
 }
 
 SwitchableTracker::Neighbour SwitchableTracker::before(uint32_t stay) const {
@@ -99,7 +106,13 @@ bool SwitchableTracker::advance(uint32_t robot) {
   while (enqueued_[robot] < count) {
     const uint32_t seq = enqueued_[robot], node = base + seq;
     if (pending_[node] > 0) break;
-    if (finished_[robot] + options_.commit_actions < seq && needs_commit(node)) break;
+    const bool shared = needs_commit(node);
+    if (shared && finished_[robot] + options_.commit_actions < seq) break;
+    if (shared && options_.anticipate && !decided_[node]) {
+      ahead_.insert(robot);  // its place is decided before it is sent (try_switches)
+      break;
+    }
+    if (options_.anticipate) sent_s_[node] = now_s_;
     ++enqueued_[robot];
   }
   return enqueued_[robot] != before_count;
@@ -109,8 +122,7 @@ bool SwitchableTracker::advance(uint32_t robot) {
 // might switch.
 bool SwitchableTracker::candidate(uint32_t robot) const {
   const uint32_t seq = enqueued_[robot];
-  if (seq >= actions_.count(robot) || finished_[robot] + options_.commit_actions < seq)
-    return false;
+  if (seq >= actions_.count(robot) || finished_[robot] + reach() < seq) return false;
   return pending_[actions_.offset[robot] + seq] == 1;
 }
 
@@ -150,6 +162,8 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
   const uint32_t base = actions_.offset[robot];
   const auto upto = static_cast<uint32_t>(finished_seq + 1);
   const uint32_t from = finished_[robot];
+  now_s_ = std::max(now_s_, time_s);
+  if (options_.anticipate) observe(robot, from, upto, time_s);
   finished_total_ += upto - from;
   finished_[robot] = upto;  // first: release() reads finished_node()
   for (uint32_t s = from; s < upto; ++s) release(base + s, u.robots_changed);
@@ -164,17 +178,49 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
 
 // Tries the robots whose situation changed (dirty_), in id order: the only ones that could
 // switch now. A switch may let refused robots switch: they are tried again. Bounded.
+// Then the entries about to be sent get their place decided (anticipation): past the budget,
+// they keep their place. Every robot in ahead_ is decided before this returns, so no entry
+// waits for a decision between progress reports.
 void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& changed) {
   std::size_t budget = 4 * finished_.size() + 16;
-  while (!dirty_.empty() && budget-- > 0) {
-    const uint32_t r = *dirty_.begin();
-    dirty_.erase(dirty_.begin());
-    if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
+  while ((!dirty_.empty() || !ahead_.empty()) && budget-- > 0) {
+    uint32_t r = 0;
+    if (dirty_.empty()) {
+      r = *ahead_.begin();
+      ahead_.erase(ahead_.begin());
+      if (!anticipate(r, time_s, changed)) {
+        decide(r, time_s, changed);
+        continue;
+      }
+    } else {
+      r = *dirty_.begin();
+      dirty_.erase(dirty_.begin());
+      if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
+    }
     for (uint32_t other = 0; other < refused_.size(); ++other) {
       if (refused_[other].node != kNoAction) dirty_.insert(other);
     }
   }
   dirty_.clear();
+  while (!ahead_.empty()) {
+    const uint32_t r = *ahead_.begin();
+    ahead_.erase(ahead_.begin());
+    decide(r, time_s, changed);
+  }
+}
+
+// Would switches.csv's replay (adg.hpp apply_switches) find this pair, i and the stay after it?
+// It takes the first adjacent pair of these robots whose second stay was not entered yet. A
+// switch at the front of the queue (h has left) is that pair; one further back may not be.
+bool SwitchableTracker::replayable(uint32_t i) const {
+  const uint32_t robot_i = stay_[i].robot, robot_j = stay_[after(i).stay].robot;
+  for (uint32_t p = position_[i]; p > orders_.begin[location_[i]]; --p) {
+    const Stay& a = stay_[id_at_[p - 1]];
+    const Stay& b = stay_[id_at_[p]];
+    if (b.enter == kNoAction || finished_node(b.enter)) return true;  // entered: all before too
+    if (a.robot == robot_i && b.robot == robot_j) return false;
+  }
+  return true;
 }
 
 // The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
@@ -191,18 +237,23 @@ uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
 
 bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed) {
   const uint32_t seq = enqueued_[robot], node = actions_.offset[robot] + seq;
-  if (finished_[robot] + options_.commit_actions < seq) return false;  // not near yet
+  if (finished_[robot] + reach() < seq) return false;  // not near yet
   const uint32_t mine = blocking_stay(node);
   if (mine == kNoAction || stay_[mine].leave == kNoAction) return false;
   const uint32_t theirs = before(mine).stay;
   const Stay& first = stay_[theirs];
   if (first.enter == kNoAction || enqueued_node(first.enter)) return false;  // sent: committed
   const auto h = before(theirs);
-  if (h.stay != kNoAction &&
-      (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
-    return false;  // not free: j would still wait for h (safe, but no gain now)
-  }
+  const bool free = h.stay == kNoAction ||
+                    (stay_[h.stay].leave != kNoAction && finished_node(stay_[h.stay].leave));
+  if (!free && !options_.anticipate) return false;  // j would still wait for h: no gain now
   if (still_refused(robot, node, theirs)) return false;
+  // switchable-opt: only when expected to save waiting, more than margin_s unless j could go
+  // now (never back and forth with an anticipated switch, which saved more the other way).
+  if (options_.anticipate && !(expected_saving(theirs, mine) > (free ? 0 : options_.margin_s))) {
+    return false;
+  }
+  if (!free && !replayable(theirs)) return false;
   // Would deadlock: remembered with the path that shows it (valid while its Type-2 edges are:
   // nodes downstream of an unfinished entry stay unfinished), or, past the search budget, until
   // the next switch.
@@ -302,6 +353,98 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   consider(stay_[i].enter);
   if (k != kNoAction && stay_[k].enter != kNoAction) consider(stay_[k].enter);
   const uint32_t robot = stay_[j].robot;
+  if (advance(robot)) changed.push_back(robot);
+}
+
+// Anticipation (switchable_tracker.hpp). A report of one finished action is a duration sample:
+// from its start (the previous finish, or its sending when later) to now.
+void SwitchableTracker::observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s) {
+  const uint32_t node = actions_.offset[robot] + from;
+  if (upto == from + 1) {
+    durations_.observe(actions_.actions[node].type,
+                       time_s - std::max(finished_s_[robot], sent_s_[node]));
+  }
+  finished_s_[robot] = time_s;
+}
+
+// When `robot` is expected to finish action `seq` (not finished yet).
+double SwitchableTracker::finish_estimate(uint32_t robot, uint32_t seq) const {
+  const uint32_t current = finished_[robot];
+  if (seq < current) return now_s_;
+  const uint32_t base = actions_.offset[robot];
+  types_.clear();
+  for (uint32_t s = current; s <= seq; ++s) types_.push_back(actions_.actions[base + s].type);
+  const double started =
+      enqueued_[robot] > current ? std::max(finished_s_[robot], sent_s_[base + current]) : -1.0;
+  return durations_.finish_s(now_s_, started, types_);
+}
+
+// When a stay's robot is expected at the location: when it finishes the action before entering;
+// infinite for a robot more than horizon_actions away (not expected anywhere yet).
+double SwitchableTracker::arrival(uint32_t stay) const {
+  const Stay& x = stay_[stay];
+  const uint32_t seq = actions_.actions[x.enter].seq;
+  if (seq <= finished_[x.robot]) return now_s_;
+  if (seq - finished_[x.robot] > options_.horizon_actions) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return finish_estimate(x.robot, seq - 1);
+}
+
+// Expected waiting saved by passing j before i, with the stay k after j waiting for the last
+// (i and j leave again: their stays have edges). Infinite when i is far (j goes), minus
+// infinite when j is.
+double SwitchableTracker::expected_saving(uint32_t i, uint32_t j) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double ai = arrival(i), aj = arrival(j);
+  if (!std::isfinite(aj)) return -kInf;
+  if (!std::isfinite(ai)) return kInf;
+  const double li = finish_estimate(stay_[i].robot, actions_.actions[stay_[i].leave].seq);
+  const double lj = finish_estimate(stay_[j].robot, actions_.actions[stay_[j].leave].seq);
+  double keep = std::max(0.0, li - aj), flip = std::max(0.0, lj - ai);
+  const double keep_last = std::max(aj, li) + (lj - aj), flip_last = std::max(ai, lj) + (li - ai);
+  const auto k = after(j);
+  if (k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot) {
+    const double ak = arrival(k.stay);
+    if (std::isfinite(ak)) {
+      keep += std::max(0.0, keep_last - ak);
+      flip += std::max(0.0, flip_last - ak);
+    }
+  }
+  return keep - flip;
+}
+
+// `robot`'s next entry i is about to be sent: the stay j after it passes first when expected
+// to save more than margin_s and it is safe (the conditions of try_switch, h having left as
+// nothing is pending for i). True when switched (i then waits for j; decided again later).
+bool SwitchableTracker::anticipate(uint32_t robot, double time_s, std::vector<uint32_t>& changed) {
+  if (enqueued_[robot] >= actions_.count(robot)) return false;
+  const uint32_t node = actions_.offset[robot] + enqueued_[robot];
+  if (pending_[node] != 0 || decided_[node]) return false;
+  for (uint32_t e = enter_begin_[node]; e < enter_begin_[node + 1]; ++e) {
+    const uint32_t i = enter_stays_[e];
+    const auto j = after(i);
+    if (!j.edge || stay_[i].leave == kNoAction) continue;
+    const Stay& second = stay_[j.stay];
+    if (second.enter == kNoAction || second.leave == kNoAction) continue;
+    if (pending_[second.enter] != 1) continue;  // j waits for more than i
+    if (expected_saving(i, j.stay) <= options_.margin_s) continue;
+    std::vector<std::pair<uint32_t, uint32_t>> path;
+    if (reaches(node, second.leave, stay_[i].leave, second.enter, path) != Reach::kNone) continue;
+    switches_.push_back({time_s, location_[i], second.robot, robot, true});
+    ++anticipated_;
+    swap_with_next(i, changed);
+    return true;
+  }
+  return false;
+}
+
+// The entry keeps its place: it is sent, with what follows it.
+void SwitchableTracker::decide(uint32_t robot, double /*time_s*/, std::vector<uint32_t>& changed) {
+  if (enqueued_[robot] >= actions_.count(robot)) return;
+  const uint32_t node = actions_.offset[robot] + enqueued_[robot];
+  if (pending_[node] != 0) return;  // it waits again (a switch): decided when it is free
+  decided_[node] = 1;
   if (advance(robot)) changed.push_back(robot);
 }
 

@@ -183,8 +183,11 @@ TEST(Spec, ExecutionsAreAnAxisOnTheSameSeeds) {
     (void)parse_spec(base + "executions: [fast]\n", "e.yaml");
     ADD_FAILURE() << "executions: [fast] was accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("e.yaml:6: executions: adg or switchable"));
+    EXPECT_THAT(e.what(), HasSubstr("e.yaml:6: executions: adg, switchable or switchable-opt"));
   }
+  const auto opt = expand(parse_spec(base + "executions: [switchable-opt]\n", "e.yaml"));
+  EXPECT_EQ(opt[0].execution, "switchable-opt");
+  EXPECT_EQ(opt[0].key, "0-s-n5-footbot-lan-switchable-opt-r0");
   // Lifelong cells switch too (LiveAdg): the axis and the results' execution column.
   const auto l = parse_spec(
       "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [adg, switchable]\n", "e.yaml");
@@ -192,6 +195,14 @@ TEST(Spec, ExecutionsAreAnAxisOnTheSameSeeds) {
   ASSERT_EQ(lc.size(), 2u);
   EXPECT_EQ(lc[1].key, "0-m-n5-footbot-lan-switchable-r0");
   EXPECT_EQ(result_row(l, lc[1], nlohmann::json::object())["execution"], "switchable");
+  // Anticipation is for plan runs only (LiveAdg switches first come, first served).
+  try {
+    (void)parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable-opt]\n",
+                     "e.yaml");
+    ADD_FAILURE() << "a lifelong switchable-opt cell was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("e.yaml:4: executions: switchable-opt is for plan runs"));
+  }
 }
 
 // Issue 28: lifelong runs as an experiment: the map (or a LoRR problem), team sizes, planners

@@ -130,6 +130,37 @@ TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
   EXPECT_EQ(slurp(a_dir / "tasks.csv"), slurp(b_dir / "tasks.csv"));
 }
 
+// switchable-opt (anticipation: orders chosen by expected times learned in the run) on the same
+// plan and delays: clean, some switches anticipated, and less waiting than plain ADG by more
+// than switchable's 5 % bound above (measured: 12.1 %, against switchable's 9.6 %).
+TEST_F(SwitchableRun, SwitchableOptCutsWaitingUnderDelaysWithoutCollisions) {
+  const auto plain_dir = temp_file("switch_opt_plain"), opt_dir = temp_file("switch_opt");
+  const auto plain = run(kSwitchableOptRun, "adg", plain_dir);
+  const auto opt = run(kSwitchableOptRun, "switchable-opt", opt_dir);
+  EXPECT_TRUE(opt["success"].get<bool>()) << opt.dump();
+  EXPECT_EQ(opt["collisions"], 0);
+  EXPECT_EQ(opt["finished_actions"], opt["total_actions"]);
+  EXPECT_EQ(opt["execution"]["mode"], "switchable-opt");
+  EXPECT_GT(opt["execution"]["anticipated"].get<std::size_t>(), 0u) << opt["execution"];
+  const auto switches = opt["execution"]["switches"].get<std::size_t>();
+  const auto csv = slurp(opt_dir / "switches.csv");
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
+  const double plain_wait = plain["waiting_time_s"]["total"].get<double>();
+  const double wait = opt["waiting_time_s"]["total"].get<double>();
+  EXPECT_LT(wait, 0.90 * plain_wait) << "plain " << plain_wait << " s, opt " << wait << " s";
+}
+
+// Anticipation is for plan runs: a lifelong run refuses it, naming the mode it can run.
+TEST_F(SwitchableRun, LifelongRefusesSwitchableOptNamingSwitchable) {
+  const auto r =
+      run_smart({"run", "--lifelong",
+                 (b_ / "lorr-2026/random.domain/random-example_400.json").string(), "--execution",
+                 "switchable-opt", "--domain", std::to_string(kSwitchableOptRun), "--no-progress"},
+                60s, "switchable_opt_lifelong", true);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("use --execution switchable"), std::string::npos) << r.out;
+}
+
 // A monitor taking over a run cannot know the switches made: refused, with the fix.
 TEST_F(SwitchableRun, ResumeRefusesSwitchingNamingTheFlags) {
   const auto r = run_smart({"monitor", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),

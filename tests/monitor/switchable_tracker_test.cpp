@@ -119,6 +119,55 @@ TEST(SwitchableTracker, NoSwitchBehindARobotThatParksThere) {
   EXPECT_TRUE(t.complete());
 }
 
+// switchable-opt: before anything is sent, robot 0's entry into (2, 1) is within the commit
+// distance and is decided. With every action expected to take 1 s (nothing learned yet), robot 0
+// arrives at 3 s and leaves at 5 s, robot 1 (rotate, half-move) arrives at 2 s and leaves at 4 s:
+// robot 0 first makes robot 1 wait 3 s, robot 1 first makes robot 0 wait 1 s. Robot 1 passes
+// first (anticipated, at t = 0); plain switchable sends robot 0 its way in and keeps the order.
+TEST(SwitchableTracker, AnticipationLetsTheRobotExpectedSoonerPassFirst) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker plain(actions, passing_orders(actions, grid), SwitchOptions{});
+  EXPECT_TRUE(plain.switches()->empty());
+  EXPECT_EQ(plain.enqueued(0), 6u);
+
+  SwitchableTracker t(actions, passing_orders(actions, grid), SwitchOptions{.anticipate = true});
+  ASSERT_EQ(t.switches()->size(), 1u);
+  const PassingSwitch& s = (*t.switches())[0];
+  EXPECT_TRUE(s.anticipated);
+  EXPECT_EQ(t.anticipated(), 1u);
+  EXPECT_EQ(s.location, cell);
+  EXPECT_EQ(s.first, 1u);
+  EXPECT_EQ(s.second, 0u);
+  EXPECT_DOUBLE_EQ(s.time_s, 0.0);
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(t.enqueued(0), 3u);  // waits at the cell's edge for robot 1
+  EXPECT_EQ(t.enqueued(1), 5u);
+  EXPECT_EQ(run_robot(t, 1, 4.0), 4);
+  EXPECT_EQ(t.enqueued(0), 6u);  // robot 1 has left: robot 0 goes
+  run_robot(t, 0, 8.0);
+  EXPECT_TRUE(t.complete());
+}
+
+// The same crossing with entries sent two actions ahead: robot 0's entry is decided after its
+// first half-move, reported at 0.5 s (moves now expected to take 0.5 s). Robot 1, still in its
+// 1 s rotation, is expected at the cell at 1.5 s and out at 2.5 s, robot 0 the same: either
+// order makes the other wait 1 s, no saving, so robot 0 keeps its place and is sent its way in.
+TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.commit_actions = 2, .anticipate = true});
+  EXPECT_EQ(t.enqueued(0), 3u);  // its entry is three actions away: not decided yet
+  t.on_progress(0, 0, 0.5);
+  EXPECT_DOUBLE_EQ(t.durations().mean_s(ActionType::kMove), 0.5);
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.order_at(static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})))),
+            (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(t.enqueued(0), 6u);  // decided: sent its way in, and the rest
+}
+
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
 // or the cells of it (both cells of an edge midpoint).
 std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
@@ -128,7 +177,7 @@ std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
 }
 
 struct Outcome {
-  std::size_t switches = 0;
+  std::size_t switches = 0, anticipated = 0;
 };
 
 // One seeded random plan executed in a random order the tracker allows, a third of the robots
@@ -223,7 +272,7 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     EXPECT_EQ(got, want) << "seed " << seed << " node " << node;
     if (got != want) return {};
   }
-  return {t.switches()->size()};
+  return {t.switches()->size(), t.anticipated()};
 }
 
 TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinishOnHalfCells) {
@@ -252,6 +301,27 @@ TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinish
     if (HasFailure()) FAIL() << "seed " << seed;
   }
   EXPECT_GT(switches, 10u) << "the delays should make robots switch";
+}
+
+// switchable-opt: entries about to be sent may also yield their place by expected times
+// (anticipation); the same guarantees, on both footprints and both commit distances. The delayed
+// robots make the expected times differ from the plan's, so anticipation does switch.
+TEST(SwitchableTrackerProperty, AnticipatedSwitchesNeverCollideAndAlwaysFinish) {
+  std::size_t switches = 0, anticipated = 0;
+  for (const auto footprint : {Footprint::kHalfCells, Footprint::kCells}) {
+    for (const uint32_t commit : {1u, 6u}) {
+      const SwitchOptions opt{
+          .commit_actions = commit, .anticipate = true, .margin_s = 0.05, .horizon_actions = 12};
+      for (uint64_t seed = 1; seed <= 100; ++seed) {
+        const auto o = run_random(seed, footprint, opt);
+        switches += o.switches;
+        anticipated += o.anticipated;
+        if (HasFailure()) FAIL() << "seed " << seed << " commit " << commit;
+      }
+    }
+  }
+  EXPECT_GT(anticipated, 200u) << "of " << switches << " switches";
+  EXPECT_GT(switches, anticipated) << "first come, first served still switches too";
 }
 
 }  // namespace

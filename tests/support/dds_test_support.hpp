@@ -155,6 +155,7 @@ enum DomainId : int {
   kPibtPlanRun = 81,
   kAdmissionListenerAttach = 79,
   kAdmissionLookupBeforeMade = 78,
+  kSwitchableOptRun = 77,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

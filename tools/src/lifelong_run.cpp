@@ -222,6 +222,11 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  if (o.execution == MonitorCliOptions::Execution::kSwitchableOpt) {
+    throw std::invalid_argument(
+        "--execution switchable-opt: lifelong runs switch first come, first served only; use "
+        "--execution switchable (docs/execution.md)");
+  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "

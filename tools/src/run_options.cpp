@@ -164,11 +164,14 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
   static const EnumNames<MonitorCliOptions::Execution> kExecutionNames{
       {"adg", MonitorCliOptions::Execution::kAdg},
-      {"switchable", MonitorCliOptions::Execution::kSwitchable}};
+      {"switchable", MonitorCliOptions::Execution::kSwitchable},
+      {"switchable-opt", MonitorCliOptions::Execution::kSwitchableOpt}};
   add_enum_option(cmd, "--execution", o.execution, kExecutionNames,
                   "'adg': every shared location passed in the plan's order; 'switchable': a robot "
                   "ready at a free location may pass before one that is late and was not sent "
-                  "its way in yet (docs/execution.md)")
+                  "its way in yet; 'switchable-opt': also, a robot about to be sent its way into "
+                  "a shared location yields its place when the next robot is expected to pass "
+                  "sooner (expected times learned in the run; one-shot runs; docs/execution.md)")
       ->capture_default_str();
   cmd->add_option(
          "--switch-commit-actions", o.switch_commit_actions,
@@ -368,7 +371,7 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
 }
 
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
-  if (o.resume && o.execution == MonitorCliOptions::Execution::kSwitchable) {
+  if (o.resume && o.execution != MonitorCliOptions::Execution::kAdg) {
     throw std::invalid_argument(
         "--resume with --execution switchable: the switches made are not in the robots' "
         "reports, so a new monitor could not rebuild the passing orders; start the run again");
@@ -376,8 +379,9 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   monitor::MonitorOptions mo;
   mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;
   mo.run.window_cap = o.window_cap;
-  mo.run.switchable = o.execution == MonitorCliOptions::Execution::kSwitchable;
+  mo.run.switchable = o.execution != MonitorCliOptions::Execution::kAdg;
   mo.run.switch_options.commit_actions = o.switch_commit_actions;
+  mo.run.switch_options.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt;
   mo.run.timeout_s = o.sim.timeout_s;
   mo.run.stall_timeout_s = o.stall_timeout_s;
   mo.run.max_sim_time_s = o.max_sim_time_s;

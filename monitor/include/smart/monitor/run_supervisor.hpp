@@ -109,7 +109,8 @@ struct MonitorResult {
   std::size_t robots_done_before_resume = 0;
   bool have_sim_status = false;
   std::optional<std::pair<uint32_t, uint32_t>> first_collision;  // robots, from the sim host
-  // A switchable run (issue 29): "switchable", and every switch of a passing order; else "adg".
+  // A switchable run (issue 29): "switchable" (or "switchable-opt": SwitchOptions::anticipate),
+  // and every switch of a passing order; else "adg".
   std::string execution = "adg";
   std::vector<PassingSwitch> switches;
   double first_collision_s = 0;  // sim time of the status that first reported it

@@ -17,15 +17,28 @@
 //   being reversed (searched over at most `search_budget` actions; past it, no swap);
 // - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
 // Deterministic: the robots whose situation changed are tried in id order after each progress.
+//
+// Anticipation (options.anticipate, `--execution switchable-opt`): the moment an entry i is to
+// be sent (its robot within `commit_actions`, nothing left to wait for) is the last moment its
+// place can still change. Then the next stays at the location, j and k, are looked at with the
+// times their robots are expected to arrive and leave (action_durations.hpp: learned from the
+// run, delays included): j passes first when that is expected to save the fleet more than
+// `margin_s` of waiting (i's, j's and k's waits compared for the orders i, j, k and j, i, k),
+// under the same safety conditions. SES (Feng et al., ICAPS 2024) reschedules a whole graph's
+// switchable edges by expected durations; this does it for the one edge about to be committed,
+// in a window of three stays, at no search cost but the deadlock check. Robots farther than
+// `horizon_actions` from the location are not expected (no switch for them).
 // Pure.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <set>
 #include <utility>
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/action_durations.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/execution.hpp"
 #include "smart/monitor/switching.hpp"
@@ -54,6 +67,9 @@ class SwitchableTracker final : public Execution {
   bool deadlocked() const override;
 
   const std::vector<PassingSwitch>* switches() const override { return &switches_; }
+  // Switches made by anticipation (a part of switches()).
+  std::size_t anticipated() const { return anticipated_; }
+  const ActionDurations& durations() const { return durations_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
   // Unfinished Type-2 predecessors of an action (node id), as the current orders give them.
@@ -73,6 +89,12 @@ class SwitchableTracker final : public Execution {
   bool needs_commit(uint32_t node) const;
   bool advance(uint32_t robot);
   bool candidate(uint32_t robot) const;
+  // How far from its entry a robot may switch: commit_actions, or horizon_actions when
+  // anticipating.
+  uint32_t reach() const {
+    return options_.anticipate ? std::max(options_.commit_actions, options_.horizon_actions)
+                               : options_.commit_actions;
+  }
   void consider(uint32_t node);
   void release(uint32_t node, std::vector<uint32_t>& changed);
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
@@ -84,6 +106,14 @@ class SwitchableTracker final : public Execution {
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
   uint32_t blocking_stay(uint32_t node) const;
+  bool replayable(uint32_t stay) const;
+  // Anticipation.
+  void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
+  double finish_estimate(uint32_t robot, uint32_t seq) const;
+  double arrival(uint32_t stay) const;
+  double expected_saving(uint32_t i, uint32_t j) const;
+  bool anticipate(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
+  void decide(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
 
   const ActionPlan& actions_;
   PassingOrders orders_;                             // stays in their current order per location
@@ -110,6 +140,15 @@ class SwitchableTracker final : public Execution {
   };
   std::vector<uint32_t> parent_;  // search tree
   std::vector<Refusal> refused_;
+  // Anticipation: expected durations, when each action was sent and each robot last finished.
+  ActionDurations durations_;
+  double now_s_ = 0;
+  std::vector<double> sent_s_;      // node -> when it was sent
+  std::vector<double> finished_s_;  // robot -> when its last action finished
+  std::vector<uint8_t> decided_;    // node -> its place was decided when it was to be sent
+  std::set<uint32_t> ahead_;        // robots whose next entry awaits that decision
+  std::size_t anticipated_ = 0;
+  mutable std::vector<grid::ActionType> types_;  // scratch
 };
 
 }  // namespace smart::monitor

@@ -11,17 +11,25 @@ namespace smart::monitor {
 // to switch, but a robot that does not know its next actions brakes before each such entry: on
 // SMART's 100-robot warehouse plan it cost 16 % AET without delays; 6 keeps AET
 // (docs/execution.md).
+//
+// anticipate (`--execution switchable-opt`): besides first come, first served, the order is
+// chosen by expected times when an entry is about to be sent (switchable_tracker.hpp,
+// "Anticipation"); a switch needs an expected saving of more than margin_s.
 struct SwitchOptions {
   uint32_t commit_actions = 6;       // a switchable entry is sent this many actions ahead
   std::size_t search_budget = 4096;  // actions the deadlock search may visit per candidate
+  bool anticipate = false;
+  double margin_s = 0.5;          // expected fleet waiting a switch must save
+  uint32_t horizon_actions = 12;  // farther robots are not expected anywhere (no switch)
 };
 
 // One switch: at `location` (half-cell index), `first` now passes before `second`, at `time_s`.
 struct PassingSwitch {
   double time_s = 0;
   uint32_t location = 0;
-  uint32_t first = 0;   // the robot that was ready
-  uint32_t second = 0;  // the robot that was meant to pass first
+  uint32_t first = 0;        // the robot that was ready
+  uint32_t second = 0;       // the robot that was meant to pass first
+  bool anticipated = false;  // by expected times before `second` was sent (switchable-opt)
 };
 
 }  // namespace smart::monitor

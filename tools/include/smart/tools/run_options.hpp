@@ -101,7 +101,7 @@ struct MonitorCliOptions {
   grid::PlanFormat format = grid::PlanFormat::kAuto;
   uint32_t window_cap = 32;
   // --execution: the plan's passing orders fixed (adg) or switched while it goes (issue 29).
-  enum class Execution { kAdg, kSwitchable };
+  enum class Execution { kAdg, kSwitchable, kSwitchableOpt };
   Execution execution = Execution::kAdg;
   uint32_t switch_commit_actions = 6;  // --switch-commit-actions
   double stall_timeout_s = 300.0, max_sim_time_s = 0;

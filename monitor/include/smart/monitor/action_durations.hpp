@@ -1,0 +1,39 @@
+// Contract: how long the fleet's actions take, learned from its progress reports, and when a
+// robot is expected to finish an action of its queue: the expected times `--execution
+// switchable-opt` compares passing orders by (switchable_tracker.hpp, issue 29).
+// - observe(): one action's duration, from its start (its robot's previous finish, or its
+//   sending when later) to its finish. The mean per kind (move, rotate) is a running mean that
+//   forgets slowly (weight at least 1/256): durations include the delays robots had, so the
+//   estimate carries the expected delay per action, as SES's expected-delay rescheduling does
+//   (Feng et al., "Switchable Edge Search", ICAPS 2024, §3: delays as expected extra durations).
+// - finish_s(): now, a robot's current action's start and kinds of the actions to go: the
+//   current one ends at start + mean (a late one, already past it, is expected to take one more
+//   mean from now), each next one a mean later. Waits for other robots are not foreseen.
+// Pure and deterministic: told the time, never reads a clock.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "smart/grid/action.hpp"
+
+namespace smart::monitor {
+
+class ActionDurations {
+ public:
+  explicit ActionDurations(double initial_s = 1.0) { mean_s_.fill(initial_s); }
+
+  void observe(grid::ActionType type, double duration_s);
+  double mean_s(grid::ActionType type) const { return mean_s_[index(type)]; }
+  // When the last of `to_go` ends: to_go[0] is the current action, started at `started_s` (or
+  // not started yet: negative `started_s`, it starts now).
+  double finish_s(double now_s, double started_s, std::span<const grid::ActionType> to_go) const;
+
+ private:
+  static std::size_t index(grid::ActionType t) { return t == grid::ActionType::kMove ? 0 : 1; }
+  std::array<double, 2> mean_s_{};
+  std::array<uint32_t, 2> samples_{};
+};
+
+}  // namespace smart::monitor
