@@ -209,20 +209,6 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
   }
 }
 
-// Would switches.csv's replay (adg.hpp apply_switches) find this pair, i and the stay after it?
-// It takes the first adjacent pair of these robots whose second stay was not entered yet. A
-// switch at the front of the queue (h has left) is that pair; one further back may not be.
-bool SwitchableTracker::replayable(uint32_t i) const {
-  const uint32_t robot_i = stay_[i].robot, robot_j = stay_[after(i).stay].robot;
-  for (uint32_t p = position_[i]; p > orders_.begin[location_[i]]; --p) {
-    const Stay& a = stay_[id_at_[p - 1]];
-    const Stay& b = stay_[id_at_[p]];
-    if (b.enter == kNoAction || finished_node(b.enter)) return true;  // entered: all before too
-    if (a.robot == robot_i && b.robot == robot_j) return false;
-  }
-  return true;
-}
-
 // The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
 // all `node` waits for; kNoAction otherwise.
 uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
@@ -244,16 +230,17 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   const Stay& first = stay_[theirs];
   if (first.enter == kNoAction || enqueued_node(first.enter)) return false;  // sent: committed
   const auto h = before(theirs);
-  const bool free = h.stay == kNoAction ||
-                    (stay_[h.stay].leave != kNoAction && finished_node(stay_[h.stay].leave));
-  if (!free && !options_.anticipate) return false;  // j would still wait for h: no gain now
-  if (still_refused(robot, node, theirs)) return false;
-  // switchable-opt: only when expected to save waiting, more than margin_s unless j could go
-  // now (never back and forth with an anticipated switch, which saved more the other way).
-  if (options_.anticipate && !(expected_saving(theirs, mine) > (free ? 0 : options_.margin_s))) {
-    return false;
+  if (h.stay != kNoAction &&
+      (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
+    return false;  // not free: j would still wait for h (safe, but no gain now)
   }
-  if (!free && !replayable(theirs)) return false;
+  if (still_refused(robot, node, theirs)) return false;
+  // switchable-opt: only when expected to save waiting (never back and forth with an
+  // anticipated switch, which saved more than margin_s the other way: without this check,
+  // thousands of switches a run). Passing a robot further back in the queue, before the
+  // location is free, was tried and dropped: it gained 2 % at 200 robots and lost 2-3 % at 750
+  // (docs/execution.md).
+  if (options_.anticipate && !(expected_saving(theirs, mine) > 0)) return false;
   // Would deadlock: remembered with the path that shows it (valid while its Type-2 edges are:
   // nodes downstream of an unfinished entry stay unfinished), or, past the search budget, until
   // the next switch.
@@ -300,6 +287,7 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
     std::fill(seen_.begin(), seen_.end(), 0);
     stamp_ = 1;
   }
+  if (options_.anticipate) return reaches_back(from, to, skip_from, skip_to, path);
   std::vector<uint32_t> stack{from};
   seen_[from] = stamp_;
   std::size_t visited = 0;
@@ -327,6 +315,45 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
       if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
       const uint32_t v = stay_[next.stay].enter;
       if (!(u == skip_from && v == skip_to)) push(v, u);
+    }
+  }
+  return Reach::kNone;
+}
+
+// The same question searched backwards, from `to` over its unfinished predecessors (an
+// action finishes after its predecessors, so a finished one leads to no unfinished one): what
+// must happen before `to`, few actions for a robot near its location, where the forward search
+// walks the whole future of `from` (at 1000 robots most such searches ran out of budget).
+SwitchableTracker::Reach SwitchableTracker::reaches_back(
+    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+    std::vector<std::pair<uint32_t, uint32_t>>& path) {
+  std::vector<uint32_t> stack{to};
+  seen_[to] = stamp_;
+  std::size_t visited = 0;
+  const auto push = [&](uint32_t v, uint32_t child) {
+    if (seen_[v] != stamp_ && !finished_node(v)) {
+      seen_[v] = stamp_;
+      parent_[v] = child;  // the path goes v -> child
+      stack.push_back(v);
+    }
+  };
+  while (!stack.empty()) {
+    const uint32_t u = stack.back();
+    stack.pop_back();
+    if (u == from) {
+      for (uint32_t v = from; v != to; v = parent_[v]) {
+        const uint32_t w = parent_[v];
+        if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
+      }
+      return Reach::kPath;
+    }
+    if (++visited > options_.search_budget) return Reach::kBudget;
+    if (actions_.actions[u].seq > 0) push(u - 1, u);
+    for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
+      const auto b = before(enter_stays_[i]);
+      if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
+      const uint32_t v = stay_[b.stay].leave;
+      if (!(v == skip_from && u == skip_to)) push(v, u);
     }
   }
   return Reach::kNone;
@@ -391,27 +418,34 @@ double SwitchableTracker::arrival(uint32_t stay) const {
   return finish_estimate(x.robot, seq - 1);
 }
 
-// Expected waiting saved by passing j before i, with the stay k after j waiting for the last
-// (i and j leave again: their stays have edges). Infinite when i is far (j goes), minus
-// infinite when j is.
+// Expected waiting saved by passing j before i: the location frees when h (before i) leaves;
+// each enters when it arrives and the one before has left, stays as long as it is expected to;
+// the stay k after j waits for the last of the two. i and j leave again (their stays have
+// edges). Infinite when i is far (j goes), minus infinite when j is.
 double SwitchableTracker::expected_saving(uint32_t i, uint32_t j) const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double ai = arrival(i), aj = arrival(j);
   if (!std::isfinite(aj)) return -kInf;
   if (!std::isfinite(ai)) return kInf;
-  const double li = finish_estimate(stay_[i].robot, actions_.actions[stay_[i].leave].seq);
-  const double lj = finish_estimate(stay_[j].robot, actions_.actions[stay_[j].leave].seq);
-  double keep = std::max(0.0, li - aj), flip = std::max(0.0, lj - ai);
-  const double keep_last = std::max(aj, li) + (lj - aj), flip_last = std::max(ai, lj) + (li - ai);
-  const auto k = after(j);
-  if (k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot) {
-    const double ak = arrival(k.stay);
-    if (std::isfinite(ak)) {
-      keep += std::max(0.0, keep_last - ak);
-      flip += std::max(0.0, flip_last - ak);
-    }
+  const double di = finish_estimate(stay_[i].robot, actions_.actions[stay_[i].leave].seq) - ai;
+  const double dj = finish_estimate(stay_[j].robot, actions_.actions[stay_[j].leave].seq) - aj;
+  double free_s = now_s_;
+  const auto h = before(i);
+  if (h.stay != kNoAction && stay_[h.stay].leave != kNoAction &&
+      !finished_node(stay_[h.stay].leave)) {
+    free_s = finish_estimate(stay_[h.stay].robot, actions_.actions[stay_[h.stay].leave].seq);
   }
-  return keep - flip;
+  const auto k = after(j);
+  const bool with_k =
+      k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot;
+  const double ak = with_k ? arrival(k.stay) : kInf;
+  // Waits of the two in this order, and k's: a queue at one location.
+  const auto waits = [&](double a1, double d1, double a2, double d2) {
+    const double e1 = std::max(a1, free_s), e2 = std::max(a2, e1 + d1);
+    const double wait_k = std::isfinite(ak) ? std::max(0.0, e2 + d2 - ak) : 0.0;
+    return (e1 - a1) + (e2 - a2) + wait_k;
+  };
+  return waits(ai, di, aj, dj) - waits(aj, dj, ai, di);
 }
 
 // `robot`'s next entry i is about to be sent: the stay j after it passes first when expected

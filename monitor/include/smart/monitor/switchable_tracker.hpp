@@ -27,7 +27,12 @@
 // under the same safety conditions. SES (Feng et al., ICAPS 2024) reschedules a whole graph's
 // switchable edges by expected durations; this does it for the one edge about to be committed,
 // in a window of three stays, at no search cost but the deadlock check. Robots farther than
-// `horizon_actions` from the location are not expected (no switch for them).
+// `horizon_actions` from the location are not expected (no switch for them). First come, first
+// served then also needs an expected saving (a ready robot within `horizon_actions` of a free
+// location passes a late one only when that saves waiting). The deadlock
+// search runs backwards in this mode, over what must happen before j leaves (unfinished
+// predecessors only): the same answer, within budget where the forward search walked the whole
+// future of i and ran out (at 1000 robots most of its searches did, each a refusal).
 // Pure.
 #pragma once
 
@@ -102,11 +107,12 @@ class SwitchableTracker final : public Execution {
   enum class Reach : uint8_t { kNone, kPath, kBudget };
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
                 std::vector<std::pair<uint32_t, uint32_t>>& path);
+  Reach reaches_back(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+                     std::vector<std::pair<uint32_t, uint32_t>>& path);
   bool has_edge(uint32_t from, uint32_t to) const;
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
   uint32_t blocking_stay(uint32_t node) const;
-  bool replayable(uint32_t stay) const;
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
   double finish_estimate(uint32_t robot, uint32_t seq) const;
