@@ -189,7 +189,7 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
       r = *ahead_.begin();
       ahead_.erase(ahead_.begin());
       if (!anticipate(r, time_s, changed)) {
-        decide(r, time_s, changed);
+        decide(r, changed);
         continue;
       }
     } else {
@@ -205,7 +205,7 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
   while (!ahead_.empty()) {
     const uint32_t r = *ahead_.begin();
     ahead_.erase(ahead_.begin());
-    decide(r, time_s, changed);
+    decide(r, changed);
   }
 }
 
@@ -278,36 +278,43 @@ bool SwitchableTracker::still_refused(uint32_t robot, uint32_t node, uint32_t th
                      [this](const auto& e) { return has_edge(e.first, e.second); });
 }
 
-// Is there a path of actions from `from` to `to` (Type-1 and the current Type-2 edges, but
-// skip_from -> skip_to)? kPath with its Type-2 edges in `path`; kBudget past the search budget.
-SwitchableTracker::Reach SwitchableTracker::reaches(
-    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-    std::vector<std::pair<uint32_t, uint32_t>>& path) {
+// Depth-first from `start` until `goal`, over the actions `expand(u, push)` pushes (push(v, u):
+// v reached from u, kept in parent_), at most search_budget actions.
+template <class Expand>
+SwitchableTracker::Reach SwitchableTracker::depth_first(uint32_t start, uint32_t goal,
+                                                        const Expand& expand) {
   if (++stamp_ == 0) {
     std::fill(seen_.begin(), seen_.end(), 0);
     stamp_ = 1;
   }
-  if (options_.anticipate) return reaches_back(from, to, skip_from, skip_to, path);
-  std::vector<uint32_t> stack{from};
-  seen_[from] = stamp_;
+  std::vector<uint32_t> stack{start};
+  seen_[start] = stamp_;
   std::size_t visited = 0;
-  const auto push = [&](uint32_t v, uint32_t parent) {
+  const auto push = [&](uint32_t v, uint32_t from) {
     if (seen_[v] != stamp_) {
       seen_[v] = stamp_;
-      parent_[v] = parent;
+      parent_[v] = from;
       stack.push_back(v);
     }
   };
   while (!stack.empty()) {
     const uint32_t u = stack.back();
     stack.pop_back();
-    if (u == to) {
-      for (uint32_t v = to; v != from; v = parent_[v]) {
-        if (parent_[v] + 1 != v) path.emplace_back(parent_[v], v);  // Type-2 (Type-1: next seq)
-      }
-      return Reach::kPath;
-    }
+    if (u == goal) return Reach::kPath;
     if (++visited > options_.search_budget) return Reach::kBudget;
+    expand(u, push);
+  }
+  return Reach::kNone;
+}
+
+// Is there a path of actions from `from` to `to` (Type-1 and the current Type-2 edges, but
+// skip_from -> skip_to)? kPath with its Type-2 edges in `path`; kBudget past the search budget.
+// switchable-opt searches backwards (reaches_back); plain switchable forwards, as measured.
+SwitchableTracker::Reach SwitchableTracker::reaches(
+    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+    std::vector<std::pair<uint32_t, uint32_t>>& path) {
+  if (options_.anticipate) return reaches_back(from, to, skip_from, skip_to, path);
+  const Reach r = depth_first(from, to, [&](uint32_t u, const auto& push) {
     const auto& a = actions_.actions[u];
     if (a.seq + 1 < actions_.count(a.robot)) push(u + 1, u);
     for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
@@ -316,8 +323,13 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
       const uint32_t v = stay_[next.stay].enter;
       if (!(u == skip_from && v == skip_to)) push(v, u);
     }
+  });
+  if (r == Reach::kPath) {
+    for (uint32_t v = to; v != from; v = parent_[v]) {
+      if (parent_[v] + 1 != v) path.emplace_back(parent_[v], v);  // Type-2 (Type-1: next seq)
+    }
   }
-  return Reach::kNone;
+  return r;
 }
 
 // The same question searched backwards, from `to` over its unfinished predecessors (an
@@ -327,36 +339,23 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
 SwitchableTracker::Reach SwitchableTracker::reaches_back(
     uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
     std::vector<std::pair<uint32_t, uint32_t>>& path) {
-  std::vector<uint32_t> stack{to};
-  seen_[to] = stamp_;
-  std::size_t visited = 0;
-  const auto push = [&](uint32_t v, uint32_t child) {
-    if (seen_[v] != stamp_ && !finished_node(v)) {
-      seen_[v] = stamp_;
-      parent_[v] = child;  // the path goes v -> child
-      stack.push_back(v);
-    }
-  };
-  while (!stack.empty()) {
-    const uint32_t u = stack.back();
-    stack.pop_back();
-    if (u == from) {
-      for (uint32_t v = from; v != to; v = parent_[v]) {
-        const uint32_t w = parent_[v];
-        if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
-      }
-      return Reach::kPath;
-    }
-    if (++visited > options_.search_budget) return Reach::kBudget;
-    if (actions_.actions[u].seq > 0) push(u - 1, u);
+  const Reach r = depth_first(to, from, [&](uint32_t u, const auto& push) {
+    // parent_[v] = u: the path goes v -> u.
+    if (actions_.actions[u].seq > 0 && !finished_node(u - 1)) push(u - 1, u);
     for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
       const auto b = before(enter_stays_[i]);
       if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
       const uint32_t v = stay_[b.stay].leave;
-      if (!(v == skip_from && u == skip_to)) push(v, u);
+      if (!(v == skip_from && u == skip_to) && !finished_node(v)) push(v, u);
+    }
+  });
+  if (r == Reach::kPath) {
+    for (uint32_t v = from; v != to; v = parent_[v]) {
+      const uint32_t w = parent_[v];
+      if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
     }
   }
-  return Reach::kNone;
+  return r;
 }
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
@@ -474,7 +473,7 @@ bool SwitchableTracker::anticipate(uint32_t robot, double time_s, std::vector<ui
 }
 
 // The entry keeps its place: it is sent, with what follows it.
-void SwitchableTracker::decide(uint32_t robot, double /*time_s*/, std::vector<uint32_t>& changed) {
+void SwitchableTracker::decide(uint32_t robot, std::vector<uint32_t>& changed) {
   if (enqueued_[robot] >= actions_.count(robot)) return;
   const uint32_t node = actions_.offset[robot] + enqueued_[robot];
   if (pending_[node] != 0) return;  // it waits again (a switch): decided when it is free

@@ -105,6 +105,8 @@ class SwitchableTracker final : public Execution {
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
   void try_switches(double time_s, std::vector<uint32_t>& changed);
   enum class Reach : uint8_t { kNone, kPath, kBudget };
+  template <class Expand>
+  Reach depth_first(uint32_t start, uint32_t goal, const Expand& expand);
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
                 std::vector<std::pair<uint32_t, uint32_t>>& path);
   Reach reaches_back(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
@@ -119,7 +121,7 @@ class SwitchableTracker final : public Execution {
   double arrival(uint32_t stay) const;
   double expected_saving(uint32_t i, uint32_t j) const;
   bool anticipate(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
-  void decide(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
+  void decide(uint32_t robot, std::vector<uint32_t>& changed);
 
   const ActionPlan& actions_;
   PassingOrders orders_;                             // stays in their current order per location
