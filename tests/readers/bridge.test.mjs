@@ -109,26 +109,39 @@ test('Foxglove clients watch a running fleet through smart bridge', async () => 
     assert.equal(markers.markers.filter((m) => m.ns === 'robots').length, 50);
     for (const { msg } of live.got.byTopic.get('/robot_7/pose')) assert.equal(msg.header.frame_id, 'map');
 
-    // Every PoseArray received is the fleet as the run recorded it at that sim time.
+    // Every PoseArray received is the fleet as the run recorded it at that sim time. States are
+    // best effort (config/qos, "state": latest only), so on a loaded machine the monitor may miss
+    // one tick's states (one datagram, the whole fleet's) that the bridge got: such a PoseArray
+    // must still be at a state time of the run (every 0.5 s up to its end) and states.csv must
+    // then hold none of that tick (a lost sample, never a wrong or partial one).
     const rows = fs.readFileSync(path.join(results, 'states.csv'), 'utf8').trim().split('\n').slice(1)
       .map((l) => l.split(','));
     const at = new Map(rows.map((r) => [`${Number(r[0])}/${r[1]}`, r]));
+    const end = Math.max(...rows.map((r) => Number(r[0])));
     let compared = 0;
+    let missed = 0;
     for (const { timestamp, msg } of live.got.byTopic.get('/smart/poses')) {
       assert.equal(msg.header.frame_id, 'map');
       assert.equal(msg.poses.length, 50);
       const t = msg.header.stamp.sec + msg.header.stamp.nanosec / 1e9;
       assert.equal(timestamp, BigInt(msg.header.stamp.sec) * 1000000000n + BigInt(msg.header.stamp.nanosec));
+      const held = msg.poses.filter((p, i) => at.has(`${t}/${i}`)).length;
+      if (held === 0) {
+        assert.ok(Number.isInteger(t * 2) && t > 0 && t <= end, `PoseArray at ${t} s, not a state time`);
+        ++missed;
+        continue;
+      }
       msg.poses.forEach((p, i) => {
         const row = at.get(`${t}/${i}`);
-        assert.ok(row, `robot ${i} at ${t} s in states.csv`);
+        assert.ok(row, `robot ${i} at ${t} s in states.csv (${held} of 50 robots are)`);
         // states.csv holds 10 significant digits (results_format.hpp); the wire, the double.
         assert.ok(Math.abs(p.position.x - Number(row[2])) <= 1e-9 * Math.max(1, Math.abs(p.position.x)));
         assert.ok(Math.abs(p.position.y - Number(row[3])) <= 1e-9 * Math.max(1, Math.abs(p.position.y)));
         ++compared;
       });
     }
-    assert.equal(compared, 50 * live.got.byTopic.get('/smart/poses').length);
+    assert.equal(compared + 50 * missed, 50 * live.got.byTopic.get('/smart/poses').length);
+    assert.ok(compared > 0, 'PoseArrays compared with states.csv');
     const tf = live.got.byTopic.get('/tf');
     assert.ok(tf.length > 0);
     assert.equal(tf[0].msg.transforms[49].child_frame_id, 'robot_49');
