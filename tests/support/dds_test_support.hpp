@@ -169,6 +169,8 @@ inline std::filesystem::path smart_exe() { return SMART_EXE; }
 #endif
 constexpr int kSlowdown = SMART_SLOWDOWN;
 
+// A path in the system temp folder for this test process; whatever is there is removed when the
+// process exits (support/temp_cleanup.cpp; SMART_KEEP_TEST_FILES=1 keeps it).
 inline std::filesystem::path temp_file(const std::string& name) {
   return std::filesystem::temp_directory_path() /
          ("smart_test_" + std::to_string(::getpid()) + "_" + name);
