@@ -35,21 +35,27 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       pending_(actions.actions.size(), 0),
       finished_(actions.robots(), 0),
       enqueued_(actions.robots(), 0),
+      dirty_(actions.robots()),
       seen_(actions.actions.size(), 0),
       parent_(actions.actions.size(), 0),
       refused_(actions.robots()),
+      with_refusal_(actions.robots()),
       sent_s_(options.anticipate ? actions.actions.size() : 0, 0.0),
       finished_s_(actions.robots(), 0.0),
-      decided_(options.anticipate ? actions.actions.size() : 0, 0) {
+      decided_(options.anticipate ? actions.actions.size() : 0, 0),
+      ahead_(actions.robots()) {
   const auto count = static_cast<uint32_t>(orders_.stays.size());
   stay_ = orders_.stays;
   id_at_.resize(count);
   position_.resize(count);
   location_.resize(count);
+  link_.resize(count);
   for (uint32_t loc = 0; loc + 1 < orders_.begin.size(); ++loc) {
-    for (uint32_t p = orders_.begin[loc]; p < orders_.begin[loc + 1]; ++p) {
+    const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
+    for (uint32_t p = first; p < end; ++p) {
       id_at_[p] = position_[p] = p;
       location_[p] = loc;
+      link_[p] = {p == first ? kNoAction : p - 1, p + 1 == end ? kNoAction : p + 1};
     }
   }
   const std::size_t nodes = actions.actions.size();
@@ -67,17 +73,22 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
 }
 
 SwitchableTracker::Neighbour SwitchableTracker::before(uint32_t stay) const {
-  const uint32_t p = position_[stay];
-  if (p == orders_.begin[location_[stay]]) return {};
-  const uint32_t other = id_at_[p - 1];
+  const uint32_t other = link_[stay].prev;
+  if (other == kNoAction) return {};
   return {other, stay_[other].robot != stay_[stay].robot};
 }
 
 SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
-  const uint32_t p = position_[stay];
-  if (p + 1 == orders_.begin[location_[stay] + 1]) return {};
-  const uint32_t other = id_at_[p + 1];
+  const uint32_t other = link_[stay].next;
+  if (other == kNoAction) return {};
   return {other, stay_[other].robot != stay_[stay].robot};
+}
+
+// The smallest robot id in `set`, taken out of it (the set is not empty).
+uint32_t SwitchableTracker::take_first(RobotSet& set) {
+  const auto first = set.find_first();
+  set.reset(first);
+  return static_cast<uint32_t>(first);
 }
 
 bool SwitchableTracker::finished_node(uint32_t node) const {
@@ -85,9 +96,13 @@ bool SwitchableTracker::finished_node(uint32_t node) const {
   return a.seq < finished_[a.robot];
 }
 
-bool SwitchableTracker::enqueued_node(uint32_t node) const {
-  const auto& a = actions_.actions[node];
-  return a.seq < enqueued_[a.robot];
+// The same for a stay's actions, whose robot is known (no lookup of the action).
+bool SwitchableTracker::finished_by(uint32_t robot, uint32_t node) const {
+  return node < actions_.offset[robot] + finished_[robot];
+}
+
+bool SwitchableTracker::sent_by(uint32_t robot, uint32_t node) const {
+  return node < actions_.offset[robot] + enqueued_[robot];
 }
 
 // An entry that another robot's stay follows (it could still switch with it) waits to be sent
@@ -109,7 +124,7 @@ bool SwitchableTracker::advance(uint32_t robot) {
     const bool shared = needs_commit(node);
     if (shared && finished_[robot] + options_.commit_actions < seq) break;
     if (shared && options_.anticipate && !decided_[node]) {
-      ahead_.insert(robot);  // its place is decided before it is sent (try_switches)
+      ahead_.set(robot);  // its place is decided before it is sent (try_switches)
       break;
     }
     if (options_.anticipate) sent_s_[node] = now_s_;
@@ -126,9 +141,11 @@ bool SwitchableTracker::candidate(uint32_t robot) const {
   return pending_[actions_.offset[robot] + seq] == 1;
 }
 
-void SwitchableTracker::consider(uint32_t node) {
-  const auto& a = actions_.actions[node];
-  if (a.seq == enqueued_[a.robot] && candidate(a.robot)) dirty_.insert(a.robot);
+void SwitchableTracker::consider(uint32_t stay) {
+  const Stay& x = stay_[stay];
+  if (x.enter == actions_.offset[x.robot] + enqueued_[x.robot] && candidate(x.robot)) {
+    dirty_.set(x.robot);
+  }
 }
 
 // `node` finished: the entries that waited for it lose a pending predecessor.
@@ -138,10 +155,10 @@ void SwitchableTracker::release(uint32_t node, std::vector<uint32_t>& changed) {
     if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
     const uint32_t target = stay_[next.stay].enter;
     if (--pending_[target] == 0) {
-      const uint32_t other = actions_.actions[target].robot;
+      const uint32_t other = stay_[next.stay].robot;
       if (advance(other)) changed.push_back(other);
     } else if (pending_[target] == 1) {
-      consider(target);
+      consider(next.stay);
     }
   }
   // The location `node` left may be free now for the stay after next to pass the next one.
@@ -149,9 +166,7 @@ void SwitchableTracker::release(uint32_t node, std::vector<uint32_t>& changed) {
     const auto next = after(leave_stays_[i]);
     if (next.stay == kNoAction) continue;
     const auto later = after(next.stay);
-    if (later.stay != kNoAction && stay_[later.stay].enter != kNoAction) {
-      consider(stay_[later.stay].enter);
-    }
+    if (later.stay != kNoAction && stay_[later.stay].enter != kNoAction) consider(later.stay);
   }
 }
 
@@ -165,10 +180,10 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
   now_s_ = std::max(now_s_, time_s);
   if (options_.anticipate) observe(robot, from, upto, time_s);
   finished_total_ += upto - from;
-  finished_[robot] = upto;  // first: release() reads finished_node()
+  finished_[robot] = upto;  // first: release() reads finished_by()
   for (uint32_t s = from; s < upto; ++s) release(base + s, u.robots_changed);
   advance(robot);
-  if (candidate(robot)) dirty_.insert(robot);
+  if (candidate(robot)) dirty_.set(robot);
   try_switches(time_s, u.robots_changed);
   std::sort(u.robots_changed.begin(), u.robots_changed.end());
   u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
@@ -183,30 +198,21 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
 // waits for a decision between progress reports.
 void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& changed) {
   std::size_t budget = 4 * finished_.size() + 16;
-  while ((!dirty_.empty() || !ahead_.empty()) && budget-- > 0) {
-    uint32_t r = 0;
-    if (dirty_.empty()) {
-      r = *ahead_.begin();
-      ahead_.erase(ahead_.begin());
+  while ((dirty_.any() || ahead_.any()) && budget-- > 0) {
+    if (dirty_.none()) {
+      const uint32_t r = take_first(ahead_);
       if (!anticipate(r, time_s, changed)) {
         decide(r, changed);
         continue;
       }
     } else {
-      r = *dirty_.begin();
-      dirty_.erase(dirty_.begin());
+      const uint32_t r = take_first(dirty_);
       if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
     }
-    for (uint32_t other = 0; other < refused_.size(); ++other) {
-      if (refused_[other].node != kNoAction) dirty_.insert(other);
-    }
+    dirty_ |= with_refusal_;  // a switch may have opened their way
   }
-  dirty_.clear();
-  while (!ahead_.empty()) {
-    const uint32_t r = *ahead_.begin();
-    ahead_.erase(ahead_.begin());
-    decide(r, changed);
-  }
+  dirty_.reset();
+  while (ahead_.any()) decide(take_first(ahead_), changed);
 }
 
 // The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
@@ -216,7 +222,8 @@ uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
   for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
     const uint32_t s = enter_stays_[i];
     const auto b = before(s);
-    if (b.edge && stay_[b.stay].leave != kNoAction && !finished_node(stay_[b.stay].leave)) return s;
+    const Stay& first = stay_[b.stay];
+    if (b.edge && first.leave != kNoAction && !finished_by(first.robot, first.leave)) return s;
   }
   return kNoAction;
 }
@@ -228,10 +235,10 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   if (mine == kNoAction || stay_[mine].leave == kNoAction) return false;
   const uint32_t theirs = before(mine).stay;
   const Stay& first = stay_[theirs];
-  if (first.enter == kNoAction || enqueued_node(first.enter)) return false;  // sent: committed
+  if (first.enter == kNoAction || sent_by(first.robot, first.enter)) return false;  // committed
   const auto h = before(theirs);
-  if (h.stay != kNoAction &&
-      (stay_[h.stay].leave == kNoAction || !finished_node(stay_[h.stay].leave))) {
+  if (h.stay != kNoAction && (stay_[h.stay].leave == kNoAction ||
+                              !finished_by(stay_[h.stay].robot, stay_[h.stay].leave))) {
     return false;  // not free: j would still wait for h (safe, but no gain now)
   }
   if (still_refused(robot, node, theirs)) return false;
@@ -246,6 +253,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   // the next switch.
   auto& refusal = refused_[robot];
   refusal = {node, theirs, static_cast<uint32_t>(switches_.size()), {}, false};
+  with_refusal_.set(robot);
   switch (reaches(first.enter, stay_[mine].leave, first.leave, node, refusal.path)) {
     case Reach::kPath:
       refusal.by_path = true;
@@ -256,6 +264,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
       break;
   }
   refusal.node = kNoAction;
+  with_refusal_.reset(robot);
   switches_.push_back({time_s, location_[mine], robot, first.robot});
   swap_with_next(theirs, changed);
   return true;
@@ -278,84 +287,49 @@ bool SwitchableTracker::still_refused(uint32_t robot, uint32_t node, uint32_t th
                      [this](const auto& e) { return has_edge(e.first, e.second); });
 }
 
-// Depth-first from `start` until `goal`, over the actions `expand(u, push)` pushes (push(v, u):
-// v reached from u, kept in parent_), at most search_budget actions.
-template <class Expand>
-SwitchableTracker::Reach SwitchableTracker::depth_first(uint32_t start, uint32_t goal,
-                                                        const Expand& expand) {
+// Is there a path of unfinished actions from `from` to `to` (Type-1 and the current Type-2
+// edges, but skip_from -> skip_to)? kPath with its Type-2 edges in `path`; kBudget past the
+// search budget. Depth-first backwards, from `to` over its unfinished predecessors (an action
+// finishes after its predecessors, so a finished one leads to no unfinished one): what must
+// happen before `to`, few actions for a robot near its location. Searching forwards walks the
+// whole future of `from` instead: at 1000 robots it ran out of budget in 4216 of 5939 searches
+// (each a switch refused) and took 6 % of the monitor's CPU (docs/execution.md, "Cost").
+SwitchableTracker::Reach SwitchableTracker::reaches(
+    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
+    std::vector<std::pair<uint32_t, uint32_t>>& path) {
   if (++stamp_ == 0) {
     std::fill(seen_.begin(), seen_.end(), 0);
     stamp_ = 1;
   }
-  std::vector<uint32_t> stack{start};
-  seen_[start] = stamp_;
-  std::size_t visited = 0;
-  const auto push = [&](uint32_t v, uint32_t from) {
-    if (seen_[v] != stamp_) {
-      seen_[v] = stamp_;
-      parent_[v] = from;
-      stack.push_back(v);
-    }
+  stack_.assign(1, to);
+  seen_[to] = stamp_;
+  const auto push = [&](uint32_t v, uint32_t u) {  // parent_[v] = u: the path goes v -> u
+    if (seen_[v] == stamp_ || finished_node(v)) return;
+    seen_[v] = stamp_;
+    parent_[v] = u;
+    stack_.push_back(v);
   };
-  while (!stack.empty()) {
-    const uint32_t u = stack.back();
-    stack.pop_back();
-    if (u == goal) return Reach::kPath;
+  std::size_t visited = 0;
+  while (!stack_.empty()) {
+    const uint32_t u = stack_.back();
+    stack_.pop_back();
+    if (u == from) {
+      for (uint32_t v = from; v != to; v = parent_[v]) {
+        const uint32_t w = parent_[v];
+        if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
+      }
+      return Reach::kPath;
+    }
     if (++visited > options_.search_budget) return Reach::kBudget;
-    expand(u, push);
-  }
-  return Reach::kNone;
-}
-
-// Is there a path of actions from `from` to `to` (Type-1 and the current Type-2 edges, but
-// skip_from -> skip_to)? kPath with its Type-2 edges in `path`; kBudget past the search budget.
-// switchable-opt searches backwards (reaches_back); plain switchable forwards, as measured.
-SwitchableTracker::Reach SwitchableTracker::reaches(
-    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-    std::vector<std::pair<uint32_t, uint32_t>>& path) {
-  if (options_.anticipate) return reaches_back(from, to, skip_from, skip_to, path);
-  const Reach r = depth_first(from, to, [&](uint32_t u, const auto& push) {
-    const auto& a = actions_.actions[u];
-    if (a.seq + 1 < actions_.count(a.robot)) push(u + 1, u);
-    for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
-      const auto next = after(leave_stays_[i]);
-      if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
-      const uint32_t v = stay_[next.stay].enter;
-      if (!(u == skip_from && v == skip_to)) push(v, u);
-    }
-  });
-  if (r == Reach::kPath) {
-    for (uint32_t v = to; v != from; v = parent_[v]) {
-      if (parent_[v] + 1 != v) path.emplace_back(parent_[v], v);  // Type-2 (Type-1: next seq)
-    }
-  }
-  return r;
-}
-
-// The same question searched backwards, from `to` over its unfinished predecessors (an
-// action finishes after its predecessors, so a finished one leads to no unfinished one): what
-// must happen before `to`, few actions for a robot near its location, where the forward search
-// walks the whole future of `from` (at 1000 robots most such searches ran out of budget).
-SwitchableTracker::Reach SwitchableTracker::reaches_back(
-    uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-    std::vector<std::pair<uint32_t, uint32_t>>& path) {
-  const Reach r = depth_first(to, from, [&](uint32_t u, const auto& push) {
-    // parent_[v] = u: the path goes v -> u.
-    if (actions_.actions[u].seq > 0 && !finished_node(u - 1)) push(u - 1, u);
+    if (actions_.actions[u].seq > 0) push(u - 1, u);
     for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
       const auto b = before(enter_stays_[i]);
       if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
       const uint32_t v = stay_[b.stay].leave;
-      if (!(v == skip_from && u == skip_to) && !finished_node(v)) push(v, u);
-    }
-  });
-  if (r == Reach::kPath) {
-    for (uint32_t v = from; v != to; v = parent_[v]) {
-      const uint32_t w = parent_[v];
-      if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
+      if (!(v == skip_from && u == skip_to)) push(v, u);
     }
   }
-  return r;
+  return Reach::kNone;
 }
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
@@ -365,7 +339,7 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   const auto edge = [&](uint32_t from, uint32_t to, int delta) {
     if (from == kNoAction || to == kNoAction || stay_[from].robot == stay_[to].robot) return;
     if (stay_[from].leave == kNoAction || stay_[to].enter == kNoAction) return;
-    if (finished_node(stay_[from].leave)) return;
+    if (finished_by(stay_[from].robot, stay_[from].leave)) return;
     pending_[stay_[to].enter] += delta;
   };
   edge(h, i, -1);
@@ -373,11 +347,15 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   edge(j, k, -1);
   std::swap(id_at_[position_[i]], id_at_[position_[j]]);
   std::swap(position_[i], position_[j]);
+  if (h != kNoAction) link_[h].next = j;
+  if (k != kNoAction) link_[k].prev = i;
+  link_[j] = {h, i};
+  link_[i] = {j, k};
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);
-  consider(stay_[i].enter);
-  if (k != kNoAction && stay_[k].enter != kNoAction) consider(stay_[k].enter);
+  consider(i);
+  if (k != kNoAction && stay_[k].enter != kNoAction) consider(k);
   const uint32_t robot = stay_[j].robot;
   if (advance(robot)) changed.push_back(robot);
 }

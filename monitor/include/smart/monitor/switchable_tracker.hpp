@@ -14,7 +14,8 @@
 //   robot has not been sent it yet); the chain h -> j -> i -> k keeps one robot at a time;
 // - of use now: h has left (the location is free), so j may go at once;
 // - no deadlock: no path of unfinished actions leads from i.enter to j.leave without the edge
-//   being reversed (searched over at most `search_budget` actions; past it, no swap);
+//   being reversed (searched backwards from j.leave over unfinished predecessors, at most
+//   `search_budget` actions; past it, no swap);
 // - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
 // Deterministic: the robots whose situation changed are tried in id order after each progress.
 //
@@ -29,16 +30,13 @@
 // in a window of three stays, at no search cost but the deadlock check. Robots farther than
 // `horizon_actions` from the location are not expected (no switch for them). First come, first
 // served then also needs an expected saving (a ready robot within `horizon_actions` of a free
-// location passes a late one only when that saves waiting). The deadlock
-// search runs backwards in this mode, over what must happen before j leaves (unfinished
-// predecessors only): the same answer, within budget where the forward search walked the whole
-// future of i and ran out (at 1000 robots most of its searches did, each a refusal).
+// location passes a late one only when that saves waiting).
 // Pure.
 #pragma once
 
 #include <algorithm>
+#include <boost/dynamic_bitset.hpp>
 #include <cstdint>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -87,10 +85,15 @@ class SwitchableTracker final : public Execution {
     uint32_t stay = kNoAction;
     bool edge = false;  // a different robot: a Type-2 edge
   };
+  // Robots by id: taken smallest first (the order that makes runs deterministic), in a word per
+  // 64 robots where a std::set allocated a node per insertion (bench: a tenth of the cost).
+  using RobotSet = boost::dynamic_bitset<uint64_t>;
+  static uint32_t take_first(RobotSet& set);
   Neighbour before(uint32_t stay) const;
   Neighbour after(uint32_t stay) const;
   bool finished_node(uint32_t node) const;
-  bool enqueued_node(uint32_t node) const;
+  bool finished_by(uint32_t robot, uint32_t node) const;
+  bool sent_by(uint32_t robot, uint32_t node) const;
   bool needs_commit(uint32_t node) const;
   bool advance(uint32_t robot);
   bool candidate(uint32_t robot) const;
@@ -100,17 +103,13 @@ class SwitchableTracker final : public Execution {
     return options_.anticipate ? std::max(options_.commit_actions, options_.horizon_actions)
                                : options_.commit_actions;
   }
-  void consider(uint32_t node);
+  void consider(uint32_t stay);  // its robot may switch now: tried (dirty_) if a candidate
   void release(uint32_t node, std::vector<uint32_t>& changed);
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
   void try_switches(double time_s, std::vector<uint32_t>& changed);
   enum class Reach : uint8_t { kNone, kPath, kBudget };
-  template <class Expand>
-  Reach depth_first(uint32_t start, uint32_t goal, const Expand& expand);
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
                 std::vector<std::pair<uint32_t, uint32_t>>& path);
-  Reach reaches_back(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-                     std::vector<std::pair<uint32_t, uint32_t>>& path);
   bool has_edge(uint32_t from, uint32_t to) const;
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
@@ -124,10 +123,16 @@ class SwitchableTracker final : public Execution {
   void decide(uint32_t robot, std::vector<uint32_t>& changed);
 
   const ActionPlan& actions_;
-  PassingOrders orders_;                             // stays in their current order per location
-  std::vector<uint32_t> id_at_;                      // position in orders_.stays -> stay id
-  std::vector<uint32_t> position_;                   // stay id -> position in orders_.stays
-  std::vector<uint32_t> location_;                   // stay id -> location
+  PassingOrders orders_;            // stays in their current order per location
+  std::vector<uint32_t> id_at_;     // position in orders_.stays -> stay id
+  std::vector<uint32_t> position_;  // stay id -> position in orders_.stays
+  std::vector<uint32_t> location_;  // stay id -> location
+  // stay id -> the stays before and after it at its location (kNoAction: none), the current
+  // order as a list: one lookup where position_ and id_at_ took four scattered ones.
+  struct Link {
+    uint32_t prev = kNoAction, next = kNoAction;
+  };
+  std::vector<Link> link_;
   std::vector<Stay> stay_;                           // stay id -> the stay
   std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
   std::vector<uint32_t> leave_begin_, leave_stays_;  // node -> stays it leaves (CSR)
@@ -135,7 +140,7 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> pending_;
   std::vector<uint32_t> finished_, enqueued_;
   std::size_t finished_total_ = 0;
-  std::set<uint32_t> dirty_;    // robots to try: their situation changed since they were tried
+  RobotSet dirty_;              // robots to try: their situation changed since they were tried
   std::vector<uint32_t> seen_;  // search stamps
   uint32_t stamp_ = 0;
   std::vector<PassingSwitch> switches_;
@@ -147,14 +152,16 @@ class SwitchableTracker final : public Execution {
     bool by_path = false;
   };
   std::vector<uint32_t> parent_;  // search tree
+  std::vector<uint32_t> stack_;   // search frontier (kept: no allocation per search)
   std::vector<Refusal> refused_;
+  RobotSet with_refusal_;  // robots whose refused_ names an entry
   // Anticipation: expected durations, when each action was sent and each robot last finished.
   ActionDurations durations_;
   double now_s_ = 0;
   std::vector<double> sent_s_;      // node -> when it was sent
   std::vector<double> finished_s_;  // robot -> when its last action finished
   std::vector<uint8_t> decided_;    // node -> its place was decided when it was to be sent
-  std::set<uint32_t> ahead_;        // robots whose next entry awaits that decision
+  RobotSet ahead_;                  // robots whose next entry awaits that decision
   std::size_t anticipated_ = 0;
   mutable std::vector<grid::ActionType> types_;  // scratch
 };
