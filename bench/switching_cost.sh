@@ -1,0 +1,52 @@
+#!/bin/bash
+# The cost of switching passing orders (issue 29, docs/execution.md "Cost"): SMART's 1000-robot
+# warehouse plan run REPEATS times with each of --execution adg, switchable, switchable-opt under
+# `perf record`; for each run, the share of the monitor process's samples (all its threads) in
+# the execution tracker's functions, and in the switching functions alone (the tries, the
+# deadlock search, anticipation, expected durations: what plain ADG does not do). Comparing
+# total CPU seconds cannot show a 5 % share (identical runs differ by ±0.7 s of 8.6 s); sampling
+# inside one run can.
+# Usage: bench/switching_cost.sh [REPEATS] [OUT_DIR] (SMART, SMART_BENCHMARKS, DOMAIN (92:
+# outside the tests' ids) override). Needs perf (Debian: linux-perf) and a kernel that lets
+# this user sample (kernel.perf_event_paranoid <= 1, or root).
+set -euo pipefail
+repeats=${1:-3}
+out=${2:-build/switching-bench}
+smart=${SMART:-build/bin/smart}
+bench=${SMART_BENCHMARKS:-../shared/benchmarks}
+command -v perf > /dev/null || { echo "switching_cost.sh: perf not found; install linux-perf" >&2; exit 2; }
+rm -rf "$out"
+mkdir -p "$out"
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next)|ActionDurations::'
+share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid: smart run's own)
+  local pid
+  pid=$(perf script -i "$1" -F pid 2> /dev/null | sort -n | head -1 | tr -d ' ')
+  perf report -i "$1" --pid "$pid" --sort sym --stdio --percentage relative 2> /dev/null |
+    grep '%' | grep -v '^#' |
+    awk -v sw="$switching" '{p = $1; sub("%", "", p)}
+      /(ExecutionTracker|SwitchableTracker|ActionDurations)::/ {t += p}
+      $0 ~ sw {s += p}
+      END {printf "%.2f %.2f\n", t, s}'
+}
+for mode in adg switchable switchable-opt; do
+  for i in $(seq 1 "$repeats"); do
+    dir="$out/$mode-$i"
+    perf record -q -F 997 -o "$dir.data" -- "$smart" run \
+      --map "$bench/maps/warehouse-10-20-10-2-1.map" \
+      --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen" \
+      --plan "$bench/smart-examples/scen_1_1000_paths.txt" --axis rowcol --agents 1000 \
+      --execution "$mode" --out "$dir" --no-progress --domain "${DOMAIN:-92}" \
+      > "$dir.out" 2> "$dir.err"
+    echo "$mode $i $(share "$dir.data")" | tee -a "$out/shares.txt"
+  done
+done
+awk '{t[$1] += $3; tt[$1] += $3 * $3; s[$1] += $4; ss[$1] += $4 * $4; n[$1]++}
+  END {
+    for (m in n) {
+      sdt = n[m] > 1 ? sqrt((tt[m] - t[m] * t[m] / n[m]) / (n[m] - 1)) : 0
+      sds = n[m] > 1 ? sqrt((ss[m] - s[m] * s[m] / n[m]) / (n[m] - 1)) : 0
+      printf "%-15s monitor CPU in the tracker %.1f ± %.1f %%, in switching %.1f ± %.1f %% (%d runs)\n",
+        m, t[m] / n[m], sdt, s[m] / n[m], sds, n[m]
+    }
+  }' "$out/shares.txt" | sort
+echo "machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg)"
