@@ -44,16 +44,13 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       finished_s_(actions.robots(), 0.0),
       decided_(options.anticipate ? actions.actions.size() : 0, 0),
       ahead_(actions.robots()) {
-  const auto count = static_cast<uint32_t>(orders_.stays.size());
-  stay_ = orders_.stays;
-  id_at_.resize(count);
-  position_.resize(count);
+  stay_ = std::move(orders_.stays);  // orders_ keeps each location's range of stay ids
+  const auto count = static_cast<uint32_t>(stay_.size());
   location_.resize(count);
   link_.resize(count);
   for (uint32_t loc = 0; loc + 1 < orders_.begin.size(); ++loc) {
     const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
     for (uint32_t p = first; p < end; ++p) {
-      id_at_[p] = position_[p] = p;
       location_[p] = loc;
       link_[p] = {p == first ? kNoAction : p - 1, p + 1 == end ? kNoAction : p + 1};
     }
@@ -345,8 +342,6 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   edge(h, i, -1);
   edge(i, j, -1);
   edge(j, k, -1);
-  std::swap(id_at_[position_[i]], id_at_[position_[j]]);
-  std::swap(position_[i], position_[j]);
   if (h != kNoAction) link_[h].next = j;
   if (k != kNoAction) link_[k].prev = i;
   link_[j] = {h, i};
@@ -409,7 +404,7 @@ double SwitchableTracker::expected_saving(uint32_t i, uint32_t j) const {
   double free_s = now_s_;
   const auto h = before(i);
   if (h.stay != kNoAction && stay_[h.stay].leave != kNoAction &&
-      !finished_node(stay_[h.stay].leave)) {
+      !finished_by(stay_[h.stay].robot, stay_[h.stay].leave)) {
     free_s = finish_estimate(stay_[h.stay].robot, actions_.actions[stay_[h.stay].leave].seq);
   }
   const auto k = after(j);
@@ -480,9 +475,12 @@ void SwitchableTracker::predecessors(uint32_t node, std::vector<uint32_t>& out) 
 
 std::vector<uint32_t> SwitchableTracker::order_at(uint32_t location) const {
   std::vector<uint32_t> out;
-  for (uint32_t p = orders_.begin[location]; p < orders_.begin[location + 1]; ++p) {
-    out.push_back(stay_[id_at_[p]].robot);
-  }
+  if (orders_.begin[location] == orders_.begin[location + 1]) return out;
+  // Stay ids are the plan's positions: the location's first one is one of its stays, wherever
+  // the switches moved it; the list's head is found from it.
+  uint32_t stay = orders_.begin[location];
+  while (link_[stay].prev != kNoAction) stay = link_[stay].prev;
+  for (; stay != kNoAction; stay = link_[stay].next) out.push_back(stay_[stay].robot);
   return out;
 }
 

@@ -123,12 +123,11 @@ class SwitchableTracker final : public Execution {
   void decide(uint32_t robot, std::vector<uint32_t>& changed);
 
   const ActionPlan& actions_;
-  PassingOrders orders_;            // stays in their current order per location
-  std::vector<uint32_t> id_at_;     // position in orders_.stays -> stay id
-  std::vector<uint32_t> position_;  // stay id -> position in orders_.stays
+  // Each location's stay ids in plan order (begin); its stays are moved to stay_.
+  PassingOrders orders_;
   std::vector<uint32_t> location_;  // stay id -> location
-  // stay id -> the stays before and after it at its location (kNoAction: none), the current
-  // order as a list: one lookup where position_ and id_at_ took four scattered ones.
+  // stay id -> the stays before and after it at its location (kNoAction: none): the current
+  // order as a list, one lookup for a neighbour (an array of positions took four).
   struct Link {
     uint32_t prev = kNoAction, next = kNoAction;
   };
