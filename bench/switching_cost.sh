@@ -17,7 +17,7 @@ bench=${SMART_BENCHMARKS:-../shared/benchmarks}
 command -v perf > /dev/null || { echo "switching_cost.sh: perf not found; install linux-perf" >&2; exit 2; }
 rm -rf "$out"
 mkdir -p "$out"
-switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next)|ActionDurations::'
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::'
 share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid: smart run's own)
   local pid
   pid=$(perf script -i "$1" -F pid 2> /dev/null | sort -n | head -1 | tr -d ' ')

@@ -40,6 +40,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       parent_(actions.actions.size(), 0),
       refused_(actions.robots()),
       with_refusal_(actions.robots()),
+      unsettled_(actions.robots()),
       sent_s_(options.anticipate ? actions.actions.size() : 0, 0.0),
       finished_s_(actions.robots(), 0.0),
       decided_(options.anticipate ? actions.actions.size() : 0, 0),
@@ -65,6 +66,9 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
+  // First come, first served from the robots' first reports on: at the start nobody is late,
+  // and the entries about to be sent are decided by anticipation (ahead_) alone.
+  dirty_.reset();
   std::vector<uint32_t> changed;  // before the first windows: all are sent then
   try_switches(0.0, changed);
 }
@@ -127,7 +131,14 @@ bool SwitchableTracker::advance(uint32_t robot) {
     if (options_.anticipate) sent_s_[node] = now_s_;
     ++enqueued_[robot];
   }
-  return enqueued_[robot] != before_count;
+  if (enqueued_[robot] == before_count) return false;
+  // Its refusal named an entry sent now: gone. Its next entry may switch (the events that make
+  // a robot a candidate: it came near, its entry came next, a count dropped to one, the
+  // location emptied, a switch; each tries it).
+  with_refusal_.reset(robot);
+  unsettled_.reset(robot);
+  if (candidate(robot)) dirty_.set(robot);
+  return true;
 }
 
 // A robot near its next unsent action that waits for exactly one other robot's leave: one that
@@ -206,7 +217,7 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
       const uint32_t r = take_first(dirty_);
       if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
     }
-    dirty_ |= with_refusal_;  // a switch may have opened their way
+    dirty_ |= unsettled_;  // a switch may have opened their way
   }
   dirty_.reset();
   while (ahead_.any()) decide(take_first(ahead_), changed);
@@ -249,19 +260,20 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   // nodes downstream of an unfinished entry stay unfinished), or, past the search budget, until
   // the next switch.
   auto& refusal = refused_[robot];
-  refusal = {node, theirs, static_cast<uint32_t>(switches_.size()), {}, false};
-  with_refusal_.set(robot);
+  refusal = {node, theirs, static_cast<uint32_t>(switches_.size()), refusals_++, {}, false};
   switch (reaches(first.enter, stay_[mine].leave, first.leave, node, refusal.path)) {
     case Reach::kPath:
-      refusal.by_path = true;
+      refuse(robot, true);
       return false;
     case Reach::kBudget:
+      refuse(robot, false);
       return false;
     case Reach::kNone:
       break;
   }
   refusal.node = kNoAction;
   with_refusal_.reset(robot);
+  unsettled_.reset(robot);
   switches_.push_back({time_s, location_[mine], robot, first.robot});
   swap_with_next(theirs, changed);
   return true;
@@ -280,8 +292,50 @@ bool SwitchableTracker::still_refused(uint32_t robot, uint32_t node, uint32_t th
   const auto& r = refused_[robot];
   if (r.node != node || r.theirs != theirs) return false;
   if (!r.by_path) return r.epoch == switches_.size();
-  return std::all_of(r.path.begin(), r.path.end(),
+  return path_holds(robot);
+}
+
+bool SwitchableTracker::path_holds(uint32_t robot) const {
+  const auto& path = refused_[robot].path;
+  return std::all_of(path.begin(), path.end(),
                      [this](const auto& e) { return has_edge(e.first, e.second); });
+}
+
+// `robot`'s switch was refused (refused_ filled in): by a path, it waits for one of the path's
+// edges to be switched away (watched at each edge's leave); past the budget, for any switch.
+void SwitchableTracker::refuse(uint32_t robot, bool by_path) {
+  auto& refusal = refused_[robot];
+  refusal.by_path = by_path;
+  with_refusal_.set(robot);
+  if (!by_path) {
+    unsettled_.set(robot);
+    return;
+  }
+  unsettled_.reset(robot);
+  for (const auto& e : refusal.path) watchers_[e.first].push_back({robot, refusal.id});
+}
+
+// The stay's place changed (a switch): its robot's refusal may name another stay to pass now.
+void SwitchableTracker::unsettle(uint32_t stay) {
+  const uint32_t robot = stay_[stay].robot;
+  if (with_refusal_.test(robot)) unsettled_.set(robot);
+}
+
+// A switch removed the Type-2 edge from `node` (a leave): the refusals whose path had it and
+// lost an edge are tried again; the others keep watching.
+void SwitchableTracker::unsettle_watchers(uint32_t node) {
+  const auto it = watchers_.find(node);
+  if (it == watchers_.end()) return;
+  std::erase_if(it->second, [this](const Watcher& w) {
+    const auto& refusal = refused_[w.robot];
+    if (refusal.id != w.refusal || !with_refusal_.test(w.robot) || unsettled_.test(w.robot)) {
+      return true;  // stale, or tried anyway
+    }
+    if (path_holds(w.robot)) return false;
+    unsettled_.set(w.robot);
+    return true;
+  });
+  if (it->second.empty()) watchers_.erase(it);
 }
 
 // Is there a path of unfinished actions from `from` to `to` (Type-1 and the current Type-2
@@ -349,6 +403,12 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);
+  for (const uint32_t s : {h, i, j}) {  // the edges from their leaves were switched away
+    if (s != kNoAction && stay_[s].leave != kNoAction) unsettle_watchers(stay_[s].leave);
+  }
+  for (const uint32_t s : {i, j, k}) {  // a stay before them changed
+    if (s != kNoAction) unsettle(s);
+  }
   consider(i);
   if (k != kNoAction && stay_[k].enter != kNoAction) consider(k);
   const uint32_t robot = stay_[j].robot;

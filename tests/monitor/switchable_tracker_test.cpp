@@ -119,6 +119,34 @@ TEST(SwitchableTracker, NoSwitchBehindARobotThatParksThere) {
   EXPECT_TRUE(t.complete());
 }
 
+// Regression (found 2026-11-27, by the cost bench): robot 0's entry into (2, 1) came up
+// while another robot reported (robot 1 left (1, 1), which robot 0 waited to enter), and it
+// was tried only at robot 0's own next report, or when a switch elsewhere retried every robot
+// ever refused. Robot 2, planned to cross (2, 1) first, stalls before its first action: robot
+// 0 passes it at robot 1's report.
+TEST(SwitchableTracker, ARobotWhoseNextEntryCameUpAtAnotherRobotsReportIsTriedThen) {
+  const Grid grid(5, 4, std::vector<uint8_t>(20, 0));
+  const auto actions = build_actions(plan_of({{{0, 1}, {0, 1}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                              {{1, 0}, {1, 1}, {1, 2}},
+                                              {{3, 0}, {2, 0}, {2, 1}, {2, 2}}}),
+                                     Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid), SwitchOptions{.commit_actions = 2});
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{2, 0}));
+  t.on_progress(0, 0, 0.5);  // robot 0 at (1, 1)'s edge, waiting for robot 1 to leave it
+  EXPECT_EQ(t.enqueued(0), 1u);
+  run_robot(t, 1, 1.0);
+  ASSERT_EQ(t.switches()->size(), 1u);
+  EXPECT_DOUBLE_EQ((*t.switches())[0].time_s, 1.0);
+  EXPECT_EQ((*t.switches())[0].first, 0u);
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 2}));
+  EXPECT_EQ(t.enqueued(0), t.known(0));  // nothing left to wait for
+  EXPECT_EQ(t.finished(2), 0u);
+  run_robot(t, 0, 2.0);
+  run_robot(t, 2, 3.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // switchable-opt: before anything is sent, robot 0's entry into (2, 1) is within the commit
 // distance and is decided. With every action expected to take 1 s (nothing learned yet), robot 0
 // arrives at 3 s and leaves at 5 s, robot 1 (rotate, half-move) arrives at 2 s and leaves at 4 s:

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <boost/dynamic_bitset.hpp>
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -112,6 +113,10 @@ class SwitchableTracker final : public Execution {
                 std::vector<std::pair<uint32_t, uint32_t>>& path);
   bool has_edge(uint32_t from, uint32_t to) const;
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
+  bool path_holds(uint32_t robot) const;
+  void refuse(uint32_t robot, bool by_path);
+  void unsettle(uint32_t stay);
+  void unsettle_watchers(uint32_t node);
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
   uint32_t blocking_stay(uint32_t node) const;
   // Anticipation.
@@ -147,13 +152,26 @@ class SwitchableTracker final : public Execution {
   struct Refusal {
     uint32_t node = kNoAction, theirs = kNoAction;
     uint32_t epoch = 0;                               // switches made when searched
+    uint32_t id = 0;                                  // refusals made before it
     std::vector<std::pair<uint32_t, uint32_t>> path;  // the Type-2 edges of a path found
     bool by_path = false;
   };
   std::vector<uint32_t> parent_;  // search tree
   std::vector<uint32_t> stack_;   // search frontier (kept: no allocation per search)
   std::vector<Refusal> refused_;
+  uint32_t refusals_ = 0;
   RobotSet with_refusal_;  // robots whose refused_ names an entry
+  // Robots whose refusal a switch may have lifted (past the budget, the stay it would pass
+  // changed, an edge of its path switched away): tried again after each switch; the others
+  // would be refused again. A refusal ends when its entry is sent. Before, every robot with a
+  // refusal, however old, was tried after every switch: about 420 a switch at 1000 robots, most
+  // of switchable-opt's decision time (docs/execution.md, "Cost").
+  RobotSet unsettled_;
+  struct Watcher {
+    uint32_t robot, refusal;  // Refusal::id: a later refusal of the robot makes it stale
+  };
+  // A leave -> the refusals whose path has a Type-2 edge from it.
+  std::unordered_map<uint32_t, std::vector<Watcher>> watchers_;
   // Anticipation: expected durations, when each action was sent and each robot last finished.
   ActionDurations durations_;
   double now_s_ = 0;
