@@ -43,12 +43,13 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
-LINE_AXES = ["plan", "execution", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
+LINE_AXES = ["plan", "execution", "switch_commit_actions", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
 PANEL_AXES = ["map"]
 POOLED_AXES = ["scen"]
 AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
               "clock": "clock", "map": "map", "scen": "scen", "agents": "robots",
-              "replan_period_s": "replan period (s)", "execution": "execution"}
+              "replan_period_s": "replan period (s)", "execution": "execution",
+              "switch_commit_actions": "entries sent (actions ahead)"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")
 
@@ -103,7 +104,8 @@ def series(rows, field, x_field, line_keys):
         for x in sorted(groups[key]):
             m, sd = mean_sd(groups[key][x])
             points.append({"x": x, "mean": m, "sd": sd, "n": len(groups[key][x])})
-        out.append({"label": " / ".join(shown(k, v) for k, v in zip(line_keys, key))
+        # An axis a line does not have (plain ADG's commit distance) is left out of its label.
+        out.append({"label": " / ".join(shown(k, v) for k, v in zip(line_keys, key) if v != "")
                     if key else "all runs",
                     "match": dict(zip(line_keys, key)), "points": points})
     return out
@@ -406,6 +408,8 @@ def write_table(rows, out_dir, written):
     switching = len(values_of(rows, "execution")) > 1
     if switching:
         keys.insert(keys.index("plan") + 1, "execution")
+    if len(values_of(rows, "switch_commit_actions")) > 1:
+        keys.insert(keys.index("plan") + 1 + switching, "switch_commit_actions")
     if lifelong:
         keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
     groups = defaultdict(list)

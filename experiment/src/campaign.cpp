@@ -143,9 +143,11 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
     std::vector<std::string> argv{c.smart.string(), "--log-level", "error", "run"};
     const auto what = lifelong_argv(c, cell);
     argv.insert(argv.end(), what.begin(), what.end());
-    argv.insert(argv.end(), {"--robot", cell.robot, "--qos", cell.qos, "--clock", c.spec.clock,
-                             "--domain", std::to_string(domain), "--out", c.cell_dir(cell).string(),
-                             "--no-progress", "--execution", cell.execution});
+    argv.insert(argv.end(),
+                {"--robot", cell.robot, "--qos", cell.qos, "--clock", c.spec.clock, "--domain",
+                 std::to_string(domain), "--out", c.cell_dir(cell).string(), "--no-progress"});
+    const auto execution = execution_flags(cell);
+    argv.insert(argv.end(), execution.begin(), execution.end());
     const auto flags = uncertainty_flags(c.spec, cell);
     argv.insert(argv.end(), flags.begin(), flags.end());
     return argv;
@@ -161,10 +163,11 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
                                 "--robot",        cell.robot,
                                 "--qos",          cell.qos,
                                 "--clock",        c.spec.clock,
-                                "--execution",    cell.execution,
                                 "--domain",       std::to_string(domain),
                                 "--out",          c.cell_dir(cell).string(),
                                 "--no-progress"};
+  const auto execution = execution_flags(cell);
+  argv.insert(argv.end(), execution.begin(), execution.end());
   const auto flags = uncertainty_flags(c.spec, cell);
   argv.insert(argv.end(), flags.begin(), flags.end());
   return argv;

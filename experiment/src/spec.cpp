@@ -191,6 +191,37 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   }
 }
 
+// switch_commit_actions: whole numbers from 1 to 1000 (smart run's range), for a switching
+// execution.
+void read_commit_actions(const YAML::Node& root, const std::string& src, Spec& s) {
+  const auto n = root["switch_commit_actions"];
+  if (!n) return;
+  YAML::Node list(YAML::NodeType::Sequence);
+  if (n.IsSequence()) {
+    list = n;
+  } else {
+    list.push_back(n);
+  }
+  for (const auto& v : list) {
+    long long k = 0;
+    try {
+      k = v.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail(src, v, "switch_commit_actions",
+           "'" + v.as<std::string>("?") + "' is not a whole number");
+    }
+    if (k < 1 || k > 1000) fail(src, v, "switch_commit_actions", "from 1 to 1000 actions");
+    s.switch_commit_actions.push_back(static_cast<uint32_t>(k));
+  }
+  if (s.switch_commit_actions.empty()) {
+    fail(src, n, "switch_commit_actions", "is empty; give at least one, e.g. [2, 6]");
+  }
+  if (std::ranges::count(s.executions, "adg") == static_cast<long>(s.executions.size())) {
+    fail(src, n, "switch_commit_actions",
+         "only the switching executions take it; add switchable (or switchable-opt) to executions");
+  }
+}
+
 void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   s.robots = strings(root, "robots", src, {"footbot"});
   s.qos = strings(root, "qos", src, {"lan"});
@@ -199,6 +230,7 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     if (e != "adg" && e != "switchable" && e != "switchable-opt")
       fail(src, root["executions"], "executions", "adg, switchable or switchable-opt");
   }
+  read_commit_actions(root, src, s);
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
     fail(src, root["clock"], "clock", "lockstep or realtime");
@@ -215,13 +247,15 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   }
   for (const auto& kv : root) {
     static const std::set<std::string> known{
-        "name", "maps",  "scens",   "agents",      "plan",     "plans",    "robots",
-        "qos",  "clock", "repeats", "uncertainty", "lifelong", "planners", "executions"};
+        "name",        "maps",     "scens",    "agents",     "plan",
+        "plans",       "robots",   "qos",      "clock",      "repeats",
+        "uncertainty", "lifelong", "planners", "executions", "switch_commit_actions"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
-           "clock, uncertainty, executions, repeats (lifelong: lifelong, agents, planners)");
+           "clock, uncertainty, executions, switch_commit_actions, repeats (lifelong: lifelong, "
+           "agents, planners)");
     }
   }
 }
@@ -360,6 +394,7 @@ const std::vector<std::string> kParams{"cell",
                                        "axis",
                                        "clock",
                                        "execution",
+                                       "switch_commit_actions",
                                        "replan_period_s",
                                        "planner_runtime_s"};
 }  // namespace
@@ -395,6 +430,16 @@ Spec parse_spec(std::string_view text, const std::string& src) {
   return s;
 }
 
+namespace {
+
+// The commit distances an execution runs with: plain ADG has none (0: the flag not given).
+std::vector<uint32_t> commit_axis(const Spec& s, const std::string& execution) {
+  if (execution == "adg" || s.switch_commit_actions.empty()) return {0};
+  return s.switch_commit_actions;
+}
+
+}  // namespace
+
 std::vector<Cell> expand(const Spec& s) {
   std::vector<Cell> cells;
   for (std::size_t i = 0; i < s.instances.size(); ++i) {
@@ -405,15 +450,18 @@ std::vector<Cell> expand(const Spec& s) {
             for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
               for (std::size_t t = 0; t < periods(s); ++t) {
                 for (const auto& e : s.executions) {
-                  for (std::size_t r = 0; r < s.repeats; ++r) {
-                    auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
-                               std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
-                    if (s.plans.size() > 1) key += "-" + s.plans[p].name;
-                    if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
-                    if (periods(s) > 1) key += "-p" + std::to_string(t);
-                    if (e != "adg") key += "-" + e;  // plain cells keep their folders
-                    key += "-r" + std::to_string(r);
-                    cells.push_back({i, n, p, robot, qos, u, r, t, key, e});
+                  for (const uint32_t commit : commit_axis(s, e)) {
+                    for (std::size_t r = 0; r < s.repeats; ++r) {
+                      auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
+                                 std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+                      if (s.plans.size() > 1) key += "-" + s.plans[p].name;
+                      if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+                      if (periods(s) > 1) key += "-p" + std::to_string(t);
+                      if (e != "adg") key += "-" + e;  // plain cells keep their folders
+                      if (commit != 0) key += "-c" + std::to_string(commit);
+                      key += "-r" + std::to_string(r);
+                      cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit});
+                    }
                   }
                 }
               }
@@ -424,6 +472,14 @@ std::vector<Cell> expand(const Spec& s) {
     }
   }
   return cells;
+}
+
+std::vector<std::string> execution_flags(const Cell& c) {
+  std::vector<std::string> flags{"--execution", c.execution};
+  if (c.commit_actions != 0) {
+    flags.insert(flags.end(), {"--switch-commit-actions", std::to_string(c.commit_actions)});
+  }
+  return flags;
 }
 
 std::vector<std::string> uncertainty_flags(const Spec& s, const Cell& c) {
@@ -451,6 +507,7 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
               {"axis", s.plans.at(c.plan).axis},
               {"clock", s.clock},
               {"execution", c.execution}};
+  if (c.commit_actions != 0) row["switch_commit_actions"] = c.commit_actions;
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);

@@ -139,6 +139,25 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("| waiting (s) | switches |", text)
         self.assertIn("| 9000.5 ± 0.7 | 100.0 ± 0.0 |", text)
 
+    def test_commit_distances_of_switchable_are_lines_of_their_own(self):
+        columns = COLUMNS + ["execution", "switch_commit_actions", "waiting_time_s.total"]
+        rows = [row(agents=n, repeat=k, execution="adg", **{"waiting_time_s.total": 100 * n})
+                for n in (10, 100) for k in (0, 1)]
+        rows += [row(agents=n, repeat=k, execution="switchable", switch_commit_actions=c,
+                     **{"waiting_time_s.total": (80 + c) * n})
+                 for n in (10, 100) for k in (0, 1) for c in (2, 6)]
+        for r in rows:
+            r["cell"] += "-" + r["execution"] + str(r.get("switch_commit_actions", ""))
+        out, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        waiting = figures["waiting"]["panels"][0]
+        self.assertEqual([s["label"] for s in waiting["series"]],
+                         ["adg", "switchable / 2", "switchable / 6"])
+        self.assertEqual([p["mean"] for p in waiting["series"][1]["points"]], [820, 8200])
+        text = (out / "table.md").read_text()
+        self.assertIn("| plan | execution | switch_commit_actions |", text)
+        self.assertIn("| switchable | 6 |", text)
+
     def test_points_with_different_counts_say_their_n(self):
         rows = [row(agents=5), row(agents=5, repeat=1), row(agents=10)]
         _, figures, table = self.plot(rows)

@@ -205,6 +205,48 @@ TEST(Spec, ExecutionsAreAnAxisOnTheSameSeeds) {
   }
 }
 
+// The commit distance of switching (`--switch-commit-actions`) is an axis of the switching
+// executions only: plain ADG cells run once, on the same seeds.
+TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {
+  const std::string base =
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
+  const auto s =
+      parse_spec(base + "executions: [adg, switchable]\nswitch_commit_actions: [2, 6]\n", "c.yaml");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[0].key, "0-s-n5-footbot-lan-r0");
+  EXPECT_EQ(execution_flags(cells[0]), (std::vector<std::string>{"--execution", "adg"}));
+  EXPECT_EQ(cells[1].key, "0-s-n5-footbot-lan-switchable-c2-r0");
+  EXPECT_EQ(execution_flags(cells[2]), (std::vector<std::string>{"--execution", "switchable",
+                                                                 "--switch-commit-actions", "6"}));
+  EXPECT_EQ(uncertainty_flags(s, cells[0]), uncertainty_flags(s, cells[2]));
+  const auto row = result_row(s, cells[1], nlohmann::json::object());
+  EXPECT_EQ(row["switch_commit_actions"], 2);
+  EXPECT_FALSE(result_row(s, cells[0], nlohmann::json::object()).contains("switch_commit_actions"));
+  EXPECT_NE(results_csv({row}).find(",execution,switch_commit_actions,"), std::string::npos);
+  // Lifelong runs switch with it too.
+  const auto l =
+      expand(parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable]\n"
+                        "switch_commit_actions: 3\n",
+                        "c.yaml"));
+  ASSERT_EQ(l.size(), 1u);
+  EXPECT_EQ(l[0].commit_actions, 3u);
+  const auto fails = [&](const std::string& text, const std::string& what) {
+    try {
+      (void)parse_spec(base + text, "c.yaml");
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(what));
+    }
+  };
+  fails("switch_commit_actions: [2]\n",
+        "c.yaml:6: switch_commit_actions: only the switching executions take it; add switchable");
+  fails("executions: [switchable]\nswitch_commit_actions: [0]\n",
+        "c.yaml:7: switch_commit_actions: from 1 to 1000 actions");
+  fails("executions: [switchable]\nswitch_commit_actions: [two]\n",
+        "c.yaml:7: switch_commit_actions: 'two' is not a whole number");
+}
+
 // Issue 28: lifelong runs as an experiment: the map (or a LoRR problem), team sizes, planners
 // (built in or a pipe command), replanning periods and delays are the axes.
 constexpr const char* kLifelongSpec = R"(name: ll

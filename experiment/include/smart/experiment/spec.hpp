@@ -17,6 +17,9 @@
 //   clock: lockstep                   # or realtime
 //   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
 //   executions: [adg, switchable]     # `smart run --execution`; default [adg] (issue 29)
+//   switch_commit_actions: [2, 6]     # `--switch-commit-actions` of the switching executions
+//                                     # (an axis for them; adg cells run once); default: its
+//                                     # default
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
 // A lifelong experiment (issue 28: tasks stream in; throughput is the measure) has a lifelong:
 // section instead of maps, scens and plan(s), and a planner axis of its own:
@@ -73,7 +76,8 @@ struct Spec {
   // Execution uncertainty settings, each an object of stall_probability, stall_s, speed_sigma,
   // slip_sigma (default: one empty object, the robot model's own).
   std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
-  std::vector<std::string> executions{"adg"};  // plan experiments: adg, switchable
+  std::vector<std::string> executions{"adg"};   // plan experiments: adg, switchable
+  std::vector<uint32_t> switch_commit_actions;  // empty: `smart run`'s default
   std::size_t repeats = 1;
 };
 
@@ -90,14 +94,17 @@ struct Cell {
   std::size_t period = 0;       // lifelong: index into spec.lifelong->replan_period_s
   std::string key;              // folder name, unique within the experiment, stable across runs
   std::string execution = "adg";
+  uint32_t commit_actions = 0;  // --switch-commit-actions; 0: not given
 };
 
 // The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period,
-// execution, repeat).
+// execution, switch_commit_actions, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
 std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
+// The `smart run` flags of a cell's execution (--execution, --switch-commit-actions).
+std::vector<std::string> execution_flags(const Cell& cell);
 
 // One results row: the cell's parameters (plan: the planner's name; lifelong: replan_period_s),
 // the wall seconds its
