@@ -96,7 +96,7 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
 }
 
 // Lifelong (LiveAdg switching): the LoRR 2026 random-domain problem (400 robots on
-// random-64-64-10, its own delay events: p = 0.01 per robot per 0.1 s, 1-4 s), 60 sim s, plain
+// random-64-64-10, its own delay events: p = 0.01 per robot per 0.1 s, 0.1-0.4 s), 60 s, plain
 // and switchable on the same seed: both run clean; switching passes late robots, the fleet waits
 // less, and lock-step makes the switches the same every time.
 TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
