@@ -44,24 +44,37 @@ std::vector<std::string> strings(const YAML::Node& root, const char* key, const 
   return out;
 }
 
-std::vector<std::size_t> counts(const YAML::Node& root, const std::string& src) {
-  const auto n = root["agents"];
-  if (!n) fail(src, root, "agents", "missing; give fleet sizes, e.g. [10, 100]");
-  std::vector<std::size_t> out;
+// A list of whole numbers from lo to hi (a single number is a list of one) at `n`, `range` saying
+// what they are when one is out of range.
+std::vector<long long> whole_numbers(const YAML::Node& n, const std::string& src,
+                                     const std::string& field, long long lo, long long hi,
+                                     const std::string& range) {
   YAML::Node list(YAML::NodeType::Sequence);
   if (n.IsSequence()) {
     list = n;
   } else {
     list.push_back(n);
   }
+  std::vector<long long> out;
   for (const auto& v : list) {
     long long k = 0;
     try {
       k = v.as<long long>();
     } catch (const YAML::Exception&) {
-      fail(src, v, "agents", "'" + v.as<std::string>("?") + "' is not a whole number");
+      fail(src, v, field, "'" + v.as<std::string>("?") + "' is not a whole number");
     }
-    if (k < 1 || k > 100000) fail(src, v, "agents", "fleet sizes run from 1 to 100000");
+    if (k < lo || k > hi) fail(src, v, field, range);
+    out.push_back(k);
+  }
+  return out;
+}
+
+std::vector<std::size_t> counts(const YAML::Node& root, const std::string& src) {
+  const auto n = root["agents"];
+  if (!n) fail(src, root, "agents", "missing; give fleet sizes, e.g. [10, 100]");
+  std::vector<std::size_t> out;
+  for (const auto k :
+       whole_numbers(n, src, "agents", 1, 100000, "fleet sizes run from 1 to 100000")) {
     out.push_back(static_cast<std::size_t>(k));
   }
   if (out.empty()) fail(src, n, "agents", "is empty; give at least one fleet size");
@@ -196,21 +209,8 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
 void read_commit_actions(const YAML::Node& root, const std::string& src, Spec& s) {
   const auto n = root["switch_commit_actions"];
   if (!n) return;
-  YAML::Node list(YAML::NodeType::Sequence);
-  if (n.IsSequence()) {
-    list = n;
-  } else {
-    list.push_back(n);
-  }
-  for (const auto& v : list) {
-    long long k = 0;
-    try {
-      k = v.as<long long>();
-    } catch (const YAML::Exception&) {
-      fail(src, v, "switch_commit_actions",
-           "'" + v.as<std::string>("?") + "' is not a whole number");
-    }
-    if (k < 1 || k > 1000) fail(src, v, "switch_commit_actions", "from 1 to 1000 actions");
+  for (const auto k :
+       whole_numbers(n, src, "switch_commit_actions", 1, 1000, "from 1 to 1000 actions")) {
     s.switch_commit_actions.push_back(static_cast<uint32_t>(k));
   }
   if (s.switch_commit_actions.empty()) {
