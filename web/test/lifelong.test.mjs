@@ -12,7 +12,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
-import { startServer } from './serve.mjs';
+import { launchBrowser, startServer } from './serve.mjs';
 
 const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
@@ -63,8 +63,7 @@ const throughput = readFileSync(path.join(out, 'throughput.csv'), 'utf8').trim()
 // Two runs at once: the lifelong upload below is watched live while it runs (at real time, for
 // longer than the test), and the LoRR upload after it runs to its end beside it.
 const { server, url } = await startServer({ exe, dist, work, results: out, domain, args: ['--max-runs', '2'] });
-const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+const browser = await launchBrowser(puppeteer);
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 800 });

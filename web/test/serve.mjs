@@ -18,3 +18,13 @@ export function startServer({ exe, dist, work, results, domain, onStderr = () =>
     server.on('exit', (code) => reject(new Error(`smart serve exited (${code}): ${text}`)));
   });
 }
+
+// The system's headless Chromium (never a downloaded one). Its launch waits for the DevTools
+// endpoint Chromium prints, an event; puppeteer's default guard of 30 s ran out once beside
+// another test on the 2-core CI machine (web_viewer, 2026-11-27), so the guard is 180 s.
+export async function launchBrowser(puppeteer, extraArgs = []) {
+  return puppeteer.launch({
+    executablePath: '/usr/bin/chromium', headless: true, timeout: 180000,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', ...extraArgs],
+  });
+}

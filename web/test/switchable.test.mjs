@@ -11,7 +11,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
-import { startServer } from './serve.mjs';
+import { launchBrowser, startServer } from './serve.mjs';
 
 const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
@@ -40,8 +40,7 @@ const switches = readFileSync(path.join(out, 'switches.csv'), 'utf8').trim().spl
   .map((l) => l.split(',').map(Number));
 assert.ok(switches.length > 10, `${switches.length} switches: the fixture run should switch (lock-step, seed 1)`);
 const { server, url } = await startServer({ exe, dist, work, results: out, domain });
-const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+const browser = await launchBrowser(puppeteer);
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 800 });

@@ -14,7 +14,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
-import { startServer } from './serve.mjs';
+import { launchBrowser, startServer } from './serve.mjs';
 
 const exe = process.env.SMART_EXE;
 const bench = process.env.SMART_BENCHMARKS;
@@ -288,10 +288,7 @@ async function checkWatch(browser) {
 const { out, summary } = runResults();
 const { server, url } = await startServer({ exe, dist, work, results: out, domain,
   onStderr: (d) => { serverLog = (serverLog + d).slice(-4000); } });
-const browser = await puppeteer.launch({
-  executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1280,800'],
-});
+const browser = await launchBrowser(puppeteer, ['--window-size=1280,800']);
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 800 });
