@@ -103,9 +103,9 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
     plan.source = PlanSource::kBuiltin, plan.name = "builtin";
     if (p["algorithm"]) {
       plan.algorithm = p["algorithm"].as<std::string>();
-      if (plan.algorithm != "pp" && plan.algorithm != "pibt") {
+      if (plan.algorithm != "pp" && plan.algorithm != "pibt" && plan.algorithm != "lacam") {
         fail(src, p["algorithm"], field + ".algorithm",
-             "pp (prioritized planning) or pibt (`smart plan --algorithm`)");
+             "pp (prioritized planning), pibt or lacam (`smart plan --algorithm`)");
       }
       plan.name = "builtin-" + plan.algorithm;
     }

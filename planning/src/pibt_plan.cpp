@@ -10,28 +10,6 @@
 
 namespace smart::planning {
 
-namespace {
-
-grid::Plan to_plan(const std::vector<std::vector<grid::Cell>>& paths) {
-  grid::Plan plan;
-  plan.source = "<built-in planner: pibt>";
-  plan.format = grid::PlanFormat::kSmart;
-  plan.axis = grid::AxisOrder::kXY;
-  plan.timed = true;
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    const int robot = static_cast<int>(i);
-    grid::RobotPath rp{robot, robot + 1, {}};
-    // The last move's cell closes the path: trailing waits on the goal say nothing.
-    std::size_t last = paths[i].size() - 1;
-    while (last > 0 && paths[i][last - 1] == paths[i][last]) --last;
-    for (std::size_t t = 0; t <= last; ++t) rp.steps.push_back({paths[i][t], double(t), robot + 1});
-    plan.paths.push_back(std::move(rp));
-  }
-  return plan;
-}
-
-}  // namespace
-
 PlannerResult plan_pibt(const grid::Grid& grid, const grid::Scenario& scen,
                         const PibtPlanOptions& o) {
   PlannerResult out;
@@ -65,7 +43,7 @@ PlannerResult plan_pibt(const grid::Grid& grid, const grid::Scenario& scen,
       req.start[i] = w.paths[i].back();
     }
   }
-  out.plan = to_plan(paths);
+  out.plan = plan_from_timesteps(paths, "<built-in planner: pibt>");
   out.solved = true;
   return out;
 }

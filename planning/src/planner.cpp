@@ -184,6 +184,25 @@ PlannerResult plan_prioritized(const grid::Grid& g, const grid::Scenario& scen,
   return out;
 }
 
+grid::Plan plan_from_timesteps(const std::vector<std::vector<grid::Cell>>& paths,
+                               const std::string& source) {
+  grid::Plan plan;
+  plan.source = source;
+  plan.format = grid::PlanFormat::kSmart;
+  plan.axis = grid::AxisOrder::kXY;
+  plan.timed = true;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const int robot = static_cast<int>(i);
+    grid::RobotPath rp{robot, robot + 1, {}};
+    // The last move's cell closes the path: trailing waits on the goal say nothing.
+    std::size_t last = paths[i].size() - 1;
+    while (last > 0 && paths[i][last - 1] == paths[i][last]) --last;
+    for (std::size_t t = 0; t <= last; ++t) rp.steps.push_back({paths[i][t], double(t), robot + 1});
+    plan.paths.push_back(std::move(rp));
+  }
+  return plan;
+}
+
 std::string to_smart_plan_text(const grid::Plan& plan) {
   std::ostringstream s;
   s << "# axis: xy\n";  // read back without --axis (monitor/plan_reader.hpp)

@@ -65,16 +65,18 @@ TEST(Spec, PlannerAndCommandPlans) {
 TEST(Spec, TheBuiltInPlannerTakesAnAlgorithmThatNamesItsPlans) {
   const auto s = parse_spec(
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n"
-      "plans: [{planner: builtin}, {planner: builtin, algorithm: pibt}]\n",
+      "plans: [{planner: builtin}, {planner: builtin, algorithm: pibt}, "
+      "{planner: builtin, algorithm: lacam}]\n",
       "p.yaml");
-  ASSERT_EQ(s.plans.size(), 2u);
+  ASSERT_EQ(s.plans.size(), 3u);
   EXPECT_EQ(s.plans[0].algorithm, "pp");
   EXPECT_EQ(s.plans[0].name, "builtin");
   EXPECT_EQ(s.plans[1].algorithm, "pibt");
   EXPECT_EQ(s.plans[1].name, "builtin-pibt");
+  EXPECT_EQ(s.plans[2].name, "builtin-lacam");
   const std::string head = "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\n";
-  expect_refused(head + "plan: {planner: builtin, algorithm: lacam}\n",
-                 "p.yaml:5: plan.algorithm: pp (prioritized planning) or pibt");
+  expect_refused(head + "plan: {planner: builtin, algorithm: cbs}\n",
+                 "p.yaml:5: plan.algorithm: pp (prioritized planning), pibt or lacam");
   expect_refused(head + "plan: {file: x.txt, algorithm: pibt}\n",
                  "only {planner: builtin} takes an algorithm");
 }

@@ -58,9 +58,9 @@ TEST(Generated, BuiltInPlannerPlansExecuteToSuccessOnEveryMapKind) {
 }
 
 // `smart plan --algorithm pibt`: PIBT's long plans (robots following each other, waits, pushes)
-// pass check-plan and execute to success with switchable passing orders; a bad algorithm is a
-// usage error naming the choices.
-TEST(Generated, PibtPlansExecuteWithSwitchablePassingOrders) {
+// pass check-plan and execute to success with switchable passing orders; so do LaCAM's, under
+// switchable-opt; a bad algorithm is a usage error naming the choices.
+TEST(Generated, PibtAndLacamPlansExecuteWithSwitchablePassingOrders) {
   const auto map = temp_file("pibt.map").string(), scen = temp_file("pibt.scen").string(),
              plan = temp_file("pibt.plan").string();
   ASSERT_EQ(run_smart({"gen-map", "random", "--width", "16", "--height", "16", "--obstacles", "0.1",
@@ -73,22 +73,29 @@ TEST(Generated, PibtPlansExecuteWithSwitchablePassingOrders) {
                 .code,
             0);
   const auto bad =
-      run_smart({"plan", "--map", map, "--scen", scen, "--algorithm", "lacam", "--out", plan}, 30s,
+      run_smart({"plan", "--map", map, "--scen", scen, "--algorithm", "cbs", "--out", plan}, 30s,
                 "pibt", true);
   EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.out.find("'lacam' is not one of pp|pibt"), std::string::npos) << bad.out;
-  const auto p = run_smart(
-      {"plan", "--map", map, "--scen", scen, "--algorithm", "pibt", "--out", plan}, 60s, "pibt");
-  ASSERT_EQ(p.code, 0) << p.out;
-  EXPECT_EQ(p.last_json()["algorithm"], "pibt");
-  const auto r =
-      run_smart({"run", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy", "--execution",
-                 "switchable", "--domain", std::to_string(kPibtPlanRun), "--no-progress"},
-                120s, "pibt_run");
-  ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_TRUE(r.last_json()["success"].get<bool>());
-  EXPECT_EQ(r.last_json()["collisions"], 0);
-  EXPECT_EQ(r.last_json()["robots"], 30);
+  EXPECT_NE(bad.out.find("'cbs' is not one of pp|pibt|lacam"), std::string::npos) << bad.out;
+  // Planned by `algorithm`, run with `execution`: every robot home, no collision.
+  const auto plan_and_run = [&](const std::string& algorithm, const std::string& execution,
+                                int domain) {
+    const auto p =
+        run_smart({"plan", "--map", map, "--scen", scen, "--algorithm", algorithm, "--out", plan},
+                  60s, algorithm);
+    ASSERT_EQ(p.code, 0) << p.out;
+    EXPECT_EQ(p.last_json()["algorithm"], algorithm);
+    const auto r =
+        run_smart({"run", "--map", map, "--scen", scen, "--plan", plan, "--axis", "xy",
+                   "--execution", execution, "--domain", std::to_string(domain), "--no-progress"},
+                  120s, algorithm + "_run");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(r.last_json()["success"].get<bool>());
+    EXPECT_EQ(r.last_json()["collisions"], 0);
+    EXPECT_EQ(r.last_json()["robots"], 30);
+  };
+  plan_and_run("pibt", "switchable", kPibtPlanRun);
+  plan_and_run("lacam", "switchable-opt", kLacamPlanRun);
   for (const auto& f : {map, scen, plan}) std::filesystem::remove(f);
 }
 

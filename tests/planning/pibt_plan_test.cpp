@@ -4,9 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "smart/monitor/action_builder.hpp"
-#include "smart/monitor/adg.hpp"
-#include "smart/monitor/plan_reader.hpp"
+#include "planning/plan_checks.hpp"
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/planning/generators.hpp"
 
@@ -17,22 +15,7 @@ using namespace grid;  // the vocabulary the planners work in
 
 void expect_valid(const Grid& g, std::size_t robots, uint64_t seed, const char* what) {
   const auto scen = generate_scenario(g, robots, seed, what);
-  const auto r = plan_pibt(g, scen, {seed});
-  ASSERT_TRUE(r.solved) << what << ": " << r.error;
-  const auto problems = monitor::validate_plan(r.plan, g, &scen);
-  ASSERT_TRUE(problems.empty()) << what << ": " << problems[0].to_string();
-  for (std::size_t i = 0; i < robots; ++i) {
-    EXPECT_EQ(r.plan.paths[i].steps.back().cell, scen.agents[i].goal) << what << " robot " << i;
-  }
-  // Its text reads back and builds an acyclic ADG (on half cells: PIBT's robots follow each
-  // other and move round cycles, SMART §IV-B).
-  const auto back =
-      monitor::parse_plan(to_smart_plan_text(r.plan), what, {PlanFormat::kAuto, std::nullopt});
-  const auto actions = monitor::build_actions(back);
-  std::vector<Problem> adg_problems;
-  const auto adg = monitor::build_adg(actions, g, what, adg_problems);
-  EXPECT_TRUE(adg_problems.empty());
-  EXPECT_TRUE(monitor::check_acyclic(adg, actions, what).empty());
+  expect_valid_plan(g, scen, plan_pibt(g, scen, {seed}), what);
 }
 
 TEST(PibtPlan, EveryRobotEndsOnItsGoalOnOpenMaps) {
@@ -43,9 +26,7 @@ TEST(PibtPlan, EveryRobotEndsOnItsGoalOnOpenMaps) {
 TEST(PibtPlan, IsTheSamePlanForTheSameSeed) {
   const auto g = generate_random_map(24, 24, 0.1, 5);
   const auto scen = generate_scenario(g, 60, 5, "random");
-  const auto a = to_smart_plan_text(plan_pibt(g, scen, {5}).plan);
-  EXPECT_EQ(a, to_smart_plan_text(plan_pibt(g, scen, {5}).plan));
-  EXPECT_NE(a, to_smart_plan_text(plan_pibt(g, scen, {6}).plan)) << "the seed breaks ties";
+  expect_seeded([&](uint64_t seed) { return plan_pibt(g, scen, {seed}); }, 5);
 }
 
 TEST(PibtPlan, OnARingRobotsPassEachOtherAndPathsEndOnTheirLastMove) {

@@ -156,6 +156,7 @@ enum DomainId : int {
   kAdmissionListenerAttach = 79,
   kAdmissionLookupBeforeMade = 78,
   kSwitchableOptRun = 77,
+  kLacamPlanRun = 76,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

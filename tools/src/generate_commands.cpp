@@ -10,6 +10,7 @@
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/plan_validator.hpp"
 #include "smart/planning/generators.hpp"
+#include "smart/planning/lacam.hpp"
 #include "smart/planning/pibt_plan.hpp"
 #include "smart/planning/planner.hpp"
 #include "smart/planning/random_plan.hpp"
@@ -86,7 +87,8 @@ struct PlanOptions {
 };
 
 const EnumNames<PlanAlgorithm> kPlanAlgorithmNames{{"pp", PlanAlgorithm::kPrioritized},
-                                                   {"pibt", PlanAlgorithm::kPibt}};
+                                                   {"pibt", PlanAlgorithm::kPibt},
+                                                   {"lacam", PlanAlgorithm::kLacam}};
 
 }  // namespace
 
@@ -149,6 +151,11 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
     const auto t0 = std::chrono::steady_clock::now();
     r = planning::plan_pibt(g, scen, po);
     r.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } else if (algorithm == PlanAlgorithm::kLacam) {
+    planning::LacamOptions lo;
+    lo.seed = seed;
+    lo.time_limit_s = time_limit_s;
+    r = planning::plan_lacam(g, scen, lo);
   } else {
     planning::PlannerOptions po;
     po.seed = seed;
@@ -238,7 +245,9 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   add_enum_option(pl, "--algorithm", po->algorithm, kPlanAlgorithmNames,
                   "pp: prioritized planning, short plans (planner.hpp); pibt: PIBT alone, "
-                  "LaCAM's configuration generator, long plans with waits (pibt_plan.hpp)");
+                  "LaCAM's configuration generator, long plans with waits (pibt_plan.hpp); "
+                  "lacam: LaCAM's search over PIBT steps, complete where PIBT alone cycles "
+                  "(lacam.hpp)");
   pl->add_option("--seed", po->seed, "seed for priority orders (pp: after a failure)")
       ->capture_default_str();
   pl->add_option("--time-limit-s", po->time_limit_s, "give up after this many wall seconds")

@@ -23,6 +23,7 @@
 
 #include "smart/grid/grid.hpp"
 #include "smart/planning/goal_heuristic.hpp"
+#include "smart/planning/pibt_step.hpp"
 
 namespace smart::planning {
 
@@ -48,8 +49,6 @@ class Pibt {
   WindowPlan plan(const WindowRequest& request);
 
  private:
-  struct Step;
-  bool push(Step& s, uint32_t robot, int64_t asker);
   void check(const WindowRequest& request);
 
   const grid::Grid& grid_;
@@ -58,6 +57,7 @@ class Pibt {
   std::vector<double> priority_;  // kept across windows
   std::vector<double> tie_;       // each robot's tie-breaker in [0, 1)
   uint64_t calls_ = 0;
+  PibtStep step_;  // its cell tables are kept from window to window
 };
 
 }  // namespace smart::planning

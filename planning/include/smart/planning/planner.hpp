@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "smart/grid/grid.hpp"
 #include "smart/grid/plan.hpp"
@@ -34,6 +35,11 @@ struct PlannerResult {
 
 PlannerResult plan_prioritized(const grid::Grid& grid, const grid::Scenario& scen,
                                const PlannerOptions& o);
+
+// A plan from per-timestep paths (paths[robot][t], every path as long): a robot's trailing waits
+// on its last cell are dropped. `source` names the planner in errors.
+grid::Plan plan_from_timesteps(const std::vector<std::vector<grid::Cell>>& paths,
+                               const std::string& source);
 
 // SMART timed plan text: "# axis: xy", then "Agent i:(x,y,t)->...", x = column (the reader takes
 // the axis from that line; a reader that wants only Agent lines may need it removed).

@@ -41,7 +41,7 @@ int generate_map(MapKind kind, const std::string& out, const GenMapOptionsPublic
 int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
                   const std::string& out);
 // `smart plan`'s planners: prioritized planning (planner.hpp) or PIBT alone (pibt_plan.hpp).
-enum class PlanAlgorithm { kPrioritized, kPibt };
+enum class PlanAlgorithm { kPrioritized, kPibt, kLacam };
 int plan_instance(const std::string& map, const std::string& scen, std::size_t agents,
                   uint64_t seed, double time_limit_s, const std::string& out,
                   PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized);
