@@ -54,6 +54,7 @@ class Search {
       start_.push_back(a.start);
       goal_.push_back(a.goal);
     }
+    if (o.swap) step_.enable_swaps(goal_);
   }
 
   PlannerResult run(LacamStats& stats);

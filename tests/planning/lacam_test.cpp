@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "planning/plan_checks.hpp"
 #include "smart/grid/map_reader.hpp"
@@ -34,12 +36,21 @@ TEST(Lacam, SwapsTwoRobotsThroughAPocketWherePibtAloneCycles) {
   const auto s = swap_ends();
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     EXPECT_FALSE(plan_pibt(g, s, {seed, 16, 320}).solved) << "seed " << seed;
-    LacamStats stats;
-    const auto r = plan_lacam(g, s, {seed}, &stats);
-    expect_valid_plan(g, s, r, "pocket");
-    // One robot steps into the pocket and back out: the plan lasts at least 6 steps.
-    EXPECT_GE(std::max(r.plan.paths[0].steps.size(), r.plan.paths[1].steps.size()), 7u);
-    EXPECT_GT(stats.expansions, stats.configurations) << "the low-level search was needed";
+    for (const bool swap : {false, true}) {
+      LacamStats stats;
+      LacamOptions o;
+      o.seed = seed;
+      o.swap = swap;
+      const auto r = plan_lacam(g, s, o, &stats);
+      expect_valid_plan(g, s, r, swap ? "pocket, swap" : "pocket");
+      // One robot steps into the pocket and back out: the plan lasts at least 6 steps.
+      EXPECT_GE(std::max(r.plan.paths[0].steps.size(), r.plan.paths[1].steps.size()), 7u);
+      if (swap) {  // the robot ahead pulls the other into the pocket: no step taken back
+        EXPECT_EQ(stats.expansions + 1, stats.configurations) << "seed " << seed;
+      } else {  // plain PIBT steps lead back: the low-level search finds the way
+        EXPECT_GT(stats.expansions, stats.configurations) << "seed " << seed;
+      }
+    }
   }
 }
 
@@ -63,13 +74,17 @@ TEST(Lacam, AConfigurationBudgetEndsTheSearchWithAnError) {
   EXPECT_NE(r.error.find("memory budget reached after"), std::string::npos) << r.error;
 }
 
-TEST(Lacam, EveryRobotEndsOnItsGoalOnOpenMaps) {
+TEST(Lacam, EveryRobotEndsOnItsGoalOnOpenMapsAndInAMaze) {
   const auto random = generate_random_map(30, 30, 0.15, 2);
   expect_valid_plan(random, generate_scenario(random, 250, 2, "random"),
                     plan_lacam(random, generate_scenario(random, 250, 2, "random"), {2}), "random");
   const auto empty = generate_empty_map(16, 16);
   expect_valid_plan(empty, generate_scenario(empty, 150, 3, "empty"),
                     plan_lacam(empty, generate_scenario(empty, 150, 3, "empty"), {3}), "empty");
+  // One-wide corridors: robots pass each other only at forks (swaps, pibt_step.hpp).
+  const auto maze = generate_maze(21, 21, 1, 4);
+  expect_valid_plan(maze, generate_scenario(maze, 30, 4, "maze"),
+                    plan_lacam(maze, generate_scenario(maze, 30, 4, "maze"), {4}), "maze");
 }
 
 TEST(Lacam, IsTheSamePlanForTheSameSeed) {
@@ -78,15 +93,25 @@ TEST(Lacam, IsTheSamePlanForTheSameSeed) {
   expect_seeded([&](uint64_t seed) { return plan_lacam(g, scen, {seed}); }, 5);
 }
 
-TEST(Lacam, AThousandRobotsOfAMovingAiScenarioWherePibtAloneDoesNotFinish) {
+// The first `robots` of a MovingAI scenario from the shared benchmarks.
+std::pair<Grid, Scenario> benchmark(const std::string& name, std::size_t robots) {
   const auto dir = smart::test::benchmarks_dir();
-  const auto map = (dir / "maps/random-64-64-10.map").string();
-  const auto scen_file = (dir / "scens/random-64-64-10-random-1.scen").string();
-  const auto g = parse_map(read_text_file(map, "map"), map);
-  const auto scen = parse_scen(read_text_file(scen_file, "scenario"), scen_file, 1000);
-  ASSERT_EQ(scen.agents.size(), 1000u);
+  const auto map = (dir / "maps" / (name + ".map")).string();
+  const auto scen_file = (dir / "scens" / (name + "-random-1.scen")).string();
+  auto scen = parse_scen(read_text_file(scen_file, "scenario"), scen_file, robots);
+  EXPECT_EQ(scen.agents.size(), robots) << scen_file;
+  return {parse_map(read_text_file(map, "map"), map), std::move(scen)};
+}
+
+TEST(Lacam, AThousandRobotsOfAMovingAiScenarioWherePibtAloneDoesNotFinish) {
+  const auto [g, scen] = benchmark("random-64-64-10", 1000);
   EXPECT_FALSE(plan_pibt(g, scen, {1}).solved);
   expect_valid_plan(g, scen, plan_lacam(g, scen, {1}), "random-64-64-10, 1000 robots");
+}
+
+TEST(Lacam, AThousandRobotsInOneWideAislesWithSwaps) {
+  const auto [g, scen] = benchmark("warehouse-10-20-10-2-1", 1000);
+  expect_valid_plan(g, scen, plan_lacam(g, scen, {1}), "warehouse-10-20-10-2-1, 1000 robots");
 }
 
 TEST(Lacam, AScenarioThatDoesNotFitIsRefusedNamingTheRobot) {

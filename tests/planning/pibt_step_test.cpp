@@ -65,6 +65,33 @@ TEST(PibtStep, ARobotWhoseCellAFixedRobotTakesMovesOnOrReportsThatItCannot) {
   EXPECT_FALSE(boxed.step.plan(1, boxed.heur, boxed.rng));
 }
 
+TEST(PibtStep, WithSwapsARobotPullsTheOneOnItsGoalOutOfADeadEnd) {
+  // Robot 1 stands in the dead end (0, 0) that is robot 0's goal, and must get past robot 0 to
+  // (4, 0); the corridor forks at (3, 0). Plain PIBT steps leave both where they are; with swaps
+  // robot 0 steps back and pulls robot 1 after it, towards the fork.
+  const std::vector<std::string> rows{".....", "@@@.@"};
+  const std::vector<Cell> from{{1, 0}, {0, 0}}, goal{{0, 0}, {4, 0}};
+  Fixture plain(rows, from, goal);
+  EXPECT_TRUE(plain.step.plan(0, plain.heur, plain.rng));
+  EXPECT_EQ(plain.step.to(), from);
+  Fixture swapping(rows, from, goal);
+  swapping.step.enable_swaps(goal);
+  EXPECT_TRUE(swapping.step.plan(0, swapping.heur, swapping.rng));
+  EXPECT_EQ(swapping.step.to()[0], (Cell{2, 0}));
+  EXPECT_EQ(swapping.step.to()[1], (Cell{1, 0})) << "pulled into robot 0's cell";
+  EXPECT_TRUE(swapping.step.planned(1));
+}
+
+TEST(PibtStep, NoSwapWhereTheCorridorEndsBeforeAFork) {
+  // As above, but nothing forks: pulling would only push both into the other dead end.
+  const std::vector<std::string> rows{"....."};
+  const std::vector<Cell> from{{1, 0}, {0, 0}}, goal{{0, 0}, {4, 0}};
+  Fixture f(rows, from, goal);
+  f.step.enable_swaps(goal);
+  EXPECT_TRUE(f.step.plan(0, f.heur, f.rng));
+  EXPECT_EQ(f.step.to(), from);
+}
+
 TEST(PibtStep, EndForgetsTheStepSoTheNextBeginsClean) {
   Fixture f({"..."}, {{0, 0}, {2, 0}}, {{1, 0}, {2, 0}});
   ASSERT_TRUE(f.step.plan(0, f.heur, f.rng));

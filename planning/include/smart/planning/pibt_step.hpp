@@ -8,11 +8,17 @@
 // rng); a robot on the picked cell is asked to move first (priority inheritance) and, when it
 // cannot, the asker tries its next candidate (backtracking). A step never gives two robots one
 // next cell and never swaps two robots. end() forgets the step in O(robots), ready for begin().
+// With swaps on (LaCAM2's "PIBT with swap": Okumura, "Improving LaCAM for Scalable Eventually
+// Optimal Multi-Agent Pathfinding", IJCAI 2023, Section 4.2), a robot facing another robot in a
+// one-wide corridor that must be passed tries its candidates in reverse, away from it, and pulls
+// it into its own cell: over a few steps the two pass each other at the corridor's next fork,
+// where plain PIBT steps would push each other back and forth. No cell is ever swapped directly.
 // No clock, no I/O: deterministic for the same calls and rng.
 #pragma once
 
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "smart/grid/grid.hpp"
@@ -23,6 +29,10 @@ namespace smart::planning {
 class PibtStep {
  public:
   explicit PibtStep(const grid::Grid& grid);
+
+  // Turns swaps on for robots heading for `goals`; the heuristic given to plan() must then rank
+  // any free cell (TableHeuristic does: exact distances), not only a robot's neighbours.
+  void enable_swaps(std::vector<grid::Cell> goals) { goals_ = std::move(goals); }
 
   // Every robot's cell now: distinct free cells (the caller checked them).
   void begin(const std::vector<grid::Cell>& from);
@@ -39,11 +49,17 @@ class PibtStep {
 
  private:
   bool push(uint32_t robot, GoalHeuristic& heuristic, std::mt19937_64& rng);
+  int64_t swap_partner(uint32_t robot, grid::Cell best, GoalHeuristic& h) const;
+  bool swap_required(uint32_t pusher, uint32_t puller, grid::Cell v_pusher, grid::Cell v_puller,
+                     GoalHeuristic& h) const;
+  bool swap_possible(grid::Cell v_pusher, grid::Cell v_puller) const;
+  int corridor_step(grid::Cell at, grid::Cell behind, grid::Cell& ahead) const;
 
   const grid::Grid& grid_;
   std::vector<grid::Cell> from_, to_;
   std::vector<uint8_t> planned_;
   std::vector<int64_t> now_, next_;  // by cell index: the robot there now / going there next
+  std::vector<grid::Cell> goals_;    // per robot, when swaps are on (empty: off)
 };
 
 }  // namespace smart::planning
