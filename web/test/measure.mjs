@@ -8,6 +8,7 @@ import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
+import { launchBrowser } from './serve.mjs';
 
 const [exe, results, dist] = process.argv.slice(2);
 const work = mkdtempSync(path.join(tmpdir(), 'smart-measure-'));
@@ -18,8 +19,7 @@ const url = await new Promise((resolve) => {
   let text = '';
   server.stdout.on('data', (d) => { text += d; const m = text.match(/"listening":"([^"]+)"/); if (m) resolve(m[1]); });
 });
-const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+const browser = await launchBrowser(puppeteer);
 
 async function visit(page) {
   await page.goto(`${url}/?run=run-000001`);

@@ -6,13 +6,12 @@ import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
-import { startServer } from './serve.mjs';
+import { launchBrowser, startServer } from './serve.mjs';
 
 const [exe, results, out, dist, fraction = '0.3', robot = '0'] = process.argv.slice(2);
 const work = mkdtempSync(path.join(tmpdir(), 'smart-snapshot-'));
 const { server, url } = await startServer({ exe, dist, work, results, domain: '0' });
-const browser = await puppeteer.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+const browser = await launchBrowser(puppeteer);
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 800 });
