@@ -88,12 +88,14 @@ void Search::check() {
       throw std::invalid_argument(who + ": start " + grid::to_string(start_[i]) + " or goal " +
                                   grid::to_string(goal_[i]) + " is not a free cell");
     }
-    if (!at.emplace(grid_.index(start_[i]), i).second ||
-        !bound.emplace(grid_.index(goal_[i]), i).second) {
-      throw std::invalid_argument(who + " shares its start or its goal with robot " +
-                                  std::to_string(at.count(grid_.index(start_[i])) != 0
-                                                     ? at[grid_.index(start_[i])]
-                                                     : bound[grid_.index(goal_[i])]));
+    if (const auto [it, fresh] = at.emplace(grid_.index(start_[i]), i); !fresh) {
+      throw std::invalid_argument(who + " starts on " + grid::to_string(start_[i]) + " as robot " +
+                                  std::to_string(it->second) + " does");
+    }
+    if (const auto [it, fresh] = bound.emplace(grid_.index(goal_[i]), i); !fresh) {
+      throw std::invalid_argument(who + " has the goal " + grid::to_string(goal_[i]) +
+                                  " of robot " + std::to_string(it->second) +
+                                  ": goals must differ");
     }
     if (!heur_.aim(static_cast<uint32_t>(i), start_[i], goal_[i])) {
       throw std::invalid_argument(who + " at " + grid::to_string(start_[i]) +

@@ -130,7 +130,20 @@ TEST(Lacam, AScenarioThatDoesNotFitIsRefusedNamingTheRobot) {
       std::invalid_argument);
   Scenario shared;
   shared.agents = {{{0, 0}, {2, 1}, 3}, {{1, 0}, {2, 1}, 2}};
-  EXPECT_THROW(plan_lacam(g, shared, {1}), std::invalid_argument);
+  try {
+    plan_lacam(g, shared, {1});
+    ADD_FAILURE() << "two robots with one goal were planned";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "LaCAM: robot 1 has the goal (x=2,y=1) of robot 0: goals must differ");
+  }
+  Scenario one_start;
+  one_start.agents = {{{0, 0}, {2, 1}, 3}, {{0, 0}, {1, 1}, 2}};
+  try {
+    plan_lacam(g, one_start, {1});
+    ADD_FAILURE() << "two robots on one start were planned";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "LaCAM: robot 1 starts on (x=0,y=0) as robot 0 does");
+  }
 }
 
 }  // namespace
