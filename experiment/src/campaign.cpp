@@ -81,6 +81,21 @@ std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, co
   return {"/bin/sh", "-c", cmd};
 }
 
+// ": " and the last lines (up to kLines) a log has, joined by " | ", or nothing.
+std::string log_tail(const fs::path& log) {
+  constexpr std::size_t kLines = 3;
+  std::ifstream in(log);
+  std::deque<std::string> last;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    last.push_back(line);
+    if (last.size() > kLines) last.pop_front();
+  }
+  std::string out;
+  for (const auto& line : last) out += (out.empty() ? ": " : " | ") + line;
+  return out;
+}
+
 // The planner's wall seconds, kept beside its plan so a resumed campaign reports them too.
 std::optional<double> read_runtime(const fs::path& plan) {
   std::ifstream in(plan.string() + ".runtime_s");
@@ -102,15 +117,17 @@ std::pair<fs::path, std::optional<double>> make_plan(Campaign& c, const Cell& ce
   const auto& [map, scen] = c.files[cell.instance];
   if (!fs::exists(plan) || !read_runtime(plan)) {
     const auto t0 = Clock::now();
+    // stderr into the log too (dup'd after stdout's file is opened): the error the message
+    // points to is there (the log was empty when the planner refused with an error).
     const int rc = common::ChildProcess(plan_argv(c, source, map, scen, cell.agents, plan),
-                                        plan.string() + ".log")
+                                        plan.string() + ".log", {{STDOUT_FILENO, STDERR_FILENO}})
                        .wait(std::chrono::hours(24))
                        .value_or(-1);
     if (rc != 0 || !fs::exists(plan)) {
-      throw std::runtime_error("experiment: planner " + source.name + " on " +
-                               std::to_string(cell.agents) + " robots of " + scen.string() +
-                               " failed (exit code " + std::to_string(rc) + "); see " +
-                               plan.string() + ".log");
+      throw std::runtime_error(
+          "experiment: planner " + source.name + " on " + std::to_string(cell.agents) +
+          " robots of " + scen.string() + " failed (exit code " + std::to_string(rc) + ")" +
+          log_tail(plan.string() + ".log") + "; see " + plan.string() + ".log");
     }
     std::ofstream(plan.string() + ".runtime_s")
         << std::chrono::duration<double>(Clock::now() - t0).count() << "\n";

@@ -131,6 +131,23 @@ TEST_F(Campaign, APlannerCommandMakesThePlanThatIsRun) {
   EXPECT_TRUE(fs::exists(dir_ / "out" / "plans" / "0-n2.txt.runtime_s"));
 }
 
+// Regression (found 2026-11-27): a planner's error went to the terminal, and the log the
+// message pointed to was empty. Its last lines are in the message now, and in the log.
+TEST_F(Campaign, APlannerThatFailsIsNamedWithItsErrorAndNothingRuns) {
+  const auto spec = dir_ / "too-many.yaml";
+  std::ofstream(spec) << "name: many\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
+                      << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
+                      << "]\nagents: [5000]\nplan: {planner: builtin}\n";
+  const std::string said = "asked for 5000 agents but the file has 409; lower --agents";
+  EXPECT_THAT(
+      [&] { run(spec, kExperimentPlannerFails); },
+      ::testing::ThrowsMessage<std::runtime_error>(::testing::AllOf(
+          HasSubstr("planner builtin on 5000 robots of "), HasSubstr("(exit code 2): "),
+          HasSubstr(said), HasSubstr("; see " + (dir_ / "out/plans/0-n5000.txt.log").string()))));
+  EXPECT_THAT(slurp(dir_ / "out" / "plans" / "0-n5000.txt.log"), HasSubstr(said));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "results.csv"));  // no run
+}
+
 // Issue 28: a lifelong experiment runs `smart run --tasks random` per cell with its team size,
 // planner and seed, and the figures show throughput against team size and over time.
 TEST_F(Campaign, ALifelongExperimentMeasuresThroughputOverSeeds) {

@@ -157,6 +157,7 @@ enum DomainId : int {
   kAdmissionLookupBeforeMade = 78,
   kSwitchableOptRun = 77,
   kLacamPlanRun = 76,
+  kExperimentPlannerFails = 75,  // no run starts: the planner fails first
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
