@@ -160,7 +160,8 @@ TEST(SwitchableTracker, AnticipationLetsTheRobotExpectedSoonerPassFirst) {
   EXPECT_TRUE(plain.switches()->empty());
   EXPECT_EQ(plain.enqueued(0), 6u);
 
-  SwitchableTracker t(actions, passing_orders(actions, grid), SwitchOptions{.anticipate = true});
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.anticipate = true, .margin_s = 0.5});
   ASSERT_EQ(t.switches()->size(), 1u);
   const PassingSwitch& s = (*t.switches())[0];
   EXPECT_TRUE(s.anticipated);
@@ -186,7 +187,7 @@ TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
   const auto actions = build_actions(crossing(false), Heading::kEast);
   SwitchableTracker t(actions, passing_orders(actions, grid),
-                      SwitchOptions{.commit_actions = 2, .anticipate = true});
+                      SwitchOptions{.commit_actions = 2, .anticipate = true, .margin_s = 0.5});
   EXPECT_EQ(t.enqueued(0), 3u);  // its entry is three actions away: not decided yet
   t.on_progress(0, 0, 0.5);
   EXPECT_DOUBLE_EQ(t.durations().mean_s(ActionType::kMove), 0.5);
@@ -194,6 +195,38 @@ TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
   EXPECT_EQ(t.order_at(static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})))),
             (std::vector<uint32_t>{0, 1}));
   EXPECT_EQ(t.enqueued(0), 6u);  // decided: sent its way in, and the rest
+}
+
+// Regression (found 2026-11-27, 800-1000 robots on random-64-64-10 without delays: switchable-opt
+// without anticipation 1.5 % AET behind plain ADG): robot 2 crosses (2, 1) first, robot 0 (from the
+// north) is next, robot 1 (from the east) waits at the cell's edge. When robot 2 leaves, robot 0's
+// entry is due (two actions away), and anticipation keeps the order (its expected saving is under
+// the 10 s margin). First come, first served then took robot 0's due entry for robot 1 on the
+// saving alone, before robot 0 was sent it; plain switchable had sent it. Now it is committed.
+TEST(SwitchableTracker, AnEntryDueNowIsNotTakenByFirstComeFirstServed) {
+  const Grid grid(5, 4, std::vector<uint8_t>(20, 0));
+  const auto actions =
+      build_actions(plan_of({{{2, 0}, {2, 0}, {2, 0}, {2, 1}, {1, 1}},
+                             {{3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {2, 1}, {2, 2}},
+                             {{1, 1}, {2, 1}, {2, 2}, {2, 3}}}),
+                    Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.anticipate = true, .margin_s = 10.0});
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{2, 0, 1}));
+  t.on_progress(1, 0, 1.0);  // robot 1 turned west
+  t.on_progress(1, 1, 2.0);  // and stands at the cell's edge
+  EXPECT_FALSE(t.robot_done(1));
+  const uint32_t entry0 = t.enqueued(0);
+  for (int64_t seq = 0; seq < 7; ++seq) t.on_progress(2, seq, 1.0 + seq);  // crossed, left
+  EXPECT_TRUE(t.robot_done(2));
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{2, 0, 1}));
+  EXPECT_GT(t.enqueued(0), entry0);  // sent its way in
+  run_robot(t, 0, 6.0);
+  run_robot(t, 1, 8.0);
+  EXPECT_TRUE(t.complete());
+  EXPECT_TRUE(t.switches()->empty());
 }
 
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,

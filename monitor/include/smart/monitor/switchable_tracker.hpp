@@ -30,7 +30,8 @@
 // in a window of three stays, at no search cost but the deadlock check. Robots farther than
 // `horizon_actions` from the location are not expected (no switch for them). First come, first
 // served then also needs an expected saving (a ready robot within `horizon_actions` of a free
-// location passes a late one only when that saves waiting).
+// location passes a late one only when that saves waiting), and never takes an entry due now
+// (its robot within `commit_actions`, nothing to wait for): plain switching would have sent it.
 // Pure.
 #pragma once
 
@@ -95,6 +96,7 @@ class SwitchableTracker final : public Execution {
   bool finished_node(uint32_t node) const;
   bool finished_by(uint32_t robot, uint32_t node) const;
   bool sent_by(uint32_t robot, uint32_t node) const;
+  bool committed(uint32_t robot, uint32_t node) const;
   bool needs_commit(uint32_t node) const;
   bool advance(uint32_t robot);
   bool candidate(uint32_t robot) const;
