@@ -1,5 +1,6 @@
 #include "smart/experiment/campaign.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <tuple>
@@ -81,14 +83,22 @@ std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, co
   return {"/bin/sh", "-c", cmd};
 }
 
-// ": " and the last lines (up to kLines) a log has, joined by " | ", or nothing.
+// ": " and the last lines (up to kLines) of a log's last kBytes, each cut to its last kWidth
+// characters, joined by " | "; or nothing. Bounded: a planner may print anything, megabytes on
+// one line or binary, and the message only has to show how it ended.
 std::string log_tail(const fs::path& log) {
-  constexpr std::size_t kLines = 3;
-  std::ifstream in(log);
+  constexpr std::size_t kLines = 3, kBytes = 4096, kWidth = 240;
+  std::ifstream in(log, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg()));
+  const std::size_t from = size > kBytes ? size - kBytes : 0;
+  std::string text(size - from, '\0');
+  in.seekg(static_cast<std::streamoff>(from));
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   std::deque<std::string> last;
-  for (std::string line; std::getline(in, line);) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
     if (line.empty()) continue;
-    last.push_back(line);
+    last.push_back(line.size() > kWidth ? "..." + line.substr(line.size() - kWidth) : line);
     if (last.size() > kLines) last.pop_front();
   }
   std::string out;

@@ -148,6 +148,28 @@ TEST_F(Campaign, APlannerThatFailsIsNamedWithItsErrorAndNothingRuns) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "results.csv"));  // no run
 }
 
+// A planner's output is untrusted: one line of 50 000 characters, then failure. The message
+// shows how the line ended, cut to 240 characters; the log keeps all of it. (`# {plan}`: the
+// spec asks every command to name its plan file.)
+TEST_F(Campaign, AFailingPlannersFloodOfOutputIsCutInTheMessage) {
+  const auto spec = dir_ / "flood.yaml";
+  std::ofstream(spec)
+      << "name: flood\nmaps: [" << (b_ / "maps/random-32-32-20.map").string() << "]\nscens: ["
+      << (b_ / "scens/random-32-32-20-random-1.scen").string()
+      << "]\nagents: [2]\nplan: {command: \"yes x | head -c 100000 | "
+      << "tr -d '[:space:]' >&2; echo ' and then it ended' >&2; exit 3 # {plan}\"}\n";
+  std::string said;
+  try {
+    run(spec, kExperimentPlannerFloods);
+  } catch (const std::runtime_error& e) {
+    said = e.what();
+  }
+  EXPECT_THAT(said, HasSubstr("(exit code 3): ...xxxx"));
+  EXPECT_THAT(said, HasSubstr("xxxx and then it ended; see "));
+  EXPECT_LT(said.size(), 800u) << said.substr(0, 300);
+  EXPECT_EQ(fs::file_size(dir_ / "out" / "plans" / "0-n2.txt.log"), 50000u + 19u);
+}
+
 // Issue 28: a lifelong experiment runs `smart run --tasks random` per cell with its team size,
 // planner and seed, and the figures show throughput against team size and over time.
 TEST_F(Campaign, ALifelongExperimentMeasuresThroughputOverSeeds) {

@@ -158,6 +158,7 @@ enum DomainId : int {
   kSwitchableOptRun = 77,
   kLacamPlanRun = 76,
   kExperimentPlannerFails = 75,  // no run starts: the planner fails first
+  kExperimentPlannerFloods = 74,  // the same
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
