@@ -127,8 +127,11 @@ std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, dou
   }
   if (!window.replaced.empty())
     refuse(time_s, window.replaced + "; the fallback planner's window is used");
-  std::vector<uint32_t> before(adg_.robots());
-  for (uint32_t r = 0; r < before.size(); ++r) before[r] = adg_.end(r);
+  std::vector<uint32_t> before(adg_.robots()), sent(adg_.robots());
+  for (uint32_t r = 0; r < before.size(); ++r) {
+    before[r] = adg_.end(r);
+    sent[r] = adg_.enqueued(r);
+  }
   monitor::AppendStats st;
   const auto problems = adg_.append(window.paths, time_s, &st);
   if (!problems.empty()) {
@@ -142,7 +145,12 @@ std::vector<uint32_t> LifelongExecution::append(const PlannedWindow& window, dou
        std::to_string(st.actions) + " actions " + std::to_string(st.type2) + " type-2 edges"});
   std::vector<uint32_t> changed;
   for (uint32_t r = 0; r < before.size(); ++r) {
-    if (adg_.end(r) == before[r]) continue;
+    // A robot with new actions, or with an old one sent now: a held entry that the cut freed
+    // (its followers dropped), or, switchable-opt, a due entry decided at the append.
+    if (adg_.end(r) == before[r]) {
+      if (adg_.enqueued(r) != sent[r]) changed.push_back(r);
+      continue;
+    }
     changed.push_back(r);
     if (observer_ == nullptr) continue;
     for (uint32_t seq = before[r]; seq < adg_.end(r); ++seq) {

@@ -88,5 +88,35 @@ TEST(LifelongExecution, TheSmallestLorrExampleRunsSafely) {
   EXPECT_GT(r.tasks, 0u);
 }
 
+// Regression: with switching, a cut that drops the robots following a held entry frees it, and
+// the window's append sends it; the robot was left out of the robots the append reported when
+// the window gave it no new actions (it waits where it stands), so a monitor told it nothing
+// until its next event. Every robot whose sent actions grew at on_time is among the robots it
+// returns.
+TEST(LifelongExecution, ARobotSentAnActionWhenAWindowArrivesIsReported) {
+  const auto g = planning::generate_random_map(16, 16, 0.2, 5);
+  const auto starts = planning::random_starts(g, 40, 5);
+  LifelongOptions o;
+  o.duration_s = 60;
+  o.seed = 5;
+  o.switching = monitor::SwitchOptions{2};
+  LifelongExecution exec(g, starts, planning::generate_tasks(g, {}, 400, 1, 5), o);
+  test::IdealExecutor ex(g, exec, starts, o.seed, 0.3);
+  std::size_t advanced = 0;
+  for (int k = 0; !exec.complete(); ++k) {
+    const double t = 0.1 * k;
+    std::vector<uint32_t> before(exec.robots());
+    for (uint32_t r = 0; r < before.size(); ++r) before[r] = exec.enqueued(r);
+    const auto changed = exec.on_time(t, ex.sent(8));
+    for (uint32_t r = 0; r < before.size(); ++r) {
+      if (exec.enqueued(r) == before[r]) continue;
+      ++advanced;
+      EXPECT_TRUE(std::ranges::find(changed, r) != changed.end()) << "robot " << r << " t=" << t;
+    }
+    ex.tick(t);
+  }
+  EXPECT_GT(advanced, 0u);
+}
+
 }  // namespace
 }  // namespace smart::lifelong
