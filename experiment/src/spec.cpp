@@ -422,10 +422,6 @@ Spec parse_spec(std::string_view text, const std::string& src) {
     read_plan(root, src, s);
   }
   read_options(root, src, s);
-  if (s.lifelong && std::ranges::count(s.executions, "switchable-opt") > 0) {
-    fail(src, root["executions"], "executions",
-         "switchable-opt is for plan runs; lifelong runs: adg or switchable");
-  }
   read_uncertainty(root, src, s);
   return s;
 }

@@ -72,6 +72,11 @@ bool LiveAdg::advance(uint32_t r) {
   auto& rb = robots_[r];
   const uint32_t before = rb.enqueued;
   while (rb.enqueued < end(r) && node(r, rb.enqueued).pending == 0 && !held(r, rb.enqueued)) {
+    if (anticipating() && shared(r, rb.enqueued)) {
+      ahead_.insert(r);  // due: its place is decided before it is sent (try_switches)
+      break;
+    }
+    node(r, rb.enqueued).sent_s = now_s_;
     ++rb.enqueued;
   }
   return rb.enqueued != before;
@@ -113,6 +118,8 @@ LiveAdg::Update LiveAdg::on_progress(uint32_t robot, int64_t finished_seq, doubl
   u.result = ExecutionTracker::Result::kAdvanced;
   u.robots_changed.push_back(robot);
   const auto upto = static_cast<uint32_t>(finished_seq + 1);
+  now_s_ = std::max(now_s_, time_s);
+  if (anticipating()) observe(robot, upto, time_s);
   for (uint32_t s = rb.finished; s < upto; ++s) {
     finish(robot, s, u);
     const Action& a = rb.nodes.front().action;
@@ -386,10 +393,13 @@ std::vector<Problem> LiveAdg::append(const std::vector<std::vector<Cell>>& paths
   type2_total_ += edges.size();
   last_plan_time_s_ = t_end;
   window_start_ = t0;
+  now_s_ = std::max(now_s_, plan_time_s);
   for (uint32_t r = 0; r < robots_.size(); ++r) {
     advance(r);
     if (switching_) dirty_.insert(r);  // tried at the next progress (its time stamps a switch)
   }
+  std::vector<uint32_t> decided;  // sent to at once: the caller sends to robots that advanced
+  settle_due(plan_time_s, decided);
   if (stats) *stats = {acts.all.size(), edges.size()};
   return {};
 }

@@ -61,7 +61,9 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
 RunSupervisor::RunSupervisor(Execution& execution, const SupervisorConfig& config,
                              RunWriter& writer)
     : config_(config), writer_(writer), exec_(&execution) {
-  if (execution.switches() != nullptr) res_.execution = "switchable";
+  if (execution.switches() != nullptr) {
+    res_.execution = config.switch_options.anticipate ? "switchable-opt" : "switchable";
+  }
   init(execution.robots());
 }
 

@@ -484,14 +484,7 @@ double SwitchableTracker::expected_saving(uint32_t i, uint32_t j) const {
   const auto k = after(j);
   const bool with_k =
       k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot;
-  const double ak = with_k ? arrival(k.stay) : kInf;
-  // Waits of the two in this order, and k's: a queue at one location.
-  const auto waits = [&](double a1, double d1, double a2, double d2) {
-    const double e1 = std::max(a1, free_s), e2 = std::max(a2, e1 + d1);
-    const double wait_k = std::isfinite(ak) ? std::max(0.0, e2 + d2 - ak) : 0.0;
-    return (e1 - a1) + (e2 - a2) + wait_k;
-  };
-  return waits(ai, di, aj, dj) - waits(aj, dj, ai, di);
+  return queue_saving({free_s, {ai, di}, {aj, dj}, with_k ? arrival(k.stay) : kInf});
 }
 
 // `robot`'s next entry i is about to be sent: the stay j after it passes first when expected

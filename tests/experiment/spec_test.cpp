@@ -197,14 +197,11 @@ TEST(Spec, ExecutionsAreAnAxisOnTheSameSeeds) {
   ASSERT_EQ(lc.size(), 2u);
   EXPECT_EQ(lc[1].key, "0-m-n5-footbot-lan-switchable-r0");
   EXPECT_EQ(result_row(l, lc[1], nlohmann::json::object())["execution"], "switchable");
-  // Anticipation is for plan runs only (LiveAdg switches first come, first served).
-  try {
-    (void)parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable-opt]\n",
-                     "e.yaml");
-    ADD_FAILURE() << "a lifelong switchable-opt cell was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("e.yaml:4: executions: switchable-opt is for plan runs"));
-  }
+  // Lifelong runs anticipate too (LiveAdg, switchable-opt).
+  const auto lo = expand(parse_spec(
+      "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable-opt]\n", "e.yaml"));
+  ASSERT_EQ(lo.size(), 1u);
+  EXPECT_EQ(lo[0].execution, "switchable-opt");
 }
 
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace smart::monitor {
 namespace {
 
@@ -35,6 +37,18 @@ TEST(ActionDurations, FinishAddsMeansAndALateActionTakesOneMoreMean) {
   EXPECT_DOUBLE_EQ(d.finish_s(10.0, 5.0, queue), 10.0 + 2 + 1 + 2);  // late by 3 s
   EXPECT_DOUBLE_EQ(d.finish_s(10.0, -1, queue), 10.0 + 2 + 1 + 2);   // not started yet
   EXPECT_DOUBLE_EQ(d.finish_s(10.0, 9.0, {}), 10.0);
+}
+
+// The queue both switchable-opt executions compare: a free location, i expected at 5 s for 2 s,
+// j at 2 s for 2 s. i first: j waits 5 s (enters at 7); j first: i enters at 5, nobody waits.
+// A robot after them at 3 s waits for the later of the two to leave (9 s or 7 s).
+TEST(ActionDurations, QueueSavingComparesBothOrdersWaits) {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  EXPECT_DOUBLE_EQ(queue_saving({0, {5, 2}, {2, 2}, kNone}), 5);
+  EXPECT_DOUBLE_EQ(queue_saving({0, {2, 2}, {5, 2}, kNone}), -5);
+  EXPECT_DOUBLE_EQ(queue_saving({0, {5, 2}, {2, 2}, 3}), 5 + (6 - 4));
+  // The location frees only at 6 s: either order waits 7 s in all (1 + 6 or 4 + 3), no saving.
+  EXPECT_DOUBLE_EQ(queue_saving({6, {5, 2}, {2, 2}, kNone}), 0);
 }
 
 }  // namespace

@@ -43,6 +43,15 @@ struct LateRobotFixture {
   Paths window{{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {4, 1}},
                {{3, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 1}, {3, 2}}};
   LiveAdg adg{g, {{0, 1}, {3, 0}}, Heading::kEast};
+
+  // switchable-opt, entries sent `commit` actions ahead; the window appended at t = 0.
+  void anticipate(uint32_t commit, double margin_s = SwitchOptions{}.margin_s) {
+    SwitchOptions o{commit};
+    o.anticipate = true;
+    o.margin_s = margin_s;
+    adg.enable_switching(o);
+    ASSERT_TRUE(adg.append(window, 0).empty());
+  }
 };
 
 TEST(LiveAdgSwitching, TheReadyRobotPassesTheLateOneAndTheOrderFollows) {
@@ -88,6 +97,64 @@ TEST(LiveAdgSwitching, ASentEntryIsNeverPassed) {
   f.adg.on_progress(1, 0, 0.5);
   EXPECT_TRUE(f.adg.switches()->empty());
   EXPECT_EQ(f.adg.enqueued(1), 2u);
+}
+
+// switchable-opt: robot 0's way into (3,1) is due at once (entries sent 6 actions ahead). With
+// every action expected to take 1 s (nothing learned yet), robot 0 is expected at (3,1) at 5 s
+// and out at 7 s, robot 1 at 2 s and out at 4 s: robot 1 first saves 5 s of waiting, more than a
+// 1 s margin, so the order is switched before robot 0's entry is sent (anticipated, at the
+// append's time), where plain switching sends it (ASentEntryIsNeverPassed).
+TEST(LiveAdgAnticipation, ADueEntryIsPassedWhenThatIsExpectedToSaveMoreThanTheMargin) {
+  LateRobotFixture f;
+  f.anticipate(6, 1);
+  ASSERT_EQ(f.adg.switches()->size(), 1u);
+  const PassingSwitch s = f.adg.switches()->front();
+  EXPECT_DOUBLE_EQ(s.time_s, 0);
+  EXPECT_EQ(s.location, f.g.half_index(HalfCell::of({3, 1})));
+  EXPECT_EQ(s.first, 1u);
+  EXPECT_EQ(s.second, 0u);
+  EXPECT_TRUE(s.anticipated);
+  EXPECT_EQ(f.adg.enqueued(0), 5u);  // robot 0 waits for robot 1 to leave (3,1)
+  EXPECT_EQ(f.adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 3}}));
+  EXPECT_EQ(f.adg.enqueued(1), 5u);  // robot 1's entry was decided too: kept, and sent
+  f.adg.on_progress(1, 3, 2.0);
+  EXPECT_EQ(f.adg.enqueued(0), 8u);
+}
+
+// The same under the default 10 s margin: the order stays and robot 0's entry is sent.
+TEST(LiveAdgAnticipation, TheOrderStaysWhenTheSavingIsUnderTheMargin) {
+  LateRobotFixture f;
+  f.anticipate(6);
+  EXPECT_TRUE(f.adg.switches()->empty());
+  EXPECT_EQ(f.adg.enqueued(0), 8u);
+  EXPECT_EQ(f.adg.enqueued(1), 2u);
+}
+
+// Entries sent 2 actions ahead: robot 0 reports three actions at once (t = 0.1 s), so its way
+// into (3,1) is due in the same report that tries robot 1 (still dirty from the append). First
+// come, first served would pass it (robot 1 first is expected to save 0.2 s); a due entry is
+// anticipation's to decide, which keeps it under the 10 s margin (SwitchableTracker's
+// AnEntryDueNowIsNotTakenByFirstComeFirstServed, on the growing graph).
+TEST(LiveAdgAnticipation, AnEntryDueNowIsNotTakenByFirstComeFirstServed) {
+  LateRobotFixture f;
+  f.anticipate(2);
+  EXPECT_EQ(f.adg.enqueued(0), 5u);  // held: farther than 2 actions
+  f.adg.on_progress(0, 2, 0.1);
+  EXPECT_TRUE(f.adg.switches()->empty());
+  EXPECT_EQ(f.adg.enqueued(0), 8u);
+  EXPECT_EQ(f.adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 6}}));
+}
+
+// Far from a free location, first come, first served still passes a robot that is expected
+// late: robot 1 turned at 0.5 s, robot 0 is 5 actions from (3,1) and not due (entries 2 ahead).
+TEST(LiveAdgAnticipation, FirstComeFirstServedPassesWhenThatIsExpectedToSave) {
+  LateRobotFixture f;
+  f.anticipate(2);
+  f.adg.on_progress(1, 0, 0.5);
+  ASSERT_EQ(f.adg.switches()->size(), 1u);
+  EXPECT_FALSE(f.adg.switches()->front().anticipated);
+  EXPECT_EQ(f.adg.switches()->front().first, 1u);
+  EXPECT_EQ(f.adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 3}}));
 }
 
 // A switched order is the one the next window links behind: robot 2, planned into (3,1) after
@@ -184,7 +251,8 @@ struct StreamCase {
   double delay_p;
   uint32_t lookahead;
   int period;
-  uint32_t commit = 0;  // > 0: passing orders switch (entries sent this many actions ahead)
+  uint32_t commit = 0;      // > 0: passing orders switch (entries sent this many actions ahead)
+  bool anticipate = false;  // switchable-opt (margin 0.5 s: many anticipated switches)
 };
 
 // Random task streams on a cramped map, replanned every `period` ticks from the commit cut with
@@ -192,6 +260,8 @@ struct StreamCase {
 // robots ever hold one location, every action runs once, nothing deadlocks, a cut never strands
 // a robot, and tasks keep being done.
 // With switching on, the same must hold; returns the switches made.
+std::size_t anticipated_total = 0;  // anticipated switches of the streams run
+
 std::size_t run_stream(const StreamCase& c) {
   const auto g = planning::generate_random_map(16, 16, 0.2, c.seed);
   const std::size_t robots = 40;
@@ -201,7 +271,12 @@ std::size_t run_stream(const StreamCase& c) {
   planning::TableHeuristic tables(dist);
   planning::Pibt pibt(g, tables, c.seed);
   LiveAdg adg(g, starts, Heading::kEast);
-  if (c.commit > 0) adg.enable_switching({c.commit});
+  if (c.commit > 0) {
+    SwitchOptions o{c.commit};
+    o.anticipate = c.anticipate;
+    o.margin_s = 0.5;
+    adg.enable_switching(o);
+  }
   Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
   std::vector<std::size_t> task(robots);
   for (std::size_t r = 0; r < robots; ++r) task[r] = r;
@@ -229,6 +304,9 @@ std::size_t run_stream(const StreamCase& c) {
   EXPECT_EQ(ex.conflicts, 0u);
   EXPECT_EQ(executed, adg.finished_total());
   EXPECT_GT(reached, robots) << "the stream stalled";
+  if (c.anticipate)
+    anticipated_total +=
+        std::ranges::count_if(*adg.switches(), [](const auto& s) { return s.anticipated; });
   return adg.switches() ? adg.switches()->size() : 0;
 }
 
@@ -254,6 +332,25 @@ TEST(LiveAdgProperty, SwitchingStreamsStaySafeAndLive) {
     if (HasFailure()) return;
   }
   EXPECT_GT(switches, 100u);
+}
+
+// switchable-opt on the growing graph: the same streams with durations learned from the
+// executor's reports (ticks of 1 s, delays), robots up to 12 actions from their entry passing by
+// expected times and due entries decided before they are sent: the same safety and liveness, and
+// anticipated switches happen.
+TEST(LiveAdgProperty, AnticipatingStreamsStaySafeAndLive) {
+  std::size_t switches = 0;
+  anticipated_total = 0;
+  for (const StreamCase c :
+       {StreamCase{21, 0.3, 4, 3, 1, true}, StreamCase{22, 0.5, 2, 7, 2, true},
+        StreamCase{23, 0.2, 10, 1, 6, true}, StreamCase{24, 0.4, 0, 5, 1, true},
+        StreamCase{25, 0.6, 8, 2, 6, true}, StreamCase{26, 0, 4, 4, 2, true}}) {
+    SCOPED_TRACE("seed " + std::to_string(c.seed) + " commit " + std::to_string(c.commit));
+    switches += run_stream(c);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(switches, 100u);
+  EXPECT_GT(anticipated_total, 50u);
 }
 
 }  // namespace

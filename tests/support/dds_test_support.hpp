@@ -157,8 +157,9 @@ enum DomainId : int {
   kAdmissionLookupBeforeMade = 78,
   kSwitchableOptRun = 77,
   kLacamPlanRun = 76,
-  kExperimentPlannerFails = 75,  // no run starts: the planner fails first
+  kExperimentPlannerFails = 75,   // no run starts: the planner fails first
   kExperimentPlannerFloods = 74,  // the same
+  kSwitchableLifelongOpt = 73,    // the switchable-opt run of kSwitchableLifelong
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -188,8 +188,9 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.heuristic = l.heuristic;
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
-  if (o.execution == MonitorCliOptions::Execution::kSwitchable) {
+  if (o.execution != MonitorCliOptions::Execution::kAdg) {
     lo.switching = monitor::SwitchOptions{o.switch_commit_actions};
+    lo.switching->anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt;
   }
   return lo;
 }
@@ -222,11 +223,6 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
-  if (o.execution == MonitorCliOptions::Execution::kSwitchableOpt) {
-    throw std::invalid_argument(
-        "--execution switchable-opt: lifelong runs switch first come, first served only; use "
-        "--execution switchable (docs/execution.md)");
-  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "
@@ -401,7 +397,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
       lifelong_json(problem, o, exec, files, result.sim_time_s);
   if (!o.out.empty()) {
     std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
-    if (result.execution == "switchable") {
+    if (result.execution != "adg") {
       monitor::write_switches_csv(o.out, problem.grid, result.switches);
     }
   }

@@ -171,7 +171,7 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
                   "ready at a free location may pass before one that is late and was not sent "
                   "its way in yet; 'switchable-opt': also, a robot about to be sent its way into "
                   "a shared location yields its place when the next robot is expected to pass "
-                  "sooner (expected times learned in the run; one-shot runs; docs/execution.md)")
+                  "sooner (expected times learned in the run; docs/execution.md)")
       ->capture_default_str();
   cmd->add_option(
          "--switch-commit-actions", o.switch_commit_actions,

@@ -9,6 +9,8 @@
 // - finish_s(): now, a robot's current action's start and kinds of the actions to go: the
 //   current one ends at start + mean (a late one, already past it, is expected to take one more
 //   mean from now), each next one a mean later. Waits for other robots are not foreseen.
+// - queue_saving(): the expected waiting saved at one location when stay j passes stay i, the
+//   comparison both switchable-opt executions make (one-shot and lifelong).
 // Pure and deterministic: told the time, never reads a clock.
 #pragma once
 
@@ -35,5 +37,23 @@ class ActionDurations {
   std::array<double, 2> mean_s_{};
   std::array<uint32_t, 2> samples_{};
 };
+
+// Two robots' expected times at one location: when each arrives and how long it stays.
+struct ExpectedStay {
+  double arrive_s = 0;
+  double stay_s = 0;
+};
+
+// A location's queue: it frees at `free_s`, stay i then j (or j then i) pass, each entering when
+// it arrives and the one before has left; the next robot, expected at `next_arrive_s` (infinite:
+// none, or not expected), waits for the last of the two.
+struct PassQueue {
+  double free_s = 0;
+  ExpectedStay i, j;
+  double next_arrive_s = 0;
+};
+
+// The expected waiting (i's, j's and the next robot's) saved by the order j, i over i, j.
+double queue_saving(const PassQueue& q);
 
 }  // namespace smart::monitor

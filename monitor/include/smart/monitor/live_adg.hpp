@@ -36,6 +36,18 @@
 // (the leaves' pass keys, by which a later window finds the last occupant) are exchanged, so the
 // next append links behind the order as it is now. Robots to try are those whose situation
 // changed, in id order: deterministic.
+//
+// switchable-opt (SwitchOptions::anticipate; switchable_tracker.hpp, "Anticipation", the same
+// rule on the growing graph): action durations are learned from the progress reports
+// (action_durations.hpp) and
+// - first come, first served reaches robots up to `horizon_actions` from their entry, and
+//   switches only when the pair's order j, i is expected to save waiting (queue_saving: i, j and
+//   the robot after j); it never takes an entry that is due (its robot within `commit_actions`,
+//   nothing to wait for);
+// - a due entry i is decided before it is sent: the robot j next at its location passes first
+//   when that is expected to save more than `margin_s`, under the same safety conditions.
+// Every due entry is decided before on_progress (or append) returns: none waits for a decision
+// between reports.
 #pragma once
 
 #include <boost/container/small_vector.hpp>
@@ -47,6 +59,7 @@
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/action_durations.hpp"
 #include "smart/monitor/execution.hpp"
 #include "smart/monitor/execution_tracker.hpp"
 #include "smart/monitor/ring.hpp"
@@ -126,6 +139,7 @@ class LiveAdg final : public Execution {
   const std::vector<PassingSwitch>* switches() const override {
     return switching_ ? &switches_ : nullptr;
   }
+  const ActionDurations& durations() const { return durations_; }
 
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
@@ -138,6 +152,7 @@ class LiveAdg final : public Execution {
     uint32_t stamp = 0;    // the deadlock search's visit mark
     NodeRef parent{};      // and the action it came from
     uint32_t pending = 0;  // unfinished Type-2 predecessors
+    double sent_s = 0;     // switchable-opt: when it was sent
     Refs in;               // unfinished Type-2 predecessors
     Refs out;              // Type-2 successors
   };
@@ -152,6 +167,7 @@ class LiveAdg final : public Execution {
     Heading done_heading = Heading::kEast;
     Cell tail_cell;  // after its last appended action
     Heading tail_heading = Heading::kEast;
+    double finished_s = 0;  // switchable-opt: when its last action finished
   };
   // A window's actions, robot by robot: robot r's are all[first[r] .. first[r + 1]).
   struct NewActions {
@@ -178,6 +194,10 @@ class LiveAdg final : public Execution {
   static void erase_ref(Refs& v, NodeRef x);
   // Switching (live_adg_switching.cpp).
   bool held(uint32_t r, uint32_t seq) const;
+  bool shared(uint32_t r, uint32_t seq) const;
+  bool anticipating() const { return switching_ && switching_->anticipate; }
+  bool due(NodeRef enter) const;
+  uint32_t reach() const;
   std::optional<uint32_t> next_move(uint32_t r, uint32_t after_seq) const;
   bool stays_before(uint32_t r, uint32_t seq, uint32_t location) const;
   bool comes_back(uint32_t r, uint32_t after_seq, uint32_t location) const;
@@ -192,6 +212,14 @@ class LiveAdg final : public Execution {
   void add_edge(NodeRef from, NodeRef to);
   void remove_edge(NodeRef from, NodeRef to);
   void swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave);
+  // switchable-opt (live_adg_anticipation.cpp).
+  void observe(uint32_t r, uint32_t upto, double time_s);
+  double finish_estimate(uint32_t r, uint32_t seq) const;
+  double arrival(NodeRef enter) const;
+  double expected_saving(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave) const;
+  bool anticipate(uint32_t i, double time_s, std::vector<uint32_t>& changed);
+  void decide(uint32_t r, std::vector<uint32_t>& changed);
+  void settle_due(double time_s, std::vector<uint32_t>& changed);
 
   const Grid& grid_;
   std::vector<Robot> robots_;
@@ -218,6 +246,12 @@ class LiveAdg final : public Execution {
   uint64_t epoch_ = 0;
   uint64_t truncations_ = 0;
   uint32_t stamp_ = 0;
+  // switchable-opt: learned durations, the latest time told, robots whose next entry is due and
+  // awaits its decision.
+  ActionDurations durations_;
+  double now_s_ = 0;
+  std::set<uint32_t> ahead_;
+  mutable std::vector<ActionType> types_;  // scratch
 };
 
 }  // namespace smart::monitor
