@@ -558,5 +558,32 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
                                std::to_string(kLifelongRandom) + " --run ll_nobody`"));
 }
 
+// Regression: a run without --out writes the sim's world files to a scratch folder, removed only
+// when the run ended normally; a run that threw (here: no external planner came) left
+// /tmp/smart-lifelong-<pid> behind, one per failing run of the suite.
+TEST(LifelongRun, AFailedRunWithoutOutLeavesNoScratchFolder) {
+  const auto scratch = temp_file("ll_scratch");
+  std::filesystem::create_directories(scratch);
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old != nullptr ? old : "";
+  setenv("TMPDIR", scratch.c_str(), 1);  // the child's temp_directory_path()
+  const auto r = lifelong({"--lifelong", maze_problem(), "--planner", "external",
+                           "--planner-wait-s", "0.2", "--run", "ll_scratch"},
+                          kLifelongScratch, "ll_scratch_run");
+  if (old != nullptr) {
+    setenv("TMPDIR", saved.c_str(), 1);
+  } else {
+    unsetenv("TMPDIR");
+  }
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("no planner announced itself"));
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::directory_iterator(scratch)) {
+    left.push_back(e.path().filename().string());
+  }
+  EXPECT_TRUE(left.empty()) << left.front();
+  std::filesystem::remove_all(scratch);
+}
+
 }  // namespace
 }  // namespace smart::test

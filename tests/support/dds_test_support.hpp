@@ -160,6 +160,7 @@ enum DomainId : int {
   kExperimentPlannerFails = 75,   // no run starts: the planner fails first
   kExperimentPlannerFloods = 74,  // the same
   kSwitchableLifelongOpt = 73,    // the switchable-opt run of kSwitchableLifelong
+  kLifelongScratch = 72,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_support.hpp"
+#include "temp_dir.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/agent/uncertainty.hpp"
 #include "smart/common/memory.hpp"
@@ -258,14 +259,12 @@ std::unique_ptr<PrivateRunKey> own_lifelong_run_key(MonitorCliOptions& o) {
   return own_run_key(o.sim);
 }
 
-// Where the sim child's world files go: the results folder, or a temp folder (returned, to be
-// removed after the run).
-std::optional<std::filesystem::path> place_world(MonitorCliOptions& o, const LifelongProblem& p) {
-  std::optional<std::filesystem::path> temp;
-  if (o.out.empty()) {
-    temp = std::filesystem::temp_directory_path() / ("smart-lifelong-" + std::to_string(getpid()));
-  }
-  write_world(p, temp ? *temp : std::filesystem::path(o.out), o.sim.world);
+// Where the sim child's world files go: the results folder, or a temp folder (returned: removed
+// when the run ends, however it ends; a name per pid was left behind by every run that threw).
+std::unique_ptr<TempDir> place_world(MonitorCliOptions& o, const LifelongProblem& p) {
+  std::unique_ptr<TempDir> temp;
+  if (o.out.empty()) temp = std::make_unique<TempDir>("smart-lifelong");
+  write_world(p, temp ? temp->path() : std::filesystem::path(o.out), o.sim.world);
   return temp;
 }
 
@@ -346,7 +345,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   const uint64_t seed = o.sim.seed.value_or(1);
   const auto problem = load_lifelong_problem(o.sim);
   apply_lorr_delays(problem, o.sim);
-  std::optional<std::filesystem::path> temp;
+  std::unique_ptr<TempDir> temp;
   if (spawn_sim) {
     temp = place_world(o, problem);
   } else if (!o.out.empty()) {
@@ -401,7 +400,6 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
       monitor::write_switches_csv(o.out, problem.grid, result.switches);
     }
   }
-  if (temp) std::filesystem::remove_all(*temp);
   std::cout << summary.dump(2) << std::endl;
   if (!result.success()) spdlog::error("run failed: {}", result.error);
   if (!result.success() && exec.stats().planner_max_ms > 500 * o.sim.timeout_s) {
