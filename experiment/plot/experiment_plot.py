@@ -21,6 +21,9 @@ Figures (each when its data exist):
   stalls           AET and success rate vs stall probability (when it varies)
   link             AET and success rate vs the link's delay to the hosts (when it varies)
   throughput       lifelong runs: throughput (tasks per minute) and mean task latency vs robots
+  paired           switching runs (issue 29): each run's change against plain ADG's run of the
+                   same cell and seed, in %: total waiting, and AET (plan runs) or tasks finished
+                   (lifelong runs); a line per switching execution, zero marked
   throughput_time  lifelong runs: tasks finished and the last minute's throughput over sim time
                    (each cell's throughput.csv, at every replanning), a panel per team size,
                    the band one standard deviation over the repeats
@@ -195,6 +198,8 @@ def draw_time_panel(ax, panel):
 def draw_panel(ax, panel, uniform_n):
     if panel.get("kind") == "time":
         return draw_time_panel(ax, panel)
+    if panel.get("kind") == "paired":
+        ax.axhline(0.0, color="0.5", linewidth=0.8)  # plain ADG
     xs, ys = [], []
     for s in panel["series"]:
         px = [p["x"] for p in s["points"]]
@@ -353,6 +358,51 @@ def sweep_figures(rows, out_dir, written, described):
                               xlabel), written, described)
 
 
+# What a switching run is paired with plain ADG's run by: everything of its cell but the
+# execution (and the commit distance, which plain ADG has not), and the seed.
+PAIR_KEYS = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock",
+             "replan_period_s", "repeat"]
+PAIRED_FIELDS = (("waiting_time_s.total", "paired.waiting_pct"), ("aet_s", "paired.aet_pct"),
+                 ("lifelong.tasks_finished", "paired.tasks_pct"))
+
+
+def paired_rows(rows):
+    """Each switching run with its change in % against plain ADG's run on the same cell and
+    seed (paired: the seed's own delays and tasks cancel out, which the spread of two means
+    hides). Runs without a plain twin are left out."""
+    plain = {tuple(r.get(k, "") for k in PAIR_KEYS): r for r in rows
+             if r.get("execution") == "adg"}
+    out = []
+    for r in rows:
+        base = plain.get(tuple(r.get(k, "") for k in PAIR_KEYS))
+        if r.get("execution", "adg") in ("", "adg") or base is None:
+            continue
+        d = dict(r)
+        for field, name in PAIRED_FIELDS:
+            v, b = number(r.get(field)), number(base.get(field))
+            d[name] = str(100.0 * (v / b - 1.0)) if v is not None and b else ""
+        out.append(d)
+    return out
+
+
+def paired_figure(rows, out_dir, written, described):
+    prows = paired_rows(rows)
+    if not prows:
+        return
+    lifelong = any(number(r.get("paired.tasks_pct")) is not None for r in prows)
+    metrics = [("paired.waiting_pct", "total waiting against plain ADG (%)"),
+               ("paired.tasks_pct", "tasks finished against plain ADG (%)") if lifelong
+               else ("paired.aet_pct", "AET against plain ADG (%)")]
+    lay = Layout(prows, "agents")
+    if "execution" not in lay.lines:
+        lay.lines.insert(0, "execution")
+    panels = lay.panels_for(prows, metrics, "robots")
+    for panel in panels:
+        panel["kind"] = "paired"
+    figure(out_dir, "paired", lay.title("Against plain ADG, paired by seed", prows), panels,
+           written, described)
+
+
 def lifelong_figures(results_dir, rows, out_dir, written, described):
     if not any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows):
         return
@@ -457,6 +507,7 @@ def main():
     robots_figures(rows, out_dir, written, described)
     planner_figure(rows, out_dir, written, described)
     sweep_figures(rows, out_dir, written, described)
+    paired_figure(rows, out_dir, written, described)
     lifelong_figures(results_dir, rows, out_dir, written, described)
     write_table(rows, out_dir, written)
     path = os.path.join(out_dir, "figures.json")

@@ -49,6 +49,8 @@ class ExperimentPlot(unittest.TestCase):
         for r in table:
             r["success_rate"] = "1" if r["success"] == "true" else "0"
         for name, fig in figures.items():
+            if name == "paired":  # derived from pairs of rows: test_paired_changes_...
+                continue
             for panel in fig["panels"]:
                 rows = table
                 if name == "planner_runtime":  # one per (map, scen, robots, plan)
@@ -138,6 +140,57 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("| plan | execution |", text)
         self.assertIn("| waiting (s) | switches |", text)
         self.assertIn("| 9000.5 ± 0.7 | 100.0 ± 0.0 |", text)
+
+    def test_paired_changes_against_plain_adg_are_each_seeds_own(self):
+        # Seed k's plain run waits 100 * n + 10 * k; switchable waits 10 % less on seed 0 and 30 %
+        # less on seed 1: paired -20 +- 14.1 %, where the means alone (1000 -> 805 at n = 10)
+        # would say -19.5 %. A switchable run without a plain twin (seed 2) is left out.
+        columns = COLUMNS + ["execution", "waiting_time_s.total"]
+        rows = []
+        for n in (10, 100):
+            for k in (0, 1):
+                plain = 100 * n + 10 * k
+                rows.append(row(agents=n, repeat=k, execution="adg",
+                                **{"waiting_time_s.total": plain, "aet_s": 200}))
+                rows.append(row(agents=n, repeat=k, execution="switchable",
+                                **{"waiting_time_s.total": plain * (0.9 - 0.2 * k),
+                                   "aet_s": 190 + 20 * k}))
+            rows.append(row(agents=n, repeat=2, execution="switchable",
+                            **{"waiting_time_s.total": 1, "aet_s": 1}))
+        for r in rows:
+            r["cell"] += "-" + r["execution"]
+        out, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        paired = figures["paired"]
+        self.assertTrue((out / "paired.pdf").is_file())
+        waiting, aet = paired["panels"]
+        self.assertEqual(waiting["ylabel"], "total waiting against plain ADG (%)")
+        self.assertEqual(aet["ylabel"], "AET against plain ADG (%)")
+        self.assertEqual(waiting["legend_title"], "execution")
+        self.assertEqual([s["label"] for s in waiting["series"]], ["switchable"])
+        for p in waiting["series"][0]["points"]:
+            self.assertEqual(p["n"], 2)
+            self.assertAlmostEqual(p["mean"], -20.0)
+            self.assertAlmostEqual(p["sd"], math.sqrt(200))
+        self.assertEqual([round(p["mean"], 9) for p in aet["series"][0]["points"]], [0.0, 0.0])
+        self.assertAlmostEqual(aet["series"][0]["points"][0]["sd"], math.sqrt(50))
+
+    def test_lifelong_pairs_show_tasks_finished_and_plan_runs_without_plain_have_none(self):
+        columns = COLUMNS + ["execution", "waiting_time_s.total", "lifelong.tasks_finished",
+                             "lifelong.throughput_per_min"]
+        rows = [row(agents=40, repeat=k, execution=e, **{
+            "waiting_time_s.total": 1000, "lifelong.throughput_per_min": 20,
+            "lifelong.tasks_finished": 100 if e == "adg" else 104 + k}) for k in (0, 1)
+            for e in ("adg", "switchable-opt")]
+        for r in rows:
+            r["cell"] += "-" + r["execution"]
+        _, figures, _ = self.plot(rows, columns)
+        tasks = figures["paired"]["panels"][1]
+        self.assertEqual(tasks["ylabel"], "tasks finished against plain ADG (%)")
+        self.assertEqual([s["label"] for s in tasks["series"]], ["switchable-opt"])
+        self.assertAlmostEqual(tasks["series"][0]["points"][0]["mean"], 4.5)
+        _, figures, _ = self.plot([r for r in rows if r["execution"] != "adg"], columns)
+        self.assertNotIn("paired", figures)
 
     def test_commit_distances_of_switchable_are_lines_of_their_own(self):
         columns = COLUMNS + ["execution", "switch_commit_actions", "waiting_time_s.total"]
