@@ -79,6 +79,11 @@ bool LiveAdg::advance(uint32_t r) {
     node(r, rb.enqueued).sent_s = now_s_;
     ++rb.enqueued;
   }
+  // Its next entry came up waiting for one robot: it may switch (tried in try_switches).
+  if (switching_ && rb.enqueued != before && rb.enqueued < end(r) &&
+      node(r, rb.enqueued).pending == 1) {
+    dirty_.insert(r);
+  }
   return rb.enqueued != before;
 }
 

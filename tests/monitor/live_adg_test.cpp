@@ -88,6 +88,33 @@ TEST(LiveAdgSwitching, PlanOrderWithoutSwitching) {
   EXPECT_EQ(f.adg.enqueued(1), 5u);
 }
 
+// Regression: a robot whose next entry comes up at another robot's report is tried then. Robot 1
+// waits at (2,0) for robot 2 to leave (3,0), then turns south into (3,1), planned after robot 0
+// (late, its entry 5 actions away; entries sent 3 actions ahead). Robot 2's report at t = 1
+// sends robot 1 up to that entry: robot 1 passes robot 0 at once, not only at its own next report.
+TEST(LiveAdgSwitching, AnEntryThatComesUpAtAnotherRobotsReportIsTriedThen) {
+  const auto g = open_map(5, 3);
+  LiveAdg adg(g, {{0, 1}, {2, 0}, {3, 0}}, Heading::kEast);
+  adg.enable_switching({3});
+  ASSERT_TRUE(adg.append({{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {4, 1}},
+                          {{2, 0}, {2, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 1}, {3, 2}},
+                          {{3, 0}, {4, 0}}},
+                         0)
+                  .empty());
+  ASSERT_EQ(adg.waits_for(1, 1), (std::vector<NodeRef>{{2, 0}}));  // into (3,0)
+  ASSERT_EQ(adg.action(1, 4).to, HalfCell::of({3, 1}));
+  ASSERT_EQ(adg.waits_for(1, 4), (std::vector<NodeRef>{{0, 6}}));
+  adg.on_progress(1, 0, 0.5);
+  EXPECT_TRUE(adg.switches()->empty());
+  EXPECT_EQ(adg.enqueued(1), 1u);
+  adg.on_progress(2, 0, 1.0);  // robot 2 left (3,0): robot 1 is sent up to (3,1)'s edge
+  ASSERT_EQ(adg.switches()->size(), 1u);
+  EXPECT_DOUBLE_EQ(adg.switches()->front().time_s, 1.0);
+  EXPECT_EQ(adg.switches()->front().first, 1u);
+  EXPECT_EQ(adg.enqueued(1), 7u);  // through (3,1) into (3,2)
+  EXPECT_EQ(adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 5}}));
+}
+
 // A robot already sent its way in keeps its turn, whoever is ready.
 TEST(LiveAdgSwitching, ASentEntryIsNeverPassed) {
   LateRobotFixture f;
