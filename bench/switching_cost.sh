@@ -6,6 +6,8 @@
 # deadlock search, anticipation, expected durations: what plain ADG does not do). Comparing
 # total CPU seconds cannot show a 5 % share (identical runs differ by ±0.7 s of 8.6 s); sampling
 # inside one run can.
+# With LIFELONG=1, the same for a lifelong run instead (LiveAdg's switching): 1000 robots on
+# that map, random single-errand tasks, LoRR-style delays (p = 0.01, 1-4 s), 120 sim s, seed 1.
 # Usage: bench/switching_cost.sh [REPEATS] [OUT_DIR] (SMART, SMART_BENCHMARKS, DOMAIN (92:
 # outside the tests' ids) override). Needs perf (Debian: linux-perf) and a kernel that lets
 # this user sample (kernel.perf_event_paranoid <= 1, or root).
@@ -17,24 +19,34 @@ bench=${SMART_BENCHMARKS:-../shared/benchmarks}
 command -v perf > /dev/null || { echo "switching_cost.sh: perf not found; install linux-perf" >&2; exit 2; }
 rm -rf "$out"
 mkdir -p "$out"
-switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::'
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
+tracker='(ExecutionTracker|SwitchableTracker|ActionDurations)::|queue_saving'
+run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
+  --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
+  --plan "$bench/smart-examples/scen_1_1000_paths.txt" --axis rowcol --agents 1000)
+if [ "${LIFELONG:-0}" = 1 ]; then
+  # monitor/src/live_adg_switching.cpp and live_adg_anticipation.cpp: all but the graph's growth
+  # and plain dispatch (advance, finish, on_progress, append, commit_cut, truncate).
+  switching='LiveAdg::(try_switches|try_switch|held|shared|due|reach|next_move|stays_before|comes_back|dirty_after_release|reaches|has_edge|still_refused|add_edge|remove_edge|swap_order|observe|finish_estimate|arrival|expected_saving|anticipate|decide|settle_due)|ActionDurations::|queue_saving'
+  tracker='(LiveAdg|ActionDurations)::|queue_saving'
+  run_args=(--tasks random --map "$bench/maps/warehouse-10-20-10-2-1.map" --agents 1000
+    --task-errands 1 --duration-s 120 --delay-probability 0.01 --delay-min-s 1 --delay-max-s 4
+    --seed 1)
+fi
 share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid: smart run's own)
   local pid
   pid=$(perf script -i "$1" -F pid 2> /dev/null | sort -n | head -1 | tr -d ' ')
   perf report -i "$1" --pid "$pid" --sort sym --stdio --percentage relative 2> /dev/null |
     grep '%' | grep -v '^#' |
-    awk -v sw="$switching" '{p = $1; sub("%", "", p)}
-      /(ExecutionTracker|SwitchableTracker|ActionDurations)::/ {t += p}
+    awk -v sw="$switching" -v tr="$tracker" '{p = $1; sub("%", "", p)}
+      $0 ~ tr {t += p}
       $0 ~ sw {s += p}
       END {printf "%.2f %.2f\n", t, s}'
 }
 for mode in adg switchable switchable-opt; do
   for i in $(seq 1 "$repeats"); do
     dir="$out/$mode-$i"
-    perf record -q -F 997 -o "$dir.data" -- "$smart" run \
-      --map "$bench/maps/warehouse-10-20-10-2-1.map" \
-      --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen" \
-      --plan "$bench/smart-examples/scen_1_1000_paths.txt" --axis rowcol --agents 1000 \
+    perf record -q -F 997 -o "$dir.data" -- "$smart" run "${run_args[@]}" \
       --execution "$mode" --out "$dir" --no-progress --domain "${DOMAIN:-92}" \
       > "$dir.out" 2> "$dir.err"
     echo "$mode $i $(share "$dir.data")" | tee -a "$out/shares.txt"
