@@ -112,14 +112,18 @@ void LiveAdg::decide(uint32_t r, std::vector<uint32_t>& changed) {
 void LiveAdg::settle_due(double time_s, std::vector<uint32_t>& changed) {
   std::size_t budget = 4 * robots_.size() + 16;
   while (!ahead_.empty()) {
-    const uint32_t r = *ahead_.begin();
-    ahead_.erase(ahead_.begin());
-    if (budget > 0) {
-      --budget;
-      if (anticipate(r, time_s, changed)) continue;
-    }
-    decide(r, changed);
+    const bool may_switch = budget > 0;
+    if (may_switch) --budget;
+    decide_due(pop_first(ahead_), may_switch, time_s, changed);
   }
+}
+
+// Robot r's due entry: passed by the robot after it (anticipation, when allowed; true), or sent.
+bool LiveAdg::decide_due(uint32_t r, bool may_switch, double time_s,
+                         std::vector<uint32_t>& changed) {
+  if (may_switch && anticipate(r, time_s, changed)) return true;
+  decide(r, changed);
+  return false;
 }
 
 }  // namespace smart::monitor

@@ -88,24 +88,21 @@ void LiveAdg::dirty_after_release(NodeRef target) {
 void LiveAdg::try_switches(double time_s, std::vector<uint32_t>& changed) {
   std::size_t budget = 4 * robots_.size() + 16;
   while ((!dirty_.empty() || !ahead_.empty()) && budget-- > 0) {
-    if (dirty_.empty()) {
-      const uint32_t r = *ahead_.begin();
-      ahead_.erase(ahead_.begin());
-      if (!anticipate(r, time_s, changed)) {
-        decide(r, changed);
-        continue;
-      }
-    } else {
-      const uint32_t r = *dirty_.begin();
-      dirty_.erase(dirty_.begin());
-      if (!try_switch(r, time_s, changed)) continue;
-    }
+    const bool switched = dirty_.empty() ? decide_due(pop_first(ahead_), true, time_s, changed)
+                                         : try_switch(pop_first(dirty_), time_s, changed);
+    if (!switched) continue;
     for (uint32_t other = 0; other < refused_.size(); ++other) {
       if (refused_[other].valid) dirty_.insert(other);
     }
   }
   dirty_.clear();
   settle_due(time_s, changed);
+}
+
+uint32_t LiveAdg::pop_first(std::set<uint32_t>& robots) {
+  const uint32_t r = *robots.begin();
+  robots.erase(robots.begin());
+  return r;
 }
 
 bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& changed) {

@@ -44,6 +44,8 @@ struct LateRobotFixture {
                {{3, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 0}, {3, 1}, {3, 2}}};
   LiveAdg adg{g, {{0, 1}, {3, 0}}, Heading::kEast};
 
+  uint32_t at_3_1() const { return static_cast<uint32_t>(g.half_index(HalfCell::of({3, 1}))); }
+
   // switchable-opt, entries sent `commit` actions ahead; the window appended at t = 0.
   void anticipate(uint32_t commit, double margin_s = SwitchOptions{}.margin_s) {
     SwitchOptions o{commit};
@@ -62,12 +64,7 @@ TEST(LiveAdgSwitching, TheReadyRobotPassesTheLateOneAndTheOrderFollows) {
   EXPECT_EQ(f.adg.enqueued(1), 2u);  // rotate south, half-move; entering waits for robot 0
   ASSERT_EQ(f.adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 6}}));
   f.adg.on_progress(1, 0, 0.5);  // robot 1 turned: it is ready, robot 0 far
-  ASSERT_EQ(f.adg.switches()->size(), 1u);
-  const PassingSwitch s = f.adg.switches()->front();
-  EXPECT_DOUBLE_EQ(s.time_s, 0.5);
-  EXPECT_EQ(s.location, f.g.half_index(HalfCell::of({3, 1})));
-  EXPECT_EQ(s.first, 1u);
-  EXPECT_EQ(s.second, 0u);
+  EXPECT_EQ(*f.adg.switches(), (std::vector<PassingSwitch>{{0.5, f.at_3_1(), 1, 0}}));
   EXPECT_EQ(f.adg.enqueued(1), 5u);
   EXPECT_EQ(f.adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 3}}));  // now behind robot 1
   f.adg.on_progress(0, 4, 1.0);
@@ -134,13 +131,7 @@ TEST(LiveAdgSwitching, ASentEntryIsNeverPassed) {
 TEST(LiveAdgAnticipation, ADueEntryIsPassedWhenThatIsExpectedToSaveMoreThanTheMargin) {
   LateRobotFixture f;
   f.anticipate(6, 1);
-  ASSERT_EQ(f.adg.switches()->size(), 1u);
-  const PassingSwitch s = f.adg.switches()->front();
-  EXPECT_DOUBLE_EQ(s.time_s, 0);
-  EXPECT_EQ(s.location, f.g.half_index(HalfCell::of({3, 1})));
-  EXPECT_EQ(s.first, 1u);
-  EXPECT_EQ(s.second, 0u);
-  EXPECT_TRUE(s.anticipated);
+  EXPECT_EQ(*f.adg.switches(), (std::vector<PassingSwitch>{{0, f.at_3_1(), 1, 0, true}}));
   EXPECT_EQ(f.adg.enqueued(0), 5u);  // robot 0 waits for robot 1 to leave (3,1)
   EXPECT_EQ(f.adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 3}}));
   EXPECT_EQ(f.adg.enqueued(1), 5u);  // robot 1's entry was decided too: kept, and sent

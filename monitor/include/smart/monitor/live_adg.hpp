@@ -139,7 +139,6 @@ class LiveAdg final : public Execution {
   const std::vector<PassingSwitch>* switches() const override {
     return switching_ ? &switches_ : nullptr;
   }
-  const ActionDurations& durations() const { return durations_; }
 
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
@@ -192,6 +191,7 @@ class LiveAdg final : public Execution {
   void insert(const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges);
 
   static void erase_ref(Refs& v, NodeRef x);
+  static uint32_t pop_first(std::set<uint32_t>& robots);
   // Switching (live_adg_switching.cpp).
   bool held(uint32_t r, uint32_t seq) const;
   bool shared(uint32_t r, uint32_t seq) const;
@@ -219,6 +219,7 @@ class LiveAdg final : public Execution {
   double expected_saving(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave) const;
   bool anticipate(uint32_t i, double time_s, std::vector<uint32_t>& changed);
   void decide(uint32_t r, std::vector<uint32_t>& changed);
+  bool decide_due(uint32_t r, bool may_switch, double time_s, std::vector<uint32_t>& changed);
   void settle_due(double time_s, std::vector<uint32_t>& changed);
 
   const Grid& grid_;

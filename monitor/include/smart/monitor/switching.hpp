@@ -33,6 +33,7 @@ struct PassingSwitch {
   uint32_t first = 0;        // the robot that was ready
   uint32_t second = 0;       // the robot that was meant to pass first
   bool anticipated = false;  // by expected times before `second` was sent (switchable-opt)
+  bool operator==(const PassingSwitch&) const = default;
 };
 
 }  // namespace smart::monitor
