@@ -25,15 +25,4 @@ double ActionDurations::finish_s(double now_s, double started_s,
   return t;
 }
 
-double queue_saving(const PassQueue& q) {
-  const auto waits = [&q](const ExpectedStay& first, const ExpectedStay& second) {
-    const double e1 = std::max(first.arrive_s, q.free_s);
-    const double e2 = std::max(second.arrive_s, e1 + first.stay_s);
-    const double next =
-        std::isfinite(q.next_arrive_s) ? std::max(0.0, e2 + second.stay_s - q.next_arrive_s) : 0.0;
-    return (e1 - first.arrive_s) + (e2 - second.arrive_s) + next;
-  };
-  return waits(q.i, q.j) - waits(q.j, q.i);
-}
-
 }  // namespace smart::monitor
