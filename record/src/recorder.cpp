@@ -169,20 +169,21 @@ void RunRecorder::write_fleet(double t_s, bool last) {
     writer_.write(pose_chs_[k], t, t, cdr_.write(fleet_.pose(options_.pose_robots[k], t_s)));
   }
   if (markers_ &&
-      (last || !last_markers_s_ || t_s - *last_markers_s_ >= options_.markers_period_s)) {
-    last_markers_s_ = t_s;
+      (last || !last_markers_ns_ || t - *last_markers_ns_ >= ns_of(options_.markers_period_s))) {
+    last_markers_ns_ = t;
     const auto snap = monitor::snapshot(in_->actions, in_->adg, *tracker_);
     writer_.write(markers_ch_, t, t, cdr_.write(markers_->message(snap, points_, t_s)));
   }
   fleet_written_ = true;
-  last_fleet_s_ = t_s;
+  last_fleet_ns_ = t;
 }
 
 void RunRecorder::state(const results::StateRow& row) {
   check_robot(row.robot, "a state row");
   if (have_time_ && row.t_s > time_s_) {
     // Every state of time_s_ is in: the fleet as it stood then.
-    if (!fleet_written_ || time_s_ - last_fleet_s_ >= options_.fleet_period_s) write_fleet(time_s_);
+    const bool due = ns_of(time_s_) - last_fleet_ns_ >= ns_of(options_.fleet_period_s);
+    if (!fleet_written_ || due) write_fleet(time_s_);
   }
   if (!have_time_ || row.t_s > time_s_) {
     drain(row.t_s, false);

@@ -178,12 +178,18 @@ test('a recorded run reads back with the ROS 2 ecosystem readers, equal to its r
   }
   // /smart/markers at most once a second of sim time, with a PoseArray, as the live plan view
   // draws it: the old waits cleared, each robot where the PoseArray has it, its goal; at the end
-  // every robot done (grey).
+  // every robot done (grey). A marker goes with the first PoseArray a second or more after the
+  // last marker, and with the last PoseArray. (Not one per second of the run: states lost on a
+  // loaded machine delay a marker, and the next is a second after it.)
   const markers = byTopic.get('/smart/markers');
   const posesAt = new Map(poses.map((p) => [p.logTime, p.msg]));
-  assert.ok(markers.length >= Math.floor(Number(poses[poses.length - 1].logTime) / 1e9));
-  for (let k = 1; k + 1 < markers.length; ++k) assert.ok(markers[k].logTime - markers[k - 1].logTime >= 1000000000n);
-  assert.equal(markers[markers.length - 1].logTime, poses[poses.length - 1].logTime);
+  const expected = [];
+  poses.forEach(({ logTime }, k) => {
+    const due = expected.length === 0 || logTime - expected[expected.length - 1] >= 1000000000n;
+    if (due || k + 1 === poses.length) expected.push(logTime);
+  });
+  assert.deepEqual(markers.map((m) => m.logTime), expected);
+  assert.ok(markers.length >= 10, 'a run of minutes has a marker array every second or so');
   for (const { logTime, msg } of markers) {
     assert.equal(msg.markers[0].action, 3);  // DELETEALL
     const robotsNs = msg.markers.filter((m) => m.ns === 'robots');

@@ -3,9 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "record/mcap_test_reader.hpp"
+#include "record_test_files.hpp"
 
 namespace smart::record {
 namespace {
@@ -75,6 +78,69 @@ TEST(RunRecorder, WritesTheFleetAtMostOncePerPeriod) {
     if (topic == "/smart/poses") fleet.push_back(t);
   }
   EXPECT_THAT(fleet, ::testing::ElementsAre(0, 1000, 2000, 3000));
+}
+
+// A sim clock summed in 0.1 s steps: 0.7 + 0.1 = 0.7999999999999999, 0.8 - 0.7 < 0.1 in doubles.
+std::vector<double> summed_clock(int steps) {
+  std::vector<double> t{0.0};
+  for (int k = 0; k < steps; ++k) t.push_back(t.back() + 0.1);
+  return t;
+}
+
+std::vector<uint64_t> times_of(const std::string& bytes, const std::string& topic) {
+  std::vector<uint64_t> out;
+  for (const auto& [name, t] : messages(bytes)) {
+    if (name == topic) out.push_back(t);
+  }
+  return out;
+}
+
+TEST(RunRecorder, RegressionFleetWritesWentMissingOnASummedClock) {
+  StringSink sink;
+  auto o = uncompressed();
+  o.fleet_period_s = 0.1;
+  RunRecorder rec(sink, o, 1, 0);
+  for (const double t : summed_clock(10)) rec.state(state(t, 0));
+  rec.finish();
+  EXPECT_THAT(times_of(sink.bytes(), "/smart/poses"),
+              ::testing::ElementsAre(0, 100, 200, 300, 400, 500, 600, 700, 800, 900, 1000));
+}
+
+// A 4x1 corridor, two robots one step each: the plan view's markers need an instance.
+monitor::Instance corridor(const std::filesystem::path& dir) {
+  std::ofstream(dir / "m.map") << "type octile\nheight 1\nwidth 4\nmap\n....\n";
+  std::ofstream(dir / "m.scen")
+      << "version 1\n0\tm.map\t4\t1\t1\t0\t2\t0\t1\n0\tm.map\t4\t1\t0\t0\t1\t0\t1\n";
+  std::ofstream(dir / "p.txt") << "Agent 0:(1,0,0)->(2,0,1)\nAgent 1:(0,0,0)->(1,0,1)\n";
+  monitor::InstanceOptions io;
+  io.map = dir / "m.map";
+  io.scen = dir / "m.scen";
+  io.plan = dir / "p.txt";
+  io.agents = 2;
+  io.read.axis = grid::AxisOrder::kXY;
+  return monitor::load_instance(io);
+}
+
+TEST(RunRecorder, WritesMarkersAtTheFirstFleetAPeriodAfterTheLastAndAtTheEnd) {
+  const auto dir = test::fresh_test_dir("smart_recorder_");
+  const auto in = corridor(dir);
+  StringSink sink;
+  auto o = uncompressed();
+  o.fleet_period_s = 0.1;
+  o.markers_period_s = 1.0;
+  RunRecorder rec(sink, o, 2, 0);
+  rec.plan_view(in, 1.0, 0.2);
+  auto clock = summed_clock(25);  // 0 .. 2.5 s
+  // States lost on the way (a keep-last link under load): none from 0.95 to 1.25 s, so the
+  // second marker comes at 1.3 s and the third a period after it, not on a 1 s grid.
+  std::erase_if(clock, [](double t) { return t > 0.95 && t < 1.25; });
+  for (const double t : clock) {
+    rec.state(state(t, 0));
+    rec.state(state(t, 1));
+  }
+  rec.finish();
+  EXPECT_THAT(times_of(sink.bytes(), "/smart/markers"), ::testing::ElementsAre(0, 1300, 2300, 2500));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(RunRecorder, NamespacesTheRosViewButNotTheRunsOwnTopics) {

@@ -106,8 +106,11 @@ class RunRecorder {
   CdrWriter cdr_;
   uint64_t order_ = 0;
   bool have_time_ = false, fleet_written_ = false;
-  double time_s_ = 0, last_fleet_s_ = 0;
-  std::optional<double> last_markers_s_;
+  double time_s_ = 0;
+  // The periods are counted in the file's own nanoseconds: a clock summed in steps of 0.1 s
+  // gives 0.8 - 0.7 < 0.1 in doubles, and the fleet at 0.8 s would go missing.
+  uint64_t last_fleet_ns_ = 0;
+  std::optional<uint64_t> last_markers_ns_;
 };
 
 }  // namespace smart::record
