@@ -139,7 +139,8 @@ TEST(RunRecorder, WritesMarkersAtTheFirstFleetAPeriodAfterTheLastAndAtTheEnd) {
     rec.state(state(t, 1));
   }
   rec.finish();
-  EXPECT_THAT(times_of(sink.bytes(), "/smart/markers"), ::testing::ElementsAre(0, 1300, 2300, 2500));
+  EXPECT_THAT(times_of(sink.bytes(), "/smart/markers"),
+              ::testing::ElementsAre(0, 1300, 2300, 2500));
   std::filesystem::remove_all(dir);
 }
 
