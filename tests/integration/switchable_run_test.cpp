@@ -1,6 +1,7 @@
 // `smart run --execution switchable` (issue 29) against plain ADG on the same delays: SMART's
 // warehouse plan, 100 robots, LoRR-style delay events (p = 0.01 per robot per 0.1 s, 1-4 s),
-// lock-step. Real processes and DDS on loopback, each run in its own domain.
+// lock-step; and a two-robot crossing where one delayed robot is passed, with exact numbers.
+// Real processes and DDS on loopback, each run in its own domain.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -162,6 +163,84 @@ TEST_F(SwitchableRun, SwitchableOptCutsWaitingUnderDelaysWithoutCollisions) {
   const double plain_wait = plain["waiting_time_s"]["total"].get<double>();
   const double wait = opt["waiting_time_s"]["total"].get<double>();
   EXPECT_LT(wait, 0.90 * plain_wait) << "plain " << plain_wait << " s, opt " << wait << " s";
+}
+
+// The regression run with exact numbers: two robots cross cell (2, 1) of a 4 x 3 room, robot 0
+// planned first (at step 2) and robot 1 a step later, entries sent one action ahead. With the
+// delay events of seed 10 (p = 0.02 per robot per 0.1 s, 3 s each) robot 0 is held before the
+// crossing. Plain ADG keeps robot 1 at the cell's edge until robot 0 has passed: it waits 2.2 s
+// and finishes at 11.5 s. Switchable lets robot 1 pass first at t = 3.3 s: it finishes at 7.7 s,
+// as it does without delays, and robot 0, late anyway, at 9.6 s instead of 9.1 s. Lock-step and
+// sim ticks of 0.05 s make these numbers the same on every run and build.
+TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNumbers) {
+  const auto dir = temp_file("switch_crossing");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "m.map") << "type octile\nheight 3\nwidth 4\nmap\n....\n....\n....\n";
+  std::ofstream(dir / "m.scen") << "version 1\n0\tm.map\t4\t3\t0\t1\t3\t1\t3\n"
+                                   "0\tm.map\t4\t3\t2\t0\t2\t2\t2\n";
+  std::ofstream(dir / "p.txt") << "Agent 0:(0,1,0)->(1,1,1)->(2,1,2)->(3,1,3)\n"
+                                  "Agent 1:(2,0,0)->(2,0,1)->(2,0,2)->(2,1,3)->(2,2,4)\n";
+  const auto run = [&](const std::string& execution) {
+    const auto r = run_smart({"run",
+                              "--map",
+                              (dir / "m.map").string(),
+                              "--scen",
+                              (dir / "m.scen").string(),
+                              "--plan",
+                              (dir / "p.txt").string(),
+                              "--axis",
+                              "xy",
+                              "--agents",
+                              "2",
+                              "--domain",
+                              std::to_string(kSwitchableCrossing),
+                              "--delay-probability",
+                              "0.02",
+                              "--delay-min-s",
+                              "3",
+                              "--delay-max-s",
+                              "3",
+                              "--seed",
+                              "10",
+                              "--execution",
+                              execution,
+                              "--switch-commit-actions",
+                              "1",
+                              "--out",
+                              (dir / execution).string(),
+                              "--no-progress"},
+                             60s * kSlowdown, "switch_crossing_" + execution);
+    EXPECT_EQ(r.code, 0) << r.out;
+    const auto j = r.last_json();
+    EXPECT_EQ(j["collisions"], 0) << j.dump();
+    return j;
+  };
+  const auto plain = run("adg");
+  const auto sw = run("switchable");
+  EXPECT_NEAR(plain["aet_s"].get<double>(), 10.3, 1e-9);
+  EXPECT_NEAR(plain["makespan_s"].get<double>(), 11.5, 1e-9);
+  EXPECT_NEAR(plain["waiting_time_s"]["total"].get<double>(), 2.2, 1e-9);
+  EXPECT_EQ(sw["execution"]["switches"], 1);
+  EXPECT_NEAR(sw["aet_s"].get<double>(), 8.65, 1e-9);
+  EXPECT_NEAR(sw["makespan_s"].get<double>(), 9.6, 1e-9);
+  EXPECT_NEAR(sw["waiting_time_s"]["total"].get<double>(), 0.0, 1e-9);
+  // Robot 1 passed robot 0 at (2, 1).
+  EXPECT_EQ(slurp(dir / "switchable" / "switches.csv"), "time_s,x,y,first,second\n3.3,2,1,1,0\n");
+  // robots.csv: robot, finish, waiting, stops, actions (then the motion bound).
+  const auto rows = [&](const std::string& execution) {
+    std::ifstream in(dir / execution / "robots.csv");
+    std::string line, out;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::size_t cut = line.find(',');
+      for (int k = 0; k < 4; ++k) cut = line.find(',', cut + 1);
+      out += line.substr(0, cut) + ";";
+    }
+    return out;
+  };
+  EXPECT_EQ(rows("adg"), "0,9.1,0,0,6;1,11.5,2.2,1,5;");
+  EXPECT_EQ(rows("switchable"), "0,9.6,0,0,6;1,7.7,0,0,5;");
+  std::filesystem::remove_all(dir);
 }
 
 // A monitor taking over a run cannot know the switches made: refused, with the fix.

@@ -161,6 +161,7 @@ enum DomainId : int {
   kExperimentPlannerFloods = 74,  // the same
   kSwitchableLifelongOpt = 73,    // the switchable-opt run of kSwitchableLifelong
   kLifelongScratch = 72,
+  kSwitchableCrossing = 71,  // its plain and switchable runs, one after the other
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
