@@ -13,6 +13,7 @@
 
 #include "smart/common/steady_clock.hpp"
 #include "smart/convert/validate.hpp"
+#include "smart/dds/waitset.hpp"
 #include "smart/dds/wire.hpp"
 #include "smart/hw/pca9685.hpp"
 
@@ -93,6 +94,12 @@ std::vector<CheckRow> domain_checks(const DoctorSettings& s, const dds::QosProfi
     return seen && qos_known &&
            std::ranges::all_of(hosts, [](const auto& h) { return h.second.samples >= 2; });
   };
+  // Woken by arrivals, not polled: a sample's receive time is when it is taken, and a 20 ms
+  // poll added up to 20 ms to the clock offset + delay it measures, the WARN threshold itself
+  // (the monitor's own host was warned about on a loaded machine, CI).
+  dds::WaitSet arrivals(participant);
+  arrivals.attach_status(monitors.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+  arrivals.attach_status(states.handle(), DDS_DATA_AVAILABLE_STATUS, 2);
   const double start = steady_s();
   for (double now = start; now < start + s.listen_s || (now < start + s.wait_s && !settled());
        now = steady_s()) {
@@ -107,7 +114,7 @@ std::vector<CheckRow> domain_checks(const DoctorSettings& s, const dds::QosProfi
       heard_from(monitors, info, hosts);
     });
     hear_states(states, hosts, rejected);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    arrivals.wait(std::chrono::milliseconds(20));
   }
   std::vector<CheckRow> rows = host_rows(hosts);
   if (auto row = rejected_row(rejected)) rows.push_back(*row);
