@@ -1,9 +1,12 @@
 #include "smart/grid/lorr.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <queue>
+#include <type_traits>
 
 #include "smart/grid/text.hpp"
 #include "smart/grid/text_file.hpp"
@@ -35,6 +38,31 @@ json parse_json(std::string_view text, const std::string& source) {
   }
 }
 
+// Whether `v` converts to T exactly: nlohmann's get<integer> of a double, or of a whole number
+// out of T's range, is a plain cast, undefined behaviour past the range (libFuzzer, fuzz_lorr:
+// a delayConfig "seed" of 7.8e24). A double with a whole value in range (3.0) is taken.
+template <typename T>
+bool converts_exactly(const json& v) {
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    using L = std::numeric_limits<T>;
+    if (v.is_number_unsigned()) return v.get<uint64_t>() <= static_cast<uint64_t>(L::max());
+    if (v.is_number_integer()) {
+      const auto x = v.get<int64_t>();
+      if constexpr (L::is_signed) {
+        return x >= static_cast<int64_t>(L::min()) && x <= static_cast<int64_t>(L::max());
+      } else {
+        return x >= 0 && static_cast<uint64_t>(x) <= static_cast<uint64_t>(L::max());
+      }
+    }
+    if (v.is_number_float()) {
+      const double d = v.get<double>(), bound = std::ldexp(1.0, L::digits);  // exact: 2^digits
+      return std::isfinite(d) && d == std::trunc(d) && d < bound &&
+             d >= (L::is_signed ? -bound : 0);
+    }
+  }
+  return true;  // other kinds: get<T> throws for a wrong kind
+}
+
 // A required or optional field of a given JSON kind; problems go to `problems`.
 template <typename T>
 bool field(const json& j, const char* key, T& out, bool required, const std::string& source,
@@ -47,14 +75,16 @@ bool field(const json& j, const char* key, T& out, bool required, const std::str
     return false;
   }
   try {
-    out = it->get<T>();
-    return true;
+    if (converts_exactly<T>(*it)) {
+      out = it->get<T>();
+      return true;
+    }
   } catch (const json::exception&) {
-    problems.push_back(
-        {source, 0, -1,
-         std::string("\"") + key + "\" is " + excerpt(it->dump()) + "; it must be " + what});
-    return false;
   }
+  problems.push_back(
+      {source, 0, -1,
+       std::string("\"") + key + "\" is " + excerpt(it->dump()) + "; it must be " + what});
+  return false;
 }
 
 LorrDelayConfig parse_delay(const json& d, const std::string& source,

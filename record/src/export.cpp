@@ -7,6 +7,7 @@
 
 #include "recording_parts.hpp"
 #include "smart/agent/robot_model.hpp"
+#include "smart/grid/grid.hpp"
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/monitor/instance.hpp"
@@ -54,13 +55,24 @@ json read_summary(const fs::path& dir) {
                                 ": not found; give the results folder of a finished run "
                                 "(`smart run --out DIR`)");
   }
+  json s;
   try {
-    json s = json::parse(grid::read_text_file(p, "summary"));
-    (void)s.at(results::summary_key::kRobots).get<std::size_t>();
-    return s;
+    s = json::parse(grid::read_text_file(p, "summary"));
   } catch (const json::exception& e) {
     throw std::invalid_argument(p.string() + ": " + e.what() + "; it needs \"robots\" (a number)");
   }
+  // Checked before any get<size_t>: of a double that is a plain cast, undefined past its range,
+  // and of a negative number a huge fleet to allocate.
+  const auto robots = s.is_object() ? s.find(results::summary_key::kRobots) : s.end();
+  if (robots == s.end() || !robots->is_number_unsigned() ||
+      robots->get<uint64_t>() > static_cast<uint64_t>(grid::kMaxRobots)) {
+    throw std::invalid_argument(p.string() + ": \"robots\" is " +
+                                (robots == s.end() ? std::string("missing") : robots->dump()) +
+                                "; it must be the run's robot count, a whole number up to " +
+                                std::to_string(grid::kMaxRobots) +
+                                " (the summary.json `smart run --out` writes)");
+  }
+  return s;
 }
 
 std::string file_of(const json& summary, const char* key) {

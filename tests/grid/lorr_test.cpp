@@ -144,6 +144,23 @@ TEST(Lorr, SpecErrorsNameTheFieldAndTheFix) {
                                HasSubstr("eventModel \"often\" is unknown")));
 }
 
+// libFuzzer (fuzz_lorr): a "seed" of 7.8e24 was cast to an integer, undefined behaviour.
+TEST(Lorr, RegressionAWholeNumberPastItsTypeIsAProblemNotACast) {
+  const auto spec = [](const std::string& team, const std::string& seed) {
+    return parse_lorr_spec(R"({"mapFile":"m","agentFile":"a","taskFile":"t","teamSize":)" + team +
+                               R"(,"delayConfig":{"seed":)" + seed +
+                               R"(,"minDelay":1,"maxDelay":2,"pDelay":0.1}})",
+                           "p.json");
+  };
+  EXPECT_THAT(error_of([&] { spec("2", "7777777777777777777777777.0"); }),
+              HasSubstr("\"seed\" is 7.777777777777778e+24; it must be a whole number"));
+  EXPECT_THAT(error_of([&] { spec("2", "2.5"); }), HasSubstr("\"seed\" is 2.5"));
+  EXPECT_THAT(error_of([&] { spec("-3", "1"); }), HasSubstr("teamSize -3 must be 1.."));
+  EXPECT_THAT(error_of([&] { spec("1e300", "1"); }), HasSubstr("\"teamSize\" is 1e+300"));
+  // A whole value written as a double is still that number.
+  EXPECT_EQ(spec("2.0", "18446744073709551615").team_size, 2u);
+}
+
 TEST(Lorr, LsmartMapMarksWorkstationsAndEndpoints) {
   MapMarks marks;
   const auto g =

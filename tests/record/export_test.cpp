@@ -69,6 +69,20 @@ TEST_F(ExportMcap, AMissingMapOrSummaryIsNamedWithWhatToDo) {
   EXPECT_THAT(error_of(dir_ / "run.mcap"), HasSubstr("summary.json: not found"));
 }
 
+// "robots" was read with get<size_t>: 1e30 was a cast past its range (undefined), -1 a fleet of
+// 2^64 - 1 robots to allocate.
+TEST_F(ExportMcap, RegressionARobotCountThatIsNoWholeNumberIsNamedNotCast) {
+  for (const std::string bad : {"1e30", "-1", "2.5", "\"two\"", "20000000"}) {
+    write("summary.json", R"({"robots": )" + bad + "}");
+    EXPECT_THAT(error_of(dir_ / "run.mcap"),
+                ::testing::AllOf(HasSubstr("summary.json: \"robots\" is "),
+                                 HasSubstr("it must be the run's robot count")))
+        << bad;
+  }
+  write("summary.json", "[1]");
+  EXPECT_THAT(error_of(dir_ / "run.mcap"), HasSubstr("\"robots\" is missing"));
+}
+
 TEST_F(ExportMcap, APlanThatCannotBeReadAgainIsANoteNotAFailure) {
   write("summary.json",
         R"({"robots": 2, "files": {"map": ")" + (dir_ / "tiny.map").string() +
