@@ -177,6 +177,8 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
     argv.insert(argv.end(), execution.begin(), execution.end());
     const auto flags = uncertainty_flags(c.spec, cell);
     argv.insert(argv.end(), flags.begin(), flags.end());
+    const auto output = output_flags(c.spec);
+    argv.insert(argv.end(), output.begin(), output.end());
     return argv;
   }
   const auto& [map, scen] = c.files[cell.instance];
@@ -197,6 +199,8 @@ std::vector<std::string> run_argv(Campaign& c, const Cell& cell, int domain) {
   argv.insert(argv.end(), execution.begin(), execution.end());
   const auto flags = uncertainty_flags(c.spec, cell);
   argv.insert(argv.end(), flags.begin(), flags.end());
+  const auto output = output_flags(c.spec);
+  argv.insert(argv.end(), output.begin(), output.end());
   return argv;
 }
 

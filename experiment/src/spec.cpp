@@ -222,6 +222,19 @@ void read_commit_actions(const YAML::Node& root, const std::string& src, Spec& s
   }
 }
 
+double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
+                 double hi) {
+  double v = -1;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+  }
+  if (!(v >= lo && v <= hi)) {
+    fail(src, n, field, "a number from " + json(lo).dump() + " to " + json(hi).dump());
+  }
+  return v;
+}
+
 void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
   s.robots = strings(root, "robots", src, {"footbot"});
   s.qos = strings(root, "qos", src, {"lan"});
@@ -245,32 +258,23 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     if (k < 1 || k > 1000) fail(src, r, "repeats", "from 1 to 1000");
     s.repeats = static_cast<std::size_t>(k);
   }
+  if (const auto r = root["state_rate_hz"]) {
+    s.state_rate_hz = number_in(r, src, "state_rate_hz", 0, 1000);
+  }
   for (const auto& kv : root) {
     static const std::set<std::string> known{
-        "name",        "maps",     "scens",    "agents",     "plan",
-        "plans",       "robots",   "qos",      "clock",      "repeats",
-        "uncertainty", "lifelong", "planners", "executions", "switch_commit_actions"};
+        "name",         "maps",     "scens",    "agents",     "plan",
+        "plans",        "robots",   "qos",      "clock",      "repeats",
+        "uncertainty",  "lifelong", "planners", "executions", "switch_commit_actions",
+        "state_rate_hz"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
-           "clock, uncertainty, executions, switch_commit_actions, repeats (lifelong: lifelong, "
-           "agents, planners)");
+           "clock, uncertainty, executions, switch_commit_actions, repeats, state_rate_hz "
+           "(lifelong: lifelong, agents, planners)");
     }
   }
-}
-
-double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
-                 double hi) {
-  double v = -1;
-  try {
-    v = n.as<double>();
-  } catch (const YAML::Exception&) {
-  }
-  if (!(v >= lo && v <= hi)) {
-    fail(src, n, field, "a number from " + json(lo).dump() + " to " + json(hi).dump());
-  }
-  return v;
 }
 
 // planners: [{planner: builtin}, {name: x, command: "..."}] (a lifelong run's --planner-cmd).
@@ -476,6 +480,11 @@ std::vector<std::string> execution_flags(const Cell& c) {
     flags.insert(flags.end(), {"--switch-commit-actions", std::to_string(c.commit_actions)});
   }
   return flags;
+}
+
+std::vector<std::string> output_flags(const Spec& s) {
+  if (!s.state_rate_hz) return {};
+  return {"--state-rate-hz", json(*s.state_rate_hz).dump()};
 }
 
 std::vector<std::string> uncertainty_flags(const Spec& s, const Cell& c) {

@@ -21,6 +21,9 @@
 //                                     # (an axis for them; adg cells run once); default: its
 //                                     # default
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
+//   state_rate_hz: 0                  # `smart run --state-rate-hz` of every run (0: states.csv
+//                                     # holds each robot's final state only; a 1000-robot,
+//                                     # 300 s run's is 45 MB at the default); default: its default
 // A lifelong experiment (issue 28: tasks stream in; throughput is the measure) has a lifelong:
 // section instead of maps, scens and plan(s), and a planner axis of its own:
 //   lifelong:
@@ -78,6 +81,7 @@ struct Spec {
   std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
   std::vector<std::string> executions{"adg"};   // plan experiments: adg, switchable
   std::vector<uint32_t> switch_commit_actions;  // empty: `smart run`'s default
+  std::optional<double> state_rate_hz;          // none: `smart run`'s default
   std::size_t repeats = 1;
 };
 
@@ -105,6 +109,8 @@ std::vector<Cell> expand(const Spec& spec);
 std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
 // The `smart run` flags of a cell's execution (--execution, --switch-commit-actions).
 std::vector<std::string> execution_flags(const Cell& cell);
+// The `smart run` flags every run of the spec gets (--state-rate-hz).
+std::vector<std::string> output_flags(const Spec& spec);
 
 // One results row: the cell's parameters (plan: the planner's name; lifelong: replan_period_s),
 // the wall seconds its
