@@ -24,16 +24,8 @@ class LiveRecordingTest : public ::testing::Test {
   void SetUp() override {
     dir_ = test::fresh_test_dir("smart_live_");
     fs::create_directories(dir_ / "results");
-    write("m.map", "type octile\nheight 1\nwidth 4\nmap\n....\n");
-    write("m.scen", "version 1\n0\tm.map\t4\t1\t1\t0\t2\t0\t1\n0\tm.map\t4\t1\t0\t0\t1\t0\t1\n");
-    write("p.txt", "Agent 0:(1,0,0)->(2,0,1)->(2,0,2)\nAgent 1:(0,0,0)->(0,0,1)->(1,0,2)\n");
-    monitor::InstanceOptions io;
-    io.map = dir_ / "m.map";
-    io.scen = dir_ / "m.scen";
-    io.plan = dir_ / "p.txt";
-    io.agents = 2;
-    io.read.axis = grid::AxisOrder::kXY;
-    in_ = monitor::load_instance(io);
+    in_ = test::corridor_instance(
+        dir_, "Agent 0:(1,0,0)->(2,0,1)->(2,0,2)\nAgent 1:(0,0,0)->(0,0,1)->(1,0,2)\n");
     write(
         "results/summary.json",
         R"({"robots": 2, "cell_m": 1.0, "run_id": 9, "plan": {"axis": "xy"}, "files": {"map": ")" +

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 
 #include "record/mcap_test_reader.hpp"
@@ -106,24 +105,11 @@ TEST(RunRecorder, RegressionFleetWritesWentMissingOnASummedClock) {
               ::testing::ElementsAre(0, 100, 200, 300, 400, 500, 600, 700, 800, 900, 1000));
 }
 
-// A 4x1 corridor, two robots one step each: the plan view's markers need an instance.
-monitor::Instance corridor(const std::filesystem::path& dir) {
-  std::ofstream(dir / "m.map") << "type octile\nheight 1\nwidth 4\nmap\n....\n";
-  std::ofstream(dir / "m.scen")
-      << "version 1\n0\tm.map\t4\t1\t1\t0\t2\t0\t1\n0\tm.map\t4\t1\t0\t0\t1\t0\t1\n";
-  std::ofstream(dir / "p.txt") << "Agent 0:(1,0,0)->(2,0,1)\nAgent 1:(0,0,0)->(1,0,1)\n";
-  monitor::InstanceOptions io;
-  io.map = dir / "m.map";
-  io.scen = dir / "m.scen";
-  io.plan = dir / "p.txt";
-  io.agents = 2;
-  io.read.axis = grid::AxisOrder::kXY;
-  return monitor::load_instance(io);
-}
-
 TEST(RunRecorder, WritesMarkersAtTheFirstFleetAPeriodAfterTheLastAndAtTheEnd) {
   const auto dir = test::fresh_test_dir("smart_recorder_");
-  const auto in = corridor(dir);
+  // The plan view's markers need an instance: two robots, one step each.
+  const auto in =
+      test::corridor_instance(dir, "Agent 0:(1,0,0)->(2,0,1)\nAgent 1:(0,0,0)->(1,0,1)\n");
   StringSink sink;
   auto o = uncompressed();
   o.fleet_period_s = 0.1;
