@@ -172,9 +172,18 @@ void BM_ExecuteSwitchableOpt(benchmark::State& state) {
   });
 }
 
+// switchable-lookahead: anticipation comparing orders by every affected action's expected times.
+void BM_ExecuteSwitchableLookahead(benchmark::State& state) {
+  execute<SwitchableTracker>(state, [](const ActionPlan& a, const Adg& g) {
+    return SwitchableTracker(a, passing_orders(a, map("warehouse-10-20-10-2-1"), g.footprint),
+                             SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+  });
+}
+
 BENCHMARK(BM_ExecutePlainAdg)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExecuteSwitchable)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExecuteSwitchableOpt)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExecuteSwitchableLookahead)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_AdgRandomWalk, warehouse, std::string("warehouse-10-20-10-2-1"))
     ->Arg(100)

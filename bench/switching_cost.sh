@@ -1,9 +1,10 @@
 #!/bin/bash
 # The cost of switching passing orders (issue 29, docs/execution.md "Cost"): SMART's 1000-robot
-# warehouse plan run REPEATS times with each of --execution adg, switchable, switchable-opt under
-# `perf record`; for each run, the share of the monitor process's samples (all its threads) in
-# the execution tracker's functions, and in the switching functions alone (the tries, the
-# deadlock search, anticipation, expected durations: what plain ADG does not do). Comparing
+# warehouse plan run REPEATS times with each of --execution adg, switchable, switchable-opt and
+# switchable-lookahead under `perf record`; for each run, the share of the monitor process's
+# samples (all its threads) in the execution tracker's functions, and in the switching functions
+# alone (the tries, the deadlock search, anticipation, expected durations, the lookahead: what
+# plain ADG does not do). Comparing
 # total CPU seconds cannot show a 5 % share (identical runs differ by ±0.7 s of 8.6 s); sampling
 # inside one run can.
 # With LIFELONG=1, the same for a lifelong run instead (LiveAdg's switching): 1000 robots on
@@ -19,7 +20,7 @@ bench=${SMART_BENCHMARKS:-../shared/benchmarks}
 command -v perf > /dev/null || { echo "switching_cost.sh: perf not found; install linux-perf" >&2; exit 2; }
 rm -rf "$out"
 mkdir -p "$out"
-switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|cone_cost|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
 tracker='(ExecutionTracker|SwitchableTracker|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
@@ -43,7 +44,9 @@ share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid:
       $0 ~ sw {s += p}
       END {printf "%.2f %.2f\n", t, s}'
 }
-for mode in adg switchable switchable-opt; do
+modes=(adg switchable switchable-opt)
+[ "${LIFELONG:-0}" = 1 ] || modes+=(switchable-lookahead)  # plan runs only
+for mode in "${modes[@]}"; do
   for i in $(seq 1 "$repeats"); do
     dir="$out/$mode-$i"
     perf record -q -F 997 -o "$dir.data" -- "$smart" run "${run_args[@]}" \

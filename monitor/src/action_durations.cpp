@@ -19,10 +19,19 @@ void ActionDurations::observe(grid::ActionType type, double duration_s) {
 double ActionDurations::finish_s(double now_s, double started_s,
                                  std::span<const grid::ActionType> to_go) const {
   if (to_go.empty()) return now_s;
-  double t = started_s < 0 ? now_s + mean_s(to_go[0]) : started_s + mean_s(to_go[0]);
-  if (t < now_s) t = now_s + mean_s(to_go[0]);  // late: one more mean from now
-  for (std::size_t i = 1; i < to_go.size(); ++i) t += mean_s(to_go[i]);
-  return t;
+  Later later;
+  for (std::size_t i = 1; i < to_go.size(); ++i) {
+    ++(to_go[i] == grid::ActionType::kMove ? later.moves : later.rotations);
+  }
+  return finish_s(now_s, started_s, to_go[0], later);
+}
+
+double ActionDurations::finish_s(double now_s, double started_s, grid::ActionType current,
+                                 Later later) const {
+  double t = started_s < 0 ? now_s + mean_s(current) : started_s + mean_s(current);
+  if (t < now_s) t = now_s + mean_s(current);  // late: one more mean from now
+  return t + later.moves * mean_s(grid::ActionType::kMove) +
+         later.rotations * mean_s(grid::ActionType::kRotate);
 }
 
 }  // namespace smart::monitor

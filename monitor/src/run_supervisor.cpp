@@ -41,7 +41,7 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
                         passing_orders(instance.actions, instance.grid, instance.adg.footprint),
                         config.switch_options);
     exec_ = &*switchable_;
-    res_.execution = config.switch_options.anticipate ? "switchable-opt" : "switchable";
+    res_.execution = execution_name(config.switch_options);
   } else {
     tracker_.emplace(instance.actions, instance.adg);
     exec_ = &*tracker_;
@@ -62,7 +62,7 @@ RunSupervisor::RunSupervisor(Execution& execution, const SupervisorConfig& confi
                              RunWriter& writer)
     : config_(config), writer_(writer), exec_(&execution) {
   if (execution.switches() != nullptr) {
-    res_.execution = config.switch_options.anticipate ? "switchable-opt" : "switchable";
+    res_.execution = execution_name(config.switch_options);
   }
   init(execution.robots());
 }

@@ -59,6 +59,13 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   const std::size_t nodes = actions.actions.size();
   index_stays(stay_, nodes, true, enter_begin_, enter_stays_);
   index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
+  if (options_.anticipate) {
+    moves_before_.assign(nodes + 1, 0);
+    for (std::size_t n = 0; n < nodes; ++n) {
+      moves_before_[n + 1] =
+          moves_before_[n] + (actions.actions[n].type == grid::ActionType::kMove);
+    }
+  }
   for (uint32_t s = 0; s < count; ++s) {
     const auto b = before(s);
     if (b.edge && stay_[b.stay].leave != kNoAction && stay_[s].enter != kNoAction) {
@@ -269,7 +276,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   // thousands of switches a run). Passing a robot further back in the queue, before the
   // location is free, was tried and dropped: under 1 % less waiting at 200 robots, 2-3 % more
   // at 750 (docs/execution.md).
-  if (options_.anticipate && !(expected_saving(theirs, mine) > 0)) return false;
+  if (options_.anticipate && !(saving(theirs, mine) > 0)) return false;
   // Would deadlock: remembered with the path that shows it (valid while its Type-2 edges are:
   // nodes downstream of an unfinished entry stay unfinished), or, past the search budget, until
   // the next switch.
@@ -440,16 +447,17 @@ void SwitchableTracker::observe(uint32_t robot, uint32_t from, uint32_t upto, do
   finished_s_[robot] = time_s;
 }
 
-// When `robot` is expected to finish action `seq` (not finished yet).
+// When `robot` is expected to finish action `seq` (not finished yet): O(1), the kinds of the
+// actions between counted by prefix sums.
 double SwitchableTracker::finish_estimate(uint32_t robot, uint32_t seq) const {
   const uint32_t current = finished_[robot];
   if (seq < current) return now_s_;
   const uint32_t base = actions_.offset[robot];
-  types_.clear();
-  for (uint32_t s = current; s <= seq; ++s) types_.push_back(actions_.actions[base + s].type);
+  const uint32_t moves = moves_before_[base + seq + 1] - moves_before_[base + current + 1];
   const double started =
       enqueued_[robot] > current ? std::max(finished_s_[robot], sent_s_[base + current]) : -1.0;
-  return durations_.finish_s(now_s_, started, types_);
+  return durations_.finish_s(now_s_, started, actions_.actions[base + current].type,
+                             {moves, seq - current - moves});
 }
 
 // When a stay's robot is expected at the location: when it finishes the action before entering;
@@ -464,27 +472,38 @@ double SwitchableTracker::arrival(uint32_t stay) const {
   return finish_estimate(x.robot, seq - 1);
 }
 
-// Expected waiting saved by passing j before i: the location frees when h (before i) leaves;
-// each enters when it arrives and the one before has left, stays as long as it is expected to;
-// the stay k after j waits for the last of the two. i and j leave again (their stays have
-// edges). Infinite when i is far (j goes), minus infinite when j is.
-double SwitchableTracker::expected_saving(uint32_t i, uint32_t j) const {
+// The location's queue for stays i, j: it frees when h (before i) leaves; each enters when it
+// arrives and the one before has left, stays as long as it is expected to; the stay k after j
+// waits for the last of the two. i and j leave again (their stays have edges). An arrival is
+// infinite for a robot not expected yet (then the stays' lengths are not needed).
+PassQueue SwitchableTracker::queue_of(uint32_t i, uint32_t j) const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double ai = arrival(i), aj = arrival(j);
-  if (!std::isfinite(aj)) return -kInf;
-  if (!std::isfinite(ai)) return kInf;
-  const double di = finish_estimate(stay_[i].robot, actions_.actions[stay_[i].leave].seq) - ai;
-  const double dj = finish_estimate(stay_[j].robot, actions_.actions[stay_[j].leave].seq) - aj;
-  double free_s = now_s_;
+  PassQueue q{now_s_, {arrival(i), 0}, {arrival(j), 0}, kInf};
+  if (!std::isfinite(q.i.arrive_s) || !std::isfinite(q.j.arrive_s)) return q;
+  const auto stay_s = [this](uint32_t x, double arrive_s) {
+    return finish_estimate(stay_[x].robot, actions_.actions[stay_[x].leave].seq) - arrive_s;
+  };
+  q.i.stay_s = stay_s(i, q.i.arrive_s);
+  q.j.stay_s = stay_s(j, q.j.arrive_s);
   const auto h = before(i);
   if (h.stay != kNoAction && stay_[h.stay].leave != kNoAction &&
       !finished_by(stay_[h.stay].robot, stay_[h.stay].leave)) {
-    free_s = finish_estimate(stay_[h.stay].robot, actions_.actions[stay_[h.stay].leave].seq);
+    q.free_s = finish_estimate(stay_[h.stay].robot, actions_.actions[stay_[h.stay].leave].seq);
   }
   const auto k = after(j);
-  const bool with_k =
-      k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot;
-  return queue_saving({free_s, {ai, di}, {aj, dj}, with_k ? arrival(k.stay) : kInf});
+  if (k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot) {
+    q.next_arrive_s = arrival(k.stay);
+  }
+  return q;
+}
+
+// Expected waiting saved at the location by passing j before i (queue_of, queue_saving).
+// Infinite when i is far (j goes), minus infinite when j is.
+double SwitchableTracker::expected_saving(const PassQueue& q) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(q.j.arrive_s)) return -kInf;
+  if (!std::isfinite(q.i.arrive_s)) return kInf;
+  return queue_saving(q);
 }
 
 // `robot`'s next entry i is about to be sent: the stay j after it passes first when expected
@@ -501,7 +520,7 @@ bool SwitchableTracker::anticipate(uint32_t robot, double time_s, std::vector<ui
     const Stay& second = stay_[j.stay];
     if (second.enter == kNoAction || second.leave == kNoAction) continue;
     if (pending_[second.enter] != 1) continue;  // j waits for more than i
-    if (expected_saving(i, j.stay) <= options_.margin_s) continue;
+    if (saving(i, j.stay) <= margin()) continue;
     std::vector<std::pair<uint32_t, uint32_t>> path;
     if (reaches(node, second.leave, stay_[i].leave, second.enter, path) != Reach::kNone) continue;
     switches_.push_back({time_s, location_[i], second.robot, robot, true});

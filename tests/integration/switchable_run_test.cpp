@@ -163,6 +163,19 @@ TEST_F(SwitchableRun, SwitchableOptCutsWaitingUnderDelaysWithoutCollisions) {
   const double plain_wait = plain["waiting_time_s"]["total"].get<double>();
   const double wait = opt["waiting_time_s"]["total"].get<double>();
   EXPECT_LT(wait, 0.90 * plain_wait) << "plain " << plain_wait << " s, opt " << wait << " s";
+  // switchable-lookahead (orders compared by the expected times of every action they affect),
+  // the same plan and delays after it on the same domain: clean, anticipated switches, and
+  // less waiting than plain ADG by more than 10 % (measured: 11.2 %, 9830 against 11 075 s, 61
+  // switches, 14 anticipated; switchable-opt 11.5 %).
+  const auto la_dir = temp_file("switch_lookahead");
+  const auto la = run(kSwitchableOptRun, "switchable-lookahead", la_dir);
+  EXPECT_TRUE(la["success"].get<bool>()) << la.dump();
+  EXPECT_EQ(la["collisions"], 0);
+  EXPECT_EQ(la["finished_actions"], la["total_actions"]);
+  EXPECT_EQ(la["execution"]["mode"], "switchable-lookahead");
+  EXPECT_GT(la["execution"]["anticipated"].get<std::size_t>(), 0u) << la["execution"];
+  const double la_wait = la["waiting_time_s"]["total"].get<double>();
+  EXPECT_LT(la_wait, 0.90 * plain_wait) << "plain " << plain_wait << " s, lookahead " << la_wait;
 }
 
 // The regression run with exact numbers: two robots cross cell (2, 1) of a 4 x 3 room, robot 0

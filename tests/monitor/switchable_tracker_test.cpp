@@ -229,6 +229,65 @@ TEST(SwitchableTracker, AnEntryDueNowIsNotTakenByFirstComeFirstServed) {
   EXPECT_TRUE(t.switches()->empty());
 }
 
+// switchable-lookahead: the crossing of the tests above, robot 0 coming from farther west and
+// going on east to (8, 1), where robots 2, 3 and 4, waiting south of (5, 1), (6, 1) and (7, 1),
+// are planned to cross its row right after it. Every action expected to take 1 s: at (2, 1)
+// robot 1 passing first saves itself 3 s and costs robot 0 1 s (the queue at the location: a
+// saving of 2 s, anticipated by switchable-opt with a 0.5 s margin), but robot 0's second later
+// holds robots 2, 3 and 4 a second each: the lookahead sees -1 s and keeps the order.
+Plan crossing_with_followers() {
+  std::vector<Cell> zero;
+  for (int32_t x = 0; x <= 8; ++x) zero.push_back({x, 1});
+  std::vector<std::vector<Cell>> paths{zero, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 2}}};
+  for (int32_t x = 5; x <= 7; ++x) {
+    std::vector<Cell> up(static_cast<std::size_t>(x + 1), Cell{x, 2});
+    up.push_back({x, 1});
+    up.push_back({x, 0});
+    paths.push_back(up);
+  }
+  return plan_of(paths);
+}
+
+TEST(SwitchableTracker, LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLater) {
+  const Grid grid(9, 3, std::vector<uint8_t>(27, 0));
+  const auto actions = build_actions(crossing_with_followers(), Heading::kEast);
+  std::vector<Problem> problems;
+  const auto adg = build_adg(actions, grid, "test", problems);
+  ASSERT_TRUE(problems.empty());
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker local(actions, passing_orders(actions, grid),
+                          SwitchOptions{.anticipate = true, .margin_s = 0.5});
+  ASSERT_EQ(local.switches()->size(), 1u);
+  EXPECT_EQ(local.order_at(cell), (std::vector<uint32_t>{1, 0}));
+
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
+  EXPECT_GT(t.enqueued(0), 3u);  // decided: sent its way in (seq 3)
+  EXPECT_EQ(t.enqueued(1), 2u);  // robot 1 waits at the cell's edge
+  for (int round = 0; round < 10 && !t.complete(); ++round) {
+    for (uint32_t r = 0; r < 5; ++r) run_robot(t, r, 1.0 + round);
+  }
+  EXPECT_TRUE(t.complete());
+}
+
+// Without the followers the lookahead agrees with the location's queue: robot 1 passes first.
+TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+  ASSERT_EQ(t.switches()->size(), 1u);
+  EXPECT_TRUE((*t.switches())[0].anticipated);
+  EXPECT_EQ((*t.switches())[0].first, 1u);
+  EXPECT_EQ(t.order_at(static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})))),
+            (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(run_robot(t, 1, 4.0), 4);
+  run_robot(t, 0, 8.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
 // or the cells of it (both cells of an edge midpoint).
 std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
@@ -382,6 +441,29 @@ TEST(SwitchableTrackerProperty, AnticipatedSwitchesNeverCollideAndAlwaysFinish) 
     }
   }
   EXPECT_GT(anticipated, 200u) << "of " << switches << " switches";
+  EXPECT_GT(switches, anticipated) << "first come, first served still switches too";
+}
+
+// switchable-lookahead: the same guarantees when orders are compared by the expected times of
+// every action they affect (a swap that would close a cycle inside the compared actions is
+// expected to take for ever, and the deadlock search still decides).
+TEST(SwitchableTrackerProperty, LookaheadSwitchesNeverCollideAndAlwaysFinish) {
+  std::size_t switches = 0, anticipated = 0;
+  for (const auto footprint : {Footprint::kHalfCells, Footprint::kCells}) {
+    for (const uint32_t commit : {1u, 6u}) {
+      const SwitchOptions opt{.commit_actions = commit,
+                              .anticipate = true,
+                              .lookahead_actions = 24,
+                              .lookahead_margin_s = 0.05};
+      for (uint64_t seed = 1; seed <= 100; ++seed) {
+        const auto o = run_random(seed, footprint, opt);
+        switches += o.switches;
+        anticipated += o.anticipated;
+        if (HasFailure()) FAIL() << "seed " << seed << " commit " << commit;
+      }
+    }
+  }
+  EXPECT_GT(anticipated, 100u) << "of " << switches << " switches";
   EXPECT_GT(switches, anticipated) << "first come, first served still switches too";
 }
 

@@ -12,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include "run_support.hpp"
-#include "temp_dir.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "smart/agent/uncertainty.hpp"
 #include "smart/common/memory.hpp"
@@ -26,6 +25,7 @@
 #include "smart/tools/machine.hpp"
 #include "smart/tools/pipe_planner.hpp"
 #include "smart/wire/lockstep.hpp"
+#include "temp_dir.hpp"
 
 namespace smart::tools {
 
@@ -190,8 +190,7 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
   if (o.execution != MonitorCliOptions::Execution::kAdg) {
-    lo.switching = monitor::SwitchOptions{o.switch_commit_actions};
-    lo.switching->anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt;
+    lo.switching = switch_options(o);
   }
   return lo;
 }
@@ -224,6 +223,11 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) {
+    throw std::invalid_argument(
+        "--execution switchable-lookahead: lifelong runs do not look ahead yet (its graph "
+        "grows as windows come); use switchable-opt");
+  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "

@@ -165,13 +165,16 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
   static const EnumNames<MonitorCliOptions::Execution> kExecutionNames{
       {"adg", MonitorCliOptions::Execution::kAdg},
       {"switchable", MonitorCliOptions::Execution::kSwitchable},
-      {"switchable-opt", MonitorCliOptions::Execution::kSwitchableOpt}};
+      {"switchable-opt", MonitorCliOptions::Execution::kSwitchableOpt},
+      {"switchable-lookahead", MonitorCliOptions::Execution::kSwitchableLookahead}};
   add_enum_option(cmd, "--execution", o.execution, kExecutionNames,
                   "'adg': every shared location passed in the plan's order; 'switchable': a robot "
                   "ready at a free location may pass before one that is late and was not sent "
                   "its way in yet; 'switchable-opt': also, a robot about to be sent its way into "
                   "a shared location yields its place when the next robot is expected to pass "
-                  "sooner (expected times learned in the run; docs/execution.md)")
+                  "sooner (expected times learned in the run; docs/execution.md); "
+                  "'switchable-lookahead': switchable-opt comparing the two orders by the "
+                  "expected times of every action they affect, 24 actions ahead (plan runs)")
       ->capture_default_str();
   cmd->add_option(
          "--switch-commit-actions", o.switch_commit_actions,
@@ -370,6 +373,14 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
   return {i, n};
 }
 
+monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
+  monitor::SwitchOptions s{o.switch_commit_actions};
+  s.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt ||
+                 o.execution == MonitorCliOptions::Execution::kSwitchableLookahead;
+  if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) s.lookahead_actions = 24;
+  return s;
+}
+
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   if (o.resume && o.execution != MonitorCliOptions::Execution::kAdg) {
     throw std::invalid_argument(
@@ -380,8 +391,7 @@ monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
   mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;
   mo.run.window_cap = o.window_cap;
   mo.run.switchable = o.execution != MonitorCliOptions::Execution::kAdg;
-  mo.run.switch_options.commit_actions = o.switch_commit_actions;
-  mo.run.switch_options.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt;
+  mo.run.switch_options = switch_options(o);
   mo.run.timeout_s = o.sim.timeout_s;
   mo.run.stall_timeout_s = o.stall_timeout_s;
   mo.run.max_sim_time_s = o.max_sim_time_s;

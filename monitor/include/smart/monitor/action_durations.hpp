@@ -33,6 +33,13 @@ class ActionDurations {
   // When the last of `to_go` ends: to_go[0] is the current action, started at `started_s` (or
   // not started yet: negative `started_s`, it starts now).
   double finish_s(double now_s, double started_s, std::span<const grid::ActionType> to_go) const;
+  // The same, told the current action's kind and how many of each kind follow it: O(1) for a
+  // caller that counts kinds by prefix sums (SwitchableTracker: a lookahead asks thousands of
+  // times a decision; the loop over the queue was most of its cost).
+  struct Later {
+    uint32_t moves = 0, rotations = 0;
+  };
+  double finish_s(double now_s, double started_s, grid::ActionType current, Later later) const;
 
  private:
   static std::size_t index(grid::ActionType t) { return t == grid::ActionType::kMove ? 0 : 1; }

@@ -125,9 +125,25 @@ class SwitchableTracker final : public Execution {
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
   double finish_estimate(uint32_t robot, uint32_t seq) const;
   double arrival(uint32_t stay) const;
-  double expected_saving(uint32_t i, uint32_t j) const;
+  PassQueue queue_of(uint32_t i, uint32_t j) const;
+  static double expected_saving(const PassQueue& q);
   bool anticipate(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
   void decide(uint32_t robot, std::vector<uint32_t>& changed);
+  // Lookahead (switchable_lookahead.cpp).
+  struct Swap {
+    uint32_t i = kNoAction, j = kNoAction;  // adjacent stays, i before j in the current order
+    bool swapped = false;                   // read as h, j, i, k
+  };
+  uint32_t next_in(uint32_t stay, const Swap& s) const;
+  uint32_t prev_in(uint32_t stay, const Swap& s) const;
+  void collect_cone(const Swap& s);
+  double expect(uint32_t node, const Swap& s);
+  double cone_cost(const Swap& s);
+  double saving(uint32_t i, uint32_t j);
+  double margin() const {
+    return options_.lookahead_actions > 0 ? options_.lookahead_margin_s : options_.margin_s;
+  }
+  double lookahead_saving(uint32_t i, uint32_t j);
 
   const ActionPlan& actions_;
   // Each location's stay ids in plan order (begin); its stays are moved to stay_.
@@ -182,7 +198,17 @@ class SwitchableTracker final : public Execution {
   std::vector<uint8_t> decided_;    // node -> its place was decided when it was to be sent
   RobotSet ahead_;                  // robots whose next entry awaits that decision
   std::size_t anticipated_ = 0;
-  mutable std::vector<grid::ActionType> types_;  // scratch
+  std::vector<uint32_t> moves_before_;  // node -> moves before it in the plan (prefix sums)
+  // Lookahead: the actions a pair's order affects (cone_); per action, the comparison whose cone
+  // it is in and the order whose expected finish `time_s` is computed (NaN while computed: a
+  // cycle), in one place (one cache line per action looked at).
+  struct Look {
+    uint32_t cone = 0, order = 0;
+    double time_s = 0;
+  };
+  std::vector<uint32_t> cone_;
+  std::vector<Look> look_;
+  uint32_t cone_id_ = 0, order_id_ = 0;
 };
 
 }  // namespace smart::monitor

@@ -101,7 +101,7 @@ struct MonitorCliOptions {
   grid::PlanFormat format = grid::PlanFormat::kAuto;
   uint32_t window_cap = 32;
   // --execution: the plan's passing orders fixed (adg) or switched while it goes (issue 29).
-  enum class Execution { kAdg, kSwitchable, kSwitchableOpt };
+  enum class Execution { kAdg, kSwitchable, kSwitchableOpt, kSwitchableLookahead };
   Execution execution = Execution::kAdg;
   uint32_t switch_commit_actions = 6;  // --switch-commit-actions
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
@@ -148,6 +148,8 @@ void check_real_time_factor(const SimCliOptions& o);
 sim::SimHostOptions sim_host_options(const SimCliOptions& o);
 // "I/N" of --shard: shard I (from 0) of N; throws std::invalid_argument saying what is wrong.
 std::pair<uint32_t, uint32_t> parse_shard(const std::string& text);
+// What --execution and --switch-commit-actions ask of switching (plan and lifelong runs).
+monitor::SwitchOptions switch_options(const MonitorCliOptions& o);
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o);
 // `exe sim ...` with every option of `o`, for `smart run`'s child.
 std::vector<std::string> sim_argv(const std::string& exe, const SimCliOptions& o);

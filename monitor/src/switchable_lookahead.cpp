@@ -1,0 +1,143 @@
+// SwitchableTracker's lookahead (switchable_tracker.hpp, "Lookahead"): a pair's two orders
+// compared by the expected finish times of every action the pair affects, as SES evaluates a
+// setting of switchable edges (Feng et al., "Switchable Edge Search", ICAPS 2024, §4: the
+// expected completion times of a graph are its longest paths under expected durations), for
+// the one edge about to be decided and a bounded cone of the graph after it.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "smart/monitor/switchable_tracker.hpp"
+
+namespace smart::monitor {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+// The stay after `stay` in the current order, or with i and j swapped (h, j, i, k).
+uint32_t SwitchableTracker::next_in(uint32_t stay, const Swap& s) const {
+  if (!s.swapped) return link_[stay].next;
+  if (stay == s.j) return s.i;
+  if (stay == s.i) return link_[s.j].next;
+  const uint32_t next = link_[stay].next;
+  return next == s.i ? s.j : next;
+}
+
+uint32_t SwitchableTracker::prev_in(uint32_t stay, const Swap& s) const {
+  if (!s.swapped) return link_[stay].prev;
+  if (stay == s.i) return s.j;
+  if (stay == s.j) return link_[s.i].prev;
+  const uint32_t prev = link_[stay].prev;
+  return prev == s.j ? s.i : prev;
+}
+
+// The unfinished actions after i's and j's entries in either order, within lookahead_actions of
+// their robots' progress, breadth first up to lookahead_nodes: the same set for both orders.
+void SwitchableTracker::collect_cone(const Swap& s) {
+  if (look_.empty()) look_.resize(actions_.actions.size());
+  if (++cone_id_ == 0) {
+    for (auto& l : look_) l.cone = 0;
+    cone_id_ = 1;
+  }
+  cone_.clear();
+  const auto add = [&](uint32_t node) {
+    if (look_[node].cone == cone_id_ || cone_.size() >= options_.lookahead_nodes) return;
+    const auto& a = actions_.actions[node];
+    if (a.seq < finished_[a.robot] || a.seq > finished_[a.robot] + options_.lookahead_actions) {
+      return;
+    }
+    look_[node].cone = cone_id_;
+    cone_.push_back(node);
+  };
+  add(stay_[s.i].enter);
+  add(stay_[s.j].enter);
+  const Swap orders[2] = {{s.i, s.j, false}, {s.i, s.j, true}};
+  // By index: add() grows cone_ while it is walked (a range-for's iterators would dangle).
+  for (std::size_t q = 0; q < cone_.size(); ++q) {  // NOLINT(modernize-loop-convert)
+    const uint32_t u = cone_[q];
+    const auto& a = actions_.actions[u];
+    if (a.seq + 1 < actions_.count(a.robot)) add(u + 1);
+    for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
+      for (const Swap& o : orders) {
+        const uint32_t next = next_in(leave_stays_[e], o);
+        if (next != kNoAction && stay_[next].robot != a.robot && stay_[next].enter != kNoAction) {
+          add(stay_[next].enter);
+        }
+      }
+    }
+  }
+}
+
+// The expected finish of `node` in order `s`: its robot's previous action and its Type-2
+// predecessors finished (expected, or now), plus its kind's mean duration. Outside the cone, a
+// predecessor's time is its robot's own queue (waits not foreseen), the same in both orders.
+// Infinite on a cycle (the swap would deadlock).
+double SwitchableTracker::expect(uint32_t node, const Swap& s) {
+  Look& look = look_[node];
+  if (look.order == order_id_) {
+    if (std::isnan(look.time_s)) return kInf;  // on the path being computed: a cycle
+    return look.time_s;
+  }
+  look.order = order_id_;
+  const auto& a = actions_.actions[node];
+  if (a.seq == finished_[a.robot] && sent_by(a.robot, node)) {
+    return look.time_s = finish_estimate(a.robot, a.seq);
+  }
+  look.time_s = std::numeric_limits<double>::quiet_NaN();  // being computed
+  const auto done = [&](uint32_t robot, uint32_t pred) {
+    if (finished_by(robot, pred)) return now_s_;
+    if (look_[pred].cone == cone_id_) return expect(pred, s);
+    return finish_estimate(robot, actions_.actions[pred].seq);
+  };
+  double start = now_s_;
+  if (a.seq > finished_[a.robot]) start = std::max(start, done(a.robot, node - 1));
+  for (uint32_t e = enter_begin_[node]; e < enter_begin_[node + 1]; ++e) {
+    const uint32_t prev = prev_in(enter_stays_[e], s);
+    if (prev == kNoAction || stay_[prev].robot == a.robot || stay_[prev].leave == kNoAction) {
+      continue;
+    }
+    start = std::max(start, done(stay_[prev].robot, stay_[prev].leave));
+  }
+  return look_[node].time_s = start + durations_.mean_s(a.type);
+}
+
+// The sum over the cone's robots of the expected finish of their last action in it.
+double SwitchableTracker::cone_cost(const Swap& s) {
+  if (++order_id_ == 0) {
+    for (auto& l : look_) l.order = 0;
+    order_id_ = 1;
+  }
+  double cost = 0;
+  for (const uint32_t u : cone_) {
+    const auto& a = actions_.actions[u];
+    const bool last = a.seq + 1 == actions_.count(a.robot) || look_[u + 1].cone != cone_id_;
+    if (last) cost += expect(u, s);
+  }
+  return cost;
+}
+
+// The fleet's expected time saved by j passing i (i before j now, adjacent at one location).
+double SwitchableTracker::lookahead_saving(uint32_t i, uint32_t j) {
+  const Swap s{i, j, false};
+  collect_cone(s);
+
+  const double kept = cone_cost(s);
+  const double swapped = cone_cost({i, j, true});
+  return kept - swapped;
+}
+
+// The comparison switchable-opt decides by: the location's queue (expected_saving), or the
+// lookahead when on and j is expected to wait for i there (when it is not, j passing first
+// cannot save anything: j enters no sooner, i later).
+double SwitchableTracker::saving(uint32_t i, uint32_t j) {
+  const PassQueue q = queue_of(i, j);
+  if (options_.lookahead_actions == 0 || !std::isfinite(q.j.arrive_s)) return expected_saving(q);
+  if (std::isfinite(q.i.arrive_s) &&
+      std::max(q.i.arrive_s, q.free_s) + q.i.stay_s <= q.j.arrive_s) {
+    return expected_saving(q);
+  }
+  return lookahead_saving(i, j);
+}
+
+}  // namespace smart::monitor
