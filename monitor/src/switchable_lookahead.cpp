@@ -41,29 +41,39 @@ void SwitchableTracker::collect_cone(const Swap& s) {
     cone_id_ = 1;
   }
   cone_.clear();
-  const auto add = [&](uint32_t node) {
+  cone_robot_.clear();
+  // A stay's robot is known where its entry is found: an action's robot and place in its queue
+  // without reading the action (a cache miss each; the walk's largest cost).
+  const auto add = [&](uint32_t node, uint32_t robot) {
     if (look_[node].cone == cone_id_ || cone_.size() >= options_.lookahead_nodes) return;
-    const auto& a = actions_.actions[node];
-    if (a.seq < finished_[a.robot] || a.seq > finished_[a.robot] + options_.lookahead_actions) {
-      return;
-    }
+    const uint32_t seq = node - actions_.offset[robot];
+    if (seq < finished_[robot] || seq > finished_[robot] + options_.lookahead_actions) return;
     look_[node].cone = cone_id_;
     cone_.push_back(node);
+    cone_robot_.push_back(robot);
   };
-  add(stay_[s.i].enter);
-  add(stay_[s.j].enter);
-  const Swap orders[2] = {{s.i, s.j, false}, {s.i, s.j, true}};
+  // In an order that does not depend on which stay is first now (the smaller stay id's entry
+  // first, the graph with it first walked first): the pair compared again after a swap, before
+  // anything changed, gets the same cone, truncated the same, and the opposite answer. Rooted at
+  // i then j, a cone cut at lookahead_nodes differed, and pairs were swapped back and forth.
+  const uint32_t low = std::min(s.i, s.j), high = std::max(s.i, s.j);
+  add(stay_[low].enter, stay_[low].robot);
+  add(stay_[high].enter, stay_[high].robot);
+  const Swap orders[2] = {{s.i, s.j, s.j == low}, {s.i, s.j, s.i == low}};
+  const uint32_t h = link_[s.i].prev;  // the stays whose next differs between the orders: h, i, j
   // By index: add() grows cone_ while it is walked (a range-for's iterators would dangle).
   for (std::size_t q = 0; q < cone_.size(); ++q) {  // NOLINT(modernize-loop-convert)
-    const uint32_t u = cone_[q];
-    const auto& a = actions_.actions[u];
-    if (a.seq + 1 < actions_.count(a.robot)) add(u + 1);
+    const uint32_t u = cone_[q], robot = cone_robot_[q];
+    if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
     for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
+      const uint32_t x = leave_stays_[e];
+      const bool differs = x == h || x == s.i || x == s.j;
       for (const Swap& o : orders) {
-        const uint32_t next = next_in(leave_stays_[e], o);
-        if (next != kNoAction && stay_[next].robot != a.robot && stay_[next].enter != kNoAction) {
-          add(stay_[next].enter);
+        const uint32_t next = next_in(x, o);
+        if (next != kNoAction && stay_[next].robot != robot && stay_[next].enter != kNoAction) {
+          add(stay_[next].enter, stay_[next].robot);
         }
+        if (!differs) break;
       }
     }
   }

@@ -32,6 +32,16 @@
 // served then also needs an expected saving (a ready robot within `horizon_actions` of a free
 // location passes a late one only when that saves waiting), and never takes an entry due now
 // (its robot within `commit_actions`, nothing to wait for): plain switching would have sent it.
+//
+// Lookahead (options.lookahead_actions > 0, `--execution switchable-lookahead`): both decisions
+// above compare the orders i, j and j, i by more than the location's queue. The actions after
+// i's and j's entries (Type-1 and Type-2 successors, either order) up to lookahead_actions ahead
+// of each robot and lookahead_nodes in all are given expected finish times in each order (a
+// longest path under expected durations, as SES evaluates a setting of switchable edges; a
+// predecessor outside them at its robot's own pace), and the order with the smaller sum of the
+// robots' last such times is kept (switchable_lookahead.cpp). When j would not wait for i at the
+// location, nothing can be saved and the queue's answer stands (no lookahead). An order whose
+// compared actions form a cycle is expected to take for ever; the deadlock search still decides.
 // Pure.
 #pragma once
 
@@ -206,7 +216,7 @@ class SwitchableTracker final : public Execution {
     uint32_t cone = 0, order = 0;
     double time_s = 0;
   };
-  std::vector<uint32_t> cone_;
+  std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
 };
