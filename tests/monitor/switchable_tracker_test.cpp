@@ -423,48 +423,44 @@ TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinish
   EXPECT_GT(switches, 10u) << "the delays should make robots switch";
 }
 
+// 100 random plans for each footprint and each commit distance (1 and 6 actions) with
+// `options` (anticipating), their switches and anticipated switches summed.
+Outcome run_anticipating(SwitchOptions options) {
+  Outcome sum;
+  for (const auto footprint : {Footprint::kHalfCells, Footprint::kCells}) {
+    for (const uint32_t commit : {1u, 6u}) {
+      options.commit_actions = commit;
+      for (uint64_t seed = 1; seed <= 100; ++seed) {
+        const auto o = run_random(seed, footprint, options);
+        sum.switches += o.switches;
+        sum.anticipated += o.anticipated;
+        if (::testing::Test::HasFailure()) {
+          ADD_FAILURE() << "seed " << seed << " commit " << commit;
+          return sum;
+        }
+      }
+    }
+  }
+  return sum;
+}
+
 // switchable-opt: entries about to be sent may also yield their place by expected times
 // (anticipation); the same guarantees, on both footprints and both commit distances. The delayed
 // robots make the expected times differ from the plan's, so anticipation does switch.
 TEST(SwitchableTrackerProperty, AnticipatedSwitchesNeverCollideAndAlwaysFinish) {
-  std::size_t switches = 0, anticipated = 0;
-  for (const auto footprint : {Footprint::kHalfCells, Footprint::kCells}) {
-    for (const uint32_t commit : {1u, 6u}) {
-      const SwitchOptions opt{
-          .commit_actions = commit, .anticipate = true, .margin_s = 0.05, .horizon_actions = 12};
-      for (uint64_t seed = 1; seed <= 100; ++seed) {
-        const auto o = run_random(seed, footprint, opt);
-        switches += o.switches;
-        anticipated += o.anticipated;
-        if (HasFailure()) FAIL() << "seed " << seed << " commit " << commit;
-      }
-    }
-  }
-  EXPECT_GT(anticipated, 200u) << "of " << switches << " switches";
-  EXPECT_GT(switches, anticipated) << "first come, first served still switches too";
+  const auto o = run_anticipating({.anticipate = true, .margin_s = 0.05, .horizon_actions = 12});
+  EXPECT_GT(o.anticipated, 200u) << "of " << o.switches << " switches";
+  EXPECT_GT(o.switches, o.anticipated) << "first come, first served still switches too";
 }
 
 // switchable-lookahead: the same guarantees when orders are compared by the expected times of
 // every action they affect (a swap that would close a cycle inside the compared actions is
 // expected to take for ever, and the deadlock search still decides).
 TEST(SwitchableTrackerProperty, LookaheadSwitchesNeverCollideAndAlwaysFinish) {
-  std::size_t switches = 0, anticipated = 0;
-  for (const auto footprint : {Footprint::kHalfCells, Footprint::kCells}) {
-    for (const uint32_t commit : {1u, 6u}) {
-      const SwitchOptions opt{.commit_actions = commit,
-                              .anticipate = true,
-                              .lookahead_actions = 24,
-                              .lookahead_margin_s = 0.05};
-      for (uint64_t seed = 1; seed <= 100; ++seed) {
-        const auto o = run_random(seed, footprint, opt);
-        switches += o.switches;
-        anticipated += o.anticipated;
-        if (HasFailure()) FAIL() << "seed " << seed << " commit " << commit;
-      }
-    }
-  }
-  EXPECT_GT(anticipated, 100u) << "of " << switches << " switches";
-  EXPECT_GT(switches, anticipated) << "first come, first served still switches too";
+  const auto o =
+      run_anticipating({.anticipate = true, .lookahead_actions = 24, .lookahead_margin_s = 0.05});
+  EXPECT_GT(o.anticipated, 100u) << "of " << o.switches << " switches";
+  EXPECT_GT(o.switches, o.anticipated) << "first come, first served still switches too";
 }
 
 }  // namespace
