@@ -10,8 +10,9 @@
 # With LIFELONG=1, the same for a lifelong run instead (LiveAdg's switching): 1000 robots on
 # that map, random single-errand tasks, LoRR-style delays (p = 0.01, 1-4 s), 120 sim s, seed 1.
 # Usage: bench/switching_cost.sh [REPEATS] [OUT_DIR] (SMART, SMART_BENCHMARKS, DOMAIN (92:
-# outside the tests' ids) override). Needs perf (Debian: linux-perf) and a kernel that lets
-# this user sample (kernel.perf_event_paranoid <= 1, or root).
+# outside the tests' ids), MODES (the executions, space separated) override). Needs perf
+# (Debian: linux-perf) and a kernel that lets this user sample (kernel.perf_event_paranoid <= 1,
+# or root).
 set -euo pipefail
 repeats=${1:-3}
 out=${2:-build/switching-bench}
@@ -46,6 +47,7 @@ share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid:
 }
 modes=(adg switchable switchable-opt)
 [ "${LIFELONG:-0}" = 1 ] || modes+=(switchable-lookahead)  # plan runs only
+[ -z "${MODES:-}" ] || read -r -a modes <<< "$MODES"  # e.g. MODES="switchable-lookahead"
 for mode in "${modes[@]}"; do
   for i in $(seq 1 "$repeats"); do
     dir="$out/$mode-$i"

@@ -130,6 +130,7 @@ double SwitchableTracker::cone_cost(const Swap& s) {
 // The fleet's expected time saved by j passing i (i before j now, adjacent at one location).
 double SwitchableTracker::lookahead_saving(uint32_t i, uint32_t j) {
   const Swap s{i, j, false};
+  ++compared_;
   collect_cone(s);
 
   const double kept = cone_cost(s);
@@ -138,14 +139,19 @@ double SwitchableTracker::lookahead_saving(uint32_t i, uint32_t j) {
 }
 
 // The comparison switchable-opt decides by: the location's queue (expected_saving), or the
-// lookahead when on and j is expected to wait for i there (when it is not, j passing first
-// cannot save anything: j enters no sooner, i later).
+// lookahead when on and j is expected to wait for i there. Not when j would not wait (then j
+// passing first cannot save anything: j enters no sooner, i later), nor when the queue expects
+// the swap to cost the location's robots more than one move: the robots after them seldom make
+// that up. On SMART's 1000-robot plan, such pairs were 45 % of the comparisons, and 30 of the
+// 1196 lookahead savings over the margin (docs/execution.md, "Cost").
 double SwitchableTracker::saving(uint32_t i, uint32_t j) {
   const PassQueue q = queue_of(i, j);
-  if (options_.lookahead_actions == 0 || !std::isfinite(q.j.arrive_s)) return expected_saving(q);
+  const double at_location = expected_saving(q);
+  if (options_.lookahead_actions == 0 || !std::isfinite(q.j.arrive_s)) return at_location;
   if (std::isfinite(q.i.arrive_s) &&
-      std::max(q.i.arrive_s, q.free_s) + q.i.stay_s <= q.j.arrive_s) {
-    return expected_saving(q);
+      (std::max(q.i.arrive_s, q.free_s) + q.i.stay_s <= q.j.arrive_s ||
+       at_location < -durations_.mean_s(grid::ActionType::kMove))) {
+    return at_location;
   }
   return lookahead_saving(i, j);
 }

@@ -262,6 +262,7 @@ TEST(SwitchableTracker, LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLat
 
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+  EXPECT_EQ(t.lookahead_comparisons(), 1u);
   EXPECT_TRUE(t.switches()->empty());
   EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
   EXPECT_GT(t.enqueued(0), 3u);  // decided: sent its way in (seq 3)
@@ -286,6 +287,30 @@ TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
   EXPECT_EQ(run_robot(t, 1, 4.0), 4);
   run_robot(t, 0, 8.0);
   EXPECT_TRUE(t.complete());
+}
+
+// The lookahead is not asked when the location's queue expects the swap to cost more than one
+// move. Robot 0 crosses (2, 1) west to east first, robot 1 enters it from the north next and
+// turns back north inside it. Every action expected to take 1 s: robot 0 arrives at 1 s and
+// leaves at 3 s; robot 1 arrives at 2 s and stays 4 s (two quarter turns in the cell). Robot 1
+// first would save itself 1 s and cost robot 0 5 s: a loss of 4 s, over a move's 1 s, so the
+// order stands without a cone being walked; robot 1 still waits for robot 0 (it would not wait
+// at all if it arrived after 3 s, the other case the lookahead is skipped).
+TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions =
+      build_actions(plan_of({{{1, 1}, {2, 1}, {3, 1}}, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 0}}}),
+                    Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+  EXPECT_EQ(t.lookahead_comparisons(), 0u);
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
+  EXPECT_EQ(run_robot(t, 0, 3.0), static_cast<int64_t>(actions.count(0)) - 1);
+  run_robot(t, 1, 8.0);
+  EXPECT_TRUE(t.complete());
+  EXPECT_EQ(t.lookahead_comparisons(), 0u);
 }
 
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,

@@ -40,7 +40,9 @@
 // longest path under expected durations, as SES evaluates a setting of switchable edges; a
 // predecessor outside them at its robot's own pace), and the order with the smaller sum of the
 // robots' last such times is kept (switchable_lookahead.cpp). When j would not wait for i at the
-// location, nothing can be saved and the queue's answer stands (no lookahead). An order whose
+// location, nothing can be saved and the queue's answer stands (no lookahead); so it does when
+// the queue expects the swap to cost the location's robots more than one mean move (the robots
+// after them seldom make that up; half the comparisons, measured). An order whose
 // compared actions form a cycle is expected to take for ever; the deadlock search still decides.
 // Pure.
 #pragma once
@@ -84,6 +86,8 @@ class SwitchableTracker final : public Execution {
   const std::vector<PassingSwitch>* switches() const override { return &switches_; }
   // Switches made by anticipation (a part of switches()).
   std::size_t anticipated() const { return anticipated_; }
+  // Pairs compared over their cone (switchable-lookahead; tests, the bench).
+  std::size_t lookahead_comparisons() const { return compared_; }
   const ActionDurations& durations() const { return durations_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
@@ -219,6 +223,7 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
+  std::size_t compared_ = 0;
 };
 
 }  // namespace smart::monitor
