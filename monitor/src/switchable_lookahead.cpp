@@ -141,9 +141,9 @@ double SwitchableTracker::lookahead_saving(uint32_t i, uint32_t j) {
 // The comparison switchable-opt decides by: the location's queue (expected_saving), or the
 // lookahead when on and j is expected to wait for i there. Not when j would not wait (then j
 // passing first cannot save anything: j enters no sooner, i later), nor when the queue expects
-// the swap to cost the location's robots more than one move: the robots after them seldom make
-// that up. On SMART's 1000-robot plan, such pairs were 45 % of the comparisons, and 30 of the
-// 1196 lookahead savings over the margin (docs/execution.md, "Cost").
+// the swap to cost the location's robots more than one move's expected duration: the robots
+// after them seldom make that up. On SMART's 1000-robot plan, such pairs were 45 % of the
+// comparisons, and 30 of the 1196 lookahead savings over the margin (docs/execution.md, "Cost").
 double SwitchableTracker::saving(uint32_t i, uint32_t j) {
   const PassQueue q = queue_of(i, j);
   const double at_location = expected_saving(q);

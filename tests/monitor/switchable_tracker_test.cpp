@@ -290,12 +290,12 @@ TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
 }
 
 // The lookahead is not asked when the location's queue expects the swap to cost more than one
-// move. Robot 0 crosses (2, 1) west to east first, robot 1 enters it from the north next and
-// turns back north inside it. Every action expected to take 1 s: robot 0 arrives at 1 s and
-// leaves at 3 s; robot 1 arrives at 2 s and stays 4 s (two quarter turns in the cell). Robot 1
-// first would save itself 1 s and cost robot 0 5 s: a loss of 4 s, over a move's 1 s, so the
-// order stands without a cone being walked; robot 1 still waits for robot 0 (it would not wait
-// at all if it arrived after 3 s, the other case the lookahead is skipped).
+// move's expected duration. Robot 0 crosses (2, 1) west to east first, robot 1 enters it from
+// the north next and turns back north inside it. Every action expected to take 1 s: robot 0
+// arrives at 1 s and leaves at 3 s; robot 1 arrives at 2 s and stays 4 s (two quarter turns in
+// the cell). Robot 1 first would save itself 1 s and cost robot 0 5 s: a loss of 4 s, over a
+// move's 1 s, so the order stands without a cone being walked; robot 1 still waits for robot 0
+// (it would not wait at all if it arrived after 3 s, the other case the lookahead is skipped).
 TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
   const auto actions =
