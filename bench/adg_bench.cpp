@@ -131,7 +131,7 @@ void execute(benchmark::State& state, const Make& make) {
   const auto actions = build_actions(plan);
   std::vector<Problem> problems;
   const auto adg = build_adg(actions, map("warehouse-10-20-10-2-1"), plan.source, problems);
-  std::size_t reports = 0, switches = 0, compared = 0;
+  std::size_t reports = 0, switches = 0, compared = 0, widened = 0;
   for (auto _ : state) {
     Tracker t = make(actions, adg);
     reports = 0;
@@ -146,12 +146,14 @@ void execute(benchmark::State& state, const Make& make) {
     if constexpr (std::is_same_v<Tracker, SwitchableTracker>) {
       switches = t.switches()->size();
       compared = t.lookahead_comparisons();
+      widened = t.lookahead_widened();
     }
   }
   state.counters["robots"] = static_cast<double>(actions.robots());
   state.counters["reports"] = static_cast<double>(reports);
   state.counters["switches"] = static_cast<double>(switches);
   state.counters["lookahead_comparisons"] = static_cast<double>(compared);
+  state.counters["lookahead_widened"] = static_cast<double>(widened);
   state.counters["ns_per_report"] = benchmark::Counter(
       static_cast<double>(reports),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);

@@ -235,11 +235,11 @@ TEST(SwitchableTracker, AnEntryDueNowIsNotTakenByFirstComeFirstServed) {
 // robot 1 passing first saves itself 3 s and costs robot 0 1 s (the queue at the location: a
 // saving of 2 s, anticipated by switchable-opt with a 0.5 s margin), but robot 0's second later
 // holds robots 2, 3 and 4 a second each: the lookahead sees -1 s and keeps the order.
-Plan crossing_with_followers() {
+Plan crossing_with_followers(int32_t first_follower = 5) {
   std::vector<Cell> zero;
   for (int32_t x = 0; x <= 8; ++x) zero.push_back({x, 1});
   std::vector<std::vector<Cell>> paths{zero, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 2}}};
-  for (int32_t x = 5; x <= 7; ++x) {
+  for (int32_t x = first_follower; x <= 7; ++x) {
     std::vector<Cell> up(static_cast<std::size_t>(x + 1), Cell{x, 2});
     up.push_back({x, 1});
     up.push_back({x, 0});
@@ -263,6 +263,7 @@ TEST(SwitchableTracker, LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLat
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       SwitchOptions{.anticipate = true, .lookahead_actions = 24});
   EXPECT_EQ(t.lookahead_comparisons(), 1u);
+  EXPECT_EQ(t.lookahead_widened(), 1u);  // its first 16 actions do not show the loss
   EXPECT_TRUE(t.switches()->empty());
   EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
   EXPECT_GT(t.enqueued(0), 3u);  // decided: sent its way in (seq 3)
@@ -280,6 +281,7 @@ TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       SwitchOptions{.anticipate = true, .lookahead_actions = 24});
   ASSERT_EQ(t.switches()->size(), 1u);
+  EXPECT_EQ(t.lookahead_widened(), 1u);
   EXPECT_TRUE((*t.switches())[0].anticipated);
   EXPECT_EQ((*t.switches())[0].first, 1u);
   EXPECT_EQ(t.order_at(static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})))),
@@ -287,6 +289,30 @@ TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
   EXPECT_EQ(run_robot(t, 1, 4.0), 4);
   run_robot(t, 0, 8.0);
   EXPECT_TRUE(t.complete());
+}
+
+// A pair whose swap loses more than one move's expected duration over the first
+// lookahead_first_nodes of its cone is not compared over the rest. Four followers (x = 4..7): the
+// queue at (2, 1) still expects robot 1 passing first to save 2 s, but robot 0's second later
+// holds the four up a second each. A first cone of 32 actions reaches them: the order is kept
+// without widening. A first cone of 16 does not: the whole cone is compared, with the same answer.
+TEST(SwitchableTracker, LookaheadStopsAtTheFirstActionsWhenTheyLoseMoreThanAMove) {
+  const Grid grid(9, 3, std::vector<uint8_t>(27, 0));
+  const auto actions = build_actions(crossing_with_followers(4), Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  for (const std::size_t first : {std::size_t{32}, std::size_t{16}}) {
+    SwitchableTracker t(
+        actions, passing_orders(actions, grid),
+        SwitchOptions{.anticipate = true, .lookahead_actions = 24, .lookahead_first_nodes = first});
+    EXPECT_EQ(t.lookahead_comparisons(), 1u);
+    EXPECT_EQ(t.lookahead_widened(), first == 32 ? 0u : 1u) << first;
+    EXPECT_TRUE(t.switches()->empty());
+    EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
+    for (int round = 0; round < 10 && !t.complete(); ++round) {
+      for (uint32_t r = 0; r < 6; ++r) run_robot(t, r, 1.0 + round);
+    }
+    EXPECT_TRUE(t.complete());
+  }
 }
 
 // The lookahead is not asked when the location's queue expects the swap to cost more than one

@@ -42,8 +42,11 @@
 // robots' last such times is kept (switchable_lookahead.cpp). When j would not wait for i at the
 // location, nothing can be saved and the queue's answer stands (no lookahead); so it does when
 // the queue expects the swap to cost the location's robots more than one mean move (the robots
-// after them seldom make that up; half the comparisons, measured). An order whose
-// compared actions form a cycle is expected to take for ever; the deadlock search still decides.
+// after them seldom make that up; half the comparisons, measured). A pair is first compared
+// over the first lookahead_first_nodes of its cone, and over the whole cone only when the swap
+// does not lose more than one mean move there (most comparisons do, and few of those would have
+// gained over the whole cone, measured). An order whose compared actions form a cycle is
+// expected to take for ever; the deadlock search still decides.
 // Pure.
 #pragma once
 
@@ -88,6 +91,8 @@ class SwitchableTracker final : public Execution {
   std::size_t anticipated() const { return anticipated_; }
   // Pairs compared over their cone (switchable-lookahead; tests, the bench).
   std::size_t lookahead_comparisons() const { return compared_; }
+  // Of those, the ones compared over the whole cone, not the first lookahead_first_nodes alone.
+  std::size_t lookahead_widened() const { return widened_; }
   const ActionDurations& durations() const { return durations_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
@@ -150,13 +155,14 @@ class SwitchableTracker final : public Execution {
   };
   uint32_t next_in(uint32_t stay, const Swap& s) const;
   uint32_t prev_in(uint32_t stay, const Swap& s) const;
-  void collect_cone(const Swap& s);
+  void collect_cone(const Swap& s, std::size_t nodes);
   double expect(uint32_t node, const Swap& s);
   double cone_cost(const Swap& s);
   double saving(uint32_t i, uint32_t j);
   double margin() const {
     return options_.lookahead_actions > 0 ? options_.lookahead_margin_s : options_.margin_s;
   }
+  double cone_saving(uint32_t i, uint32_t j, std::size_t nodes);
   double lookahead_saving(uint32_t i, uint32_t j);
 
   const ActionPlan& actions_;
@@ -223,7 +229,7 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
-  std::size_t compared_ = 0;
+  std::size_t compared_ = 0, widened_ = 0;
 };
 
 }  // namespace smart::monitor

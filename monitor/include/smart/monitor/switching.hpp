@@ -34,6 +34,9 @@ struct SwitchOptions {
   // points more (docs/execution.md, "switchable-lookahead").
   uint32_t lookahead_actions = 0;
   std::size_t lookahead_nodes = 512;
+  // A pair is first compared over this many of the cone's actions, and not over the rest when
+  // the swap loses more than one move's expected duration there (switchable_lookahead.cpp).
+  std::size_t lookahead_first_nodes = 16;
   double lookahead_margin_s = 0.5;
 };
 
