@@ -35,7 +35,15 @@ uint32_t SwitchableTracker::prev_in(uint32_t stay, const Swap& s) const {
 // The unfinished actions after i's and j's entries in either order, within lookahead_actions of
 // their robots' progress, breadth first up to `nodes`: the same set for both orders.
 void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
-  if (look_.empty()) look_.resize(actions_.actions.size());
+  if (look_.empty()) {
+    look_.resize(actions_.actions.size());
+    for (std::size_t n = 0; n < look_.size(); ++n) {
+      const auto& a = actions_.actions[n];
+      look_[n].robot = a.robot;
+      look_[n].seq = a.seq;
+      look_[n].type = a.type;
+    }
+  }
   if (++cone_id_ == 0) {
     for (auto& l : look_) l.cone = 0;
     cone_id_ = 1;
@@ -90,7 +98,7 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
     return look.time_s;
   }
   look.order = order_id_;
-  const auto& a = actions_.actions[node];
+  const Look& a = look;
   if (a.seq == finished_[a.robot] && sent_by(a.robot, node)) {
     return look.time_s = finish_estimate(a.robot, a.seq);
   }
@@ -98,7 +106,7 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
   const auto done = [&](uint32_t robot, uint32_t pred) {
     if (finished_by(robot, pred)) return now_s_;
     if (look_[pred].cone == cone_id_) return expect(pred, s);
-    return finish_estimate(robot, actions_.actions[pred].seq);
+    return finish_estimate(robot, pred - actions_.offset[robot]);
   };
   double start = now_s_;
   if (a.seq > finished_[a.robot]) start = std::max(start, done(a.robot, node - 1));
@@ -120,7 +128,7 @@ double SwitchableTracker::cone_cost(const Swap& s) {
   }
   double cost = 0;
   for (const uint32_t u : cone_) {
-    const auto& a = actions_.actions[u];
+    const Look& a = look_[u];
     const bool last = a.seq + 1 == actions_.count(a.robot) || look_[u + 1].cone != cone_id_;
     if (last) cost += expect(u, s);
   }

@@ -221,10 +221,13 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> moves_before_;  // node -> moves before it in the plan (prefix sums)
   // Lookahead: the actions a pair's order affects (cone_); per action, the comparison whose cone
   // it is in and the order whose expected finish `time_s` is computed (NaN while computed: a
-  // cycle), in one place (one cache line per action looked at).
-  struct Look {
+  // cycle), with the action's robot, place and kind, in one place: one cache line per action
+  // looked at (reading the plan's actions too cost a miss each in the monitor's runs).
+  struct alignas(32) Look {
     uint32_t cone = 0, order = 0;
     double time_s = 0;
+    uint32_t robot = 0, seq = 0;
+    grid::ActionType type = grid::ActionType::kMove;
   };
   std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
   std::vector<Look> look_;
