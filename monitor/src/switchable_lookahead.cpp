@@ -53,9 +53,9 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
   // A stay's robot is known where its entry is found: an action's robot and place in its queue
   // without reading the action (a cache miss each; the walk's largest cost).
   const auto add = [&](uint32_t node, uint32_t robot) {
-    if (look_[node].cone == cone_id_ || cone_.size() >= nodes) return;
     const uint32_t seq = node - actions_.offset[robot];
     if (seq < finished_[robot] || seq > finished_[robot] + options_.lookahead_actions) return;
+    if (look_[node].cone == cone_id_ || cone_.size() >= nodes) return;
     look_[node].cone = cone_id_;
     cone_.push_back(node);
     cone_robot_.push_back(robot);
@@ -70,7 +70,8 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
   const Swap orders[2] = {{s.i, s.j, s.j == low}, {s.i, s.j, s.i == low}};
   const uint32_t h = link_[s.i].prev;  // the stays whose next differs between the orders: h, i, j
   // By index: add() grows cone_ while it is walked (a range-for's iterators would dangle).
-  for (std::size_t q = 0; q < cone_.size(); ++q) {  // NOLINT(modernize-loop-convert)
+  // Until the cone is full: a full cone's remaining actions would add nothing.
+  for (std::size_t q = 0; q < cone_.size() && cone_.size() < nodes; ++q) {
     const uint32_t u = cone_[q], robot = cone_robot_[q];
     if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
     for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
