@@ -65,7 +65,14 @@ class Serve : public ::testing::Test {
         {"real_time_factor", real_time_factor, "", ""}};
     return client().Post("/api/runs", items);
   }
-  httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
+  // A loaded machine may take seconds to answer (CI's lint and package builds share 2 cores);
+  // httplib's 5 s default read timeout failed an upload there. A long timeout only ends a hang.
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(60, 0);
+    c.set_write_timeout(60, 0);
+    return c;
+  }
   // `smart run --out results` of the 20-robot example's first `agents` robots (a fresh folder).
   SmartRun run_to_folder(const std::filesystem::path& results, const std::string& agents,
                          int domain, const std::string& tag) const {
@@ -474,7 +481,12 @@ TEST_F(Serve, WithATokenUploadsNeedItAndEveryAnswerCarriesTheContentPolicy) {
 TEST_F(Serve, SlowClientsAndOpenLiveStreamsLeaveTheApiAnswering) {
   start();
   std::atomic<bool> done{false};
-  std::vector<std::thread> clients;
+  std::atomic<int> open{0};
+  std::vector<std::jthread> clients;  // joined last, after `stop` below has ended them
+  struct Stop {
+    std::atomic<bool>& done;
+    ~Stop() { done = true; }  // on every way out, a failed ASSERT too (it crashed the test)
+  } stop{done};
   for (int i = 0; i < 12; ++i) {  // a request one byte at a time, never finished
     clients.emplace_back([&] {
       const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -494,9 +506,8 @@ TEST_F(Serve, SlowClientsAndOpenLiveStreamsLeaveTheApiAnswering) {
     });
   }
   const auto up = upload((b_ / "smart-examples/example_paths_xy.txt").string(), "20", "1");
-  ASSERT_TRUE(up);
+  ASSERT_TRUE(up) << "the upload got no answer: " << httplib::to_string(up.error());
   const auto id = json::parse(up->body)["id"].get<std::string>();
-  std::atomic<int> open{0};
   for (int i = 0; i < 16; ++i) {
     clients.emplace_back([&, id] {
       bool first = true;
@@ -518,8 +529,6 @@ TEST_F(Serve, SlowClientsAndOpenLiveStreamsLeaveTheApiAnswering) {
   const auto list = client().Get("/api/runs");
   ASSERT_TRUE(list) << "the API froze";
   EXPECT_EQ(list->status, 200);
-  done = true;
-  for (auto& t : clients) t.join();
 }
 
 TEST_F(Serve, WithoutWatchTheWatchApiSaysHowToTurnItOn) {
