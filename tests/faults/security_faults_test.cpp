@@ -168,7 +168,11 @@ TEST_F(SecureFaults, TheWatchSeesASecuredRunAsTheViewer) {
   auto monitor = start_smart(run, temp_file("secure_watch_run.out"));
   std::size_t seen = 0;
   httplib::Client client("127.0.0.1", port);
-  for (int i = 0; i < 100 && seen < 20; ++i) {
+  client.set_read_timeout(60, 0);
+  // Until the watch sees the fleet or the run is over (a loaded machine may take longer than any
+  // guessed bound to finish the secure handshakes); the deadline only catches a hang.
+  const auto deadline = std::chrono::steady_clock::now() + 120s;
+  while (seen < 20 && monitor.running() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(100ms);
     const auto r = client.Get("/api/watch");
     if (r && r->status == 200) seen = nlohmann::json::parse(r->body)["robots"].size();
