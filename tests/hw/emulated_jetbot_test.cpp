@@ -40,7 +40,9 @@ TEST(EmulatedJetbot, StreamsItsPoseAsViconDatagrams) {
   JetbotConfig c;
   EmulatedJetbot bot(c, 0.1025, {1.0, 2.0, 0.5}, "jb", rx.port());
   std::optional<agent::PoseSample> p;
-  for (int i = 0; i < 200 && !p; ++i) {
+  // Until the first pose arrives; the deadline only catches a hang (a loaded machine is slow).
+  for (const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+       !p && std::chrono::steady_clock::now() < end;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     p = rx.latest("jb");
   }
@@ -89,7 +91,8 @@ TEST(EmulatedJetbot, RealisticViconIsNoisyAroundTheTruePose) {
                      realistic_flaws(3));
   std::vector<double> xs;
   double last = -1;
-  for (int i = 0; i < 400 && xs.size() < 60; ++i) {
+  for (const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+       xs.size() < 60 && std::chrono::steady_clock::now() < end;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const auto p = rx.latest("jb");
     if (p && p->stamp_s != last) {

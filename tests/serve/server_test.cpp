@@ -43,7 +43,9 @@ class Serve : public ::testing::Test {
     }
     args.insert(args.end(), extra.begin(), extra.end());
     server_.emplace(start_smart(args, out_));
-    for (int i = 0; i < 100 && port_ == 0; ++i) {
+    // Until it says so or exits: a loaded machine may start it slower than any guessed bound.
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    while (port_ == 0 && server_->running() && std::chrono::steady_clock::now() < deadline) {
       std::this_thread::sleep_for(50ms);
       const auto j = summary_in(slurp(out_));
       if (j.is_object()) port_ = std::stoi(j["listening"].get<std::string>().substr(17));
