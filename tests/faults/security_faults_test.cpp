@@ -156,13 +156,7 @@ TEST_F(SecureFaults, TheWatchSeesASecuredRunAsTheViewer) {
   auto watch = start_smart({"serve", "--watch", "--port", "0", "--data", data.string(), "--domain",
                             std::to_string(d), "--security", keystore_->string()},
                            out);
-  int port = 0;
-  const auto started = std::chrono::steady_clock::now();  // until it says so or exits
-  while (port == 0 && watch.running() && std::chrono::steady_clock::now() < started + 60s) {
-    std::this_thread::sleep_for(50ms);
-    const auto j = summary_in(slurp(out));
-    if (j.is_object()) port = std::stoi(j["listening"].get<std::string>().substr(17));
-  }
+  const int port = serve_port(watch, out);
   ASSERT_NE(port, 0) << slurp(out);
   auto run = args("run", d, true, true);
   run.insert(run.end(), {"--clock", "realtime", "--max-sim-time-s", "8"});

@@ -43,13 +43,7 @@ class Serve : public ::testing::Test {
     }
     args.insert(args.end(), extra.begin(), extra.end());
     server_.emplace(start_smart(args, out_));
-    // Until it says so or exits: a loaded machine may start it slower than any guessed bound.
-    const auto deadline = std::chrono::steady_clock::now() + 60s;
-    while (port_ == 0 && server_->running() && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(50ms);
-      const auto j = summary_in(slurp(out_));
-      if (j.is_object()) port_ = std::stoi(j["listening"].get<std::string>().substr(17));
-    }
+    port_ = serve_port(*server_, out_);
     ASSERT_NE(port_, 0) << "smart serve did not say where it listens: " << slurp(out_);
   }
   void TearDown() override {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "smart/common/child_process.hpp"
@@ -54,6 +55,20 @@ inline common::ChildProcess start_smart(const std::vector<std::string>& args,
   std::vector<std::string> argv{smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
   return common::ChildProcess(argv, out);
+}
+
+// The port `smart serve --port 0` (stdout to `out`) says it listens on ("http://127.0.0.1:PORT"),
+// waited for until it says so or exits: a loaded machine starts it slower than any guessed bound.
+// 0 if it exited first, or said nothing within `hang` (which only catches a hang).
+inline int serve_port(common::ChildProcess& serve, const std::filesystem::path& out,
+                      std::chrono::seconds hang = std::chrono::seconds(60)) {
+  const auto deadline = std::chrono::steady_clock::now() + hang;
+  while (serve.running() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const auto j = summary_in(slurp(out));
+    if (j.is_object()) return std::stoi(j["listening"].get<std::string>().substr(17));
+  }
+  return 0;
 }
 
 // Runs `smart args...` to the end; with_stderr: its error messages are in `out` too.
