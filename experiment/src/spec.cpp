@@ -243,11 +243,6 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     if (e != "adg" && e != "switchable" && e != "switchable-opt" && e != "switchable-lookahead")
       fail(src, root["executions"], "executions",
            "adg, switchable, switchable-opt or switchable-lookahead");
-    if (e == "switchable-lookahead" && root["lifelong"]) {
-      fail(src, root["executions"], "executions",
-           "switchable-lookahead is for plan runs; a lifelong experiment takes adg, switchable "
-           "or switchable-opt");
-    }
   }
   read_commit_actions(root, src, s);
   if (root["clock"]) s.clock = root["clock"].as<std::string>();

@@ -419,6 +419,7 @@ void LiveAdg::insert(const NewActions& acts,
       n.action = acts.all[i];
       n.pass_key = n.action.start_time;
       n.stamp = 0;
+      n.cone = n.order = 0;
       n.pending = 0;
       n.in.clear();
       n.out.clear();

@@ -85,7 +85,7 @@ bool LiveAdg::anticipate(uint32_t i, double time_s, std::vector<uint32_t>& chang
     const auto leave = next_move(j, j_enter.seq);
     if (!leave || comes_back(j, *leave, location)) continue;
     const NodeRef j_leave{j, *leave};
-    if (expected_saving(i_enter, i_leave, j_enter, j_leave) <= switching_->margin_s) continue;
+    if (saving({i_enter, i_leave, j_enter, j_leave}) <= margin()) continue;
     std::vector<std::pair<NodeRef, NodeRef>> path;
     if (reaches(i_enter, j_leave, i_leave, j_enter, path) != Reach::kNone) continue;
     switches_.push_back({time_s, location, j, i, true});

@@ -129,7 +129,7 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   if (still_refused(j, j_enter, i_leave)) return false;
   // switchable-opt: only when expected to save waiting (never back and forth with a decision
   // that saved more than margin_s the other way).
-  if (anticipating() && !(expected_saving(i_enter, i_leave, j_enter, j_leave) > 0)) return false;
+  if (anticipating() && !(saving({i_enter, i_leave, j_enter, j_leave}) > 0)) return false;
   auto& refusal = refused_[j];
   refusal.path.clear();
   const Reach reach = reaches(i_enter, j_leave, i_leave, j_enter, refusal.path);
@@ -150,15 +150,20 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   return true;
 }
 
+// A visit mark of every unfinished action back to 0 (its counter wrapped).
+void LiveAdg::clear_marks(uint32_t Node::*mark) {
+  for (uint32_t r = 0; r < robots_.size(); ++r) {
+    for (uint32_t s = robots_[r].finished; s < end(r); ++s) node(r, s).*mark = 0;
+  }
+}
+
 // A path of unfinished actions (Type-1 and Type-2 edges but skip_from -> skip_to) from `from`
 // to `to`: kPath with its Type-2 edges in `path`; kBudget past the search budget (the switch is
 // refused then too).
 LiveAdg::Reach LiveAdg::reaches(NodeRef from, NodeRef to, NodeRef skip_from, NodeRef skip_to,
                                 std::vector<std::pair<NodeRef, NodeRef>>& path) {
   if (++stamp_ == 0) {
-    for (uint32_t r = 0; r < robots_.size(); ++r) {
-      for (uint32_t s = robots_[r].finished; s < end(r); ++s) node(r, s).stamp = 0;
-    }
+    clear_marks(&Node::stamp);
     stamp_ = 1;
   }
   std::vector<NodeRef> stack;

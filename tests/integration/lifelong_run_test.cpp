@@ -537,10 +537,6 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
                                 30s, "ll_bad_resume", true);
   EXPECT_EQ(resume.code, 2);
   EXPECT_THAT(resume.out, HasSubstr("a lifelong run cannot be taken over"));
-  r = lifelong({"--lifelong", maze_problem(), "--execution", "switchable-lookahead"},
-               kLifelongRandom, "ll_bad_lookahead");
-  EXPECT_NE(r.code, 0);
-  EXPECT_THAT(r.out, HasSubstr("lifelong runs do not look ahead yet"));
   r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));

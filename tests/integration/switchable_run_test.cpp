@@ -98,8 +98,8 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
 
 // Lifelong (LiveAdg switching): the LoRR 2026 random-domain problem (400 robots on
 // random-64-64-10, its own delay events: p = 0.01 per robot per 0.1 s, 0.1-0.4 s), 60 s, plain,
-// switchable and switchable-opt on the same seed: all run clean; switching passes late robots, the
-// fleet waits less, and lock-step makes the switches the same every time.
+// switchable, switchable-opt and switchable-lookahead on the same seed: all run clean; switching
+// passes late robots, the fleet waits less, and lock-step makes the switches the same every time.
 TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
   auto lifelong = [&](int domain, const std::string& execution, const std::filesystem::path& out) {
     const auto r = run_smart(
@@ -129,20 +129,25 @@ TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
   EXPECT_EQ(csv, slurp(b_dir / "switches.csv"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
   EXPECT_EQ(slurp(a_dir / "tasks.csv"), slurp(b_dir / "tasks.csv"));
-  // switchable-opt (LiveAdg's anticipation, durations learned in the run): clean, some switches
-  // anticipated and written, and less waiting than plain ADG.
-  const auto opt_dir = temp_file("ll_switch_opt");
-  const auto opt = lifelong(kSwitchableLifelongOpt, "switchable-opt", opt_dir);
-  EXPECT_TRUE(opt["success"].get<bool>()) << opt.dump();
-  EXPECT_EQ(opt["collisions"], 0);
-  EXPECT_EQ(opt["lifelong"]["windows_refused"], 0);
-  EXPECT_EQ(opt["execution"]["mode"], "switchable-opt");
-  EXPECT_GT(opt["execution"]["anticipated"].get<std::size_t>(), 0u) << opt["execution"];
-  const auto opt_csv = slurp(opt_dir / "switches.csv");
-  EXPECT_EQ(static_cast<std::size_t>(std::count(opt_csv.begin(), opt_csv.end(), '\n')),
-            opt["execution"]["switches"].get<std::size_t>() + 1);
-  EXPECT_LT(opt["waiting_time_s"]["total"].get<double>(),
-            plain["waiting_time_s"]["total"].get<double>());
+  // switchable-opt (LiveAdg's anticipation, durations learned in the run) and
+  // switchable-lookahead (its decisions over the actions each order affects): clean, some
+  // switches anticipated and written, and less waiting than plain ADG.
+  for (const auto& [execution, domain] : {std::pair{"switchable-opt", kSwitchableLifelongOpt},
+                                          {"switchable-lookahead", kSwitchableLifelongLookahead}}) {
+    SCOPED_TRACE(execution);
+    const auto dir = temp_file(std::string("ll_switch_") + execution);
+    const auto opt = lifelong(domain, execution, dir);
+    EXPECT_TRUE(opt["success"].get<bool>()) << opt.dump();
+    EXPECT_EQ(opt["collisions"], 0);
+    EXPECT_EQ(opt["lifelong"]["windows_refused"], 0);
+    EXPECT_EQ(opt["execution"]["mode"], execution);
+    EXPECT_GT(opt["execution"]["anticipated"].get<std::size_t>(), 0u) << opt["execution"];
+    const auto csv = slurp(dir / "switches.csv");
+    EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')),
+              opt["execution"]["switches"].get<std::size_t>() + 1);
+    EXPECT_LT(opt["waiting_time_s"]["total"].get<double>(),
+              plain["waiting_time_s"]["total"].get<double>());
+  }
 }
 
 // switchable-opt (anticipation: orders chosen by expected times learned in the run) on the same

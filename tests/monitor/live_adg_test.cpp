@@ -271,6 +271,7 @@ struct StreamCase {
   int period;
   uint32_t commit = 0;      // > 0: passing orders switch (entries sent this many actions ahead)
   bool anticipate = false;  // switchable-opt (margin 0.5 s: many anticipated switches)
+  bool look = false;        // switchable-lookahead (24 actions)
 };
 
 // Random task streams on a cramped map, replanned every `period` ticks from the commit cut with
@@ -279,6 +280,7 @@ struct StreamCase {
 // a robot, and tasks keep being done.
 // With switching on, the same must hold; returns the switches made.
 std::size_t anticipated_total = 0;  // anticipated switches of the streams run
+std::size_t compared_total = 0;     // and pairs compared over their cone
 
 std::size_t run_stream(const StreamCase& c) {
   const auto g = planning::generate_random_map(16, 16, 0.2, c.seed);
@@ -291,8 +293,9 @@ std::size_t run_stream(const StreamCase& c) {
   LiveAdg adg(g, starts, Heading::kEast);
   if (c.commit > 0) {
     SwitchOptions o{c.commit};
-    o.anticipate = c.anticipate;
+    o.anticipate = c.anticipate || c.look;
     o.margin_s = 0.5;
+    if (c.look) o.lookahead_actions = 24;
     adg.enable_switching(o);
   }
   Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
@@ -322,7 +325,8 @@ std::size_t run_stream(const StreamCase& c) {
   EXPECT_EQ(ex.conflicts, 0u);
   EXPECT_EQ(executed, adg.finished_total());
   EXPECT_GT(reached, robots) << "the stream stalled";
-  if (c.anticipate)
+  compared_total += adg.lookahead_comparisons();
+  if (c.anticipate || c.look)
     anticipated_total +=
         std::ranges::count_if(*adg.switches(), [](const auto& s) { return s.anticipated; });
   return adg.switches() ? adg.switches()->size() : 0;
@@ -369,6 +373,95 @@ TEST(LiveAdgProperty, AnticipatingStreamsStaySafeAndLive) {
   }
   EXPECT_GT(switches, 100u);
   EXPECT_GT(anticipated_total, 50u);
+}
+
+// switchable-lookahead on the growing graph (SwitchableTracker's
+// LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLater): robot 0 runs east along row 1 to
+// (8,1); robot 1, above (2,1), is planned to cross it after robot 0; robots 2, 3 and 4, below
+// (5,1), (6,1) and (7,1), are planned to cross row 1 right after robot 0 too. Every action
+// expected to take 1 s: at (2,1) the location's queue expects robot 1 passing first to save
+// waiting (switchable-opt with a 0.5 s margin switches at the append), but robot 0's later pass
+// holds up robots 2, 3 and 4: the lookahead keeps the order.
+Paths crossing_with_followers() {
+  std::vector<Cell> zero;
+  for (int32_t x = 0; x <= 8; ++x) zero.push_back({x, 1});
+  Paths paths{zero, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 2}}};
+  for (int32_t x = 5; x <= 7; ++x) {
+    std::vector<Cell> up(static_cast<std::size_t>(x + 1), Cell{x, 2});
+    up.push_back({x, 1});
+    up.push_back({x, 0});
+    paths.push_back(up);
+  }
+  return paths;
+}
+
+SwitchOptions lookahead_options(bool look) {
+  SwitchOptions o;
+  o.anticipate = true;
+  o.margin_s = 0.5;
+  if (look) o.lookahead_actions = 24;
+  return o;
+}
+
+TEST(LiveAdgLookahead, TheOrderStaysWhenThePassedRobotHoldsUpOthersLater) {
+  const auto g = open_map(9, 3);
+  const auto paths = crossing_with_followers();
+  std::vector<Cell> starts;
+  for (const auto& p : paths) starts.push_back(p[0]);
+  const auto at_2_1 = static_cast<uint32_t>(g.half_index(HalfCell::of({2, 1})));
+  ASSERT_EQ(paths.size(), 5u);
+  LiveAdg opt(g, starts, Heading::kEast);
+  opt.enable_switching(lookahead_options(false));
+  ASSERT_TRUE(opt.append(paths, 0).empty());
+  EXPECT_EQ(*opt.switches(), (std::vector<PassingSwitch>{{0, at_2_1, 1, 0, true}}));
+
+  LiveAdg adg(g, starts, Heading::kEast);
+  adg.enable_switching(lookahead_options(true));
+  ASSERT_TRUE(adg.append(paths, 0).empty());
+  EXPECT_EQ(adg.lookahead_comparisons(), 1u);
+  EXPECT_EQ(adg.lookahead_widened(), 1u);  // its first 16 actions do not show the loss
+  EXPECT_TRUE(adg.switches()->empty());
+  ASSERT_EQ(adg.action(0, 3).to, HalfCell::of({2, 1}));
+  EXPECT_GT(adg.enqueued(0), 3u);  // decided: sent its way into (2,1)
+  EXPECT_EQ(adg.enqueued(1), 2u);  // robot 1 waits at the cell's edge
+  EXPECT_EQ(adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 4}}));
+  Executor ex(g, adg, starts, 1);
+  for (int t = 0; t < 60; ++t) ex.tick(t);
+  EXPECT_EQ(ex.conflicts, 0u);
+  for (uint32_t r = 0; r < 5; ++r) EXPECT_EQ(adg.finished(r), adg.end(r)) << "robot " << r;
+  EXPECT_TRUE(std::ranges::none_of(*adg.switches(),
+                                   [&](const PassingSwitch& s) { return s.location == at_2_1; }));
+}
+
+// Without robots behind (LateRobotFixture's crossing), the lookahead lets the robot expected
+// sooner pass first: robot 1 goes first, anticipated at the append, as switchable-opt does.
+TEST(LiveAdgLookahead, TheRobotExpectedSoonerPassesFirst) {
+  LateRobotFixture f;
+  f.adg.enable_switching(lookahead_options(true));
+  ASSERT_TRUE(f.adg.append(f.window, 0).empty());
+  EXPECT_EQ(*f.adg.switches(), (std::vector<PassingSwitch>{{0, f.at_3_1(), 1, 0, true}}));
+  EXPECT_EQ(f.adg.lookahead_comparisons(), 1u);
+  EXPECT_EQ(f.adg.waits_for(0, 5), (std::vector<NodeRef>{{1, 3}}));
+  EXPECT_EQ(f.adg.enqueued(1), 5u);
+}
+
+// switchable-lookahead on the growing graph: the same streams, both decisions made by the
+// expected times of the actions each pair's order affects: the same safety and liveness, cones
+// compared, and switches, anticipated ones too.
+TEST(LiveAdgProperty, LookaheadStreamsStaySafeAndLive) {
+  std::size_t switches = 0;
+  anticipated_total = compared_total = 0;
+  for (const StreamCase c :
+       {StreamCase{31, 0.3, 4, 3, 1, false, true}, StreamCase{32, 0.5, 2, 7, 2, false, true},
+        StreamCase{33, 0.2, 10, 1, 6, false, true}, StreamCase{34, 0.4, 0, 5, 1, false, true},
+        StreamCase{35, 0.6, 8, 2, 6, false, true}, StreamCase{36, 0, 4, 4, 2, false, true}}) {
+    SCOPED_TRACE("seed " + std::to_string(c.seed) + " commit " + std::to_string(c.commit));
+    switches += run_stream(c);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(switches, 100u);
+  EXPECT_GT(anticipated_total, 20u);
+  EXPECT_GT(compared_total, 100u);
 }
 
 }  // namespace

@@ -161,7 +161,8 @@ enum DomainId : int {
   kExperimentPlannerFloods = 74,  // the same
   kSwitchableLifelongOpt = 73,    // the switchable-opt run of kSwitchableLifelong
   kLifelongScratch = 72,
-  kSwitchableCrossing = 71,  // its plain and switchable runs, one after the other
+  kSwitchableCrossing = 71,           // its plain and switchable runs, one after the other
+  kSwitchableLifelongLookahead = 70,  // the switchable-lookahead run of kSwitchableLifelong
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

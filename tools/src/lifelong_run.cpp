@@ -223,11 +223,6 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
-  if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) {
-    throw std::invalid_argument(
-        "--execution switchable-lookahead: lifelong runs do not look ahead yet (its graph "
-        "grows as windows come); use switchable-opt");
-  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "

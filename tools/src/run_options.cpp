@@ -174,7 +174,7 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
                   "a shared location yields its place when the next robot is expected to pass "
                   "sooner (expected times learned in the run; docs/execution.md); "
                   "'switchable-lookahead': switchable-opt comparing the two orders by the "
-                  "expected times of every action they affect, 24 actions ahead (plan runs)")
+                  "expected times of every action they affect, 24 actions ahead")
       ->capture_default_str();
   cmd->add_option(
          "--switch-commit-actions", o.switch_commit_actions,

@@ -48,6 +48,15 @@
 //   when that is expected to save more than `margin_s`, under the same safety conditions.
 // Every due entry is decided before on_progress (or append) returns: none waits for a decision
 // between reports.
+//
+// switchable-lookahead (SwitchOptions::lookahead_actions > 0; switchable_tracker.hpp,
+// "Lookahead"; live_adg_lookahead.cpp): both decisions compare the pair's two orders by the
+// expected finish times of the unfinished actions reachable from i's and j's entries (their
+// robots' next actions and the entries waiting for their leaves, either order) up to
+// lookahead_actions ahead of each robot and lookahead_nodes in all, first over
+// lookahead_first_nodes of them; an anticipated switch must save lookahead_margin_s. The same
+// skips: the location's queue answers when j would not wait for i, or when it expects the swap to
+// lose more than one mean move. An order whose compared actions form a cycle costs for ever.
 #pragma once
 
 #include <boost/container/small_vector.hpp>
@@ -139,6 +148,10 @@ class LiveAdg final : public Execution {
   const std::vector<PassingSwitch>* switches() const override {
     return switching_ ? &switches_ : nullptr;
   }
+  // Pairs compared over their cone, and of those the ones compared over the whole cone
+  // (switchable-lookahead; tests, the bench).
+  std::size_t lookahead_comparisons() const { return compared_; }
+  std::size_t lookahead_widened() const { return widened_; }
 
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
@@ -152,6 +165,9 @@ class LiveAdg final : public Execution {
     NodeRef parent{};      // and the action it came from
     uint32_t pending = 0;  // unfinished Type-2 predecessors
     double sent_s = 0;     // switchable-opt: when it was sent
+    uint32_t cone = 0;     // switchable-lookahead: the comparison whose cone holds it,
+    uint32_t order = 0;    // the order whose expected finish look_s is,
+    double look_s = 0;     // and that finish
     Refs in;               // unfinished Type-2 predecessors
     Refs out;              // Type-2 successors
   };
@@ -221,6 +237,19 @@ class LiveAdg final : public Execution {
   void decide(uint32_t r, std::vector<uint32_t>& changed);
   bool decide_due(uint32_t r, bool may_switch, double time_s, std::vector<uint32_t>& changed);
   void settle_due(double time_s, std::vector<uint32_t>& changed);
+  // switchable-lookahead (live_adg_lookahead.cpp): a pair (i before j now) in either order.
+  struct Pair {
+    NodeRef i_enter, i_leave, j_enter, j_leave;
+  };
+  double margin() const;
+  void clear_marks(uint32_t Node::*mark);  // every unfinished action's
+  double saving(const Pair& p);
+  double lookahead_saving(const Pair& p);
+  double cone_saving(const Pair& p, std::size_t nodes);
+  void collect_cone(const Pair& p, std::size_t nodes);
+  void successors(const Pair& p, NodeRef u, bool swapped, std::vector<NodeRef>& out) const;
+  double expect(NodeRef n, const Pair& p, bool swapped);
+  double cone_cost(const Pair& p, bool swapped);
 
   const Grid& grid_;
   std::vector<Robot> robots_;
@@ -253,6 +282,13 @@ class LiveAdg final : public Execution {
   double now_s_ = 0;
   std::set<uint32_t> ahead_;
   mutable std::vector<ActionType> types_;  // scratch
+  // switchable-lookahead: the compared actions, comparison and order ids (Node::cone, order).
+  std::vector<NodeRef> cone_;
+  std::vector<NodeRef> next_;  // scratch
+  uint32_t cone_id_ = 0;
+  uint32_t order_id_ = 0;
+  std::size_t compared_ = 0;
+  std::size_t widened_ = 0;
 };
 
 }  // namespace smart::monitor

@@ -1,0 +1,169 @@
+// LiveAdg's switchable-lookahead (live_adg.hpp, "switchable-lookahead"): SwitchableTracker's
+// lookahead (switchable_lookahead.cpp; as SES evaluates a setting of switchable edges, Feng et
+// al., "Switchable Edge Search", ICAPS 2024, §4: the expected completion times are longest
+// paths under expected durations) on the growing graph. A pair's two orders differ in the Type-2
+// edges swap_order exchanges: kept, i.leave -> j.enter and j.leave -> k for the robots k after j;
+// swapped, j.leave -> i.enter and i.leave -> k. Both are read off the graph as it is, not built.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "smart/monitor/live_adg.hpp"
+
+namespace smart::monitor {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool by_robot(NodeRef a, NodeRef b) {
+  return a.robot != b.robot ? a.robot < b.robot : a.seq < b.seq;
+}
+}  // namespace
+
+double LiveAdg::margin() const {
+  return switching_->lookahead_actions > 0 ? switching_->lookahead_margin_s : switching_->margin_s;
+}
+
+// The comparison switchable-opt decides by: the location's queue (expected_saving), or the
+// lookahead when on and j is expected to wait for i there; not when j would not wait (nothing to
+// save: j enters no sooner, i later), nor when the queue expects the swap to cost the location's
+// robots more than one move (SwitchableTracker::saving: the robots behind seldom make that up).
+double LiveAdg::saving(const Pair& p) {
+  const double at_location = expected_saving(p.i_enter, p.i_leave, p.j_enter, p.j_leave);
+  if (switching_->lookahead_actions == 0) return at_location;
+  const double ai = arrival(p.i_enter), aj = arrival(p.j_enter);
+  if (!std::isfinite(aj)) return at_location;
+  // i's entry waits for nobody (try_switch, anticipate): the location is free, and i leaves at
+  // its own pace.
+  if (std::isfinite(ai) && (finish_estimate(p.i_leave.robot, p.i_leave.seq) <= aj ||
+                            at_location < -durations_.mean_s(ActionType::kMove))) {
+    return at_location;
+  }
+  return lookahead_saving(p);
+}
+
+// Over the first lookahead_first_nodes of the cone, then, unless the swap loses more than one
+// move's expected duration there, over the whole cone (SwitchableTracker::lookahead_saving).
+double LiveAdg::lookahead_saving(const Pair& p) {
+  ++compared_;
+  const SwitchOptions& o = *switching_;
+  const std::size_t first = std::min(o.lookahead_first_nodes, o.lookahead_nodes);
+  if (first < o.lookahead_nodes) {
+    const double near = cone_saving(p, first);
+    if (near < -durations_.mean_s(ActionType::kMove)) return near;
+  }
+  ++widened_;
+  return cone_saving(p, o.lookahead_nodes);
+}
+
+// The fleet's expected time saved by j passing i over a cone of `nodes` actions.
+double LiveAdg::cone_saving(const Pair& p, std::size_t nodes) {
+  collect_cone(p, nodes);
+  const double kept = cone_cost(p, false);
+  return kept - cone_cost(p, true);
+}
+
+// The successors of u in the pair's kept or swapped order.
+void LiveAdg::successors(const Pair& p, NodeRef u, bool swapped, std::vector<NodeRef>& out) const {
+  const Refs& own = node(u.robot, u.seq).out;
+  if (!swapped || !(u == p.i_leave || u == p.j_leave)) {
+    out.insert(out.end(), own.begin(), own.end());
+  } else if (u == p.j_leave) {
+    out.push_back(p.i_enter);
+  } else {
+    for (const NodeRef v : own) {
+      if (!(v == p.j_enter)) out.push_back(v);
+    }
+    for (const NodeRef k : node(p.j_leave.robot, p.j_leave.seq).out) {
+      if (k.robot != p.i_enter.robot) out.push_back(k);  // i's own later stay needs no edge
+    }
+  }
+}
+
+// The unfinished actions after i's and j's entries in either order, within lookahead_actions of
+// their robots' progress, breadth first up to `nodes`: the same set for both orders. Rooted and
+// walked in an order that does not depend on which robot is first now (the lower robot id's
+// entry first; at the pair's leaves, both orders' successors sorted), so that the pair compared
+// again right after a swap gets the same cone, and the opposite answer (a cone that depended on
+// it swapped pairs back and forth in one-shot runs, docs/execution.md "switchable-lookahead").
+void LiveAdg::collect_cone(const Pair& p, std::size_t nodes) {
+  if (++cone_id_ == 0) {
+    clear_marks(&Node::cone);
+    cone_id_ = 1;
+  }
+  cone_.clear();
+  const auto add = [&](NodeRef v) {
+    const Robot& rb = robots_[v.robot];
+    if (v.seq < rb.finished || v.seq >= end(v.robot) ||
+        v.seq > rb.finished + switching_->lookahead_actions) {
+      return;
+    }
+    Node& n = node(v.robot, v.seq);
+    if (n.cone == cone_id_ || cone_.size() >= nodes) return;
+    n.cone = cone_id_;
+    cone_.push_back(v);
+  };
+  const bool i_low = p.i_enter.robot < p.j_enter.robot;
+  add(i_low ? p.i_enter : p.j_enter);
+  add(i_low ? p.j_enter : p.i_enter);
+  // By index: add() grows cone_ while it is walked. Until the cone is full.
+  for (std::size_t q = 0; q < cone_.size() && cone_.size() < nodes; ++q) {
+    const NodeRef u = cone_[q];
+    add({u.robot, u.seq + 1});
+    next_.clear();
+    successors(p, u, false, next_);
+    if (u == p.i_leave || u == p.j_leave) {
+      successors(p, u, true, next_);
+      std::sort(next_.begin(), next_.end(), by_robot);
+    }
+    for (const NodeRef v : next_) add(v);
+  }
+}
+
+// The expected finish of action v in the pair's kept or swapped order: its robot's previous
+// action and its Type-2 predecessors finished (expected, or now), plus its kind's mean duration.
+// Outside the cone, a predecessor's time is its robot's own queue (waits not foreseen), the same
+// in both orders. Infinite on a cycle (the swap would deadlock).
+double LiveAdg::expect(NodeRef v, const Pair& p, bool swapped) {
+  Node& n = node(v.robot, v.seq);
+  if (n.order == order_id_) return std::isnan(n.look_s) ? kInf : n.look_s;
+  n.order = order_id_;
+  const Robot& rb = robots_[v.robot];
+  if (v.seq == rb.finished && v.seq < rb.enqueued) {
+    return n.look_s = finish_estimate(v.robot, v.seq);  // sent: under way
+  }
+  n.look_s = std::numeric_limits<double>::quiet_NaN();  // being computed
+  double start = now_s_;
+  const auto wait_for = [&](NodeRef u) {
+    if (u.robot == v.robot && u.seq + 1 != v.seq) return;  // its own earlier stay: Type-1
+    if (u.seq < robots_[u.robot].finished) return;
+    const bool inside = node(u.robot, u.seq).cone == cone_id_;
+    start = std::max(start, inside ? expect(u, p, swapped) : finish_estimate(u.robot, u.seq));
+  };
+  if (v.seq > rb.finished) wait_for({v.robot, v.seq - 1});
+  for (const NodeRef u : n.in) {
+    if (!swapped || !(u == p.j_leave || (u == p.i_leave && v == p.j_enter))) {
+      wait_for(u);
+    } else if (u == p.j_leave && v.robot != p.i_leave.robot) {
+      wait_for(p.i_leave);  // k now follows i (and j's entry no longer waits for i)
+    }
+  }
+  if (swapped && v == p.i_enter) wait_for(p.j_leave);
+  return n.look_s = start + durations_.mean_s(n.action.type);
+}
+
+// The sum over the cone's robots of the expected finish of their last action in it.
+double LiveAdg::cone_cost(const Pair& p, bool swapped) {
+  if (++order_id_ == 0) {
+    clear_marks(&Node::order);
+    order_id_ = 1;
+  }
+  double cost = 0;
+  for (const NodeRef v : cone_) {
+    const bool last = v.seq + 1 == end(v.robot) || node(v.robot, v.seq + 1).cone != cone_id_;
+    if (last) cost += expect(v, p, swapped);
+  }
+  return cost;
+}
+
+}  // namespace smart::monitor
