@@ -27,7 +27,8 @@ Tick MonitorHandshake::answer(uint64_t run_id, uint64_t windows_sent, bool stop)
   pending_.reset();
   last_answered_ = announced.tick;
   answered_any_ = true;
-  return {run_id, announced.tick, announced.sim_time_s, windows_sent, stop};
+  last_answer_ = Tick{run_id, announced.tick, announced.sim_time_s, windows_sent, stop};
+  return *last_answer_;
 }
 
 void HostHandshake::announced(uint64_t tick, double now_s) {

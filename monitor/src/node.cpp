@@ -70,6 +70,7 @@ SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
   if (c.run_id == 0) c.run_id = wall_clock_run_id();
   c.domain_id = domain_id;
   c.cell_m = cell_m;
+  c.reanswer_s = dds::kClockReannounceS;
   return c;
 }
 }  // namespace

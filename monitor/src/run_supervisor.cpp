@@ -124,7 +124,7 @@ void RunSupervisor::on_clock(const wire::Tick& t, double now_s) {
   const double sim_time_s = handshake_.pending()->sim_time_s;
   for (const auto& p : early_progress_) apply_progress(p, sim_time_s);
   early_progress_.clear();
-  try_answer();
+  try_answer(now_s);
 }
 
 void RunSupervisor::on_progress(const ProgressEvent& p, double now_s) {
@@ -142,7 +142,7 @@ void RunSupervisor::on_progress(const ProgressEvent& p, double now_s) {
     return;
   }
   apply_progress(p, handshake_.pending()->sim_time_s);
-  try_answer();
+  try_answer(now_s);
 }
 
 void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
@@ -183,7 +183,7 @@ PlanSnapshot RunSupervisor::plan_snapshot() const {
   return snapshot(in_->actions, in_->adg, *tracker_);
 }
 
-void RunSupervisor::try_answer() {
+void RunSupervisor::try_answer(double now_s) {
   if (!handshake_.ready(exec_->finished_total())) return;
   const double sim_time_s = handshake_.pending()->sim_time_s;
   res_.sim_time_s = sim_time_s;
@@ -191,6 +191,7 @@ void RunSupervisor::try_answer() {
   update_waiting(sim_time_s);
   check_end();
   writer_.answer_tick(handshake_.answer(res_.run_id, sent_.total(), over()));
+  handshake_.sent(now_s);
 }
 
 // Waiting = not done and nothing enqueued to execute, over the sim time since the last call.
@@ -304,6 +305,11 @@ void RunSupervisor::poll(double now_s) {
     update_waiting(now_s);
     check_end();
     if (over()) return;
+  }
+  if (config_.lockstep && config_.reanswer_s > 0 &&
+      handshake_.should_reanswer(now_s, config_.reanswer_s)) {
+    writer_.answer_tick(*handshake_.last_answer());
+    handshake_.sent(now_s);
   }
   check_liveness(now_s);
 }

@@ -39,6 +39,25 @@ TEST(MonitorHandshake, AnswersTheNewestTickOnceItsProgressAddsUp) {
   EXPECT_TRUE(h.ready(3));
 }
 
+// The last answer goes out again once no newer tick came for the period since it went out:
+// the same sample, for a host whose reader matched after it was sent.
+TEST(MonitorHandshake, TheLastAnswerIsSentAgainWhileNoNewerTickComes) {
+  MonitorHandshake h;
+  EXPECT_FALSE(h.should_reanswer(100.0, 0.5));  // nothing answered yet
+  h.on_tick({5, 0, 0.0, 0, false});
+  const Tick a = h.answer(5, 7, false);
+  h.sent(1.0);
+  EXPECT_FALSE(h.should_reanswer(1.4, 0.5));
+  ASSERT_TRUE(h.should_reanswer(1.6, 0.5));
+  EXPECT_EQ(h.last_answer()->tick, a.tick);
+  EXPECT_EQ(h.last_answer()->sync_total, 7u);
+  h.sent(1.6);
+  EXPECT_FALSE(h.should_reanswer(2.0, 0.5));
+  EXPECT_TRUE(h.should_reanswer(2.2, 0.5));
+  h.on_tick({5, 1, 0.1, 2, false});  // the next tick: answered when its progress is in
+  EXPECT_FALSE(h.should_reanswer(9.0, 0.5));
+}
+
 TEST(HostHandshake, StepsOnlyWithTheAnswerToItsTickAndTheWindowsItAnnounces) {
   HostHandshake h(30.0, 0.5);
   h.announced(4, 10.0);

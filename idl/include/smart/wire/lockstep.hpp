@@ -8,7 +8,8 @@
 // rather than trusting any order across topics, makes lock-step runs bit-identical.
 //
 // - SyncCounter: per-robot high-water marks and their sum (both sides count with it).
-// - MonitorHandshake: keeps the newest announced tick; says when it may be answered.
+// - MonitorHandshake: keeps the newest announced tick; says when it may be answered, and when
+//   to send the last answer again (a host that matched late missed it).
 // - HostHandshake: waits for the answer to the tick it announced and the windows it announces;
 //   says when to step, when to re-announce (a monitor that joined late missed the tick) and
 //   when the monitor has been silent too long.
@@ -62,11 +63,25 @@ class MonitorHandshake {
   Tick answer(uint64_t run_id, uint64_t windows_sent, bool stop);
   // The last tick answered (0 before any): where the final stop is sent.
   uint64_t last_answered() const { return last_answered_; }
+  // The last answer went out (or out again) at now_s.
+  void sent(double now_s) { sent_at_s_ = now_s; }
+  // Send the last answer again: no newer tick for reanswer_s since it went out. The clock keeps
+  // no history, so a host whose reader matched the monitor's writer after the answer went out
+  // never gets it; a sim host announces its tick again (HostHandshake::should_reannounce), but
+  // a sim shard other than the lead cannot (sim/shard_barrier.hpp): it waited, the lead waited
+  // for its next exchange, and the run was lost as "the sim host went silent" at tick 0. The
+  // repeat is the same sample: a host that has it, or has stepped past it, ignores it.
+  bool should_reanswer(double now_s, double reanswer_s) const {
+    return last_answer_ && !pending_ && now_s - sent_at_s_ > reanswer_s;
+  }
+  const std::optional<Tick>& last_answer() const { return last_answer_; }
 
  private:
   std::optional<Tick> pending_;
+  std::optional<Tick> last_answer_;
   uint64_t last_answered_ = 0;
   bool answered_any_ = false;
+  double sent_at_s_ = 0;
 };
 
 class HostHandshake {

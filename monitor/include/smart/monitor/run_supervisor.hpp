@@ -12,7 +12,8 @@
 // - Lock-step: progress is taken at the sim time of the tick that announced it (buffered until
 //   that tick arrives), and the tick is answered once the progress taken adds up to its
 //   sync_total (wire/lockstep.hpp): runs are bit-identical whatever order samples arrive in.
-//   The sim host's writers leaving, or no tick for timeout_s, loses the run.
+//   The sim host's writers leaving, or no tick for timeout_s, loses the run. With no newer tick
+//   for reanswer_s, the last answer goes out again (wire::MonitorHandshake::should_reanswer).
 // - Real time: progress is taken on arrival at the wall time; a robot fails the run only when
 //   nothing was heard of it (its states) for timeout_s, so a host may restart within it.
 // - Either: the execution is complete when every action finished; deadlock when no robot has an
@@ -150,6 +151,9 @@ struct SupervisorConfig {
   double robot_radius_m = 0;
   // A simulated run: success needs the sim host's final status (results: sim_status_received).
   bool require_sim_status = false;
+  // Lock-step: the last answer goes out again after this much wall time without a newer tick
+  // (the monitor node sets the clock's re-announce period of idl/smart.idl); 0: never.
+  double reanswer_s = 0;
   // A plan's run: passing orders may switch while it goes (issue 29, switchable_tracker.hpp).
   bool switchable = false;
   SwitchOptions switch_options = {};
@@ -238,7 +242,7 @@ class RunSupervisor {
   void advance_time(double time_s);
   void publish_window(uint32_t robot);
   void apply_progress(const ProgressEvent& p, double sim_time_s);
-  void try_answer();
+  void try_answer(double now_s);
   void update_waiting(double sim_time_s);
   void check_end();
   void check_liveness(double now_s);
