@@ -126,7 +126,10 @@ void LiveAdg::collect_cone(const Pair& p, std::size_t nodes) {
 // in both orders. Infinite on a cycle (the swap would deadlock).
 double LiveAdg::expect(NodeRef v, const Pair& p, bool swapped) {
   Node& n = node(v.robot, v.seq);
-  if (n.order == order_id_) return std::isnan(n.look_s) ? kInf : n.look_s;
+  if (n.order == order_id_) {
+    if (std::isnan(n.look_s)) return kInf;  // on the path being computed: a cycle
+    return n.look_s;
+  }
   n.order = order_id_;
   const Robot& rb = robots_[v.robot];
   if (v.seq == rb.finished && v.seq < rb.enqueued) {
