@@ -38,8 +38,10 @@ asan: deps
 	@cmake --preset asan >/dev/null
 	@cmake --build --preset asan
 
+# clang-tidy reads the code, not the build: `make test` runs it. Beside the sanitized suite it
+# only doubled the time and ran out of its 1800 s (2026-11-29: 794 of 795 passed, it timed out).
 asan-test: asan
-	ctest --preset asan -LE "long|package"
+	ctest --preset asan -LE "long|package" -E "^clang_tidy$$"
 
 # libFuzzer (clang) on every reader of untrusted input, FUZZ_SECONDS each, from the seed corpus
 # (tests/fuzz/corpus, replayed by `make test`); new finds go to build-fuzz/corpus/<target>.
