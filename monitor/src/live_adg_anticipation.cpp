@@ -48,21 +48,20 @@ double LiveAdg::arrival(NodeRef enter) const {
 // Expected waiting saved by passing j before i (i's entry waits for nobody: the location is
 // free now); the robot after j waits for the last of the two. Infinite when i is not expected
 // (j goes), minus infinite when j is not.
-double LiveAdg::expected_saving(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter,
-                                NodeRef j_leave) const {
-  const double ai = arrival(i_enter), aj = arrival(j_enter);
-  if (!std::isfinite(aj)) return -kInf;
-  if (!std::isfinite(ai)) return kInf;
+LiveAdg::PairQueue LiveAdg::queue_of(const Pair& p) const {
+  const double ai = arrival(p.i_enter), aj = arrival(p.j_enter);
+  if (!std::isfinite(aj)) return {ai, aj, kInf, -kInf};
+  if (!std::isfinite(ai)) return {ai, aj, kInf, kInf};
   double ak = kInf;
-  for (const NodeRef k : node(j_leave.robot, j_leave.seq).out) {
-    if (k.robot != i_enter.robot) {
+  for (const NodeRef k : node(p.j_leave.robot, p.j_leave.seq).out) {
+    if (k.robot != p.i_enter.robot) {
       ak = arrival(k);
       break;
     }
   }
-  const double di = finish_estimate(i_leave.robot, i_leave.seq) - ai;
-  const double dj = finish_estimate(j_leave.robot, j_leave.seq) - aj;
-  return queue_saving({now_s_, {ai, di}, {aj, dj}, ak});
+  const double fi = finish_estimate(p.i_leave.robot, p.i_leave.seq);
+  const double dj = finish_estimate(p.j_leave.robot, p.j_leave.seq) - aj;
+  return {ai, aj, fi, queue_saving({now_s_, {ai, fi - ai}, {aj, dj}, ak})};
 }
 
 // Robot i's next entry is due: the robot j that follows its stay passes first when expected to

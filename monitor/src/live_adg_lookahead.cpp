@@ -24,20 +24,18 @@ double LiveAdg::margin() const {
   return switching_->lookahead_actions > 0 ? switching_->lookahead_margin_s : switching_->margin_s;
 }
 
-// The comparison switchable-opt decides by: the location's queue (expected_saving), or the
+// The comparison switchable-opt decides by: the location's queue (queue_of), or the
 // lookahead when on and j is expected to wait for i there; not when j would not wait (nothing to
 // save: j enters no sooner, i later), nor when the queue expects the swap to cost the location's
 // robots more than one move (SwitchableTracker::saving: the robots behind seldom make that up).
 double LiveAdg::saving(const Pair& p) {
-  const double at_location = expected_saving(p.i_enter, p.i_leave, p.j_enter, p.j_leave);
-  if (switching_->lookahead_actions == 0) return at_location;
-  const double ai = arrival(p.i_enter), aj = arrival(p.j_enter);
-  if (!std::isfinite(aj)) return at_location;
+  const PairQueue q = queue_of(p);
+  if (switching_->lookahead_actions == 0 || !std::isfinite(q.j_arrive_s)) return q.saving;
   // i's entry waits for nobody (try_switch, anticipate): the location is free, and i leaves at
   // its own pace.
-  if (std::isfinite(ai) && (finish_estimate(p.i_leave.robot, p.i_leave.seq) <= aj ||
-                            at_location < -durations_.mean_s(ActionType::kMove))) {
-    return at_location;
+  if (std::isfinite(q.i_arrive_s) &&
+      (q.i_leave_s <= q.j_arrive_s || q.saving < -durations_.mean_s(ActionType::kMove))) {
+    return q.saving;
   }
   return lookahead_saving(p);
 }

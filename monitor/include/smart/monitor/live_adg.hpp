@@ -232,15 +232,21 @@ class LiveAdg final : public Execution {
   void observe(uint32_t r, uint32_t upto, double time_s);
   double finish_estimate(uint32_t r, uint32_t seq) const;
   double arrival(NodeRef enter) const;
-  double expected_saving(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave) const;
+  // A pair of stays at one location, i before j now (i's entry waits for nobody).
+  struct Pair {
+    NodeRef i_enter, i_leave, j_enter, j_leave;
+  };
+  // Its queue at the location: when i and j are expected there, when i is expected to leave, and
+  // the waiting j passing first is expected to save (queue_saving).
+  struct PairQueue {
+    double i_arrive_s = 0, j_arrive_s = 0, i_leave_s = 0, saving = 0;
+  };
+  PairQueue queue_of(const Pair& p) const;
   bool anticipate(uint32_t i, double time_s, std::vector<uint32_t>& changed);
   void decide(uint32_t r, std::vector<uint32_t>& changed);
   bool decide_due(uint32_t r, bool may_switch, double time_s, std::vector<uint32_t>& changed);
   void settle_due(double time_s, std::vector<uint32_t>& changed);
-  // switchable-lookahead (live_adg_lookahead.cpp): a pair (i before j now) in either order.
-  struct Pair {
-    NodeRef i_enter, i_leave, j_enter, j_leave;
-  };
+  // switchable-lookahead (live_adg_lookahead.cpp).
   double margin() const;
   void clear_marks(uint32_t Node::*mark);  // every unfinished action's
   double saving(const Pair& p);
