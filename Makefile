@@ -3,6 +3,8 @@
 BUILD ?= build
 BUILD_TYPE ?= Release
 JOBS ?= 2
+# Benchmark data, read in place ($SMART_BENCHMARKS, else beside the checkout).
+BENCHMARKS ?= $(or $(SMART_BENCHMARKS),../shared/benchmarks)
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo Ninja || echo "Unix Makefiles")
 
 .PHONY: all deps configure build test demo bench asan asan-test fuzz format clean agent package
@@ -27,11 +29,11 @@ demo: build
 bench: build
 	$(BUILD)/bin/smart_bench
 	$(BUILD)/bin/smart_lifelong_bench
-	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map --robots 1000 --sim-seconds 20
-	$(BUILD)/bin/smart bench sim --map ../shared/benchmarks/maps/sortation_large.map --robots 2000 --sim-seconds 20
-	$(BUILD)/bin/smart bench run --map ../shared/benchmarks/maps/warehouse-10-20-10-2-1.map \
-	  --scen ../shared/benchmarks/scens/warehouse-10-20-10-2-1-random-1.scen \
-	  --plan ../shared/benchmarks/smart-examples/scen_1_1000_paths.txt --axis rowcol \
+	$(BUILD)/bin/smart bench sim --map $(BENCHMARKS)/maps/warehouse-10-20-10-2-1.map --robots 1000 --sim-seconds 20
+	$(BUILD)/bin/smart bench sim --map $(BENCHMARKS)/maps/sortation_large.map --robots 2000 --sim-seconds 20
+	$(BUILD)/bin/smart bench run --map $(BENCHMARKS)/maps/warehouse-10-20-10-2-1.map \
+	  --scen $(BENCHMARKS)/scens/warehouse-10-20-10-2-1-random-1.scen \
+	  --plan $(BENCHMARKS)/smart-examples/scen_1_1000_paths.txt --axis rowcol \
 	  --agents 10,100,500,1000 --out $(BUILD)/bench-run
 
 asan: deps
