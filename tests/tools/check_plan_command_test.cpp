@@ -101,6 +101,42 @@ TEST(CheckPlanCommand, AFileThatCannotBeReadIsBadInputExitTwo) {
   for (const auto& f : {map, scen}) std::filesystem::remove(f);
 }
 
+// --actions: where a run's waiting went (monitor/wait_causes.hpp), on the crossing of
+// wait_causes_test with robot 0 late (its actions end at 4-9 s): robot 1 waits 6 s at the cell's
+// edge, 4 s of it while robot 0 was on its way. A row naming an action the plan lacks: exit 2,
+// naming the file and the line.
+TEST(CheckPlanCommand, ARunsActionsSayWhereItsWaitingWent) {
+  const auto map = write_temp("m6.map", "type octile\nheight 3\nwidth 4\nmap\n....\n....\n....\n");
+  const auto scen = write_temp("s6.scen",
+                               "version 1\n0\tm.map\t4\t3\t0\t1\t3\t1\t3\n"
+                               "0\tm.map\t4\t3\t2\t0\t2\t2\t2\n");
+  const auto plan = write_temp("p6.txt",
+                               "Agent 0:(0,1)->(1,1)->(2,1)->(3,1)->\n"
+                               "Agent 1:(2,0)->(2,0)->(2,0)->(2,1)->(2,2)->\n");
+  std::string csv = "robot,action,type,finish_time_s\n";
+  for (int k = 0; k < 6; ++k)
+    csv += "0," + std::to_string(k) + ",move," + std::to_string(4 + k) + "\n";
+  csv += "1,0,rotate,1\n1,1,move,2\n1,2,move,9\n1,3,move,10\n1,4,move,11\n";
+  const auto actions = write_temp("a6.csv", csv);
+  const std::vector<std::string> args{"--map", map, "--scen", scen, "--plan", plan, "--axis", "xy"};
+  auto with = args;
+  with.insert(with.end(), {"--actions", actions});
+  const auto r = run(with);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto w = nlohmann::json::parse(r.out)["waits"];
+  EXPECT_EQ(w["waits"], 1);
+  EXPECT_DOUBLE_EQ(w["total_s"].get<double>(), 6.0);
+  EXPECT_DOUBLE_EQ(w["on_its_way_s"].get<double>(), 4.0);
+  EXPECT_DOUBLE_EQ(w["at_location_s"].get<double>(), 1.0);
+
+  const auto bad = write_temp("a6bad.csv", csv + "1,7,move,12\n");
+  with.back() = bad;
+  const auto b = run(with, true);
+  EXPECT_EQ(b.code, 2) << b.out;
+  EXPECT_THAT(b.out, HasSubstr(bad + ": actions.csv line 13: robot 1 action 7 is not an action"));
+  for (const auto& f : {map, scen, plan, actions, bad}) std::filesystem::remove(f);
+}
+
 // Issue 26: `--agents` and `--robots` named one count in different commands; each takes both.
 TEST(CheckPlanCommand, TheRobotCountIsNamedEitherWay) {
   const auto map = write_temp("m4.map", "type octile\nheight 1\nwidth 3\nmap\n...\n");

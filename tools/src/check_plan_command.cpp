@@ -1,5 +1,7 @@
 // `smart check-plan`: validate a plan against its map and scenario and report plan and ADG
 // statistics as JSON (exit 0), or list every problem (exit 1); a file it cannot read: exit 2.
+// With --actions (a plain ADG run's actions.csv of this plan): also where that run's waiting
+// went (monitor/wait_causes.hpp; docs/execution.md, "What switching can reach").
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -7,8 +9,11 @@
 #include <utility>
 
 #include "smart/grid/problem.hpp"
+#include "smart/grid/text_file.hpp"
 #include "smart/monitor/instance.hpp"
 #include "smart/monitor/results.hpp"
+#include "smart/monitor/wait_causes.hpp"
+#include "smart/serve/robot_detail.hpp"
 #include "smart/tools/cli_common.hpp"
 #include "smart/tools/commands.hpp"
 #include "smart/tools/run_options.hpp"
@@ -22,6 +27,7 @@ struct CheckPlanOptions {
   std::string plan;
   std::optional<grid::AxisOrder> axis;
   grid::PlanFormat format = grid::PlanFormat::kAuto;
+  std::string actions_csv;  // a plain ADG run's actions.csv: where its waiting went
 };
 
 nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
@@ -35,6 +41,32 @@ nlohmann::json problems_json(const std::vector<grid::Problem>& problems) {
   return arr;
 }
 
+// The run's waits by cause (wait_causes.hpp), from its actions.csv (`text`) of this plan.
+nlohmann::json waits_json(const std::string& actions_csv, const std::string& text,
+                          const monitor::Instance& in) {
+  std::vector<double> finish_s;
+  try {
+    finish_s = serve::parse_action_times(text, in.actions);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(actions_csv + ": " + e.what() +
+                                "; is it a run of this plan, with the same --agents?");
+  }
+  const auto w = monitor::wait_causes(
+      in.actions, monitor::passing_orders(in.actions, in.grid, in.adg.footprint), finish_s);
+  const auto share = [&](double part_s) { return w.total_s > 0 ? part_s / w.total_s : 0.0; };
+  return {{"file", actions_csv},
+          {"waits", w.waits},
+          {"total_s", w.total_s},
+          {"on_its_way_s", w.on_its_way_s},
+          {"on_its_way_waiting_s", w.on_its_way_waiting_s},
+          {"uncommitted_s", w.uncommitted_s},
+          {"uncommitted_cycle_s", w.uncommitted_cycle_s},
+          {"entering_s", w.entering_s},
+          {"at_location_s", w.at_location_s},
+          {"on_its_way_share", share(w.on_its_way_s)},
+          {"at_location_share", share(w.at_location_s)}};
+}
+
 int run_check_plan(const CheckPlanOptions& o) {
   // A file that cannot be read is input to fix (exit 2, as `smart run` says), not an invalid plan.
   for (const auto& [path, what] :
@@ -44,6 +76,9 @@ int run_check_plan(const CheckPlanOptions& o) {
     }
   }
   const auto io = instance_options(o.world, o.plan, o.axis, o.format);
+  // Read first: a run's file that cannot be read is not a problem of the plan.
+  const std::string actions =
+      o.actions_csv.empty() ? std::string() : grid::read_text_file(o.actions_csv, "actions");
   try {
     const auto in = monitor::load_instance(io);
     nlohmann::json report = {
@@ -55,6 +90,7 @@ int run_check_plan(const CheckPlanOptions& o) {
         {"build_time_ms", monitor::build_time_json(in.timings)},
     };
     report["plan"]["file"] = o.plan;
+    if (!o.actions_csv.empty()) report["waits"] = waits_json(o.actions_csv, actions, in);
     std::cout << report.dump(2) << std::endl;
     return kExitSuccess;
   } catch (const grid::InputError& e) {
@@ -80,6 +116,9 @@ void register_check_plan_command(CLI::App& app, int& exit_code) {
                          "statistics as JSON (exit 0) or every problem found (exit 1)");
   add_world_options(cmd, o->world);  // --robot, --cell-m: the ADG depends on the footprint
   add_plan_options(cmd, o->plan, o->axis, o->format);
+  cmd->add_option("--actions", o->actions_csv,
+                  "A plain ADG run's actions.csv of this plan: also print where its waiting "
+                  "went (\"waits\": behind robots on their way, entering, at the location)");
   cmd->callback([&exit_code, o] { exit_code = run_check_plan(*o); });
 }
 
