@@ -21,7 +21,7 @@ bench=${SMART_BENCHMARKS:-../shared/benchmarks}
 command -v perf > /dev/null || { echo "switching_cost.sh: perf not found; install linux-perf" >&2; exit 2; }
 rm -rf "$out"
 mkdir -p "$out"
-switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|cone_cost|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|cone_cost|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
 tracker='(ExecutionTracker|SwitchableTracker|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"

@@ -284,6 +284,12 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   refusal = {node, theirs, static_cast<uint32_t>(switches_.size()), refusals_++, {}, false};
   switch (reaches(first.enter, stay_[mine].leave, first.leave, node, refusal.path)) {
     case Reach::kPath:
+      if (options_.chain_locations > 1 && try_chain(theirs, refusal.path, time_s, changed)) {
+        refusal.node = kNoAction;
+        with_refusal_.reset(robot);
+        unsettled_.reset(robot);
+        return true;
+      }
       refuse(robot, true);
       return false;
     case Reach::kBudget:
@@ -406,6 +412,15 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
 void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& changed) {
+  const uint32_t j = after(stay).stay;
+  relink(stay);
+  settle(j);
+  const uint32_t robot = stay_[j].robot;
+  if (advance(robot)) changed.push_back(robot);
+}
+
+// The order and the pending counts alone: undone by relink(j), j now before i (try_chain).
+void SwitchableTracker::relink(uint32_t stay) {
   const uint32_t i = stay, j = after(stay).stay;
   const uint32_t h = before(i).stay, k = after(j).stay;
   const auto edge = [&](uint32_t from, uint32_t to, int delta) {
@@ -424,6 +439,12 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);
+}
+
+// After j passed the stay after it (h, j, i, k): the refusals that may change and the robots
+// that may switch now are marked.
+void SwitchableTracker::settle(uint32_t j) {
+  const uint32_t i = after(j).stay, h = before(j).stay, k = after(i).stay;
   for (const uint32_t s : {h, i, j}) {  // the edges from their leaves were switched away
     if (s != kNoAction && stay_[s].leave != kNoAction) unsettle_watchers(stay_[s].leave);
   }
@@ -432,8 +453,6 @@ void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& cha
   }
   consider(i);
   if (k != kNoAction && stay_[k].enter != kNoAction) consider(k);
-  const uint32_t robot = stay_[j].robot;
-  if (advance(robot)) changed.push_back(robot);
 }
 
 // Anticipation (switchable_tracker.hpp). A report of one finished action is a duration sample:

@@ -339,6 +339,43 @@ TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
   EXPECT_EQ(t.lookahead_comparisons(), 0u);
 }
 
+// Following: robot 1 comes down into (1, 1) after robot 0 has crossed it eastwards and follows it
+// east into (2, 1), then turns south to (2, 2); robot 0 goes on to (3, 1). Robot 0 stalls at its
+// start, far from (1, 1). Passing it at (1, 1) alone would close a cycle: to leave (1, 1)
+// eastwards robot 1 must wait for robot 0 to pass the edge midpoint (1.5, 1) and (2, 1) ahead of
+// it, which robot 0 reaches only through (1, 1). Passing it at (1, 1), the midpoint and (2, 1)
+// at once closes none: robot 1 goes through while robot 0 has done nothing, then robot 0 goes.
+TEST(SwitchableTracker, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
+                                     Heading::kEast);
+  std::vector<Problem> problems;
+  build_adg(actions, grid, "test", problems);
+  ASSERT_TRUE(problems.empty());
+  SwitchableTracker one(actions, passing_orders(actions, grid),
+                        SwitchOptions{.commit_actions = 1, .chain_locations = 1});
+  SwitchableTracker t(actions, passing_orders(actions, grid), kNear);
+  for (auto* x : {&one, &t}) x->on_progress(1, 0, 1.0);  // rotated south: at the cell's edge
+  EXPECT_TRUE(one.switches()->empty());
+  ASSERT_EQ(t.switches()->size(), 3u);
+  EXPECT_EQ(t.chained(), 3u);
+  const auto at = [&](HalfCell h) { return static_cast<uint32_t>(grid.half_index(h)); };
+  EXPECT_EQ((*t.switches())[0].location, at(HalfCell::of({1, 1})));
+  EXPECT_EQ((*t.switches())[1].location, at({3, 2}));  // the midpoint (1.5, 1)
+  EXPECT_EQ((*t.switches())[2].location, at(HalfCell::of({2, 1})));
+  for (const auto& s : *t.switches()) {
+    EXPECT_EQ(s.first, 1u);
+    EXPECT_EQ(s.second, 0u);
+  }
+  run_robot(t, 1, 2.0);
+  EXPECT_TRUE(t.robot_done(1));
+  EXPECT_EQ(t.finished(0), 0u);
+  run_robot(t, 0, 3.0);
+  while (!t.complete() && !t.deadlocked()) run_robot(t, 0, 4.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
 // or the cells of it (both cells of an edge midpoint).
 std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
@@ -348,7 +385,7 @@ std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
 }
 
 struct Outcome {
-  std::size_t switches = 0, anticipated = 0;
+  std::size_t switches = 0, anticipated = 0, chained = 0;
 };
 
 // One seeded random plan executed in a random order the tracker allows, a third of the robots
@@ -443,13 +480,29 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     EXPECT_EQ(got, want) << "seed " << seed << " node " << node;
     if (got != want) return {};
   }
-  return {t.switches()->size(), t.anticipated()};
+  return {t.switches()->size(), t.anticipated(), t.chained()};
 }
 
 TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinishOnHalfCells) {
+  std::size_t switches = 0, chained = 0;
+  for (uint64_t seed = 1; seed <= 150; ++seed) {
+    const auto o = run_random(seed, Footprint::kHalfCells);
+    switches += o.switches;
+    chained += o.chained;
+    if (HasFailure()) FAIL() << "seed " << seed;
+  }
+  EXPECT_GT(switches, 100u) << "the delays should make robots switch";
+  EXPECT_GT(chained, 300u) << "robots should pass robots going on ahead of them";  // 582
+}
+
+// One location at a time (BTPG's pairs): the same guarantees.
+TEST(SwitchableTrackerProperty, OneLocationAtATimeNeverCollidesAndAlwaysFinishes) {
   std::size_t switches = 0;
   for (uint64_t seed = 1; seed <= 150; ++seed) {
-    switches += run_random(seed, Footprint::kHalfCells).switches;
+    const auto o = run_random(seed, Footprint::kHalfCells,
+                              SwitchOptions{.commit_actions = 1, .chain_locations = 1});
+    switches += o.switches;
+    EXPECT_EQ(o.chained, 0u);
     if (HasFailure()) FAIL() << "seed " << seed;
   }
   EXPECT_GT(switches, 100u) << "the delays should make robots switch";

@@ -180,5 +180,28 @@ TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {
   EXPECT_EQ(io.read.format, grid::PlanFormat::kLacam);
 }
 
+// --execution and the switching flags become the tracker's options: chains of 8 locations by
+// default, one location at a time with --switch-chain-locations 1, none past 64.
+TEST(RunOptions, SwitchingFlagsBecomeTheTrackersOptions) {
+  const auto parse = [](std::vector<std::string> extra) {
+    MonitorCliOptions o;
+    CLI::App app;
+    add_monitor_options(&app, o);
+    std::vector<std::string> args{"--map", "m",      "--scen", "s",           "--plan",
+                                  "p",     "--axis", "xy",     "--execution", "switchable"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::reverse(args.begin(), args.end());
+    app.parse(args);
+    return monitor_options(o).run;
+  };
+  EXPECT_TRUE(parse({}).switchable);
+  EXPECT_EQ(parse({}).switch_options.chain_locations, 8u);
+  const auto one = parse({"--switch-chain-locations", "1", "--switch-commit-actions", "2"});
+  EXPECT_EQ(one.switch_options.chain_locations, 1u);
+  EXPECT_EQ(one.switch_options.commit_actions, 2u);
+  EXPECT_THROW(parse({"--switch-chain-locations", "0"}), CLI::ParseError);
+  EXPECT_THROW(parse({"--switch-chain-locations", "65"}), CLI::ParseError);
+}
+
 }  // namespace
 }  // namespace smart::tools

@@ -182,6 +182,12 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
          "actions ahead (fewer: more room to switch, but robots brake before such entries)")
       ->check(CLI::Range(1u, 1000u))
       ->capture_default_str();
+  cmd->add_option("--switch-chain-locations", o.switch_chain_locations,
+                  "plan runs: a ready robot that the deadlock search stops because the robot it "
+                  "would pass goes on ahead of it passes that robot at up to this many shared "
+                  "locations in a row at once (1: one location at a time; docs/execution.md)")
+      ->check(CLI::Range(1u, 64u))
+      ->capture_default_str();
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
       ->check(finite_in(0.1, 1e9))
@@ -375,6 +381,7 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
 
 monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
   monitor::SwitchOptions s{o.switch_commit_actions};
+  s.chain_locations = o.switch_chain_locations;
   s.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt ||
                  o.execution == MonitorCliOptions::Execution::kSwitchableLookahead;
   if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) s.lookahead_actions = 24;

@@ -17,6 +17,12 @@
 //   being reversed (searched backwards from j.leave over unfinished predecessors, at most
 //   `search_budget` actions; past it, no swap);
 // - no stranding: j leaves the location again (j.leave exists), i was not there from the start.
+// Chains (options.chain_locations > 1): when the deadlock search refuses j because i goes on
+// ahead of it (the path it found reaches j's leaving through i's stay directly before j's at
+// another location), j passes i there too, and so on, up to chain_locations locations, all
+// switched at once: made on the orders, then kept only when none of the new edges (h -> j,
+// j -> i, i -> k at each) closes a cycle, otherwise undone before anything is sent (i's entry at
+// each must be unsent, j must leave each again). switchable_chain.cpp.
 // Deterministic: the robots whose situation changed are tried in id order after each progress.
 //
 // Anticipation (options.anticipate, `--execution switchable-opt`): the moment an entry i is to
@@ -89,6 +95,8 @@ class SwitchableTracker final : public Execution {
   const std::vector<PassingSwitch>* switches() const override { return &switches_; }
   // Switches made by anticipation (a part of switches()).
   std::size_t anticipated() const { return anticipated_; }
+  // Switches made as parts of chains (SwitchOptions::chain_locations; a part of switches()).
+  std::size_t chained() const { return chained_; }
   // Pairs compared over their cone (switchable-lookahead; tests, the bench).
   std::size_t lookahead_comparisons() const { return compared_; }
   // Of those, the ones compared over the whole cone, not the first lookahead_first_nodes alone.
@@ -139,6 +147,14 @@ class SwitchableTracker final : public Execution {
   void unsettle(uint32_t stay);
   void unsettle_watchers(uint32_t node);
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
+  void relink(uint32_t stay);
+  void settle(uint32_t j);
+  // Chains (switchable_chain.cpp).
+  bool try_chain(uint32_t i, const std::vector<std::pair<uint32_t, uint32_t>>& path, double time_s,
+                 std::vector<uint32_t>& changed);
+  uint32_t chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t first,
+                      uint32_t second) const;
+  Reach chain_cycle(const std::vector<uint32_t>& chain);
   uint32_t blocking_stay(uint32_t node) const;
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
@@ -194,8 +210,9 @@ class SwitchableTracker final : public Execution {
     std::vector<std::pair<uint32_t, uint32_t>> path;  // the Type-2 edges of a path found
     bool by_path = false;
   };
-  std::vector<uint32_t> parent_;  // search tree
-  std::vector<uint32_t> stack_;   // search frontier (kept: no allocation per search)
+  std::vector<std::pair<uint32_t, uint32_t>> chain_path_;  // a chain's cycle search
+  std::vector<uint32_t> parent_;                           // search tree
+  std::vector<uint32_t> stack_;  // search frontier (kept: no allocation per search)
   std::vector<Refusal> refused_;
   uint32_t refusals_ = 0;
   RobotSet with_refusal_;  // robots whose refused_ names an entry
@@ -233,6 +250,7 @@ class SwitchableTracker final : public Execution {
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
   std::size_t compared_ = 0, widened_ = 0;
+  std::size_t chained_ = 0;
 };
 
 }  // namespace smart::monitor

@@ -38,6 +38,11 @@ struct SwitchOptions {
   // the swap loses more than one move's expected duration there (switchable_lookahead.cpp).
   std::size_t lookahead_first_nodes = 16;
   double lookahead_margin_s = 0.5;
+  // A ready robot refused because the robot it would pass goes on ahead of it (the deadlock
+  // search's path enters its leaving from that robot's stay directly before its own at the
+  // next location) passes it there too, up to this many locations at once, when that closes
+  // no cycle (switchable_chain.cpp). 1: one location, as BTPG's bidirectional pairs.
+  uint32_t chain_locations = 8;
 };
 
 // The execution's name in summary.json and results.csv (`smart run --execution`).

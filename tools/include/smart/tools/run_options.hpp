@@ -104,6 +104,7 @@ struct MonitorCliOptions {
   enum class Execution { kAdg, kSwitchable, kSwitchableOpt, kSwitchableLookahead };
   Execution execution = Execution::kAdg;
   uint32_t switch_commit_actions = 6;  // --switch-commit-actions
+  uint32_t switch_chain_locations = monitor::SwitchOptions{}.chain_locations;  // plan runs
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
   // Success needs a sim host's final status: lock-step, `smart run`, or --require-sim-status.

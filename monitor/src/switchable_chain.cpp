@@ -1,0 +1,98 @@
+// SwitchableTracker's chains (switching.hpp, SwitchOptions::chain_locations): a ready robot j
+// whose switch with i was refused because the deadlock search found i going on ahead of it
+// (the path from i's entry enters j's leaving through i's stay directly before j's at the next
+// location) passes i at that location too, and so on along their shared way, all at once. One
+// location at a time each such switch closes a cycle; together they may not. Measured on plain
+// ADG's runs, such waits are 18-55 % of all waiting on random-64-64-10 (docs/execution.md,
+// "What switching can reach"). The swaps are made on the order and the pending counts only,
+// checked, and undone when any new edge closes a cycle: no action is sent in between.
+#include <algorithm>
+
+#include "smart/monitor/switchable_tracker.hpp"
+
+namespace smart::monitor {
+
+// The stay of `first` right before a stay of `second` whose entry the path's last Type-2 edge
+// from first to second enters (that edge is first's leave -> second's entry there), if first's
+// entry there may still be switched; kNoAction otherwise.
+uint32_t SwitchableTracker::chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path,
+                                       uint32_t first, uint32_t second) const {
+  for (std::size_t n = path.size(); n-- > 0;) {  // the last edge first
+    const auto& e = path[n];
+    if (actions_.actions[e.first].robot != first || actions_.actions[e.second].robot != second) {
+      continue;
+    }
+    for (uint32_t k = leave_begin_[e.first]; k < leave_begin_[e.first + 1]; ++k) {
+      const uint32_t i = leave_stays_[k];
+      const auto j = after(i);
+      if (!j.edge || stay_[j.stay].enter != e.second) continue;
+      const Stay& a = stay_[i];
+      const Stay& b = stay_[j.stay];
+      if (a.enter == kNoAction || committed(first, a.enter) || b.leave == kNoAction) {
+        return kNoAction;
+      }
+      return i;
+    }
+    return kNoAction;
+  }
+  return kNoAction;
+}
+
+// Any cycle the swaps of `chain` (each stay i now after the j it was before: h, j, i, k) close
+// goes through one of their new edges u -> v (h -> j, j -> i, i -> k), so through a path from v
+// to u: searched for each, the last path found left in chain_path_.
+SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32_t>& chain) {
+  for (const uint32_t i : chain) {
+    const uint32_t j = before(i).stay, h = before(j).stay, k = after(i).stay;
+    for (const auto& [u, v] : {std::pair{j, i}, std::pair{h, j}, std::pair{i, k}}) {
+      if (u == kNoAction || v == kNoAction || stay_[u].robot == stay_[v].robot) continue;
+      const uint32_t leave = stay_[u].leave, enter = stay_[v].enter;
+      if (leave == kNoAction || enter == kNoAction || finished_by(stay_[u].robot, leave)) continue;
+      chain_path_.clear();
+      const Reach r = reaches(enter, leave, kNoAction, kNoAction, chain_path_);
+      if (r != Reach::kNone) return r;
+    }
+  }
+  return Reach::kNone;
+}
+
+// `i` (before j, the ready robot's stay) refused by `path`: j passes i at i's location and at
+// each next location where the path shows i ahead, until no cycle closes (switched, recorded,
+// true) or the chain cannot grow (undone, false).
+bool SwitchableTracker::try_chain(uint32_t i,
+                                  const std::vector<std::pair<uint32_t, uint32_t>>& path,
+                                  double time_s, std::vector<uint32_t>& changed) {
+  const uint32_t passed = stay_[i].robot, ready = stay_[after(i).stay].robot;
+  std::vector<uint32_t> chain{i};
+  relink(i);
+  uint32_t next = chain_link(path, passed, ready);
+  for (;;) {
+    if (next == kNoAction || chain.size() >= options_.chain_locations ||
+        std::find(chain.begin(), chain.end(), next) != chain.end()) {
+      break;
+    }
+    // Expected times (switchable-opt, -lookahead): j passes only where they expect it to save
+    // there too. Without this check the robot passed found a saving in passing back at those
+    // locations: 24-62 thousand switches a run at 200-750 robots (docs/execution.md, "Chains").
+    if (options_.anticipate && !(saving(next, after(next).stay) > 0)) break;
+    relink(next);
+    chain.push_back(next);
+    const Reach r = chain_cycle(chain);
+    if (r == Reach::kNone) {
+      for (const uint32_t s : chain) {
+        const uint32_t j = before(s).stay;
+        switches_.push_back({time_s, location_[s], ready, passed});
+        settle(j);
+      }
+      chained_ += chain.size();
+      if (advance(ready)) changed.push_back(ready);
+      return true;
+    }
+    if (r == Reach::kBudget) break;
+    next = chain_link(chain_path_, passed, ready);
+  }
+  for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
+  return false;
+}
+
+}  // namespace smart::monitor
