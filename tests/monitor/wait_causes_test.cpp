@@ -9,24 +9,14 @@
 #include <stdexcept>
 
 #include "smart/monitor/action_builder.hpp"
+#include "support/monitor_fixtures.hpp"
 
 namespace smart::monitor {
 namespace {
 
-Plan plan_of(std::vector<std::vector<Cell>> paths) {
-  Plan plan;
-  for (auto& cells : paths) {
-    grid::RobotPath p;
-    p.robot = static_cast<int>(plan.paths.size());
-    for (std::size_t t = 0; t < cells.size(); ++t) {
-      p.steps.push_back({cells[t], static_cast<double>(t)});
-    }
-    plan.paths.push_back(std::move(p));
-  }
-  return plan;
-}
+using test::plan_of;
 
-// Finish times by node: robot r's action k at start[r] + k seconds, or as given.
+// Finish times by node: each robot's, in its actions' order.
 std::vector<double> times(const ActionPlan& a, std::vector<std::vector<double>> per_robot) {
   std::vector<double> t;
   for (uint32_t r = 0; r < a.robots(); ++r) {
