@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace smart::experiment {
 
@@ -222,6 +223,28 @@ void read_commit_actions(const YAML::Node& root, const std::string& src, Spec& s
   }
 }
 
+// switch_chain_locations: whole numbers from 1 to 64 (smart run's range), for a switching
+// execution of plan runs (a lifelong run's switching has no chains).
+void read_chain_locations(const YAML::Node& root, const std::string& src, Spec& s) {
+  const auto n = root["switch_chain_locations"];
+  if (!n) return;
+  if (root["lifelong"]) {
+    fail(src, n, "switch_chain_locations",
+         "plan runs only: a lifelong run switches one location at a time; remove it");
+  }
+  for (const auto k :
+       whole_numbers(n, src, "switch_chain_locations", 1, 64, "from 1 to 64 locations")) {
+    s.switch_chain_locations.push_back(static_cast<uint32_t>(k));
+  }
+  if (s.switch_chain_locations.empty()) {
+    fail(src, n, "switch_chain_locations", "is empty; give at least one, e.g. [1, 8]");
+  }
+  if (std::ranges::count(s.executions, "adg") == static_cast<long>(s.executions.size())) {
+    fail(src, n, "switch_chain_locations",
+         "only the switching executions take it; add switchable (or switchable-opt) to executions");
+  }
+}
+
 double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
                  double hi) {
   double v = -1;
@@ -245,6 +268,7 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
            "adg, switchable, switchable-opt or switchable-lookahead");
   }
   read_commit_actions(root, src, s);
+  read_chain_locations(root, src, s);
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
     fail(src, root["clock"], "clock", "lockstep or realtime");
@@ -263,16 +287,29 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
     s.state_rate_hz = number_in(r, src, "state_rate_hz", 0, 1000);
   }
   for (const auto& kv : root) {
-    static const std::set<std::string> known{
-        "name",         "maps",     "scens",    "agents",     "plan",
-        "plans",        "robots",   "qos",      "clock",      "repeats",
-        "uncertainty",  "lifelong", "planners", "executions", "switch_commit_actions",
-        "state_rate_hz"};
+    static const std::set<std::string> known{"name",
+                                             "maps",
+                                             "scens",
+                                             "agents",
+                                             "plan",
+                                             "plans",
+                                             "robots",
+                                             "qos",
+                                             "clock",
+                                             "repeats",
+                                             "uncertainty",
+                                             "lifelong",
+                                             "planners",
+                                             "executions",
+                                             "switch_commit_actions",
+                                             "switch_chain_locations",
+                                             "state_rate_hz"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
-           "clock, uncertainty, executions, switch_commit_actions, repeats, state_rate_hz "
+           "clock, uncertainty, executions, switch_commit_actions, switch_chain_locations, "
+           "repeats, state_rate_hz "
            "(lifelong: lifelong, agents, planners)");
     }
   }
@@ -400,6 +437,7 @@ const std::vector<std::string> kParams{"cell",
                                        "clock",
                                        "execution",
                                        "switch_commit_actions",
+                                       "switch_chain_locations",
                                        "replan_period_s",
                                        "planner_runtime_s"};
 }  // namespace
@@ -433,10 +471,19 @@ Spec parse_spec(std::string_view text, const std::string& src) {
 
 namespace {
 
-// The commit distances an execution runs with: plain ADG has none (0: the flag not given).
-std::vector<uint32_t> commit_axis(const Spec& s, const std::string& execution) {
-  if (execution == "adg" || s.switch_commit_actions.empty()) return {0};
-  return s.switch_commit_actions;
+// The (commit distance, chain length) pairs an execution runs with: plain ADG has none (0: the
+// flag not given).
+std::vector<std::pair<uint32_t, uint32_t>> switching_axis(const Spec& s,
+                                                          const std::string& execution) {
+  if (execution == "adg") return {{0, 0}};
+  const auto or_none = [](const std::vector<uint32_t>& v) {
+    return v.empty() ? std::vector<uint32_t>{0} : v;
+  };
+  std::vector<std::pair<uint32_t, uint32_t>> axis;
+  for (const uint32_t commit : or_none(s.switch_commit_actions)) {
+    for (const uint32_t chain : or_none(s.switch_chain_locations)) axis.emplace_back(commit, chain);
+  }
+  return axis;
 }
 
 }  // namespace
@@ -451,7 +498,7 @@ std::vector<Cell> expand(const Spec& s) {
             for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
               for (std::size_t t = 0; t < periods(s); ++t) {
                 for (const auto& e : s.executions) {
-                  for (const uint32_t commit : commit_axis(s, e)) {
+                  for (const auto& [commit, chain] : switching_axis(s, e)) {
                     for (std::size_t r = 0; r < s.repeats; ++r) {
                       auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
                                  std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
@@ -460,8 +507,9 @@ std::vector<Cell> expand(const Spec& s) {
                       if (periods(s) > 1) key += "-p" + std::to_string(t);
                       if (e != "adg") key += "-" + e;  // plain cells keep their folders
                       if (commit != 0) key += "-c" + std::to_string(commit);
+                      if (chain != 0) key += "-k" + std::to_string(chain);
                       key += "-r" + std::to_string(r);
-                      cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit});
+                      cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit, chain});
                     }
                   }
                 }
@@ -479,6 +527,9 @@ std::vector<std::string> execution_flags(const Cell& c) {
   std::vector<std::string> flags{"--execution", c.execution};
   if (c.commit_actions != 0) {
     flags.insert(flags.end(), {"--switch-commit-actions", std::to_string(c.commit_actions)});
+  }
+  if (c.chain_locations != 0) {
+    flags.insert(flags.end(), {"--switch-chain-locations", std::to_string(c.chain_locations)});
   }
   return flags;
 }
@@ -514,6 +565,7 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
               {"clock", s.clock},
               {"execution", c.execution}};
   if (c.commit_actions != 0) row["switch_commit_actions"] = c.commit_actions;
+  if (c.chain_locations != 0) row["switch_chain_locations"] = c.chain_locations;
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);

@@ -235,6 +235,47 @@ TEST(Spec, StateRateHzIsPassedToEveryRunAndCheckedAtItsLine) {
   }
 }
 
+// Chains (`--switch-chain-locations`, issue 29) are an axis of the switching executions of plan
+// runs, crossed with the commit distance; plain ADG cells run once; lifelong specs refuse it.
+TEST(Spec, SwitchChainLocationsAreAnAxisOfTheSwitchingExecutions) {
+  const std::string base =
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
+  const auto s =
+      parse_spec(base +
+                     "executions: [adg, switchable-opt]\nswitch_chain_locations: [1, 8]\n"
+                     "switch_commit_actions: [6]\n",
+                 "k.yaml");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[0].key, "0-s-n5-footbot-lan-r0");
+  EXPECT_EQ(cells[1].key, "0-s-n5-footbot-lan-switchable-opt-c6-k1-r0");
+  EXPECT_EQ(execution_flags(cells[2]),
+            (std::vector<std::string>{"--execution", "switchable-opt", "--switch-commit-actions",
+                                      "6", "--switch-chain-locations", "8"}));
+  const auto row = result_row(s, cells[1], nlohmann::json::object());
+  EXPECT_EQ(row["switch_chain_locations"], 1);
+  EXPECT_FALSE(
+      result_row(s, cells[0], nlohmann::json::object()).contains("switch_chain_locations"));
+  EXPECT_NE(results_csv({row}).find(",switch_commit_actions,switch_chain_locations,"),
+            std::string::npos);
+  const auto fails = [](const std::string& text, const std::string& what) {
+    try {
+      (void)parse_spec(text, "k.yaml");
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(what));
+    }
+  };
+  fails(base + "switch_chain_locations: [2]\n",
+        "k.yaml:6: switch_chain_locations: only the switching executions take it");
+  fails(base + "executions: [switchable]\nswitch_chain_locations: [65]\n",
+        "k.yaml:7: switch_chain_locations: from 1 to 64 locations");
+  fails(
+      "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable]\n"
+      "switch_chain_locations: 3\n",
+      "k.yaml:5: switch_chain_locations: plan runs only");
+}
+
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching
 // executions only: plain ADG cells run once, on the same seeds.
 TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {

@@ -18,6 +18,7 @@
 //   uncertainty: [{}, {stall_probability: 0.05, stall_s: 2}]   # agent/uncertainty.hpp keys
 //   executions: [adg, switchable]     # `smart run --execution`; default [adg] (issue 29)
 //   switch_commit_actions: [2, 6]     # `--switch-commit-actions` of the switching executions
+//   switch_chain_locations: [1, 8]    # `--switch-chain-locations` of theirs (plan runs)
 //                                     # (an axis for them; adg cells run once); default: its
 //                                     # default
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
@@ -79,9 +80,10 @@ struct Spec {
   // Execution uncertainty settings, each an object of stall_probability, stall_s, speed_sigma,
   // slip_sigma (default: one empty object, the robot model's own).
   std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
-  std::vector<std::string> executions{"adg"};   // plan experiments: adg, switchable
-  std::vector<uint32_t> switch_commit_actions;  // empty: `smart run`'s default
-  std::optional<double> state_rate_hz;          // none: `smart run`'s default
+  std::vector<std::string> executions{"adg"};    // plan experiments: adg, switchable
+  std::vector<uint32_t> switch_commit_actions;   // empty: `smart run`'s default
+  std::vector<uint32_t> switch_chain_locations;  // plan runs; empty: `smart run`'s default
+  std::optional<double> state_rate_hz;           // none: `smart run`'s default
   std::size_t repeats = 1;
 };
 
@@ -98,11 +100,12 @@ struct Cell {
   std::size_t period = 0;       // lifelong: index into spec.lifelong->replan_period_s
   std::string key;              // folder name, unique within the experiment, stable across runs
   std::string execution = "adg";
-  uint32_t commit_actions = 0;  // --switch-commit-actions; 0: not given
+  uint32_t commit_actions = 0;   // --switch-commit-actions; 0: not given
+  uint32_t chain_locations = 0;  // --switch-chain-locations; 0: not given
 };
 
 // The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period,
-// execution, switch_commit_actions, repeat).
+// execution, switch_commit_actions, switch_chain_locations, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
