@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 namespace smart::experiment {
@@ -233,6 +235,25 @@ TEST(Spec, StateRateHzIsPassedToEveryRunAndCheckedAtItsLine) {
           << bad;
     }
   }
+}
+
+// Every spec in examples/experiments/ (the docs' commands) parses and makes a grid.
+TEST(Spec, EveryExampleSpecParses) {
+  const std::filesystem::path dir =
+      std::filesystem::path(SMART_SOURCE_DIR) / "examples/experiments";
+  std::size_t specs = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".yaml") continue;
+    std::ifstream in(f.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    try {
+      EXPECT_FALSE(expand(parse_spec(text, f.path().string())).empty()) << f.path();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
+    ++specs;
+  }
+  EXPECT_GE(specs, 20u);
 }
 
 // Chains (`--switch-chain-locations`, issue 29) are an axis of the switching executions of plan
