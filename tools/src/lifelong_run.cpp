@@ -223,6 +223,11 @@ void check_lifelong_flags(const MonitorCliOptions& o) {
         "--cell-m");
   }
   if (o.sim.shards > 1) throw std::invalid_argument("--sim-hosts: lifelong runs use one sim host");
+  if (o.switch_chain_locations.value_or(1) != 1) {
+    throw std::invalid_argument(
+        "--switch-chain-locations: a lifelong run switches one location at a time (its growing "
+        "graph has no chains yet, monitor/live_adg.hpp); drop it");
+  }
   if (o.resume) {
     throw std::invalid_argument(
         "--resume: a lifelong run cannot be taken over (its task state lives in the monitor); "

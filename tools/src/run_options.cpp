@@ -185,9 +185,9 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
   cmd->add_option("--switch-chain-locations", o.switch_chain_locations,
                   "plan runs: a ready robot that the deadlock search stops because the robot it "
                   "would pass goes on ahead of it passes that robot at up to this many shared "
-                  "locations in a row at once (1: one location at a time; docs/execution.md)")
-      ->check(CLI::Range(1u, 64u))
-      ->capture_default_str();
+                  "locations in a row at once (1: one location at a time; default 8; "
+                  "docs/execution.md)")
+      ->check(CLI::Range(1u, 64u));
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
       ->check(finite_in(0.1, 1e9))
@@ -381,7 +381,7 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
 
 monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
   monitor::SwitchOptions s{o.switch_commit_actions};
-  s.chain_locations = o.switch_chain_locations;
+  s.chain_locations = o.switch_chain_locations.value_or(s.chain_locations);
   s.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt ||
                  o.execution == MonitorCliOptions::Execution::kSwitchableLookahead;
   if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) s.lookahead_actions = 24;

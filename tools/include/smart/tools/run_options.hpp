@@ -9,6 +9,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -104,7 +105,8 @@ struct MonitorCliOptions {
   enum class Execution { kAdg, kSwitchable, kSwitchableOpt, kSwitchableLookahead };
   Execution execution = Execution::kAdg;
   uint32_t switch_commit_actions = 6;  // --switch-commit-actions
-  uint32_t switch_chain_locations = monitor::SwitchOptions{}.chain_locations;  // plan runs
+  // --switch-chain-locations (plan runs; none: SwitchOptions' default; lifelong runs refuse it)
+  std::optional<uint32_t> switch_chain_locations;
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
   // Success needs a sim host's final status: lock-step, `smart run`, or --require-sim-status.
