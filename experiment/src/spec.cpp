@@ -205,44 +205,35 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   }
 }
 
-// switch_commit_actions: whole numbers from 1 to 1000 (smart run's range), for a switching
-// execution.
-void read_commit_actions(const YAML::Node& root, const std::string& src, Spec& s) {
-  const auto n = root["switch_commit_actions"];
-  if (!n) return;
-  for (const auto k :
-       whole_numbers(n, src, "switch_commit_actions", 1, 1000, "from 1 to 1000 actions")) {
-    s.switch_commit_actions.push_back(static_cast<uint32_t>(k));
+// A switching axis (switch_commit_actions, switch_chain_locations): whole numbers from 1 to
+// `hi` (smart run's range), for a switching execution; `example` shows a list.
+std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::string& src,
+                                          const Spec& s, const std::string& field, long long hi,
+                                          const std::string& range, const std::string& example) {
+  const auto n = root[field];
+  std::vector<uint32_t> out;
+  if (!n) return out;
+  for (const auto k : whole_numbers(n, src, field, 1, hi, range)) {
+    out.push_back(static_cast<uint32_t>(k));
   }
-  if (s.switch_commit_actions.empty()) {
-    fail(src, n, "switch_commit_actions", "is empty; give at least one, e.g. [2, 6]");
-  }
+  if (out.empty()) fail(src, n, field, "is empty; give at least one, e.g. " + example);
   if (std::ranges::count(s.executions, "adg") == static_cast<long>(s.executions.size())) {
-    fail(src, n, "switch_commit_actions",
+    fail(src, n, field,
          "only the switching executions take it; add switchable (or switchable-opt) to executions");
   }
+  return out;
 }
 
-// switch_chain_locations: whole numbers from 1 to 64 (smart run's range), for a switching
-// execution of plan runs (a lifelong run's switching has no chains).
-void read_chain_locations(const YAML::Node& root, const std::string& src, Spec& s) {
-  const auto n = root["switch_chain_locations"];
-  if (!n) return;
-  if (root["lifelong"]) {
-    fail(src, n, "switch_chain_locations",
+// The commit distance, and chains (plan runs only: a lifelong run's switching has none).
+void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s) {
+  s.switch_commit_actions = read_switching_axis(root, src, s, "switch_commit_actions", 1000,
+                                                "from 1 to 1000 actions", "[2, 6]");
+  if (root["lifelong"] && root["switch_chain_locations"]) {
+    fail(src, root["switch_chain_locations"], "switch_chain_locations",
          "plan runs only: a lifelong run switches one location at a time; remove it");
   }
-  for (const auto k :
-       whole_numbers(n, src, "switch_chain_locations", 1, 64, "from 1 to 64 locations")) {
-    s.switch_chain_locations.push_back(static_cast<uint32_t>(k));
-  }
-  if (s.switch_chain_locations.empty()) {
-    fail(src, n, "switch_chain_locations", "is empty; give at least one, e.g. [1, 8]");
-  }
-  if (std::ranges::count(s.executions, "adg") == static_cast<long>(s.executions.size())) {
-    fail(src, n, "switch_chain_locations",
-         "only the switching executions take it; add switchable (or switchable-opt) to executions");
-  }
+  s.switch_chain_locations = read_switching_axis(root, src, s, "switch_chain_locations", 64,
+                                                 "from 1 to 64 locations", "[1, 8]");
 }
 
 double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
@@ -267,8 +258,7 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
       fail(src, root["executions"], "executions",
            "adg, switchable, switchable-opt or switchable-lookahead");
   }
-  read_commit_actions(root, src, s);
-  read_chain_locations(root, src, s);
+  read_switching_axes(root, src, s);
   if (root["clock"]) s.clock = root["clock"].as<std::string>();
   if (s.clock != "lockstep" && s.clock != "realtime") {
     fail(src, root["clock"], "clock", "lockstep or realtime");

@@ -285,9 +285,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
   switch (reaches(first.enter, stay_[mine].leave, first.leave, node, refusal.path)) {
     case Reach::kPath:
       if (options_.chain_locations > 1 && try_chain(theirs, refusal.path, time_s, changed)) {
-        refusal.node = kNoAction;
-        with_refusal_.reset(robot);
-        unsettled_.reset(robot);
+        forget_refusal(robot);
         return true;
       }
       refuse(robot, true);
@@ -298,9 +296,7 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
     case Reach::kNone:
       break;
   }
-  refusal.node = kNoAction;
-  with_refusal_.reset(robot);
-  unsettled_.reset(robot);
+  forget_refusal(robot);
   switches_.push_back({time_s, location_[mine], robot, first.robot});
   swap_with_next(theirs, changed);
   return true;
@@ -340,6 +336,13 @@ void SwitchableTracker::refuse(uint32_t robot, bool by_path) {
   }
   unsettled_.reset(robot);
   for (const auto& e : refusal.path) watchers_[e.first].push_back({robot, refusal.id});
+}
+
+// `robot` switched: no refusal of it stands.
+void SwitchableTracker::forget_refusal(uint32_t robot) {
+  refused_[robot].node = kNoAction;
+  with_refusal_.reset(robot);
+  unsettled_.reset(robot);
 }
 
 // The stay's place changed (a switch): its robot's refusal may name another stay to pass now.

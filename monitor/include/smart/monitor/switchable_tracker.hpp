@@ -144,6 +144,7 @@ class SwitchableTracker final : public Execution {
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   bool path_holds(uint32_t robot) const;
   void refuse(uint32_t robot, bool by_path);
+  void forget_refusal(uint32_t robot);
   void unsettle(uint32_t stay);
   void unsettle_watchers(uint32_t node);
   void swap_with_next(uint32_t stay, std::vector<uint32_t>& changed);
