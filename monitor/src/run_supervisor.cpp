@@ -118,6 +118,7 @@ void RunSupervisor::on_clock(const wire::Tick& t, double now_s) {
   }
   sim_seen_ = true;
   last_sim_sign_s_ = now_s;
+  newest_tick_ = std::max(newest_tick_, t.tick);
   if (!config_.lockstep || over()) return;
   handshake_.on_tick(t);
   if (!handshake_.pending()) return;
@@ -330,11 +331,16 @@ void RunSupervisor::check_liveness(double now_s) {
     }
   }
   const double join_s = config_.join_timeout_s > 0 ? config_.join_timeout_s : config_.timeout_s;
-  if (now_s - (sim_seen_ ? last_sim_sign_s_ : 0.0) <= (sim_seen_ ? config_.timeout_s : join_s)) {
-    return;
-  }
+  // Lock-step start-up lasts until the tick after the sim's first step: the sim shards give
+  // their exchanges of those periods the join window too (sim/shard_barrier.hpp).
+  const bool starting = !sim_seen_ || (config_.lockstep && newest_tick_ < wire::kLastJoinTick);
+  const double limit_s = starting ? join_s : config_.timeout_s;
+  if (now_s - (sim_seen_ ? last_sim_sign_s_ : 0.0) <= limit_s) return;
   end(Outcome::kHostLost,
-      sim_seen_ ? "the sim host went silent for " + std::to_string(config_.timeout_s) + " s"
+      sim_seen_ ? "the sim host went silent for " + std::to_string(limit_s) + " s after tick " +
+                      std::to_string(newest_tick_) +
+                      (handshake_.pending() ? " (not answered yet: its progress is not all in)"
+                                            : " (answered)")
                 : "no sim host joined domain " + std::to_string(config_.domain_id) + " within " +
                       std::to_string(join_s) +
                       " s; start `smart sim` with the same --domain, --qos, --network");

@@ -11,6 +11,7 @@ ShardBarrier::ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, do
       shards_(shards),
       handshake_(timeout_s, reannounce_s),
       timeout_s_(timeout_s),
+      reannounce_s_(reannounce_s),
       join_s_(join_s) {
   if (shards < 2 || shard >= shards) {
     throw std::invalid_argument("shard " + std::to_string(shard) + "/" + std::to_string(shards) +
@@ -36,6 +37,7 @@ void ShardBarrier::sent(uint64_t tick, uint64_t finished_total, double now_s) {
   tick_ = tick;
   own_total_ = finished_total;
   applied_ = false;
+  repeated_at_s_ = now_s;
   // The lead waits from its announcement to the monitor (or the start), the others from here.
   if (!lead() || tick == 0) announced(tick, now_s);
 }
@@ -83,12 +85,23 @@ ShardTimeout ShardBarrier::timed_out(double now_s) const {
   }
   const double wait_s = tick_ <= kLastJoinPeriod ? join_s_ : timeout_s_;
   if (now_s - waiting_since_s_ <= wait_s) return {};
-  ShardTimeout t{ShardTimeout::Waiting::kShards, tick_, {}, wait_s};
+  return {ShardTimeout::Waiting::kShards, tick_, missing(), wait_s};
+}
+
+ShardTimeout ShardBarrier::waiting() const {
+  if (!started_) return {};
+  if (!applied_) return {ShardTimeout::Waiting::kShards, tick_, missing(), 0};
+  if (!handshake_.answered()) return {ShardTimeout::Waiting::kMonitor, tick_, {}, 0};
+  return {};
+}
+
+std::vector<uint32_t> ShardBarrier::missing() const {
+  std::vector<uint32_t> out;
   const auto it = totals_.find(tick_);
   for (uint32_t s = 0; s < shards_; ++s) {
-    if (s != shard_ && (it == totals_.end() || !it->second.count(s))) t.missing.push_back(s);
+    if (s != shard_ && (it == totals_.end() || !it->second.count(s))) out.push_back(s);
   }
-  return t;
+  return out;
 }
 
 }  // namespace smart::sim

@@ -24,8 +24,24 @@ ShardPeer::ShardPeer(const dds::Participant& p, const dds::QosProfile& qos, uint
 }
 
 void ShardPeer::publish(const Exchange& e) {
-  const ExchangeBuffer buf(e);
-  out_.write(buf.view());
+  if (e.last) {
+    const ExchangeBuffer buf(e);
+    out_.write(buf.view());
+    return;
+  }
+  mine_.emplace_back(e);
+  if (mine_.size() > 2) mine_.pop_front();
+  out_.write(mine_.back().view());
+}
+
+void ShardPeer::repeat() {
+  for (const auto& buf : mine_) out_.write(buf.view());
+}
+
+bool ShardPeer::known(uint32_t shard, uint64_t tick) const {
+  if (tick < forgotten_before_) return true;
+  const auto it = by_tick_.find(tick);
+  return it != by_tick_.end() && it->second.count(shard) > 0;
 }
 
 void ShardPeer::take(const std::function<void(const Exchange&)>& on_receipt) {
@@ -46,6 +62,7 @@ void ShardPeer::take(const std::function<void(const Exchange&)>& on_receipt) {
       if (rejected_.count("shard", why)) spdlog::warn("sim shard: exchange rejected: {}", why);
       return;
     }
+    if (!m.last && known(m.shard, m.tick)) return;  // a repeat (ShardBarrier::should_repeat)
     Exchange e = from_wire(m);
     on_receipt(e);
     if (e.last) {
@@ -105,6 +122,7 @@ std::vector<const Exchange*> ShardPeer::last() const {
 
 void ShardPeer::forget_before(uint64_t tick) {
   by_tick_.erase(by_tick_.begin(), by_tick_.lower_bound(tick));
+  forgotten_before_ = std::max(forgotten_before_, tick);
 }
 
 }  // namespace smart::sim::detail

@@ -2,7 +2,9 @@
 // idl/smart.idl "Sim shards"). ShardPeer publishes this shard's exchange of each period and
 // takes the others': each is checked (wire::check_exchange; dropped and counted otherwise),
 // handed to the caller once on receipt (to relay the progress and states of robots homed here)
-// and kept by period until the caller has applied that period.
+// and kept by period until the caller has applied that period. It keeps its own last two
+// exchanges (not the final one) to send them again (repeat(), shard_barrier.hpp should_repeat);
+// an exchange it has already, or of a period applied and forgotten, is dropped uncounted.
 // Who may speak for a shard: the first writer whose exchange for it passed the checks, until that
 // writer leaves (as the monitor's SenderGate holds each robot's progress). A second writer
 // claiming a held shard, a writer claiming a second shard number, or any writer but this one's
@@ -13,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <vector>
@@ -30,6 +33,8 @@ class ShardPeer {
   ShardPeer(const dds::Participant& participant, const dds::QosProfile& qos, uint32_t shard,
             uint32_t shards, std::size_t robots, wire::Bounds bounds);
   void publish(const Exchange& e);
+  // This shard's kept exchanges (the last two periods') go out again.
+  void repeat();
   // Takes what arrived; on_receipt(e) for each exchange that passed the checks.
   void take(const std::function<void(const Exchange&)>& on_receipt);
   // Every other shard's last exchange is in.
@@ -54,7 +59,12 @@ class ShardPeer {
   dds::WireWriter<smart_msg_ShardExchange> out_;
   dds::WriterAdmission from_sims_;  // before in_: its filter (sim shards proven with the key)
   dds::WireReader<smart_msg_ShardExchange> in_;
+  // A repeat of an exchange this shard has (or had: its period is applied and forgotten).
+  bool known(uint32_t shard, uint64_t tick) const;
+
   std::map<uint64_t, std::map<uint32_t, Exchange>> by_tick_;
+  uint64_t forgotten_before_ = 0;
+  std::deque<ExchangeBuffer> mine_;  // this shard's last two exchanges, built in place
   std::map<uint32_t, Exchange> last_;
   dds_instance_handle_t self_ = 0;                    // out_'s publication handle
   std::map<uint32_t, dds_instance_handle_t> holder_;  // shard -> the writer speaking for it

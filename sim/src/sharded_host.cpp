@@ -66,6 +66,10 @@ class ShardedHost final : public HostLoop {
   ContactStats fleet_contacts(bool last) const;
   double fleet_rss_mb(bool last) const;
   std::string timeout_message(const ShardTimeout& t) const;
+  std::string missing_shards(const ShardTimeout& t) const;
+  std::string discovered_shards() const;
+  void note_stop() const;
+  void repeat_if_waiting();
   SimHostResult finish(bool ok, std::string error, bool by_monitor);
 
   HostCore core_;
@@ -183,19 +187,45 @@ double ShardedHost::fleet_rss_mb(bool last) const {
 
 std::string ShardedHost::timeout_message(const ShardTimeout& t) const {
   if (t.waiting == ShardTimeout::Waiting::kMonitor) return core_.silent_monitor();
+  return "shard " + std::to_string(core_.opt.shard) + ": no exchange from " + missing_shards(t) +
+         " within " + std::to_string(t.waited_s) + " s " + discovered_shards() +
+         "; is every `smart sim --shard I/" + std::to_string(core_.opt.shards) + "` of the run up?";
+}
+
+std::string ShardedHost::missing_shards(const ShardTimeout& t) const {
   std::string missing;
   for (const uint32_t s : t.missing) missing += (missing.empty() ? "" : ", ") + std::to_string(s);
-  const auto& o = core_.opt;
-  const std::size_t others = o.shards - 1, seen = std::min(peer_.writers_discovered(), others);
-  return "shard " + std::to_string(o.shard) + ": no exchange from shard(s) " + missing +
-         " for period " + std::to_string(t.tick) + " within " + std::to_string(t.waited_s) +
-         " s (" + std::to_string(seen) + " of the " + std::to_string(others) +
+  return "shard(s) " + missing + " for period " + std::to_string(t.tick);
+}
+
+// Whether the missing shards were ever discovered: not running, or up and silent.
+std::string ShardedHost::discovered_shards() const {
+  const std::size_t others = core_.opt.shards - 1;
+  const std::size_t seen = std::min(peer_.writers_discovered(), others);
+  return "(" + std::to_string(seen) + " of the " + std::to_string(others) +
          " other shards' exchange writers discovered" +
          (seen < others ? ": a shard not discovered is not running, or on another domain, "
                           "network or --run"
                         : ": the missing shard is up but has not sent this period (stalled or "
                           "starved of CPU)") +
-         "); is every `smart sim --shard I/" + std::to_string(o.shards) + "` of the run up?";
+         ")";
+}
+
+// The monitor stops the run; when that stop comes while this shard waits (the monitor gave up
+// on the fleet: no tick for its timeout), the log says what for, so a lost run shows where the
+// fleet stood without a debugger.
+void ShardedHost::note_stop() const {
+  const ShardTimeout w = barrier_.waiting();
+  const std::string shard =
+      "sim shard " + std::to_string(core_.opt.shard) + "/" + std::to_string(core_.opt.shards);
+  const std::string windows = "; windows received: " + std::to_string(core_.windows.total());
+  if (w.waiting == ShardTimeout::Waiting::kShards) {
+    spdlog::warn("{}: stopped by the monitor while waiting for the exchange of {} {}{}", shard,
+                 missing_shards(w), discovered_shards(), windows);
+  } else if (w.waiting == ShardTimeout::Waiting::kMonitor) {
+    spdlog::warn("{}: stopped by the monitor while waiting for its answer to tick {}{}", shard,
+                 w.tick, windows);
+  }
 }
 
 SimHostResult ShardedHost::run(const std::atomic<bool>& stop_requested) {
@@ -219,15 +249,31 @@ SimHostResult ShardedHost::run(const std::atomic<bool>& stop_requested) {
     if (auto answer = core_.node.take_monitor_clock(); answer && core_.stop_of_this_run(*answer)) {
       barrier_.on_answer(*answer);
     }
-    if (barrier_.stop()) return finish(true, "", true);
+    if (barrier_.stop()) {
+      note_stop();
+      return finish(true, "", true);
+    }
     read_windows();
     if (barrier_.may_step(core_.run_id, core_.windows.total())) {
       if (!core_.paced(stop_requested)) continue;  // the loop's top returns
       advance();
-    } else if (barrier_.should_reannounce(core_.wall_s())) {
-      core_.publish_clock(barrier_.announced_total());
-      barrier_.reannounced(core_.wall_s());
+    } else {
+      repeat_if_waiting();
     }
+  }
+}
+
+// Waiting without a step: the lead announces its tick again (a monitor that joined late missed
+// it), and every shard sends its last exchanges again (one lost on its way to a shard).
+void ShardedHost::repeat_if_waiting() {
+  const double now_s = core_.wall_s();
+  if (barrier_.should_reannounce(now_s)) {
+    core_.publish_clock(barrier_.announced_total());
+    barrier_.reannounced(now_s);
+  }
+  if (barrier_.should_repeat(now_s)) {
+    peer_.repeat();
+    barrier_.repeated(now_s);
   }
 }
 

@@ -274,7 +274,10 @@ TEST(RunSupervisor, NoSimHostWithinTimeoutNamesTheDomain) {
   EXPECT_THAT(r.sup.result().error, HasSubstr("no sim host joined domain 42"));
 }
 
-TEST(RunSupervisor, ASimHostStartedHereHasTheJoinTimeoutThenTheUsualOne) {
+// Start-up lasts until the tick after the sim's first step (wire::kLastJoinTick), as the sim
+// shards wait: CI stop 52's four-shard run was lost 30 s after tick 0 while the shards would
+// have waited four times as long for each other's first step.
+TEST(RunSupervisor, ASimHostStartedHereHasTheJoinTimeoutUntilItsFirstStepThenTheUsualOne) {
   auto c = lockstep_config();
   c.join_timeout_s = 20;
   Scripted r(c);
@@ -282,11 +285,29 @@ TEST(RunSupervisor, ASimHostStartedHereHasTheJoinTimeoutThenTheUsualOne) {
   r.sup.poll(19.9);
   EXPECT_FALSE(r.sup.over());
   r.sup.on_clock(tick(0, 0), 19.9);
-  r.sup.poll(24.8);
+  r.sup.poll(39.8);
+  EXPECT_FALSE(r.sup.over()) << "the first step is start-up too";
+  r.sup.on_clock(tick(1, 0), 39.8);
+  r.sup.poll(44.7);
   EXPECT_FALSE(r.sup.over());
-  r.sup.poll(25.0);
+  r.sup.poll(44.9);
   EXPECT_EQ(r.sup.result().outcome, Outcome::kHostLost);
   EXPECT_THAT(r.sup.result().error, HasSubstr("went silent for 5"));
+  EXPECT_THAT(r.sup.result().error, HasSubstr("after tick 1"));
+}
+
+TEST(RunSupervisor, ASimSilentThroughItsFirstStepIsLostAfterTheJoinTimeoutNamingTheTick) {
+  auto c = lockstep_config();
+  c.join_timeout_s = 20;
+  Scripted r(c);
+  r.sup.start(0);
+  r.sup.on_clock(tick(0, 0), 1);
+  r.sup.poll(20.9);
+  EXPECT_FALSE(r.sup.over());
+  r.sup.poll(21.1);
+  EXPECT_EQ(r.sup.result().outcome, Outcome::kHostLost);
+  EXPECT_THAT(r.sup.result().error, HasSubstr("went silent for 20"));
+  EXPECT_THAT(r.sup.result().error, HasSubstr("after tick 0 (answered)"));
 }
 
 TEST(RunSupervisor, LockstepSimThatGoesSilentOrLeavesIsLost) {

@@ -157,6 +157,55 @@ TEST(ShardBarrier, TheLeadsWaitRunsFromItsAnnouncementAndOnlyTheLeadReannounces)
   EXPECT_FALSE(lead.should_reannounce(9.0)) << "answered";
 }
 
+// What a shard reports when the monitor stops the run while the fleet waits (the log of a lost
+// run: CI stop 52's sharded run went silent after tick 0 and no shard said why).
+TEST(ShardBarrier, WhatAShardWaitsForIsTheMissingShardsThenTheMonitorThenNothing) {
+  ShardBarrier lead(0, 3, kTimeoutS, kReannounceS, kJoinS);
+  EXPECT_EQ(lead.waiting().waiting, Waiting::kNothing) << "not started";
+  lead.sent(0, 0, 0.0);
+  lead.received(2, 0, 0);
+  auto w = lead.waiting();
+  EXPECT_EQ(w.waiting, Waiting::kShards);
+  EXPECT_EQ(w.tick, 0u);
+  EXPECT_EQ(w.missing, std::vector<uint32_t>{1});
+  lead.received(1, 0, 0);
+  lead.apply(0.1);
+  w = lead.waiting();
+  EXPECT_EQ(w.waiting, Waiting::kMonitor);
+  EXPECT_EQ(w.tick, 0u);
+  lead.on_answer(answer(0, 4));
+  EXPECT_EQ(lead.waiting().waiting, Waiting::kNothing) << "answered: the windows are the host's";
+  lead.sent(1, 2, 0.2);
+  lead.received(2, 1, 0);
+  lead.on_answer(answer(0, 4, true));  // the monitor gave up and stops at the tick it answered
+  w = lead.waiting();
+  EXPECT_EQ(w.waiting, Waiting::kShards);
+  EXPECT_EQ(w.tick, 1u);
+  EXPECT_EQ(w.missing, std::vector<uint32_t>{1});
+  EXPECT_TRUE(lead.stop());
+}
+
+// CI stop 52: one shard never got another's exchange of period 0 (nothing refused) and the
+// fleet waited for it until the monitor gave up.
+TEST(ShardBarrier, AShardThatWaitsWithoutSteppingRepeatsItsExchangesEveryReannouncePeriod) {
+  ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
+  EXPECT_FALSE(b.should_repeat(5.0)) << "nothing sent yet";
+  b.sent(0, 0, 0.0);
+  EXPECT_FALSE(b.should_repeat(0.9));
+  EXPECT_TRUE(b.should_repeat(1.1)) << "waiting for the other shard's exchange";
+  b.repeated(1.1);
+  EXPECT_FALSE(b.should_repeat(2.0));
+  b.received(0, 0, 0);
+  b.apply(2.0);
+  EXPECT_TRUE(b.should_repeat(2.2)) << "applied, waiting for the answer: the lead may lack ours";
+  b.repeated(2.2);
+  b.on_answer(answer(0, 0));
+  ASSERT_TRUE(b.may_step(kRun, 0));
+  b.sent(1, 0, 2.5);
+  EXPECT_FALSE(b.should_repeat(3.4)) << "a step sends a new exchange: the wait starts again";
+  EXPECT_TRUE(b.should_repeat(3.6));
+}
+
 TEST(ShardBarrier, AStopIsKeptWhateverItsTick) {
   ShardBarrier b(1, 2, kTimeoutS, kReannounceS, kJoinS);
   b.sent(0, 0, 0.0);

@@ -114,5 +114,35 @@ TEST(ShardPeer, AWriterClaimingAnotherShardOrThisShardsNumberIsRefused) {
   EXPECT_EQ(me.peer.of(1).size(), 1u) << "only the holder's exchange of period 1 is kept";
 }
 
+// A shard that waits sends its last two exchanges again (ShardBarrier::should_repeat; CI stop
+// 52 lost one on its way to one shard). A receiver hands each exchange over once: a repeat of a
+// period it holds, or of one applied and forgotten, is dropped uncounted (no progress relayed
+// twice), and exchanges after the repeat arrive as usual.
+TEST(ShardPeer, RepeatedExchangesAreHandedOverOnceAndRefuseNothing) {
+  dds::Domain domain(test::kShardPeerRepeats, test::loopback());
+  Shard me(domain, 0), other(domain, 1);
+  std::vector<uint64_t> handed;  // the periods of the exchanges handed over, in order
+  const auto take_until_period = [&](uint64_t tick) {
+    const auto until = std::chrono::steady_clock::now() + 5s;
+    while (std::chrono::steady_clock::now() < until) {
+      me.peer.take([&](const Exchange& e) { handed.push_back(e.tick); });
+      if (!handed.empty() && handed.back() == tick) return true;
+      std::this_thread::sleep_for(5ms);
+    }
+    return false;
+  };
+  for (uint64_t tick = 0; tick < 3; ++tick) other.peer.publish(exchange(1, tick, 10 + tick));
+  ASSERT_TRUE(take_until_period(2));
+  me.peer.forget_before(2);  // periods 0 and 1 applied
+  other.peer.repeat();       // periods 1 and 2 again: one forgotten, one held
+  other.peer.publish(exchange(1, 3, 13));
+  ASSERT_TRUE(take_until_period(3));  // one writer's samples arrive in order: the repeats first
+  EXPECT_EQ(handed, (std::vector<uint64_t>{0, 1, 2, 3}));
+  EXPECT_EQ(me.peer.of(2).at(0)->finished_total, 12u);
+  EXPECT_EQ(me.peer.of(3).at(0)->finished_total, 13u);
+  EXPECT_TRUE(me.peer.of(1).empty()) << "forgotten";
+  EXPECT_TRUE(me.peer.rejections().counts().empty());
+}
+
 }  // namespace
 }  // namespace smart::sim::detail

@@ -163,6 +163,7 @@ enum DomainId : int {
   kLifelongScratch = 72,
   kSwitchableCrossing = 71,           // its plain and switchable runs, one after the other
   kSwitchableLifelongLookahead = 70,  // the switchable-lookahead run of kSwitchableLifelong
+  kShardPeerRepeats = 69,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

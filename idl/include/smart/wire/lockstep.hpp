@@ -25,6 +25,10 @@ namespace smart::wire {
 // (periods 0 and 1, sim/shard_barrier.hpp). Building a 1000-robot world or reading a large plan
 // on a loaded machine can take longer than a running period ever should.
 inline constexpr double kJoinTimeouts = 4;
+// Start-up lasts until this tick is announced: tick 1 follows the sim's first step, which takes
+// the run's first windows (and, sharded, the first hand-overs). The monitor and the sim shards
+// both give it the join window, so neither gives up on the other sooner.
+inline constexpr uint64_t kLastJoinTick = 1;
 
 // One Clock sample of the handshake, either side.
 struct Tick {
@@ -95,6 +99,8 @@ class HostHandshake {
   // An answer of the monitor (the newest received). A stop is kept whatever its tick.
   void on_answer(const Tick& answer);
   bool stop() const { return stop_; }
+  // The answer to the announced tick is in (a stop answering it too).
+  bool answered() const { return answer_.has_value(); }
   // A stop is settled once the windows it counts (a stop answering our tick) are all received, so
   // the host's final states show every action the monitor sent (a lifelong run's last tick may
   // push windows with its stop).

@@ -12,7 +12,8 @@
 // - Lock-step: progress is taken at the sim time of the tick that announced it (buffered until
 //   that tick arrives), and the tick is answered once the progress taken adds up to its
 //   sync_total (wire/lockstep.hpp): runs are bit-identical whatever order samples arrive in.
-//   The sim host's writers leaving, or no tick for timeout_s, loses the run. With no newer tick
+//   The sim host's writers leaving, or no tick for timeout_s, loses the run (join_timeout_s until
+//   tick wire::kLastJoinTick is in: start-up, as the sim shards wait). With no newer tick
 //   for reanswer_s, the last answer goes out again (wire::MonitorHandshake::should_reanswer).
 // - Real time: progress is taken on arrival at the wall time; a robot fails the run only when
 //   nothing was heard of it (its states) for timeout_s, so a host may restart within it.
@@ -273,6 +274,7 @@ class RunSupervisor {
   double last_sim_sign_s_ = 0;
   uint32_t max_matched_ = 0;
   bool sim_seen_ = false;
+  uint64_t newest_tick_ = 0;                   // the newest tick of this run announced by the sim
   double status_sim_time_s_ = -1;              // of the newest sim status of this run
   std::optional<SeparationWatch> separation_;  // real time with robot_radius_m
 };

@@ -15,6 +15,8 @@
 //   the windows received adding up to it (may_step). Shards are never more than one period apart
 //   (a shard steps only after every shard's exchange of its period), so exchanges of any other
 //   period than the current one and the next are ignored.
+// - A shard that waits (not stepping) reannounce_s after its exchange went out sends its last two
+//   exchanges again (should_repeat): DDS lost one now and then on its way to one shard.
 // - A shard gives up after timeout_s without progress: waiting for the named shards' exchanges
 //   while its period is not applied, else for the monitor. The wait runs from this shard's last
 //   announcement: the lead's to the monitor (or its start), another shard's own exchange.
@@ -46,7 +48,7 @@ class ShardBarrier {
   ShardBarrier(uint32_t shard, uint32_t shards, double timeout_s, double reannounce_s,
                double join_s);
   // Exchanges of periods up to this one wait join_s (start-up and every shard's first step).
-  static constexpr uint64_t kLastJoinPeriod = 1;
+  static constexpr uint64_t kLastJoinPeriod = wire::kLastJoinTick;
   bool lead() const { return shard_ == 0; }
   uint64_t tick() const { return tick_; }
   bool applied() const { return applied_; }
@@ -74,14 +76,30 @@ class ShardBarrier {
     return lead() && applied_ && handshake_.should_reannounce(now_s);
   }
   void reannounced(double now_s) { handshake_.reannounced(now_s); }
+  // A shard that has not stepped for reannounce_s since its exchange went out (or went out
+  // again) sends its kept exchanges again, its period's and the one before (the others are at
+  // most one period behind): a reliable transient-local exchange can fail to reach one shard
+  // (CI stop 52: shard 3's exchange of period 0 reached shards 0 and 1, never 2, nothing
+  // refused), and that shard would wait for it while the others wait for it. Receivers drop a
+  // repeat they have (shard_host.hpp).
+  bool should_repeat(double now_s) const {
+    return started_ && now_s - repeated_at_s_ > reannounce_s_;
+  }
+  void repeated(double now_s) { repeated_at_s_ = now_s; }
   ShardTimeout timed_out(double now_s) const;
+  // What the shard waits for now, however long: the named shards' exchanges of its period (not
+  // applied yet), else the monitor's answer to its tick, else nothing (waited_s is 0). A stop
+  // that comes meanwhile is reported with it: the monitor gave up while the fleet waited.
+  ShardTimeout waiting() const;
 
  private:
   void announced(uint64_t tick, double now_s);
+  std::vector<uint32_t> missing() const;  // shards whose exchange of the period is not in
 
   uint32_t shard_, shards_;
   wire::HostHandshake handshake_;
-  double timeout_s_, join_s_;
+  double timeout_s_, reannounce_s_, join_s_;
+  double repeated_at_s_ = 0;    // this shard's exchange last went out (or out again)
   double waiting_since_s_ = 0;  // the handshake's: this shard's last announcement
   uint64_t tick_ = 0;
   bool started_ = false;
