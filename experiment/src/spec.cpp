@@ -224,14 +224,10 @@ std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::str
   return out;
 }
 
-// The commit distance, and chains (plan runs only: a lifelong run's switching has none).
+// The commit distance, and chains.
 void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s) {
   s.switch_commit_actions = read_switching_axis(root, src, s, "switch_commit_actions", 1000,
                                                 "from 1 to 1000 actions", "[2, 6]");
-  if (root["lifelong"] && root["switch_chain_locations"]) {
-    fail(src, root["switch_chain_locations"], "switch_chain_locations",
-         "plan runs only: a lifelong run switches one location at a time; remove it");
-  }
   s.switch_chain_locations = read_switching_axis(root, src, s, "switch_chain_locations", 64,
                                                  "from 1 to 64 locations", "[1, 8]");
 }

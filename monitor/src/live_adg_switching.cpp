@@ -133,6 +133,11 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   auto& refusal = refused_[j];
   refusal.path.clear();
   const Reach reach = reaches(i_enter, j_leave, i_leave, j_enter, refusal.path);
+  if (reach == Reach::kPath && switching_->chain_locations > 1 &&
+      try_chain({i_enter, i_leave, j_enter, j_leave}, refusal.path, time_s, changed)) {
+    refusal.valid = false;
+    return true;
+  }
   if (reach != Reach::kNone) {
     refusal = {j_enter,
                i_leave,
@@ -217,6 +222,7 @@ bool LiveAdg::still_refused(uint32_t j, NodeRef mine, NodeRef theirs) const {
 }
 
 void LiveAdg::add_edge(NodeRef from, NodeRef to) {
+  if (logging_) chain_log_.push_back({true, from, to});
   node(from.robot, from.seq).out.push_back(to);
   Node& m = node(to.robot, to.seq);
   m.in.push_back(from);
@@ -225,6 +231,7 @@ void LiveAdg::add_edge(NodeRef from, NodeRef to) {
 }
 
 void LiveAdg::remove_edge(NodeRef from, NodeRef to) {
+  if (logging_) chain_log_.push_back({false, from, to});
   erase_ref(node(from.robot, from.seq).out, to);
   Node& m = node(to.robot, to.seq);
   erase_ref(m.in, from);
@@ -244,6 +251,7 @@ void LiveAdg::swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, Node
     dirty_.insert(k.robot);
   }
   add_edge(j_leave, i_enter);
+  if (logging_) chain_keys_.emplace_back(i_leave, j_leave);
   std::swap(node(i_leave.robot, i_leave.seq).pass_key, node(j_leave.robot, j_leave.seq).pass_key);
   ++epoch_;
 }

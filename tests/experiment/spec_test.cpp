@@ -257,7 +257,7 @@ TEST(Spec, EveryExampleSpecParses) {
 }
 
 // Chains (`--switch-chain-locations`, issue 29) are an axis of the switching executions of plan
-// runs, crossed with the commit distance; plain ADG cells run once; lifelong specs refuse it.
+// and lifelong runs, crossed with the commit distance; plain ADG cells run once.
 TEST(Spec, SwitchChainLocationsAreAnAxisOfTheSwitchingExecutions) {
   const std::string base =
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
@@ -291,10 +291,13 @@ TEST(Spec, SwitchChainLocationsAreAnAxisOfTheSwitchingExecutions) {
         "k.yaml:6: switch_chain_locations: only the switching executions take it");
   fails(base + "executions: [switchable]\nswitch_chain_locations: [65]\n",
         "k.yaml:7: switch_chain_locations: from 1 to 64 locations");
-  fails(
-      "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable]\n"
-      "switch_chain_locations: 3\n",
-      "k.yaml:5: switch_chain_locations: plan runs only");
+  // Lifelong runs chain too (monitor/src/live_adg_chain.cpp).
+  const auto lifelong = expand(
+      parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [adg, switchable]\n"
+                 "switch_chain_locations: [1, 8]\n",
+                 "k.yaml"));
+  ASSERT_EQ(lifelong.size(), 3u);
+  EXPECT_EQ(lifelong[2].chain_locations, 8u);
 }
 
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching

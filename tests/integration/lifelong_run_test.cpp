@@ -537,11 +537,6 @@ TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
                                 30s, "ll_bad_resume", true);
   EXPECT_EQ(resume.code, 2);
   EXPECT_THAT(resume.out, HasSubstr("a lifelong run cannot be taken over"));
-  r = lifelong(
-      {"--lifelong", maze_problem(), "--execution", "switchable", "--switch-chain-locations", "4"},
-      kLifelongRandom, "ll_bad_chain");
-  EXPECT_NE(r.code, 0);
-  EXPECT_THAT(r.out, HasSubstr("--switch-chain-locations: a lifelong run switches one location"));
   r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));

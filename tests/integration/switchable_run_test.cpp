@@ -102,12 +102,24 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
 // switchable, switchable-opt and switchable-lookahead on the same seed: all run clean; switching
 // passes late robots, the fleet waits less, and lock-step makes the switches the same every time.
 TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
-  auto lifelong = [&](int domain, const std::string& execution, const std::filesystem::path& out) {
-    const auto r = run_smart(
-        {"run", "--lifelong", (b_ / "lorr-2026/random.domain/random-example_400.json").string(),
-         "--duration-s", "60", "--seed", "1", "--execution", execution, "--domain",
-         std::to_string(domain), "--out", out.string(), "--no-progress"},
-        180s, "switchable_lifelong_" + execution);
+  auto lifelong = [&](int domain, const std::string& execution, const std::filesystem::path& out,
+                      const std::vector<std::string>& more = {}) {
+    std::vector<std::string> args{"run",
+                                  "--lifelong",
+                                  (b_ / "lorr-2026/random.domain/random-example_400.json").string(),
+                                  "--duration-s",
+                                  "60",
+                                  "--seed",
+                                  "1",
+                                  "--execution",
+                                  execution,
+                                  "--domain",
+                                  std::to_string(domain),
+                                  "--out",
+                                  out.string(),
+                                  "--no-progress"};
+    args.insert(args.end(), more.begin(), more.end());
+    const auto r = run_smart(args, 180s, "switchable_lifelong_" + execution);
     EXPECT_EQ(r.code, 0) << r.out;
     return r.last_json();
   };
@@ -130,6 +142,16 @@ TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
   EXPECT_EQ(csv, slurp(b_dir / "switches.csv"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
   EXPECT_EQ(slurp(a_dir / "tasks.csv"), slurp(b_dir / "tasks.csv"));
+  // Chains on the growing graph (--switch-chain-locations 8, live_adg_chain.cpp): clean, and
+  // less waiting than plain ADG.
+  const auto chain = lifelong(kSwitchableLifelongChains, "switchable", temp_file("ll_switch_k8"),
+                              {"--switch-chain-locations", "8"});
+  EXPECT_TRUE(chain["success"].get<bool>()) << chain.dump();
+  EXPECT_EQ(chain["collisions"], 0);
+  EXPECT_EQ(chain["lifelong"]["windows_refused"], 0);
+  EXPECT_GT(chain["execution"]["switches"].get<std::size_t>(), 10u);
+  EXPECT_LT(chain["waiting_time_s"]["total"].get<double>(),
+            plain["waiting_time_s"]["total"].get<double>());
   // switchable-opt (LiveAdg's anticipation, durations learned in the run) and
   // switchable-lookahead (its decisions over the actions each order affects): clean, some
   // switches anticipated and written, and less waiting than plain ADG.

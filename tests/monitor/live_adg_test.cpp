@@ -74,6 +74,45 @@ TEST(LiveAdgSwitching, TheReadyRobotPassesTheLateOneAndTheOrderFollows) {
   EXPECT_FALSE(f.adg.deadlocked());
 }
 
+// Chains on the growing graph (SwitchableTracker's
+// AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare): robot 0 goes north from (0,2)
+// and east along row 1; robot 1 waits at (1,0), then goes south into (1,1), east to (2,1) and
+// south, planned behind robot 0 at (1,1), the midpoint (1.5,1) and (2,1). Robot 0 is late (its
+// entries sent one action ahead). One location at a time robot 1 cannot pass: robot 0 would
+// still be ahead at the next location, a cycle. With chains it passes at all three at once and
+// both finish.
+TEST(LiveAdgSwitching, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare) {
+  const auto g = open_map(4, 3);
+  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  const auto at = [&](HalfCell h) { return static_cast<uint32_t>(g.half_index(h)); };
+  for (const uint32_t chain : {1u, 8u}) {
+    SCOPED_TRACE("chain " + std::to_string(chain));
+    LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
+    adg.enable_switching({.commit_actions = 1, .chain_locations = chain});
+    ASSERT_TRUE(adg.append(window, 0).empty());
+    adg.on_progress(1, 0, 1.0);  // robot 1 turned south: ready at the edge of (1,0)
+    if (chain == 1) {
+      EXPECT_TRUE(adg.switches()->empty());
+      continue;
+    }
+    ASSERT_EQ(adg.switches()->size(), 3u);
+    EXPECT_EQ(adg.chained(), 3u);
+    std::vector<uint32_t> locations;
+    for (const auto& s : *adg.switches()) {
+      EXPECT_EQ(s.first, 1u);
+      EXPECT_EQ(s.second, 0u);
+      locations.push_back(s.location);
+    }
+    EXPECT_EQ(locations, (std::vector<uint32_t>{at(HalfCell::of({1, 1})), at({3, 2}),
+                                                at(HalfCell::of({2, 1}))}));
+    Executor ex(g, adg, {{0, 2}, {1, 0}}, 7, 0.0);
+    for (int t = 1; t < 40 && adg.unfinished_total() > 0; ++t) ex.tick(t);
+    EXPECT_EQ(adg.unfinished_total(), 0u) << "both robots finish";
+    EXPECT_EQ(ex.conflicts, 0u);
+  }
+}
+
 TEST(LiveAdgSwitching, PlanOrderWithoutSwitching) {
   LateRobotFixture f;
   ASSERT_TRUE(f.adg.append(f.window, 0).empty());
@@ -272,6 +311,7 @@ struct StreamCase {
   uint32_t commit = 0;      // > 0: passing orders switch (entries sent this many actions ahead)
   bool anticipate = false;  // switchable-opt (margin 0.5 s: many anticipated switches)
   bool look = false;        // switchable-lookahead (24 actions)
+  uint32_t chain = SwitchOptions{}.chain_locations;  // 1: one location at a time
 };
 
 // Random task streams on a cramped map, replanned every `period` ticks from the commit cut with
@@ -281,6 +321,7 @@ struct StreamCase {
 // With switching on, the same must hold; returns the switches made.
 std::size_t anticipated_total = 0;  // anticipated switches of the streams run
 std::size_t compared_total = 0;     // and pairs compared over their cone
+std::size_t chained_total = 0;      // and switches made as parts of chains
 
 std::size_t run_stream(const StreamCase& c) {
   const auto g = planning::generate_random_map(16, 16, 0.2, c.seed);
@@ -296,6 +337,7 @@ std::size_t run_stream(const StreamCase& c) {
     o.anticipate = c.anticipate || c.look;
     o.margin_s = 0.5;
     if (c.look) o.lookahead_actions = 24;
+    o.chain_locations = c.chain;
     adg.enable_switching(o);
   }
   Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
@@ -326,6 +368,8 @@ std::size_t run_stream(const StreamCase& c) {
   EXPECT_EQ(executed, adg.finished_total());
   EXPECT_GT(reached, robots) << "the stream stalled";
   compared_total += adg.lookahead_comparisons();
+  chained_total += adg.chained();
+  if (c.chain == 1) EXPECT_EQ(adg.chained(), 0u);
   if (c.anticipate || c.look)
     anticipated_total +=
         std::ranges::count_if(*adg.switches(), [](const auto& s) { return s.anticipated; });
@@ -342,18 +386,25 @@ TEST(LiveAdgProperty, RandomStreamsStaySafeAndLive) {
 }
 
 // Switching on the growing graph (issue 29): random streams under heavy delays, entries sent 1,
-// 2 or 6 actions ahead, replanned often (so windows link behind switched orders): still no two
-// robots on one location, no deadlock, every action once, tasks done; and switches happen.
+// 2 or 6 actions ahead, replanned often (so windows link behind switched orders), one location
+// at a time and with chains (live_adg_chain.cpp): still no two robots on one location, no
+// deadlock, every action once, tasks done; and switches happen, chained ones too.
 TEST(LiveAdgProperty, SwitchingStreamsStaySafeAndLive) {
-  std::size_t switches = 0;
-  for (const StreamCase c :
-       {StreamCase{11, 0.3, 4, 3, 1}, StreamCase{12, 0.5, 2, 7, 2}, StreamCase{13, 0.2, 10, 1, 6},
-        StreamCase{14, 0.4, 0, 5, 1}, StreamCase{15, 0.6, 8, 2, 6}, StreamCase{16, 0, 4, 4, 2}}) {
-    SCOPED_TRACE("seed " + std::to_string(c.seed) + " commit " + std::to_string(c.commit));
-    switches += run_stream(c);
-    if (HasFailure()) return;
+  for (const uint32_t chain : {1u, 8u}) {
+    std::size_t switches = 0;
+    chained_total = 0;
+    for (StreamCase c :
+         {StreamCase{11, 0.3, 4, 3, 1}, StreamCase{12, 0.5, 2, 7, 2}, StreamCase{13, 0.2, 10, 1, 6},
+          StreamCase{14, 0.4, 0, 5, 1}, StreamCase{15, 0.6, 8, 2, 6}, StreamCase{16, 0, 4, 4, 2}}) {
+      c.chain = chain;
+      SCOPED_TRACE("seed " + std::to_string(c.seed) + " commit " + std::to_string(c.commit) +
+                   " chain " + std::to_string(chain));
+      switches += run_stream(c);
+      if (HasFailure()) return;
+    }
+    EXPECT_GT(switches, 100u);
+    if (chain > 1) EXPECT_GT(chained_total, 500u);  // 1440 of 1982
   }
-  EXPECT_GT(switches, 100u);
 }
 
 // switchable-opt on the growing graph: the same streams with durations learned from the
@@ -362,7 +413,7 @@ TEST(LiveAdgProperty, SwitchingStreamsStaySafeAndLive) {
 // anticipated switches happen.
 TEST(LiveAdgProperty, AnticipatingStreamsStaySafeAndLive) {
   std::size_t switches = 0;
-  anticipated_total = 0;
+  anticipated_total = chained_total = 0;
   for (const StreamCase c :
        {StreamCase{21, 0.3, 4, 3, 1, true}, StreamCase{22, 0.5, 2, 7, 2, true},
         StreamCase{23, 0.2, 10, 1, 6, true}, StreamCase{24, 0.4, 0, 5, 1, true},
@@ -373,6 +424,7 @@ TEST(LiveAdgProperty, AnticipatingStreamsStaySafeAndLive) {
   }
   EXPECT_GT(switches, 100u);
   EXPECT_GT(anticipated_total, 50u);
+  EXPECT_GT(chained_total, 300u);  // 1000 of 1748: a chain's links by expected savings too
 }
 
 // switchable-lookahead on the growing graph (SwitchableTracker's
@@ -450,7 +502,7 @@ TEST(LiveAdgLookahead, TheRobotExpectedSoonerPassesFirst) {
 // compared, and switches, anticipated ones too.
 TEST(LiveAdgProperty, LookaheadStreamsStaySafeAndLive) {
   std::size_t switches = 0;
-  anticipated_total = compared_total = 0;
+  anticipated_total = compared_total = chained_total = 0;
   for (const StreamCase c :
        {StreamCase{31, 0.3, 4, 3, 1, false, true}, StreamCase{32, 0.5, 2, 7, 2, false, true},
         StreamCase{33, 0.2, 10, 1, 6, false, true}, StreamCase{34, 0.4, 0, 5, 1, false, true},

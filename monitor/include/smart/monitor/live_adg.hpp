@@ -35,7 +35,10 @@
 // i.enter replaces i.leave -> j.enter, and whoever followed j now follows i. The stays' order keys
 // (the leaves' pass keys, by which a later window finds the last occupant) are exchanged, so the
 // next append links behind the order as it is now. Robots to try are those whose situation
-// changed, in id order: deterministic.
+// changed, in id order: deterministic. Chains (SwitchOptions::chain_locations > 1,
+// live_adg_chain.cpp): when the search refuses j because i goes on ahead of it, j passes i at
+// each next location the search shows i ahead too (up to chain_locations at once, waiting there
+// for whoever i waited for), kept only when none of the new edges closes a cycle.
 //
 // switchable-opt (SwitchOptions::anticipate; switchable_tracker.hpp, "Anticipation", the same
 // rule on the growing graph): action durations are learned from the progress reports
@@ -152,6 +155,8 @@ class LiveAdg final : public Execution {
   // (switchable-lookahead; tests, the bench).
   std::size_t lookahead_comparisons() const { return compared_; }
   std::size_t lookahead_widened() const { return widened_; }
+  // Switches made as parts of chains (SwitchOptions::chain_locations; a part of switches()).
+  std::size_t chained() const { return chained_; }
 
  private:
   // Most actions have at most two Type-2 edges each way: kept inline (no allocation per node,
@@ -246,6 +251,14 @@ class LiveAdg final : public Execution {
   void decide(uint32_t r, std::vector<uint32_t>& changed);
   bool decide_due(uint32_t r, bool may_switch, double time_s, std::vector<uint32_t>& changed);
   void settle_due(double time_s, std::vector<uint32_t>& changed);
+  // Chains (live_adg_chain.cpp).
+  std::optional<Pair> chain_link(const std::vector<std::pair<NodeRef, NodeRef>>& path, uint32_t i,
+                                 uint32_t j) const;
+  void chain_swap(const Pair& p);
+  Reach chain_cycle();
+  void undo_chain();
+  bool try_chain(const Pair& first, const std::vector<std::pair<NodeRef, NodeRef>>& path,
+                 double time_s, std::vector<uint32_t>& changed);
   // switchable-lookahead (live_adg_lookahead.cpp).
   double margin() const;
   void clear_marks(uint32_t Node::*mark);  // every unfinished action's
@@ -295,6 +308,17 @@ class LiveAdg final : public Execution {
   uint32_t order_id_ = 0;
   std::size_t compared_ = 0;
   std::size_t widened_ = 0;
+  // Chains: while logging_, every edge added or removed and every pass-key exchange is logged,
+  // so a chain that closes a cycle is undone exactly; the last cycle search's path.
+  struct EdgeOp {
+    bool added = false;
+    NodeRef from{}, to{};
+  };
+  bool logging_ = false;
+  std::vector<EdgeOp> chain_log_;
+  std::vector<std::pair<NodeRef, NodeRef>> chain_keys_;
+  std::vector<std::pair<NodeRef, NodeRef>> chain_path_;
+  std::size_t chained_ = 0;
 };
 
 }  // namespace smart::monitor
