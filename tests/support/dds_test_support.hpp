@@ -164,7 +164,7 @@ enum DomainId : int {
   kSwitchableCrossing = 71,           // its plain and switchable runs, one after the other
   kSwitchableLifelongLookahead = 70,  // the switchable-lookahead run of kSwitchableLifelong
   kShardPeerRepeats = 69,
-  kSwitchableLifelongChains = 68,  // the chained switchable run of kSwitchableLifelong
+  kSwitchableLifelongOneLocation = 68,  // kSwitchableLifelong's switchable run, no chains
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

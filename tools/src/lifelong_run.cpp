@@ -190,10 +190,7 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
   if (o.execution != MonitorCliOptions::Execution::kAdg) {
-    lo.switching = switch_options(o);
-    // Chains on the growing graph only when asked for (live_adg_chain.cpp): not yet measured
-    // against one location at a time on the lifelong grids (docs/execution.md, "Not yet").
-    lo.switching->chain_locations = o.switch_chain_locations.value_or(1);
+    lo.switching = switch_options(o);  // chains as in plan runs (live_adg_chain.cpp)
   }
   return lo;
 }
