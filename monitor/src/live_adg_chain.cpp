@@ -20,27 +20,13 @@ constexpr NodeRef kNoNode{std::numeric_limits<uint32_t>::max(),
 }  // namespace
 
 // The pair at the location where the path's last Type-2 edge from i to j (i's leave -> j's
-// entry) lies, when it may switch as try_switch's pair may (i's entry there never sent, i not
-// there before, j leaving again for good); nothing otherwise.
+// entry) lies, when it may switch as try_switch's pair may (switchable_pair); nothing otherwise.
 std::optional<LiveAdg::Pair> LiveAdg::chain_link(
     const std::vector<std::pair<NodeRef, NodeRef>>& path, uint32_t i, uint32_t j) const {
   for (const auto& [i_leave, j_enter] : path) {  // the path is stored from its end
     if (i_leave.robot != i || j_enter.robot != j) continue;
-    if (!has_edge(i_leave, j_enter) || action(j, j_enter.seq).type != ActionType::kMove) {
-      return std::nullopt;
-    }
-    const auto location = static_cast<uint32_t>(grid_.half_index(action(j, j_enter.seq).to));
-    uint32_t e = i_leave.seq;
-    while (e > robots_[i].finished && action(i, e - 1).type != ActionType::kMove) --e;
-    if (e == robots_[i].finished || e - 1 < robots_[i].enqueued) return std::nullopt;
-    const NodeRef i_enter{i, e - 1};
-    if (grid_.half_index(action(i, i_enter.seq).to) != location ||
-        stays_before(i, i_enter.seq, location) || due(i_enter)) {
-      return std::nullopt;
-    }
-    const auto leave = next_move(j, j_enter.seq);
-    if (!leave || comes_back(j, *leave, location)) return std::nullopt;
-    return Pair{i_enter, i_leave, j_enter, {j, *leave}};
+    if (!has_edge(i_leave, j_enter)) return std::nullopt;
+    return switchable_pair(i_leave, j_enter);
   }
   return std::nullopt;
 }

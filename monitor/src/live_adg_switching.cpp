@@ -113,28 +113,20 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
     return false;
   }
   const NodeRef j_enter{j, seq}, i_leave = mine.in[0];
+  const auto pair = switchable_pair(i_leave, j_enter);
+  if (!pair || node(pair->i_enter.robot, pair->i_enter.seq).pending != 0) return false;
+  const NodeRef i_enter = pair->i_enter, j_leave = pair->j_leave;
   const uint32_t i = i_leave.robot;
   const auto location = static_cast<uint32_t>(grid_.half_index(mine.action.to));
-  // i's entry: its move before the leave, unfinished and never sent.
-  uint32_t e = i_leave.seq;
-  while (e > robots_[i].finished && action(i, e - 1).type != ActionType::kMove) --e;
-  if (e == robots_[i].finished || e - 1 < robots_[i].enqueued) return false;
-  const NodeRef i_enter{i, e - 1};
-  if (grid_.half_index(action(i, i_enter.seq).to) != location) return false;
-  if (node(i, i_enter.seq).pending != 0 || stays_before(i, i_enter.seq, location)) return false;
-  if (due(i_enter)) return false;
-  const auto leave = next_move(j, seq);
-  if (!leave || comes_back(j, *leave, location)) return false;
-  const NodeRef j_leave{j, *leave};
   if (still_refused(j, j_enter, i_leave)) return false;
   // switchable-opt: only when expected to save waiting (never back and forth with a decision
   // that saved more than margin_s the other way).
-  if (anticipating() && !(saving({i_enter, i_leave, j_enter, j_leave}) > 0)) return false;
+  if (anticipating() && !(saving(*pair) > 0)) return false;
   auto& refusal = refused_[j];
   refusal.path.clear();
   const Reach reach = reaches(i_enter, j_leave, i_leave, j_enter, refusal.path);
   if (reach == Reach::kPath && switching_->chain_locations > 1 &&
-      try_chain({i_enter, i_leave, j_enter, j_leave}, refusal.path, time_s, changed)) {
+      try_chain(*pair, refusal.path, time_s, changed)) {
     refusal.valid = false;
     return true;
   }
@@ -153,6 +145,27 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   swap_order(i_enter, i_leave, j_enter, j_leave);
   if (advance(j)) changed.push_back(j);
   return true;
+}
+
+// The pair of stays at j_enter's location, i (leaving by i_leave) before j, when they may
+// switch: i's entry there (its move before the leave) unfinished and never sent, not due, i not
+// at the location nor there before; j leaves it again and never comes back within the graph.
+std::optional<LiveAdg::Pair> LiveAdg::switchable_pair(NodeRef i_leave, NodeRef j_enter) const {
+  const uint32_t i = i_leave.robot, j = j_enter.robot;
+  const Action& entry = action(j, j_enter.seq);
+  if (entry.type != ActionType::kMove) return std::nullopt;
+  const auto location = static_cast<uint32_t>(grid_.half_index(entry.to));
+  uint32_t e = i_leave.seq;
+  while (e > robots_[i].finished && action(i, e - 1).type != ActionType::kMove) --e;
+  if (e == robots_[i].finished || e - 1 < robots_[i].enqueued) return std::nullopt;
+  const NodeRef i_enter{i, e - 1};
+  if (grid_.half_index(action(i, i_enter.seq).to) != location ||
+      stays_before(i, i_enter.seq, location) || due(i_enter)) {
+    return std::nullopt;
+  }
+  const auto leave = next_move(j, j_enter.seq);
+  if (!leave || comes_back(j, *leave, location)) return std::nullopt;
+  return Pair{i_enter, i_leave, j_enter, {j, *leave}};
 }
 
 // A visit mark of every unfinished action back to 0 (its counter wrapped).

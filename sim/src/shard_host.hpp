@@ -53,15 +53,14 @@ class ShardPeer {
   uint32_t shard_, shards_;
   // Why an exchange for `shard` from writer `from` is refused, or "" (and `from` holds it now).
   std::string admit(uint32_t shard, dds_instance_handle_t from);
+  // A repeat of an exchange this shard has (or had: its period is applied and forgotten).
+  bool known(uint32_t shard, uint64_t tick) const;
 
   std::size_t robots_;
   wire::Bounds bounds_;
   dds::WireWriter<smart_msg_ShardExchange> out_;
   dds::WriterAdmission from_sims_;  // before in_: its filter (sim shards proven with the key)
   dds::WireReader<smart_msg_ShardExchange> in_;
-  // A repeat of an exchange this shard has (or had: its period is applied and forgotten).
-  bool known(uint32_t shard, uint64_t tick) const;
-
   std::map<uint64_t, std::map<uint32_t, Exchange>> by_tick_;
   uint64_t forgotten_before_ = 0;
   std::deque<ExchangeBuffer> mine_;  // this shard's last two exchanges, built in place

@@ -369,7 +369,9 @@ std::size_t run_stream(const StreamCase& c) {
   EXPECT_GT(reached, robots) << "the stream stalled";
   compared_total += adg.lookahead_comparisons();
   chained_total += adg.chained();
-  if (c.chain == 1) EXPECT_EQ(adg.chained(), 0u);
+  if (c.chain == 1) {
+    EXPECT_EQ(adg.chained(), 0u);
+  }
   if (c.anticipate || c.look)
     anticipated_total +=
         std::ranges::count_if(*adg.switches(), [](const auto& s) { return s.anticipated; });
@@ -403,7 +405,9 @@ TEST(LiveAdgProperty, SwitchingStreamsStaySafeAndLive) {
       if (HasFailure()) return;
     }
     EXPECT_GT(switches, 100u);
-    if (chain > 1) EXPECT_GT(chained_total, 500u);  // 1440 of 1982
+    if (chain > 1) {
+      EXPECT_GT(chained_total, 500u);  // 1440 of 1982
+    }
   }
 }
 

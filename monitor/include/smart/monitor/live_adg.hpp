@@ -251,6 +251,7 @@ class LiveAdg final : public Execution {
   void decide(uint32_t r, std::vector<uint32_t>& changed);
   bool decide_due(uint32_t r, bool may_switch, double time_s, std::vector<uint32_t>& changed);
   void settle_due(double time_s, std::vector<uint32_t>& changed);
+  std::optional<Pair> switchable_pair(NodeRef i_leave, NodeRef j_enter) const;
   // Chains (live_adg_chain.cpp).
   std::optional<Pair> chain_link(const std::vector<std::pair<NodeRef, NodeRef>>& path, uint32_t i,
                                  uint32_t j) const;
