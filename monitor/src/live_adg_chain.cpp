@@ -76,6 +76,7 @@ void LiveAdg::undo_chain() {
 bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, NodeRef>>& path,
                         double time_s, std::vector<uint32_t>& changed) {
   const uint32_t i = first.i_enter.robot, j = first.j_enter.robot;
+  if (compares_chains()) collect_cone(first, switching_->lookahead_nodes);
   std::vector<Pair> chain{first};
   chain_log_.clear();
   chain_keys_.clear();
@@ -88,12 +89,14 @@ bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, 
                     [&](const Pair& p) { return p.j_enter == next->j_enter; })) {
       break;
     }
-    // Expected times (switchable-opt, -lookahead): j passes only where they expect it to save
-    // there too (switchable_chain.cpp says why).
-    if (anticipating() && !(saving(*next) > 0)) break;
+    // Expected times (switchable-opt): j passes only where they expect it to save there too
+    // (switchable_chain.cpp says why). The lookahead compares the whole chain once it closes no
+    // cycle (chain_saves): one location at a time, its compared actions may close one.
+    if (anticipating() && !compares_chains() && !(saving(*next) > 0)) break;
     chain_swap(*next);
     chain.push_back(*next);
     const Reach r = chain_cycle();
+    if (r == Reach::kNone && compares_chains() && !chain_saves(chain)) return false;  // undone
     if (r == Reach::kNone) {
       logging_ = false;
       for (const Pair& p : chain) {
@@ -109,6 +112,28 @@ bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, 
   }
   undo_chain();
   return false;
+}
+
+// The lookahead's comparison of a chain that closes no cycle (try_chain; the one-shot
+// SwitchableTracker::chain_saves says why): over the actions walked from the first location's
+// pair on the graph's edges (collected before the swaps) and on the chain's (walked now), each
+// walk cut on its own. When the chain saves nothing the swaps are undone here; otherwise they
+// are made again from the start (the same edges, logged as before).
+bool LiveAdg::chain_saves(const std::vector<Pair>& chain) {
+  ++compared_;
+  ++widened_;
+  const Pair& p = chain.front();
+  const Pair back{p.j_enter, p.j_leave, p.i_enter, p.i_leave};  // j now before i
+  collect_cone(back, switching_->lookahead_nodes, true);
+  const double chained_cost = cone_cost(back, false);  // unswapped: the edges as they are now
+  undo_chain();
+  const double kept_cost = cone_cost(p, false);
+  if (!(kept_cost - chained_cost > 0)) return false;
+  chain_log_.clear();
+  chain_keys_.clear();
+  logging_ = true;
+  for (const Pair& q : chain) chain_swap(q);
+  return true;
 }
 
 }  // namespace smart::monitor

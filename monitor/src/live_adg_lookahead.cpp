@@ -84,12 +84,22 @@ void LiveAdg::successors(const Pair& p, NodeRef u, bool swapped, std::vector<Nod
 // entry first; at the pair's leaves, both orders' successors sorted), so that the pair compared
 // again right after a swap gets the same cone, and the opposite answer (a cone that depended on
 // it swapped pairs back and forth in one-shot runs, docs/execution.md "switchable-lookahead").
-void LiveAdg::collect_cone(const Pair& p, std::size_t nodes) {
-  if (++cone_id_ == 0) {
-    clear_marks(&Node::cone);
-    cone_id_ = 1;
+// With `extend`, the walk's actions are added to the cone already collected (a chain's two
+// orders, each walked in its own graph: chain_saves), each walk cut at `nodes` on its own.
+void LiveAdg::collect_cone(const Pair& p, std::size_t nodes, bool extend) {
+  if (!extend) {
+    if (++cone_id_ == 0) {
+      clear_marks(&Node::cone);
+      cone_id_ = 1;
+    }
+    cone_.clear();
   }
-  cone_.clear();
+  // This walk's visit mark is `order` (free until cone_cost times the cone, with a new id).
+  if (++order_id_ == 0) {
+    clear_marks(&Node::order);
+    order_id_ = 1;
+  }
+  walk_.clear();
   const auto add = [&](NodeRef v) {
     const Robot& rb = robots_[v.robot];
     if (v.seq < rb.finished || v.seq >= end(v.robot) ||
@@ -97,16 +107,20 @@ void LiveAdg::collect_cone(const Pair& p, std::size_t nodes) {
       return;
     }
     Node& n = node(v.robot, v.seq);
-    if (n.cone == cone_id_ || cone_.size() >= nodes) return;
-    n.cone = cone_id_;
-    cone_.push_back(v);
+    if (n.order == order_id_ || walk_.size() >= nodes) return;
+    n.order = order_id_;
+    walk_.push_back(v);
+    if (n.cone != cone_id_) {
+      n.cone = cone_id_;
+      cone_.push_back(v);
+    }
   };
   const bool i_low = p.i_enter.robot < p.j_enter.robot;
   add(i_low ? p.i_enter : p.j_enter);
   add(i_low ? p.j_enter : p.i_enter);
-  // By index: add() grows cone_ while it is walked. Until the cone is full.
-  for (std::size_t q = 0; q < cone_.size() && cone_.size() < nodes; ++q) {
-    const NodeRef u = cone_[q];
+  // By index: add() grows walk_ while it is walked. Until the walk is full.
+  for (std::size_t q = 0; q < walk_.size() && walk_.size() < nodes; ++q) {
+    const NodeRef u = walk_[q];
     add({u.robot, u.seq + 1});
     next_.clear();
     successors(p, u, false, next_);

@@ -3,6 +3,7 @@
 // with the move that enters it and ends with the robot's next move, so a Type-2 edge's location
 // is the one its target enters.
 #include <algorithm>
+#include <cmath>
 
 #include "smart/monitor/live_adg.hpp"
 
@@ -120,8 +121,14 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
   const auto location = static_cast<uint32_t>(grid_.half_index(mine.action.to));
   if (still_refused(j, j_enter, i_leave)) return false;
   // switchable-opt: only when expected to save waiting (never back and forth with a decision
-  // that saved more than margin_s the other way).
-  if (anticipating() && !(saving(*pair) > 0)) return false;
+  // that saved more than margin_s the other way). The lookahead: a swap here alone whose
+  // compared actions close a cycle costs for ever; a chain may not, and is compared as a whole.
+  bool whole_chain = false;
+  if (anticipating()) {
+    const double gain = saving(*pair);
+    whole_chain = compares_chains() && std::isinf(gain) && gain < 0;
+    if (!(gain > 0) && !whole_chain) return false;
+  }
   auto& refusal = refused_[j];
   refusal.path.clear();
   const Reach reach = reaches(i_enter, j_leave, i_leave, j_enter, refusal.path);
@@ -130,7 +137,7 @@ bool LiveAdg::try_switch(uint32_t j, double time_s, std::vector<uint32_t>& chang
     refusal.valid = false;
     return true;
   }
-  if (reach != Reach::kNone) {
+  if (reach != Reach::kNone || whole_chain) {  // whole_chain: the cone's cycle stands
     refusal = {j_enter,
                i_leave,
                epoch_,

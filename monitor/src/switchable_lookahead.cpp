@@ -33,32 +33,37 @@ uint32_t SwitchableTracker::prev_in(uint32_t stay, const Swap& s) const {
 }
 
 // The unfinished actions after i's and j's entries in either order, within lookahead_actions of
-// their robots' progress, breadth first up to `nodes`: the same set for both orders.
-void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
-  if (look_.empty()) {
-    look_.resize(actions_.actions.size());
-    for (std::size_t n = 0; n < look_.size(); ++n) {
-      const auto& a = actions_.actions[n];
-      look_[n].robot = a.robot;
-      look_[n].seq = a.seq;
-      look_[n].type = a.type;
+// their robots' progress, breadth first up to `nodes`: the same set for both orders. With
+// `extend`, the walk's actions are added to the cone already collected (a chain's two orders,
+// each walked in its own graph: chain_saves), each walk cut at `nodes` on its own.
+void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes, bool extend) {
+  if (look_.empty()) init_look();
+  if (!extend) {
+    if (++cone_id_ == 0) {
+      for (auto& l : look_) l.cone = 0;
+      cone_id_ = 1;
     }
+    cone_.clear();
   }
-  if (++cone_id_ == 0) {
-    for (auto& l : look_) l.cone = 0;
-    cone_id_ = 1;
+  // This walk's visit mark is `order` (free until cone_cost times the cone, with a new id).
+  if (++order_id_ == 0) {
+    for (auto& l : look_) l.order = 0;
+    order_id_ = 1;
   }
-  cone_.clear();
-  cone_robot_.clear();
+  walk_.clear();
   // A stay's robot is known where its entry is found: an action's robot and place in its queue
   // without reading the action (a cache miss each; the walk's largest cost).
   const auto add = [&](uint32_t node, uint32_t robot) {
     const uint32_t seq = node - actions_.offset[robot];
     if (seq < finished_[robot] || seq > finished_[robot] + options_.lookahead_actions) return;
-    if (look_[node].cone == cone_id_ || cone_.size() >= nodes) return;
-    look_[node].cone = cone_id_;
-    cone_.push_back(node);
-    cone_robot_.push_back(robot);
+    Look& l = look_[node];
+    if (l.order == order_id_ || walk_.size() >= nodes) return;
+    l.order = order_id_;
+    walk_.emplace_back(node, robot);
+    if (l.cone != cone_id_) {
+      l.cone = cone_id_;
+      cone_.push_back(node);
+    }
   };
   // In an order that does not depend on which stay is first now (the smaller stay id's entry
   // first, the graph with it first walked first): the pair compared again after a swap, before
@@ -69,10 +74,10 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
   add(stay_[high].enter, stay_[high].robot);
   const Swap orders[2] = {{s.i, s.j, s.j == low}, {s.i, s.j, s.i == low}};
   const uint32_t h = link_[s.i].prev;  // the stays whose next differs between the orders: h, i, j
-  // By index: add() grows cone_ while it is walked (a range-for's iterators would dangle).
-  // Until the cone is full: a full cone's remaining actions would add nothing.
-  for (std::size_t q = 0; q < cone_.size() && cone_.size() < nodes; ++q) {
-    const uint32_t u = cone_[q], robot = cone_robot_[q];
+  // By index: add() grows walk_ while it is walked (a range-for's iterators would dangle).
+  // Until the walk is full: a full walk's remaining actions would add nothing.
+  for (std::size_t q = 0; q < walk_.size() && walk_.size() < nodes; ++q) {
+    const auto [u, robot] = walk_[q];
     if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
     for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
       const uint32_t x = leave_stays_[e];
@@ -85,6 +90,16 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes) {
         if (!differs) break;
       }
     }
+  }
+}
+
+void SwitchableTracker::init_look() {
+  look_.resize(actions_.actions.size());
+  for (std::size_t n = 0; n < look_.size(); ++n) {
+    const auto& a = actions_.actions[n];
+    look_[n].robot = a.robot;
+    look_[n].seq = a.seq;
+    look_[n].type = a.type;
   }
 }
 

@@ -113,6 +113,40 @@ TEST(LiveAdgSwitching, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationThey
   }
 }
 
+// The same following case under switchable-lookahead (SwitchableTracker's
+// TheLookaheadComparesAChainAsAWholeWhereOneLocationClosesACycle): passing robot 0 at (1,1) alone
+// closes a cycle inside the compared actions (it costs for ever), so before chains were compared
+// as a whole the lookahead made no switch here. Robot 0 has not moved for 5 s: the chain of three
+// locations is expected to save, and robot 1 passes at all three.
+TEST(LiveAdgLookahead, AChainIsComparedAsAWholeWhereOneLocationClosesACycle) {
+  const auto g = open_map(4, 3);
+  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  for (const uint32_t chain : {1u, 8u}) {
+    SCOPED_TRACE("chain " + std::to_string(chain));
+    LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
+    adg.enable_switching(
+        {.commit_actions = 1, .anticipate = true, .lookahead_actions = 24, .chain_locations = chain});
+    ASSERT_TRUE(adg.append(window, 0).empty());
+    adg.on_progress(1, 0, 5.0);  // robot 1 turned south: ready at the edge of (1,0)
+    if (chain == 1) {
+      EXPECT_TRUE(adg.switches()->empty());
+      continue;
+    }
+    ASSERT_EQ(adg.switches()->size(), 3u);
+    EXPECT_EQ(adg.chained(), 3u);
+    for (const auto& s : *adg.switches()) {
+      EXPECT_EQ(s.first, 1u);
+      EXPECT_EQ(s.second, 0u);
+      EXPECT_FALSE(s.anticipated);
+    }
+    Executor ex(g, adg, {{0, 2}, {1, 0}}, 7, 0.0);
+    for (int t = 6; t < 60 && adg.unfinished_total() > 0; ++t) ex.tick(t);
+    EXPECT_EQ(adg.unfinished_total(), 0u) << "both robots finish";
+    EXPECT_EQ(ex.conflicts, 0u);
+  }
+}
+
 TEST(LiveAdgSwitching, PlanOrderWithoutSwitching) {
   LateRobotFixture f;
   ASSERT_TRUE(f.adg.append(f.window, 0).empty());
@@ -518,6 +552,7 @@ TEST(LiveAdgProperty, LookaheadStreamsStaySafeAndLive) {
   EXPECT_GT(switches, 100u);
   EXPECT_GT(anticipated_total, 20u);
   EXPECT_GT(compared_total, 100u);
+  EXPECT_GT(chained_total, 100u);  // 823; 3 before chains were compared as a whole
 }
 
 }  // namespace

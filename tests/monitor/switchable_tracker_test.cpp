@@ -376,6 +376,40 @@ TEST(SwitchableTracker, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationThe
   EXPECT_TRUE(t.complete());
 }
 
+// The lookahead compares a pair's two orders over the actions they affect. Passing robot 0 at
+// the cell alone closes a cycle inside those actions (robot 0 goes on ahead of robot 1 along
+// row 1), which costs for ever: before the chain was compared as a whole, the lookahead never
+// reached a chain here (no switch). Now the order with robot 1 passing at all three locations
+// is compared with the plan's over the same actions, and saves: robot 0 has not moved for 5 s.
+TEST(SwitchableTracker, TheLookaheadComparesAChainAsAWholeWhereOneLocationClosesACycle) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
+                                     Heading::kEast);
+  std::vector<Problem> problems;
+  build_adg(actions, grid, "test", problems);
+  ASSERT_TRUE(problems.empty());
+  const SwitchOptions look{.commit_actions = 1, .anticipate = true, .lookahead_actions = 24};
+  SwitchOptions one_location = look;
+  one_location.chain_locations = 1;
+  SwitchableTracker one(actions, passing_orders(actions, grid), one_location);
+  SwitchableTracker t(actions, passing_orders(actions, grid), look);
+  for (auto* x : {&one, &t}) x->on_progress(1, 0, 5.0);  // rotated south: at the cell's edge
+  EXPECT_TRUE(one.switches()->empty());
+  ASSERT_EQ(t.switches()->size(), 3u);
+  EXPECT_EQ(t.chained(), 3u);
+  for (const auto& s : *t.switches()) {
+    EXPECT_EQ(s.first, 1u);
+    EXPECT_EQ(s.second, 0u);
+    EXPECT_FALSE(s.anticipated);
+  }
+  run_robot(t, 1, 6.0);
+  EXPECT_TRUE(t.robot_done(1));
+  EXPECT_EQ(t.finished(0), 0u);
+  while (!t.complete() && !t.deadlocked()) run_robot(t, 0, 7.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
 // or the cells of it (both cells of an edge midpoint).
 std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
@@ -538,6 +572,7 @@ Outcome run_anticipating(SwitchOptions options) {
         const auto o = run_random(seed, footprint, options);
         sum.switches += o.switches;
         sum.anticipated += o.anticipated;
+        sum.chained += o.chained;
         if (::testing::Test::HasFailure()) {
           ADD_FAILURE() << "seed " << seed << " commit " << commit;
           return sum;
@@ -565,6 +600,7 @@ TEST(SwitchableTrackerProperty, LookaheadSwitchesNeverCollideAndAlwaysFinish) {
       run_anticipating({.anticipate = true, .lookahead_actions = 24, .lookahead_margin_s = 0.05});
   EXPECT_GT(o.anticipated, 100u) << "of " << o.switches << " switches";
   EXPECT_GT(o.switches, o.anticipated) << "first come, first served still switches too";
+  EXPECT_GT(o.chained, 100u) << "of " << o.switches << " switches";  // 361; 8 before
 }
 
 }  // namespace

@@ -257,6 +257,11 @@ class LiveAdg final : public Execution {
                                  uint32_t j) const;
   void chain_swap(const Pair& p);
   Reach chain_cycle();
+  // switchable-lookahead with chains: a chain's edges compared with the graph's over one cone.
+  bool compares_chains() const {
+    return switching_ && switching_->lookahead_actions > 0 && switching_->chain_locations > 1;
+  }
+  bool chain_saves(const std::vector<Pair>& chain);
   void undo_chain();
   bool try_chain(const Pair& first, const std::vector<std::pair<NodeRef, NodeRef>>& path,
                  double time_s, std::vector<uint32_t>& changed);
@@ -266,7 +271,7 @@ class LiveAdg final : public Execution {
   double saving(const Pair& p);
   double lookahead_saving(const Pair& p);
   double cone_saving(const Pair& p, std::size_t nodes);
-  void collect_cone(const Pair& p, std::size_t nodes);
+  void collect_cone(const Pair& p, std::size_t nodes, bool extend = false);
   void successors(const Pair& p, NodeRef u, bool swapped, std::vector<NodeRef>& out) const;
   double expect(NodeRef n, const Pair& p, bool swapped);
   double cone_cost(const Pair& p, bool swapped);
@@ -304,6 +309,7 @@ class LiveAdg final : public Execution {
   mutable std::vector<ActionType> types_;  // scratch
   // switchable-lookahead: the compared actions, comparison and order ids (Node::cone, order).
   std::vector<NodeRef> cone_;
+  std::vector<NodeRef> walk_;  // one walk of the cone (scratch)
   std::vector<NodeRef> next_;  // scratch
   uint32_t cone_id_ = 0;
   uint32_t order_id_ = 0;

@@ -156,6 +156,11 @@ class SwitchableTracker final : public Execution {
   uint32_t chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t first,
                       uint32_t second) const;
   Reach chain_cycle(const std::vector<uint32_t>& chain);
+  // switchable-lookahead with chains: a chain's orders compared with the plan's over one cone.
+  bool compares_chains() const {
+    return options_.lookahead_actions > 0 && options_.chain_locations > 1;
+  }
+  bool chain_saves(const std::vector<uint32_t>& chain);
   uint32_t blocking_stay(uint32_t node) const;
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
@@ -172,7 +177,8 @@ class SwitchableTracker final : public Execution {
   };
   uint32_t next_in(uint32_t stay, const Swap& s) const;
   uint32_t prev_in(uint32_t stay, const Swap& s) const;
-  void collect_cone(const Swap& s, std::size_t nodes);
+  void collect_cone(const Swap& s, std::size_t nodes, bool extend = false);
+  void init_look();
   double expect(uint32_t node, const Swap& s);
   double cone_cost(const Swap& s);
   double saving(uint32_t i, uint32_t j);
@@ -247,7 +253,8 @@ class SwitchableTracker final : public Execution {
     uint32_t robot = 0, seq = 0;
     grid::ActionType type = grid::ActionType::kMove;
   };
-  std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
+  std::vector<uint32_t> cone_;  // the compared actions
+  std::vector<std::pair<uint32_t, uint32_t>> walk_;  // one walk's actions and robots (scratch)
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
   std::size_t compared_ = 0, widened_ = 0;
