@@ -61,7 +61,8 @@ SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32
 // true) or the chain cannot grow (undone, false).
 bool SwitchableTracker::try_chain(uint32_t i,
                                   const std::vector<std::pair<uint32_t, uint32_t>>& path,
-                                  double time_s, std::vector<uint32_t>& changed) {
+                                  double time_s, std::vector<uint32_t>& changed,
+                                  bool anticipated) {
   const uint32_t passed = stay_[i].robot, ready = stay_[after(i).stay].robot;
   if (compares_chains()) collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
   std::vector<uint32_t> chain{i};
@@ -83,13 +84,17 @@ bool SwitchableTracker::try_chain(uint32_t i,
     relink(next);
     chain.push_back(next);
     const Reach r = chain_cycle(chain);
-    if (r == Reach::kNone && compares_chains() && !chain_saves(chain)) return false;  // undone
+    if (r == Reach::kNone && compares_chains() &&
+        !chain_saves(chain, anticipated ? margin() : 0.0)) {
+      return false;  // undone
+    }
     if (r == Reach::kNone) {
       for (const uint32_t s : chain) {
         const uint32_t j = before(s).stay;
-        switches_.push_back({time_s, location_[s], ready, passed});
+        switches_.push_back({time_s, location_[s], ready, passed, anticipated});
         settle(j);
       }
+      if (anticipated) anticipated_ += chain.size();
       chained_ += chain.size();
       if (advance(ready)) changed.push_back(ready);
       return true;
@@ -107,8 +112,9 @@ bool SwitchableTracker::try_chain(uint32_t i,
 // the chain back, gets the same actions and the opposite answer (one walk, in the plan's orders
 // alone, swapped pairs back and forth: 19-57 thousand switches a run at 750 robots). The chain
 // saves when the fleet's expected finish of those actions is sooner; otherwise the swaps are
-// undone here. First come, first served: any saving, as for one location.
-bool SwitchableTracker::chain_saves(const std::vector<uint32_t>& chain) {
+// undone here. It must save more than `margin_s`: nothing for first come, first served, the
+// lookahead's margin for anticipation, as for one location.
+bool SwitchableTracker::chain_saves(const std::vector<uint32_t>& chain, double margin_s) {
   ++compared_;
   ++widened_;
   const uint32_t i = chain.front();
@@ -116,7 +122,7 @@ bool SwitchableTracker::chain_saves(const std::vector<uint32_t>& chain) {
   const double chained_cost = cone_cost(Swap{});  // unswapped: the orders as they are now
   for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
   const double kept_cost = cone_cost(Swap{});
-  if (!(kept_cost - chained_cost > 0)) return false;
+  if (!(kept_cost - chained_cost > margin_s)) return false;
   for (const uint32_t s : chain) relink(s);
   return true;
 }

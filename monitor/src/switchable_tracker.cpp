@@ -554,9 +554,13 @@ bool SwitchableTracker::anticipate(uint32_t robot, double time_s, std::vector<ui
     const Stay& second = stay_[j.stay];
     if (second.enter == kNoAction || second.leave == kNoAction) continue;
     if (pending_[second.enter] != 1) continue;  // j waits for more than i
-    if (saving(i, j.stay) <= margin()) continue;
+    const double gain = saving(i, j.stay);
+    const bool whole_chain = compares_chains() && std::isinf(gain) && gain < 0;  // try_switch
+    if (gain <= margin() && !whole_chain) continue;
     std::vector<std::pair<uint32_t, uint32_t>> path;
-    if (reaches(node, second.leave, stay_[i].leave, second.enter, path) != Reach::kNone) continue;
+    const Reach r = reaches(node, second.leave, stay_[i].leave, second.enter, path);
+    if (r == Reach::kPath && whole_chain && try_chain(i, path, time_s, changed, true)) return true;
+    if (r != Reach::kNone || whole_chain) continue;
     switches_.push_back({time_s, location_[i], second.robot, robot, true});
     ++anticipated_;
     swap_with_next(i, changed);

@@ -410,6 +410,40 @@ TEST(SwitchableTracker, TheLookaheadComparesAChainAsAWholeWhereOneLocationCloses
   EXPECT_TRUE(t.complete());
 }
 
+// Anticipation compares a chain as a whole too. The same following case, entries sent 3
+// actions ahead: robot 0's first move takes 5 s (every move is now expected to), so when its
+// entry into (1,1) is to be sent robot 1, sent its turn towards (1,1) at t = 0, is expected
+// through the three shared locations sooner. Passing at (1,1) alone closes a cycle; the chain saves more than
+// the margin and is made at t = 6, anticipated, before robot 0 is sent its way in (without
+// chains in anticipation: no switch, checked).
+TEST(SwitchableTracker, TheLookaheadAnticipatesAChainWhereOneLocationClosesACycle) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
+                                     Heading::kEast);
+  std::vector<Problem> problems;
+  build_adg(actions, grid, "test", problems);
+  ASSERT_TRUE(problems.empty());
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      {.commit_actions = 3, .anticipate = true, .lookahead_actions = 24});
+  t.on_progress(0, 0, 1.0);
+  EXPECT_TRUE(t.switches()->empty());
+  t.on_progress(0, 1, 6.0);
+  ASSERT_EQ(t.switches()->size(), 3u);
+  EXPECT_EQ(t.chained(), 3u);
+  EXPECT_EQ(t.anticipated(), 3u);
+  for (const auto& s : *t.switches()) {
+    EXPECT_EQ(s.first, 1u);
+    EXPECT_EQ(s.second, 0u);
+    EXPECT_TRUE(s.anticipated);
+    EXPECT_EQ(s.time_s, 6.0);
+  }
+  run_robot(t, 1, 7.0);
+  EXPECT_TRUE(t.robot_done(1));
+  while (!t.complete() && !t.deadlocked()) run_robot(t, 0, 8.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // The locations a robot standing at `h` holds under `footprint` (adg.hpp): the half-cell itself,
 // or the cells of it (both cells of an edge midpoint).
 std::vector<HalfCell> held(HalfCell h, Footprint footprint) {

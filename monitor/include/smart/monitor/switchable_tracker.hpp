@@ -152,7 +152,7 @@ class SwitchableTracker final : public Execution {
   void settle(uint32_t j);
   // Chains (switchable_chain.cpp).
   bool try_chain(uint32_t i, const std::vector<std::pair<uint32_t, uint32_t>>& path, double time_s,
-                 std::vector<uint32_t>& changed);
+                 std::vector<uint32_t>& changed, bool anticipated = false);
   uint32_t chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t first,
                       uint32_t second) const;
   Reach chain_cycle(const std::vector<uint32_t>& chain);
@@ -160,7 +160,7 @@ class SwitchableTracker final : public Execution {
   bool compares_chains() const {
     return options_.lookahead_actions > 0 && options_.chain_locations > 1;
   }
-  bool chain_saves(const std::vector<uint32_t>& chain);
+  bool chain_saves(const std::vector<uint32_t>& chain, double margin_s);
   uint32_t blocking_stay(uint32_t node) const;
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
