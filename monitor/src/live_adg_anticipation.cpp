@@ -84,9 +84,16 @@ bool LiveAdg::anticipate(uint32_t i, double time_s, std::vector<uint32_t>& chang
     const auto leave = next_move(j, j_enter.seq);
     if (!leave || comes_back(j, *leave, location)) continue;
     const NodeRef j_leave{j, *leave};
-    if (saving({i_enter, i_leave, j_enter, j_leave}) <= margin()) continue;
+    const Pair pair{i_enter, i_leave, j_enter, j_leave};
+    const double gain = saving(pair);
+    const bool whole_chain = compares_chains() && std::isinf(gain) && gain < 0;  // try_switch
+    if (gain <= margin() && !whole_chain) continue;
     std::vector<std::pair<NodeRef, NodeRef>> path;
-    if (reaches(i_enter, j_leave, i_leave, j_enter, path) != Reach::kNone) continue;
+    const Reach r = reaches(i_enter, j_leave, i_leave, j_enter, path);
+    if (r == Reach::kPath && whole_chain && try_chain(pair, path, time_s, changed, true)) {
+      return true;
+    }
+    if (r != Reach::kNone || whole_chain) continue;
     switches_.push_back({time_s, location, j, i, true});
     swap_order(i_enter, i_leave, j_enter, j_leave);
     if (advance(j)) changed.push_back(j);

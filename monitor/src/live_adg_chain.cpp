@@ -74,7 +74,7 @@ void LiveAdg::undo_chain() {
 // location where the path shows i ahead, until no cycle closes (switched, recorded, true) or the
 // chain cannot grow (undone, false).
 bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, NodeRef>>& path,
-                        double time_s, std::vector<uint32_t>& changed) {
+                        double time_s, std::vector<uint32_t>& changed, bool anticipated) {
   const uint32_t i = first.i_enter.robot, j = first.j_enter.robot;
   if (compares_chains()) collect_cone(first, switching_->lookahead_nodes);
   std::vector<Pair> chain{first};
@@ -96,12 +96,16 @@ bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, 
     chain_swap(*next);
     chain.push_back(*next);
     const Reach r = chain_cycle();
-    if (r == Reach::kNone && compares_chains() && !chain_saves(chain)) return false;  // undone
+    if (r == Reach::kNone && compares_chains() &&
+        !chain_saves(chain, anticipated ? margin() : 0.0)) {
+      return false;  // undone
+    }
     if (r == Reach::kNone) {
       logging_ = false;
       for (const Pair& p : chain) {
-        switches_.push_back(
-            {time_s, static_cast<uint32_t>(grid_.half_index(action(j, p.j_enter.seq).to)), j, i});
+        switches_.push_back({time_s,
+                             static_cast<uint32_t>(grid_.half_index(action(j, p.j_enter.seq).to)),
+                             j, i, anticipated});
       }
       chained_ += chain.size();
       if (advance(j)) changed.push_back(j);
@@ -118,8 +122,9 @@ bool LiveAdg::try_chain(const Pair& first, const std::vector<std::pair<NodeRef, 
 // SwitchableTracker::chain_saves says why): over the actions walked from the first location's
 // pair on the graph's edges (collected before the swaps) and on the chain's (walked now), each
 // walk cut on its own. When the chain saves nothing the swaps are undone here; otherwise they
-// are made again from the start (the same edges, logged as before).
-bool LiveAdg::chain_saves(const std::vector<Pair>& chain) {
+// are made again from the start (the same edges, logged as before). It must save more than
+// `margin_s`: nothing for first come, first served, the lookahead's margin for anticipation.
+bool LiveAdg::chain_saves(const std::vector<Pair>& chain, double margin_s) {
   ++compared_;
   ++widened_;
   const Pair& p = chain.front();
@@ -128,7 +133,7 @@ bool LiveAdg::chain_saves(const std::vector<Pair>& chain) {
   const double chained_cost = cone_cost(back, false);  // unswapped: the edges as they are now
   undo_chain();
   const double kept_cost = cone_cost(p, false);
-  if (!(kept_cost - chained_cost > 0)) return false;
+  if (!(kept_cost - chained_cost > margin_s)) return false;
   chain_log_.clear();
   chain_keys_.clear();
   logging_ = true;

@@ -61,8 +61,7 @@ SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32
 // true) or the chain cannot grow (undone, false).
 bool SwitchableTracker::try_chain(uint32_t i,
                                   const std::vector<std::pair<uint32_t, uint32_t>>& path,
-                                  double time_s, std::vector<uint32_t>& changed,
-                                  bool anticipated) {
+                                  double time_s, std::vector<uint32_t>& changed, bool anticipated) {
   const uint32_t passed = stay_[i].robot, ready = stay_[after(i).stay].robot;
   if (compares_chains()) collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
   std::vector<uint32_t> chain{i};

@@ -125,8 +125,10 @@ TEST(LiveAdgLookahead, AChainIsComparedAsAWholeWhereOneLocationClosesACycle) {
   for (const uint32_t chain : {1u, 8u}) {
     SCOPED_TRACE("chain " + std::to_string(chain));
     LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
-    adg.enable_switching(
-        {.commit_actions = 1, .anticipate = true, .lookahead_actions = 24, .chain_locations = chain});
+    adg.enable_switching({.commit_actions = 1,
+                          .anticipate = true,
+                          .lookahead_actions = 24,
+                          .chain_locations = chain});
     ASSERT_TRUE(adg.append(window, 0).empty());
     adg.on_progress(1, 0, 5.0);  // robot 1 turned south: ready at the edge of (1,0)
     if (chain == 1) {
@@ -145,6 +147,34 @@ TEST(LiveAdgLookahead, AChainIsComparedAsAWholeWhereOneLocationClosesACycle) {
     EXPECT_EQ(adg.unfinished_total(), 0u) << "both robots finish";
     EXPECT_EQ(ex.conflicts, 0u);
   }
+}
+
+// Anticipation compares a chain as a whole too (SwitchableTracker's
+// TheLookaheadAnticipatesAChainWhereOneLocationClosesACycle): entries sent 6 actions ahead, so
+// robot 0's entry into (1,1) is due at the append. Robot 1 is expected there after one turn,
+// robot 0 after two turns and a move: robot 1 passing at (1,1) alone closes a cycle (robot 0 goes
+// on ahead along row 1), and passing at all three shared locations saves more than the margin.
+// So it passes at all three, anticipated at t = 0 (no switch without chains in anticipation,
+// checked), and both finish.
+TEST(LiveAdgLookahead, AnticipationComparesAChainAsAWhole) {
+  const auto g = open_map(4, 3);
+  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
+  adg.enable_switching({.anticipate = true, .lookahead_actions = 24});
+  ASSERT_TRUE(adg.append(window, 0).empty());
+  ASSERT_EQ(adg.switches()->size(), 3u);
+  EXPECT_EQ(adg.chained(), 3u);
+  for (const auto& s : *adg.switches()) {
+    EXPECT_EQ(s.first, 1u);
+    EXPECT_EQ(s.second, 0u);
+    EXPECT_TRUE(s.anticipated);
+    EXPECT_EQ(s.time_s, 0.0);
+  }
+  Executor ex(g, adg, {{0, 2}, {1, 0}}, 7, 0.0);
+  for (int t = 1; t < 60 && adg.unfinished_total() > 0; ++t) ex.tick(t);
+  EXPECT_EQ(adg.unfinished_total(), 0u) << "both robots finish";
+  EXPECT_EQ(ex.conflicts, 0u);
 }
 
 TEST(LiveAdgSwitching, PlanOrderWithoutSwitching) {

@@ -413,9 +413,9 @@ TEST(SwitchableTracker, TheLookaheadComparesAChainAsAWholeWhereOneLocationCloses
 // Anticipation compares a chain as a whole too. The same following case, entries sent 3
 // actions ahead: robot 0's first move takes 5 s (every move is now expected to), so when its
 // entry into (1,1) is to be sent robot 1, sent its turn towards (1,1) at t = 0, is expected
-// through the three shared locations sooner. Passing at (1,1) alone closes a cycle; the chain saves more than
-// the margin and is made at t = 6, anticipated, before robot 0 is sent its way in (without
-// chains in anticipation: no switch, checked).
+// through the three shared locations sooner. Passing at (1,1) alone closes a cycle; the chain saves
+// more than the margin and is made at t = 6, anticipated, before robot 0 is sent its way in
+// (without chains in anticipation: no switch, checked).
 TEST(SwitchableTracker, TheLookaheadAnticipatesAChainWhereOneLocationClosesACycle) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
   const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},

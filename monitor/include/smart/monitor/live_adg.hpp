@@ -261,10 +261,10 @@ class LiveAdg final : public Execution {
   bool compares_chains() const {
     return switching_ && switching_->lookahead_actions > 0 && switching_->chain_locations > 1;
   }
-  bool chain_saves(const std::vector<Pair>& chain);
+  bool chain_saves(const std::vector<Pair>& chain, double margin_s);
   void undo_chain();
   bool try_chain(const Pair& first, const std::vector<std::pair<NodeRef, NodeRef>>& path,
-                 double time_s, std::vector<uint32_t>& changed);
+                 double time_s, std::vector<uint32_t>& changed, bool anticipated = false);
   // switchable-lookahead (live_adg_lookahead.cpp).
   double margin() const;
   void clear_marks(uint32_t Node::*mark);  // every unfinished action's

@@ -253,7 +253,7 @@ class SwitchableTracker final : public Execution {
     uint32_t robot = 0, seq = 0;
     grid::ActionType type = grid::ActionType::kMove;
   };
-  std::vector<uint32_t> cone_;  // the compared actions
+  std::vector<uint32_t> cone_;                       // the compared actions
   std::vector<std::pair<uint32_t, uint32_t>> walk_;  // one walk's actions and robots (scratch)
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
