@@ -86,7 +86,10 @@ bool LiveAdg::anticipate(uint32_t i, double time_s, std::vector<uint32_t>& chang
     const NodeRef j_leave{j, *leave};
     const Pair pair{i_enter, i_leave, j_enter, j_leave};
     const double gain = saving(pair);
-    const bool whole_chain = compares_chains() && std::isinf(gain) && gain < 0;  // try_switch
+    // A chain only where the location's queue expects it to save more than the margin
+    // (SwitchableTracker::anticipate says why).
+    const bool whole_chain =
+        compares_chains() && std::isinf(gain) && gain < 0 && queue_of(pair).saving > margin();
     if (gain <= margin() && !whole_chain) continue;
     std::vector<std::pair<NodeRef, NodeRef>> path;
     const Reach r = reaches(i_enter, j_leave, i_leave, j_enter, path);

@@ -38,32 +38,53 @@ uint32_t SwitchableTracker::prev_in(uint32_t stay, const Swap& s) const {
 // each walked in its own graph: chain_saves), each walk cut at `nodes` on its own.
 void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes, bool extend) {
   if (look_.empty()) init_look();
-  if (!extend) {
-    if (++cone_id_ == 0) {
-      for (auto& l : look_) l.cone = 0;
-      cone_id_ = 1;
+  if (extend) {
+    // This walk's visit mark is `order` (free until cone_cost times the cone, with a new id).
+    if (++order_id_ == 0) {
+      for (auto& l : look_) l.order = 0;
+      order_id_ = 1;
     }
-    cone_.clear();
+    walk_.clear();
+    walk_robot_.clear();
+    walk_cone<true>(s, nodes);
+    return;
   }
-  // This walk's visit mark is `order` (free until cone_cost times the cone, with a new id).
-  if (++order_id_ == 0) {
-    for (auto& l : look_) l.order = 0;
-    order_id_ = 1;
+  if (++cone_id_ == 0) {
+    for (auto& l : look_) l.cone = 0;
+    cone_id_ = 1;
   }
-  walk_.clear();
+  cone_.clear();
+  cone_robot_.clear();
+  walk_cone<false>(s, nodes);
+}
+
+// One walk: the cone's own (its queue is the cone), or, kExtend, a second one in walk_ whose
+// actions not yet in the cone join it. Two instances, so that the first walk, made for every
+// comparison, costs what it did before chains were compared (docs/execution.md, "Cost").
+template <bool kExtend>
+void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
+  std::vector<uint32_t>& queue = kExtend ? walk_ : cone_;
+  std::vector<uint32_t>& queue_robot = kExtend ? walk_robot_ : cone_robot_;
   // A stay's robot is known where its entry is found: an action's robot and place in its queue
   // without reading the action (a cache miss each; the walk's largest cost).
   const auto add = [&](uint32_t node, uint32_t robot) {
     const uint32_t seq = node - actions_.offset[robot];
     if (seq < finished_[robot] || seq > finished_[robot] + options_.lookahead_actions) return;
     Look& l = look_[node];
-    if (l.order == order_id_ || walk_.size() >= nodes) return;
-    l.order = order_id_;
-    walk_.emplace_back(node, robot);
-    if (l.cone != cone_id_) {
+    if constexpr (kExtend) {
+      if (l.order == order_id_ || queue.size() >= nodes) return;
+      l.order = order_id_;
+      if (l.cone != cone_id_) {
+        l.cone = cone_id_;
+        cone_.push_back(node);
+        cone_robot_.push_back(robot);
+      }
+    } else {
+      if (l.cone == cone_id_ || queue.size() >= nodes) return;
       l.cone = cone_id_;
-      cone_.push_back(node);
     }
+    queue.push_back(node);
+    queue_robot.push_back(robot);
   };
   // In an order that does not depend on which stay is first now (the smaller stay id's entry
   // first, the graph with it first walked first): the pair compared again after a swap, before
@@ -74,10 +95,10 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes, bool exte
   add(stay_[high].enter, stay_[high].robot);
   const Swap orders[2] = {{s.i, s.j, s.j == low}, {s.i, s.j, s.i == low}};
   const uint32_t h = link_[s.i].prev;  // the stays whose next differs between the orders: h, i, j
-  // By index: add() grows walk_ while it is walked (a range-for's iterators would dangle).
+  // By index: add() grows the queue while it is walked (a range-for's iterators would dangle).
   // Until the walk is full: a full walk's remaining actions would add nothing.
-  for (std::size_t q = 0; q < walk_.size() && walk_.size() < nodes; ++q) {
-    const auto [u, robot] = walk_[q];
+  for (std::size_t q = 0; q < queue.size() && queue.size() < nodes; ++q) {
+    const uint32_t u = queue[q], robot = queue_robot[q];
     if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
     for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
       const uint32_t x = leave_stays_[e];

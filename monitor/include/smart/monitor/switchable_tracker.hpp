@@ -178,6 +178,8 @@ class SwitchableTracker final : public Execution {
   uint32_t next_in(uint32_t stay, const Swap& s) const;
   uint32_t prev_in(uint32_t stay, const Swap& s) const;
   void collect_cone(const Swap& s, std::size_t nodes, bool extend = false);
+  template <bool kExtend>
+  void walk_cone(const Swap& s, std::size_t nodes);
   void init_look();
   double expect(uint32_t node, const Swap& s);
   double cone_cost(const Swap& s);
@@ -253,8 +255,8 @@ class SwitchableTracker final : public Execution {
     uint32_t robot = 0, seq = 0;
     grid::ActionType type = grid::ActionType::kMove;
   };
-  std::vector<uint32_t> cone_;                       // the compared actions
-  std::vector<std::pair<uint32_t, uint32_t>> walk_;  // one walk's actions and robots (scratch)
+  std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
+  std::vector<uint32_t> walk_, walk_robot_;  // a second walk's (chain_saves; scratch)
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
   std::size_t compared_ = 0, widened_ = 0;
