@@ -40,19 +40,13 @@ void SwitchableTracker::collect_cone(const Swap& s, std::size_t nodes, bool exte
   if (look_.empty()) init_look();
   if (extend) {
     // This walk's visit mark is `order` (free until cone_cost times the cone, with a new id).
-    if (++order_id_ == 0) {
-      for (auto& l : look_) l.order = 0;
-      order_id_ = 1;
-    }
+    next_mark(order_id_, &Look::order);
     walk_.clear();
     walk_robot_.clear();
     walk_cone<true>(s, nodes);
     return;
   }
-  if (++cone_id_ == 0) {
-    for (auto& l : look_) l.cone = 0;
-    cone_id_ = 1;
-  }
+  next_mark(cone_id_, &Look::cone);
   cone_.clear();
   cone_robot_.clear();
   walk_cone<false>(s, nodes);
@@ -114,6 +108,13 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
   }
 }
 
+// A new id for the marks `mark` of look_ (all cleared when the ids wrap around).
+void SwitchableTracker::next_mark(uint32_t& id, uint32_t Look::*mark) {
+  if (++id != 0) return;
+  for (auto& l : look_) l.*mark = 0;
+  id = 1;
+}
+
 void SwitchableTracker::init_look() {
   look_.resize(actions_.actions.size());
   for (std::size_t n = 0; n < look_.size(); ++n) {
@@ -159,10 +160,7 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
 
 // The sum over the cone's robots of the expected finish of their last action in it.
 double SwitchableTracker::cone_cost(const Swap& s) {
-  if (++order_id_ == 0) {
-    for (auto& l : look_) l.order = 0;
-    order_id_ = 1;
-  }
+  next_mark(order_id_, &Look::order);
   double cost = 0;
   for (const uint32_t u : cone_) {
     const Look& a = look_[u];

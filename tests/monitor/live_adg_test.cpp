@@ -74,6 +74,12 @@ TEST(LiveAdgSwitching, TheReadyRobotPassesTheLateOneAndTheOrderFollows) {
   EXPECT_FALSE(f.adg.deadlocked());
 }
 
+// The following case of the chain tests below, as one window (4 x 3, open).
+Paths following_window() {
+  return {{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+          {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+}
+
 // Chains on the growing graph (SwitchableTracker's
 // AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare): robot 0 goes north from (0,2)
 // and east along row 1; robot 1 waits at (1,0), then goes south into (1,1), east to (2,1) and
@@ -83,8 +89,7 @@ TEST(LiveAdgSwitching, TheReadyRobotPassesTheLateOneAndTheOrderFollows) {
 // both finish.
 TEST(LiveAdgSwitching, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare) {
   const auto g = open_map(4, 3);
-  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  const Paths window = following_window();
   const auto at = [&](HalfCell h) { return static_cast<uint32_t>(g.half_index(h)); };
   for (const uint32_t chain : {1u, 8u}) {
     SCOPED_TRACE("chain " + std::to_string(chain));
@@ -120,8 +125,7 @@ TEST(LiveAdgSwitching, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationThey
 // locations is expected to save, and robot 1 passes at all three.
 TEST(LiveAdgLookahead, AChainIsComparedAsAWholeWhereOneLocationClosesACycle) {
   const auto g = open_map(4, 3);
-  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  const Paths window = following_window();
   for (const uint32_t chain : {1u, 8u}) {
     SCOPED_TRACE("chain " + std::to_string(chain));
     LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
@@ -158,8 +162,7 @@ TEST(LiveAdgLookahead, AChainIsComparedAsAWholeWhereOneLocationClosesACycle) {
 // checked), and both finish.
 TEST(LiveAdgLookahead, AnticipationComparesAChainAsAWhole) {
   const auto g = open_map(4, 3);
-  const Paths window{{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}};
+  const Paths window = following_window();
   LiveAdg adg(g, {{0, 2}, {1, 0}}, Heading::kEast);
   adg.enable_switching({.anticipate = true, .lookahead_actions = 24});
   ASSERT_TRUE(adg.append(window, 0).empty());

@@ -339,6 +339,21 @@ TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
   EXPECT_EQ(t.lookahead_comparisons(), 0u);
 }
 
+// The following case of the chain tests below: robot 0 goes north from (0, 2) and east along
+// row 1; robot 1 waits at (1, 0), then goes south into (1, 1), east to (2, 1) and south, planned
+// behind robot 0 at (1, 1), the midpoint (1.5, 1) and (2, 1).
+struct Following {
+  Grid grid{4, 3, std::vector<uint8_t>(12, 0)};
+  ActionPlan actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
+                                     Heading::kEast);
+  bool builds() const {
+    std::vector<Problem> problems;
+    build_adg(actions, grid, "test", problems);
+    return problems.empty();
+  }
+};
+
 // Following: robot 1 comes down into (1, 1) after robot 0 has crossed it eastwards and follows it
 // east into (2, 1), then turns south to (2, 2); robot 0 goes on to (3, 1). Robot 0 stalls at its
 // start, far from (1, 1). Passing it at (1, 1) alone would close a cycle: to leave (1, 1)
@@ -346,13 +361,10 @@ TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
 // it, which robot 0 reaches only through (1, 1). Passing it at (1, 1), the midpoint and (2, 1)
 // at once closes none: robot 1 goes through while robot 0 has done nothing, then robot 0 goes.
 TEST(SwitchableTracker, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationTheyShare) {
-  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
-  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
-                                     Heading::kEast);
-  std::vector<Problem> problems;
-  build_adg(actions, grid, "test", problems);
-  ASSERT_TRUE(problems.empty());
+  const Following f;
+  ASSERT_TRUE(f.builds());
+  const Grid& grid = f.grid;
+  const ActionPlan& actions = f.actions;
   SwitchableTracker one(actions, passing_orders(actions, grid),
                         SwitchOptions{.commit_actions = 1, .chain_locations = 1});
   SwitchableTracker t(actions, passing_orders(actions, grid), kNear);
@@ -382,13 +394,10 @@ TEST(SwitchableTracker, AReadyRobotPassesARobotThatGoesOnAheadAtEveryLocationThe
 // reached a chain here (no switch). Now the order with robot 1 passing at all three locations
 // is compared with the plan's over the same actions, and saves: robot 0 has not moved for 5 s.
 TEST(SwitchableTracker, TheLookaheadComparesAChainAsAWholeWhereOneLocationClosesACycle) {
-  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
-  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
-                                     Heading::kEast);
-  std::vector<Problem> problems;
-  build_adg(actions, grid, "test", problems);
-  ASSERT_TRUE(problems.empty());
+  const Following f;
+  ASSERT_TRUE(f.builds());
+  const Grid& grid = f.grid;
+  const ActionPlan& actions = f.actions;
   const SwitchOptions look{.commit_actions = 1, .anticipate = true, .lookahead_actions = 24};
   SwitchOptions one_location = look;
   one_location.chain_locations = 1;
@@ -417,13 +426,10 @@ TEST(SwitchableTracker, TheLookaheadComparesAChainAsAWholeWhereOneLocationCloses
 // more than the margin and is made at t = 6, anticipated, before robot 0 is sent its way in
 // (without chains in anticipation: no switch, checked).
 TEST(SwitchableTracker, TheLookaheadAnticipatesAChainWhereOneLocationClosesACycle) {
-  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
-  const auto actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
-                                     Heading::kEast);
-  std::vector<Problem> problems;
-  build_adg(actions, grid, "test", problems);
-  ASSERT_TRUE(problems.empty());
+  const Following f;
+  ASSERT_TRUE(f.builds());
+  const Grid& grid = f.grid;
+  const ActionPlan& actions = f.actions;
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       {.commit_actions = 3, .anticipate = true, .lookahead_actions = 24});
   t.on_progress(0, 0, 1.0);

@@ -255,8 +255,9 @@ class SwitchableTracker final : public Execution {
     uint32_t robot = 0, seq = 0;
     grid::ActionType type = grid::ActionType::kMove;
   };
-  std::vector<uint32_t> cone_, cone_robot_;  // the compared actions and their robots
-  std::vector<uint32_t> walk_, walk_robot_;  // a second walk's (chain_saves; scratch)
+  void next_mark(uint32_t& id, uint32_t Look::*mark);  // a new cone or order id
+  std::vector<uint32_t> cone_, cone_robot_;            // the compared actions and their robots
+  std::vector<uint32_t> walk_, walk_robot_;            // a second walk's (chain_saves; scratch)
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
   std::size_t compared_ = 0, widened_ = 0;
