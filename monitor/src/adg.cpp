@@ -22,7 +22,7 @@ struct Occupancy {
   uint32_t leave;
 };
 
-std::string fmt_time(double t) {
+std::string time_text(double t) {
   std::ostringstream s;
   s << "t=" << t;
   return s.str();
@@ -190,7 +190,7 @@ Adg build_adg(const ActionPlan& ap, const Grid& grid, const std::string& source,
       const auto where = to_string(location_of(grid, static_cast<uint32_t>(loc)));
       if (p.leave == kNone) {
         problems.push_back({source, 0, static_cast<int>(q.robot),
-                            "enters " + where + " at " + fmt_time(q.arrive) + " after robot " +
+                            "enters " + where + " at " + time_text(q.arrive) + " after robot " +
                                 std::to_string(p.robot) +
                                 " parked there for good; the plan is invalid"});
         continue;

@@ -13,7 +13,6 @@
 namespace smart::monitor {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool by_robot(NodeRef a, NodeRef b) {
   return a.robot != b.robot ? a.robot < b.robot : a.seq < b.seq;
@@ -139,7 +138,8 @@ void LiveAdg::collect_cone(const Pair& p, std::size_t nodes, bool extend) {
 double LiveAdg::expect(NodeRef v, const Pair& p, bool swapped) {
   Node& n = node(v.robot, v.seq);
   if (n.order == order_id_) {
-    if (std::isnan(n.look_s)) return kInf;  // on the path being computed: a cycle
+    // On the path being computed: a cycle.
+    if (std::isnan(n.look_s)) return std::numeric_limits<double>::infinity();
     return n.look_s;
   }
   n.order = order_id_;

@@ -11,10 +11,6 @@
 
 namespace smart::monitor {
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
-
 // The stay after `stay` in the current order, or with i and j swapped (h, j, i, k).
 uint32_t SwitchableTracker::next_in(uint32_t stay, const Swap& s) const {
   if (!s.swapped) return link_[stay].next;
@@ -132,7 +128,8 @@ void SwitchableTracker::init_look() {
 double SwitchableTracker::expect(uint32_t node, const Swap& s) {
   Look& look = look_[node];
   if (look.order == order_id_) {
-    if (std::isnan(look.time_s)) return kInf;  // on the path being computed: a cycle
+    // On the path being computed: a cycle.
+    if (std::isnan(look.time_s)) return std::numeric_limits<double>::infinity();
     return look.time_s;
   }
   look.order = order_id_;

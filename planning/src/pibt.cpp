@@ -10,7 +10,7 @@
 namespace smart::planning {
 
 namespace {
-constexpr int64_t kNobody = -1;
+constexpr int64_t kNoOccupant = -1;
 }  // namespace
 
 Pibt::Pibt(const grid::Grid& grid, GoalHeuristic& heuristic, uint64_t seed)
@@ -22,14 +22,14 @@ void Pibt::check(const WindowRequest& r) {
                                 std::to_string(r.goals.size()) + " goal lists");
   }
   if (r.steps < 1) throw std::invalid_argument("PIBT: a window needs at least one step");
-  std::vector<int64_t> at(static_cast<std::size_t>(grid_.width()) * grid_.height(), kNobody);
+  std::vector<int64_t> at(static_cast<std::size_t>(grid_.width()) * grid_.height(), kNoOccupant);
   for (std::size_t i = 0; i < r.start.size(); ++i) {
     const auto c = r.start[i];
     if (!grid_.free(c)) {
       throw std::invalid_argument("PIBT: robot " + std::to_string(i) + " starts on " +
                                   grid::to_string(c) + ", not a free cell");
     }
-    if (at[grid_.index(c)] != kNobody) {
+    if (at[grid_.index(c)] != kNoOccupant) {
       throw std::invalid_argument("PIBT: robots " + std::to_string(at[grid_.index(c)]) + " and " +
                                   std::to_string(i) + " both start on " + grid::to_string(c));
     }

@@ -14,6 +14,7 @@
 #include "smart/dds/wire.hpp"
 #include "support/dds_test_support.hpp"
 #include "support/fake_robot.hpp"
+#include "support/robot_models.hpp"
 
 namespace smart::agent {
 namespace {
@@ -38,10 +39,6 @@ smart_msg_ActionStep rotate_step(uint32_t seq, double heading) {
   return s;
 }
 
-RobotModel footbot() {
-  return load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
-}
-
 struct Rig {
   dds::Domain domain;
   dds::Participant mon, host;
@@ -60,7 +57,7 @@ struct Rig {
 TEST(AgentNode, RoutesWindowsToHostedRobotsAndShowsEveryWindowToAccept) {
   Rig rig(test::kAgentNodeWindows);
   test::FakeRobot body(0.3);
-  Agent a({3, footbot(), 0.1, 0.5}, body, body);
+  Agent a({3, test::footbot_model(), 0.1, 0.5}, body, body);
   rig.node.host(a);
   rig.send(3, 9, {rotate_step(0, 1.0), rotate_step(1, 2.0)});
   rig.send(5, 9, {rotate_step(0, 1.0)});  // not hosted here
@@ -82,7 +79,7 @@ TEST(AgentNode, RoutesWindowsToHostedRobotsAndShowsEveryWindowToAccept) {
 TEST(AgentNode, AWindowRefusedByAcceptNeverReachesTheAgent) {
   Rig rig(test::kAgentNodeAccept);
   test::FakeRobot body(0.3);
-  Agent a({0, footbot(), 0.1, 0.5}, body, body);
+  Agent a({0, test::footbot_model(), 0.1, 0.5}, body, body);
   rig.node.host(a);
   rig.send(0, 9, {rotate_step(0, 1.0)});
   std::size_t taken = 0;
@@ -96,7 +93,7 @@ TEST(AgentNode, AWindowRefusedByAcceptNeverReachesTheAgent) {
 TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
   Rig rig(test::kAgentNodeProgress);
   test::FakeRobot body(0.3);
-  Agent a({2, footbot(), 0.1, 0.5}, body, body);
+  Agent a({2, test::footbot_model(), 0.1, 0.5}, body, body);
   EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   EXPECT_EQ(rig.node.publish_progress(), 0u);  // no run yet: nothing to say
@@ -128,7 +125,7 @@ TEST(AgentNode, OverAModelledLinkWindowsAndProgressArriveTheDelayLater) {
   link.to_monitor.delay_ms = 300;
   rig.node.set_link(link);
   test::FakeRobot body(0.3);
-  Agent a({1, footbot(), 0.1, 0.5}, body, body);
+  Agent a({1, test::footbot_model(), 0.1, 0.5}, body, body);
   EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   rig.send(1, 9, {rotate_step(0, 0.0)});
@@ -159,7 +156,7 @@ TEST(AgentNode, OverAModelledLinkWindowsAndProgressArriveTheDelayLater) {
 TEST(AgentNode, RepublishRepeatsTheLastReportedProgressForARestartedAgentsSake) {
   Rig rig(test::kAgentNodeRepublish);
   test::FakeRobot body(0.3);
-  Agent a({1, footbot(), 0.1, 0.5}, body, body);
+  Agent a({1, test::footbot_model(), 0.1, 0.5}, body, body);
   EXPECT_TRUE(a.activate().ok());
   rig.node.host(a);
   rig.node.republish_progress();  // nothing reported yet: nothing repeated
@@ -185,7 +182,7 @@ TEST(AgentNode, WindowsFromAWriterWeakerThanAMonitorAreDropped) {
   Rig rig(test::kAgentNodeWeakMonitor);
   dds::WireWriter<smart_msg_ActionWindow> stray{rig.mon, rig.qos};  // HOST_STRENGTH
   test::FakeRobot body(0.3);
-  Agent a({0, footbot(), 0.1, 0.5}, body, body);
+  Agent a({0, test::footbot_model(), 0.1, 0.5}, body, body);
   rig.node.host(a);
   ASSERT_TRUE(stray.wait_for_readers(1, 3000ms));
   dds::ActionWindowBuffer buf(0, 9, 4, {rotate_step(0, 1.0)});
@@ -222,7 +219,7 @@ TEST(AgentNode, WindowsOfRobotsNotHostedGoToTheCallerAndFilteredProgressIsNotWri
   EXPECT_EQ(kept->first, 9u);
   ASSERT_EQ(kept->second.size(), 3u);
   test::FakeRobot body(0.3);
-  Agent a({4, footbot(), 0.1, 0.5}, body, body);
+  Agent a({4, test::footbot_model(), 0.1, 0.5}, body, body);
   EXPECT_TRUE(a.activate().ok());
   a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
   a.step(0.0);  // seq 0 finished where it was (another host reported it)

@@ -5,15 +5,12 @@
 #include <cmath>
 
 #include "support/fake_robot.hpp"
+#include "support/robot_models.hpp"
 
 namespace smart::agent {
 namespace {
 
-constexpr double kDt = 0.1;
-
-RobotModel footbot() {
-  return load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
-}
+constexpr double kStep_s = 0.1;
 
 // Half-moves along +x from x=0: seq k goes from k/2 to (k+1)/2 metres.
 std::vector<AgentAction> east_half_moves(uint32_t first, uint32_t last) {
@@ -30,11 +27,11 @@ struct Drive {
   std::vector<int64_t> finished;  // after each step
   std::vector<double> speed;      // commanded forward speed after each step
   explicit Drive(const RobotModel& m)
-      : robot(m.wheel_base_m), agent({7, m, kDt, 0.5}, robot, robot) {}
+      : robot(m.wheel_base_m), agent({7, m, kStep_s, 0.5}, robot, robot) {}
   void steps(int n) {
     for (int i = 0; i < n; ++i) {
       agent.step(robot.time());
-      robot.advance(kDt);
+      robot.advance(kStep_s);
       finished.push_back(agent.finished_seq());
       speed.push_back(to_twist(agent.last_command(), wheel_base_m).linear_mps);
     }
@@ -43,7 +40,7 @@ struct Drive {
 };
 
 TEST(Agent, MergedRunReportsEveryHalfMoveInOrderWithoutStopping) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   ASSERT_EQ(r.agent.on_window(1, east_half_moves(0, 5)), ActionQueue::Result::kAccepted);
   r.steps(300);
@@ -66,7 +63,7 @@ TEST(Agent, MergedRunReportsEveryHalfMoveInOrderWithoutStopping) {
 // Execution uncertainty: a certain stall holds a robot at rest for stall_s before its action;
 // a speed factor below 1 makes it slower; both are the same for the same seed.
 TEST(Agent, AStallHoldsTheRobotAtRestForStallSecondsThenItDrives) {
-  auto m = footbot();
+  auto m = test::footbot_model();
   m.uncertainty.stall_probability = 1.0;
   m.uncertainty.stall_s = 2.0;
   Drive r(m);
@@ -83,7 +80,7 @@ TEST(Agent, AStallHoldsTheRobotAtRestForStallSecondsThenItDrives) {
 // A delay event stops a moving robot where it is (between cells), braking within its limits,
 // for the event's duration; then it drives on and finishes its actions (LoRR 2026 delays).
 TEST(Agent, ADelayEventStopsAMovingRobotMidEdgeThenItDrivesOn) {
-  auto m = footbot();
+  auto m = test::footbot_model();
   m.uncertainty.seed = 3;
   m.uncertainty.delay_probability = 0.05;
   m.uncertainty.delay_min_s = 2.0;
@@ -114,7 +111,7 @@ TEST(Agent, ADelayEventStopsAMovingRobotMidEdgeThenItDrivesOn) {
 // Issue 28 (LoRR output's delayIntervals): the intervals delay_intervals() computes from the
 // seed alone are the delays an agent stepped every 0.1 s lives, tick for tick.
 TEST(Agent, DelayIntervalsAreTheDelaysTheAgentLives) {
-  auto m = footbot();
+  auto m = test::footbot_model();
   m.uncertainty.seed = 5;
   m.uncertainty.delay_probability = 0.05;
   m.uncertainty.delay_min_s = 0.3;
@@ -145,7 +142,7 @@ TEST(Agent, DelayIntervalsAreTheDelaysTheAgentLives) {
 }
 
 TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
-  auto m = footbot();
+  auto m = test::footbot_model();
   m.max_speed_mps = 0.5;
   m.max_accel_mps2 = 5.0;
   m.max_decel_mps2 = 5.0;
@@ -168,7 +165,7 @@ TEST(Agent, ASpeedFactorBelowOneSlowsTheRobotDeterministically) {
 }
 
 TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(1, east_half_moves(0, 3));
   for (int i = 0; i < 300; ++i) {
@@ -179,13 +176,13 @@ TEST(Agent, EachHalfMoveIsFinishedWhenTheRobotPassesItsEnd) {
     if (f >= 0) {
       EXPECT_GE(x, 0.5 * (f + 1) - 0.011) << "finished " << f << " at x=" << x;
     }
-    r.robot.advance(kDt);
+    r.robot.advance(kStep_s);
   }
   EXPECT_EQ(r.agent.finished_seq(), 3);
 }
 
 TEST(Agent, DuplicatedAndOutOfOrderWindowsCauseNoDuplicateExecution) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(3, east_half_moves(0, 3));
   r.steps(10);
@@ -198,7 +195,7 @@ TEST(Agent, DuplicatedAndOutOfOrderWindowsCauseNoDuplicateExecution) {
 }
 
 TEST(Agent, RotationThenMove) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   std::vector<AgentAction> w{{0, ActionKind::kRotate, 0, 0, 0, 0, M_PI / 2},
                              {1, ActionKind::kMove, 0, 0, 0, 0.5, M_PI / 2},
@@ -211,7 +208,7 @@ TEST(Agent, RotationThenMove) {
 }
 
 TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   r.agent.on_window(1, east_half_moves(0, 9));
   r.steps(30);
@@ -232,7 +229,7 @@ TEST(Agent, StalePoseStopsTheWheelsAtOnce) {
 // Regression: every `smart agent --backend ros2` robot reported one watchdog stop, counted while
 // its odometry had not arrived yet.
 TEST(Agent, WaitingForTheFirstPoseIsNotAWatchdogStop) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   EXPECT_TRUE(r.agent.activate().ok());
   r.robot.valid = false;
   r.agent.step(0.0);
@@ -249,7 +246,7 @@ TEST(Agent, WaitingForTheFirstPoseIsNotAWatchdogStop) {
 }
 
 TEST(Agent, LifecycleOnlyActiveAgentsMoveAndDeactivateStops) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   r.agent.on_window(1, east_half_moves(0, 1));
   r.agent.step(0.0);
   EXPECT_TRUE(r.robot.commands.empty());
@@ -268,7 +265,7 @@ TEST(Agent, LifecycleOnlyActiveAgentsMoveAndDeactivateStops) {
 }
 
 TEST(Agent, ADriveThatFailsToConfigureLeavesTheAgentUnconfiguredAndNamesTheRobot) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   r.robot.configure_answer = LifecycleResult::error("motor driver did not answer");
   const auto a = r.agent.activate();
   EXPECT_EQ(a.code, CallbackReturn::kError);
@@ -281,7 +278,7 @@ TEST(Agent, ADriveThatFailsToConfigureLeavesTheAgentUnconfiguredAndNamesTheRobot
 }
 
 TEST(Agent, AFailedActivationKeepsTheAgentInactiveSoItNeverMoves) {
-  Drive r(footbot());
+  Drive r(test::footbot_model());
   r.robot.activate_answer = LifecycleResult::failure("not yet");
   r.agent.on_window(1, east_half_moves(0, 1));
   EXPECT_EQ(r.agent.activate().code, CallbackReturn::kFailure);

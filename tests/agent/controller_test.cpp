@@ -10,16 +10,13 @@
 #include "smart/agent/kinematics.hpp"
 #include "smart/agent/robot_model.hpp"
 #include "support/fake_robot.hpp"
+#include "support/robot_models.hpp"
 
 namespace smart::agent {
 namespace {
 
 constexpr double kDt = 0.1;
 constexpr double kEps = 1e-9;
-
-RobotModel footbot() {
-  return load_robot_model(std::string(SMART_SOURCE_DIR) + "/config/robots/footbot.yaml");
-}
 
 // Checks the limits on consecutive commands.
 struct LimitChecker {
@@ -46,7 +43,7 @@ struct LimitChecker {
 };
 
 TEST(Controller, ReachesAGoalTenMetresAwayWithinTwoCentimetresAndOneDegree) {
-  const auto m = footbot();
+  const auto m = test::footbot_model();
   Controller c(m, kDt);
   test::FakeRobot robot(m.wheel_base_m);
   LimitChecker limits{m};
@@ -69,7 +66,7 @@ TEST(Controller, ReachesAGoalTenMetresAwayWithinTwoCentimetresAndOneDegree) {
 }
 
 TEST(Controller, CorrectsALateralOffsetWhileDriving) {
-  const auto m = footbot();
+  const auto m = test::footbot_model();
   Controller c(m, kDt);
   test::FakeRobot robot(m.wheel_base_m, {0.0, 0.1, 0.0});
   bool done = false;
@@ -84,7 +81,7 @@ TEST(Controller, CorrectsALateralOffsetWhileDriving) {
 }
 
 void rotate_to(double target) {
-  const auto m = footbot();
+  const auto m = test::footbot_model();
   Controller c(m, kDt);
   test::FakeRobot robot(m.wheel_base_m);
   LimitChecker limits{m};
@@ -108,7 +105,7 @@ TEST(Controller, RotatesNinetyDegreesClockwiseInPlace) { rotate_to(-std::numbers
 TEST(Controller, RotatesOneHundredEightyDegreesInPlace) { rotate_to(std::numbers::pi); }
 
 TEST(Controller, BrakeStopsWithinTheDecelerationLimit) {
-  const auto m = footbot();
+  const auto m = test::footbot_model();
   Controller c(m, kDt);
   test::FakeRobot robot(m.wheel_base_m);
   bool done = false;

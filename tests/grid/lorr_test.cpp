@@ -20,7 +20,7 @@ Grid tiny() {
 }
 
 template <typename F>
-std::string error_of(F&& f) {
+std::string lorr_error_of(F&& f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -33,9 +33,9 @@ std::string error_of(F&& f) {
 // out_of_range instead of an InputError naming the file.
 TEST(Lorr, ANumberNoJsonTypeHoldsIsAnInputError) {
   const std::string huge = "{\"n_row\": " + std::string(400, '9') + "}";
-  EXPECT_THAT(error_of([&] { parse_lsmart_map(huge, "big.json"); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lsmart_map(huge, "big.json"); }),
               HasSubstr("big.json: cannot be read as JSON"));
-  EXPECT_THAT(error_of([&] { parse_lorr_spec(huge, "p.json"); }), HasSubstr("p.json"));
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_spec(huge, "p.json"); }), HasSubstr("p.json"));
 }
 
 TEST(Lorr, MapDialectFreesEmittersAndServiceCellsAndMarksThem) {
@@ -50,7 +50,7 @@ TEST(Lorr, MapDialectFreesEmittersAndServiceCellsAndMarksThem) {
   ASSERT_EQ(marks.endpoints.size(), 1u);
   EXPECT_EQ(marks.endpoints[0], (Cell{0, 2}));
   // The MovingAI dialect keeps refusing 'E' (it is not a MovingAI symbol).
-  EXPECT_THAT(error_of([] { parse_map("type octile\nheight 1\nwidth 1\nmap\nE\n", "m.map"); }),
+  EXPECT_THAT(lorr_error_of([] { parse_map("type octile\nheight 1\nwidth 1\nmap\nE\n", "m.map"); }),
               HasSubstr("unknown map symbol 'E'"));
 }
 
@@ -68,15 +68,15 @@ TEST(Lorr, TeamSizeTakesTheFirstAgents) {
 
 TEST(Lorr, AgentErrorsNameLineRobotAndFix) {
   const auto g = tiny();
-  EXPECT_THAT(error_of([&] { parse_lorr_agents("2\n2\n", "a.agents", g, 1); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_agents("2\n2\n", "a.agents", g, 1); }),
               HasSubstr("the count says 2 agents but 1 lines follow"));
-  EXPECT_THAT(error_of([&] { parse_lorr_agents("1\n2\n", "a.agents", g, 1); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_agents("1\n2\n", "a.agents", g, 1); }),
               HasSubstr("a.agents:2: robot 0: start cell 2 (x=2,y=0) is an obstacle"));
-  EXPECT_THAT(error_of([&] { parse_lorr_agents("1\n12\n", "a.agents", g, 1); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_agents("1\n12\n", "a.agents", g, 1); }),
               HasSubstr("cell id '12' is not in 0..11"));
-  EXPECT_THAT(error_of([&] { parse_lorr_agents("2\n4\n4\n", "a.agents", g, 2); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_agents("2\n4\n4\n", "a.agents", g, 2); }),
               HasSubstr("robot 1: starts on 4 (x=0,y=1) like robot 0"));
-  EXPECT_THAT(error_of([&] { parse_lorr_agents("1\n4\n", "a.agents", g, 3); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_agents("1\n4\n", "a.agents", g, 3); }),
               HasSubstr("teamSize is 3 but the file has only 1 agents"));
 }
 
@@ -85,7 +85,7 @@ TEST(Lorr, TasksAreErrandSequences) {
   ASSERT_EQ(tasks.size(), 2u);
   EXPECT_EQ(tasks[0].errands, (std::vector<Cell>{{3, 0}, {0, 2}}));
   EXPECT_EQ(tasks[1].line, 3);
-  EXPECT_THAT(error_of([&] { parse_lorr_tasks("1\n3,9\n", "t.tasks", tiny()); }),
+  EXPECT_THAT(lorr_error_of([&] { parse_lorr_tasks("1\n3,9\n", "t.tasks", tiny()); }),
               HasSubstr("t.tasks:2: task 0 errand 2: cell 9 (x=1,y=2) is an obstacle"));
 }
 
@@ -125,17 +125,17 @@ TEST(Lorr, Spec2024HasNoDelaysAndOneTickActions) {
 }
 
 TEST(Lorr, SpecErrorsNameTheFieldAndTheFix) {
-  EXPECT_THAT(error_of([] { parse_lorr_spec(R"({"mapFile":"m"})", "p.json"); }),
+  EXPECT_THAT(lorr_error_of([] { parse_lorr_spec(R"({"mapFile":"m"})", "p.json"); }),
               HasSubstr("missing \"agentFile\""));
-  EXPECT_THAT(error_of([] {
+  EXPECT_THAT(lorr_error_of([] {
                 parse_lorr_spec(
                     R"({"mapFile":"m","agentFile":"a","taskFile":"t","teamSize":"many"})",
                     "p.json");
               }),
               HasSubstr("\"teamSize\" is \"many\"; it must be the number of robots"));
-  EXPECT_THAT(error_of([] { parse_lorr_spec("{\n\"mapFile\": ,\n}", "p.json"); }),
+  EXPECT_THAT(lorr_error_of([] { parse_lorr_spec("{\n\"mapFile\": ,\n}", "p.json"); }),
               HasSubstr("p.json:2: not valid JSON"));
-  EXPECT_THAT(error_of([] {
+  EXPECT_THAT(lorr_error_of([] {
                 parse_lorr_spec(R"({"mapFile":"m","agentFile":"a","taskFile":"t","teamSize":2,
                   "delayConfig":{"minDelay":5,"maxDelay":2,"pDelay":0.1,"eventModel":"often"}})",
                                 "p.json");
@@ -152,11 +152,11 @@ TEST(Lorr, RegressionAWholeNumberPastItsTypeIsAProblemNotACast) {
                                R"(,"minDelay":1,"maxDelay":2,"pDelay":0.1}})",
                            "p.json");
   };
-  EXPECT_THAT(error_of([&] { spec("2", "7777777777777777777777777.0"); }),
+  EXPECT_THAT(lorr_error_of([&] { spec("2", "7777777777777777777777777.0"); }),
               HasSubstr("\"seed\" is 7.777777777777778e+24; it must be a whole number"));
-  EXPECT_THAT(error_of([&] { spec("2", "2.5"); }), HasSubstr("\"seed\" is 2.5"));
-  EXPECT_THAT(error_of([&] { spec("-3", "1"); }), HasSubstr("teamSize -3 must be 1.."));
-  EXPECT_THAT(error_of([&] { spec("1e300", "1"); }), HasSubstr("\"teamSize\" is 1e+300"));
+  EXPECT_THAT(lorr_error_of([&] { spec("2", "2.5"); }), HasSubstr("\"seed\" is 2.5"));
+  EXPECT_THAT(lorr_error_of([&] { spec("-3", "1"); }), HasSubstr("teamSize -3 must be 1.."));
+  EXPECT_THAT(lorr_error_of([&] { spec("1e300", "1"); }), HasSubstr("\"teamSize\" is 1e+300"));
   // A whole value written as a double is still that number.
   EXPECT_EQ(spec("2.0", "18446744073709551615").team_size, 2u);
 }
@@ -171,7 +171,7 @@ TEST(Lorr, LsmartMapMarksWorkstationsAndEndpoints) {
   EXPECT_EQ(marks.endpoints, (std::vector<Cell>{{1, 0}}));
   EXPECT_EQ(marks.workstations, (std::vector<Cell>{{1, 2}}));
   EXPECT_THAT(
-      error_of([] { parse_lsmart_map(R"({"n_row":1,"n_col":2,"layout":["x."]})", "s.json"); }),
+      lorr_error_of([] { parse_lsmart_map(R"({"n_row":1,"n_col":2,"layout":["x."]})", "s.json"); }),
       HasSubstr("unknown symbol 'x'"));
 }
 
@@ -199,7 +199,7 @@ TEST(Lorr, LoadNamesTheMissingFile) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "p.json")
       << R"({"mapFile":"nope.map","agentFile":"a","taskFile":"t","teamSize":1})";
-  EXPECT_THAT(error_of([&] { load_lorr_problem(dir / "p.json"); }), HasSubstr("nope.map"));
+  EXPECT_THAT(lorr_error_of([&] { load_lorr_problem(dir / "p.json"); }), HasSubstr("nope.map"));
   std::filesystem::remove_all(dir);
 }
 

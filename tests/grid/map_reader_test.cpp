@@ -12,7 +12,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string error_of(const std::string& text) {
+std::string map_error_of(const std::string& text) {
   try {
     parse_map(text, "m.map");
   } catch (const InputError& e) {
@@ -41,25 +41,25 @@ TEST(MapReader, AcceptsCrLfAndNoFinalNewline) {
 }
 
 TEST(MapReaderErrors, UnknownSymbolsAreAllReportedWithLineAndColumn) {
-  const auto e = error_of("type octile\nheight 2\nwidth 3\nmap\n.x.\n..?\n");
+  const auto e = map_error_of("type octile\nheight 2\nwidth 3\nmap\n.x.\n..?\n");
   EXPECT_THAT(e, HasSubstr("m.map:5: unknown map symbol 'x' at column 1"));
   EXPECT_THAT(e, HasSubstr("m.map:6: unknown map symbol '?' at column 2"));
 }
 
 TEST(MapReaderErrors, WrongHeader) {
-  EXPECT_THAT(error_of("version 1\nheight 2\n"), HasSubstr("m.map:1: unexpected header line"));
-  EXPECT_THAT(error_of("type octile\nheight two\nwidth 3\nmap\n"),
+  EXPECT_THAT(map_error_of("version 1\nheight 2\n"), HasSubstr("m.map:1: unexpected header line"));
+  EXPECT_THAT(map_error_of("type octile\nheight two\nwidth 3\nmap\n"),
               HasSubstr("m.map:2: 'height two': height must be a positive whole number"));
-  EXPECT_THAT(error_of("type octile\nheight 1\nmap\n.\n"), HasSubstr("missing 'width W'"));
-  EXPECT_THAT(error_of("type octile\nheight 1\nwidth 1\n"), HasSubstr("missing 'map'"));
+  EXPECT_THAT(map_error_of("type octile\nheight 1\nmap\n.\n"), HasSubstr("missing 'width W'"));
+  EXPECT_THAT(map_error_of("type octile\nheight 1\nwidth 1\n"), HasSubstr("missing 'map'"));
 }
 
 TEST(MapReaderErrors, TruncatedAndRaggedRows) {
-  EXPECT_THAT(error_of("type octile\nheight 3\nwidth 2\nmap\n..\n..\n"),
+  EXPECT_THAT(map_error_of("type octile\nheight 3\nwidth 2\nmap\n..\n..\n"),
               HasSubstr("has 2 rows but 'height' is 3; the file may be truncated"));
-  EXPECT_THAT(error_of("type octile\nheight 2\nwidth 3\nmap\n...\n..\n"),
+  EXPECT_THAT(map_error_of("type octile\nheight 2\nwidth 3\nmap\n...\n..\n"),
               HasSubstr("m.map:6: row 1 has 2 symbols but 'width' is 3"));
-  EXPECT_THAT(error_of("type octile\nheight 1\nwidth 1\nmap\n.\n.\n"),
+  EXPECT_THAT(map_error_of("type octile\nheight 1\nwidth 1\nmap\n.\n.\n"),
               HasSubstr("more rows than 'height 1'"));
 }
 
@@ -91,9 +91,9 @@ TEST(MapReader, ReadsEveryBenchmarkMap) {
 
 // Regression: a 100000x100000 header allocated 10 GB before the rows were checked.
 TEST(MapReaderErrors, AHugeHeaderIsRefusedBeforeAnythingIsAllocated) {
-  EXPECT_THAT(error_of("type octile\nheight 100000\nwidth 100000\nmap\n..\n"),
+  EXPECT_THAT(map_error_of("type octile\nheight 100000\nwidth 100000\nmap\n..\n"),
               HasSubstr("more than 100000000 cells"));
-  EXPECT_THAT(error_of("type octile\nheight 90000\nwidth 1000\nmap\n..\n"),
+  EXPECT_THAT(map_error_of("type octile\nheight 90000\nwidth 1000\nmap\n..\n"),
               HasSubstr("the map has 1 rows but 'height' is 90000"));
 }
 

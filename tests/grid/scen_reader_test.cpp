@@ -18,7 +18,7 @@ const char* kScen =
     "0\tm.map\t4\t3\t1\t0\t2\t2\t3.4\n"
     "0\tm.map\t4\t3\t3\t0\t0\t2\t4.2\n";
 
-std::string error_of(const std::string& text, std::size_t k = 0) {
+std::string scen_error_of(const std::string& text, std::size_t k = 0) {
   try {
     parse_scen(text, "s.scen", k);
   } catch (const InputError& e) {
@@ -39,25 +39,26 @@ TEST(ScenReader, XIsColumnYIsRow) {
 
 TEST(ScenReader, FirstKAgents) {
   EXPECT_EQ(parse_scen(kScen, "s.scen", 2).agents.size(), 2u);
-  EXPECT_THAT(error_of(kScen, 5), HasSubstr("asked for 5 agents but the file has 3"));
+  EXPECT_THAT(scen_error_of(kScen, 5), HasSubstr("asked for 5 agents but the file has 3"));
 }
 
 TEST(ScenReaderErrors, MalformedLines) {
-  EXPECT_THAT(error_of("0\tm.map\n"), HasSubstr("s.scen:1: missing 'version 1'"));
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\n"),
+  EXPECT_THAT(scen_error_of("0\tm.map\n"), HasSubstr("s.scen:1: missing 'version 1'"));
+  EXPECT_THAT(scen_error_of("version 1\n0\tm.map\t4\t3\t0\t0\n"),
               HasSubstr("s.scen:2: expected 9 tab-separated fields"));
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\tx\t0\t3\t2\t5\n"),
+  EXPECT_THAT(scen_error_of("version 1\n0\tm.map\t4\t3\tx\t0\t3\t2\t5\n"),
               HasSubstr("s.scen:2: start_x is 'x'"));
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t-2\t5\n"), HasSubstr("goal_y is '-2'"));
-  EXPECT_THAT(error_of("version 1\n"), HasSubstr("lists no agents"));
+  EXPECT_THAT(scen_error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t-2\t5\n"),
+              HasSubstr("goal_y is '-2'"));
+  EXPECT_THAT(scen_error_of("version 1\n"), HasSubstr("lists no agents"));
 }
 
 // Regressions from fuzzing: 4294967303 was read as 7, and a later row could name another map.
 TEST(ScenReaderErrors, CoordinatesThatWouldWrapAndMixedMapSizes) {
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t4294967303\t0\t3\t2\t5\n"),
+  EXPECT_THAT(scen_error_of("version 1\n0\tm.map\t4\t3\t4294967303\t0\t3\t2\t5\n"),
               HasSubstr("start_x is '4294967303'; it must be a whole number from 0 to 100000"));
-  EXPECT_THAT(error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t2\t5\n"
-                       "0\tm.map\t8\t3\t0\t1\t3\t1\t3\n"),
+  EXPECT_THAT(scen_error_of("version 1\n0\tm.map\t4\t3\t0\t0\t3\t2\t5\n"
+                            "0\tm.map\t8\t3\t0\t1\t3\t1\t3\n"),
               HasSubstr("s.scen:3: map size 8x3 differs from the 4x3 of the first row"));
 }
 

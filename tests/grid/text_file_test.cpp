@@ -14,7 +14,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string error_of(const std::filesystem::path& p) {
+std::string file_error_of(const std::filesystem::path& p) {
   try {
     read_text_file(p, "plan");
   } catch (const InputError& e) {
@@ -24,12 +24,12 @@ std::string error_of(const std::filesystem::path& p) {
 }
 
 TEST(TextFile, ADirectoryIsNamedAsSuch) {
-  EXPECT_THAT(error_of(std::filesystem::temp_directory_path()),
+  EXPECT_THAT(file_error_of(std::filesystem::temp_directory_path()),
               HasSubstr("is a directory, not a plan file"));
 }
 
 TEST(TextFile, AnEndlessDeviceIsRefusedAtTheLimit) {
-  EXPECT_THAT(error_of("/dev/zero"), HasSubstr("the plan file is larger than 256 MiB"));
+  EXPECT_THAT(file_error_of("/dev/zero"), HasSubstr("the plan file is larger than 256 MiB"));
 }
 
 }  // namespace

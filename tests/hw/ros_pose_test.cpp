@@ -12,7 +12,7 @@
 namespace smart::hw {
 namespace {
 
-double now_s() {
+double steady_now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
@@ -20,7 +20,7 @@ TEST(RosPoseSource, ReadsPoseStampedLikeAVrpnMocapPublisher) {
   dds::Domain domain(test::kRosPose, test::loopback());
   dds::Participant pub(domain), sub(domain);
   const geometry::FrameTransform identity;  // ROS poses are in metres
-  RosPoseSource src(sub, "/vrpn_mocap/jetbot1/pose", identity, 0.3, now_s);
+  RosPoseSource src(sub, "/vrpn_mocap/jetbot1/pose", identity, 0.3, steady_now_s);
   dds::Topic<geometry_msgs_msg_dds__PoseStamped_> topic(pub, "rt/vrpn_mocap/jetbot1/pose");
   dds::TopicQos q;
   q.reliability = dds::Reliability::kBestEffort;  // vrpn_mocap: sensor data QoS
@@ -54,7 +54,7 @@ TEST(RosPoseSource, ReadsOdometryThroughATransformAndGoesStale) {
   dds::Participant pub(domain), sub(domain);
   const geometry::FrameTransform start{1.0, M_PI / 2, {0.6, 0.3}};  // robot started at (0.6, 0.3)
   RosPoseSource src(sub, dds::ros_odom_topic(dds::ros_namespace("/robot_{id}", 4)), start, 0.3,
-                    now_s, RosPoseSource::Message::kOdometry);
+                    steady_now_s, RosPoseSource::Message::kOdometry);
   dds::Topic<nav_msgs_msg_dds__Odometry_> topic(pub, "rt/robot_4/odom");
   dds::Writer<nav_msgs_msg_dds__Odometry_> w(pub, topic, dds::ros_sensor_qos().to_dds());
   ASSERT_TRUE(w.wait_for_readers(1, std::chrono::seconds(5)));

@@ -38,11 +38,11 @@ Built build(const Grid& grid, const Plan& plan, Footprint footprint = Footprint:
   return b;
 }
 
-const Grid kGrid = grid_of({".....", ".....", "....."});
+const Grid kAdgRoom = grid_of({".....", ".....", "....."});
 
 TEST(Adg, FollowingRobotWaitsForEachLocationToBeLeft) {
   // Robot 0: (1,0)->(2,0)->(3,0); robot 1 follows one step behind, both heading east.
-  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
+  const auto b = build(kAdgRoom, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
   ASSERT_TRUE(b.problems.empty());
   ASSERT_EQ(b.actions.count(0), 4u);
   ASSERT_EQ(b.actions.count(1), 4u);
@@ -58,7 +58,7 @@ TEST(Adg, FollowingRobotWaitsForEachLocationToBeLeft) {
 TEST(Adg, CrossingRobotEntersAfterTheFirstHasLeft) {
   // Robot 0 crosses (1,1) eastwards at t=1..2; robot 1 comes down through it at t=2..3.
   const auto b =
-      build(kGrid, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}));
+      build(kAdgRoom, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}));
   ASSERT_TRUE(b.problems.empty());
   ASSERT_EQ(b.actions.count(1), 5u);  // rotate south, then four half-moves
   EXPECT_EQ(b.actions.at(1, 0).type, ActionType::kRotate);
@@ -69,7 +69,7 @@ TEST(Adg, CrossingRobotEntersAfterTheFirstHasLeft) {
 TEST(Adg, RotationCycleOfFourRobotsIsAcyclicThanksToMidpoints) {
   const Cell c[4] = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
   Plan plan = plan_of({{c[0], c[1]}, {c[1], c[2]}, {c[2], c[3]}, {c[3], c[0]}});
-  const auto b = build(kGrid, plan);
+  const auto b = build(kAdgRoom, plan);
   ASSERT_TRUE(b.problems.empty());
   EXPECT_EQ(b.adg.stats.type2, 4u);
   EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
@@ -83,7 +83,7 @@ TEST(Adg, RotationCycleOfFourRobotsIsAcyclicThanksToMidpoints) {
 
 TEST(Adg, ReducedEdgesVersusAllPairsOnAThreeRobotTrain) {
   const auto b = build(
-      kGrid,
+      kAdgRoom,
       plan_of({{{2, 0}, {3, 0}, {4, 0}}, {{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}));
   ASSERT_TRUE(b.problems.empty());
   EXPECT_EQ(b.adg.stats.type2, 6u);
@@ -93,7 +93,7 @@ TEST(Adg, ReducedEdgesVersusAllPairsOnAThreeRobotTrain) {
 }
 
 TEST(Adg, SwapPlanGivesACycleNamingBothRobots) {
-  const auto b = build(kGrid, plan_of({{{0, 2}, {1, 2}}, {{1, 2}, {0, 2}}}));
+  const auto b = build(kAdgRoom, plan_of({{{0, 2}, {1, 2}}, {{1, 2}, {0, 2}}}));
   const auto cycle = check_acyclic(b.adg, b.actions, "swap.txt");
   ASSERT_EQ(cycle.size(), 1u);
   EXPECT_THAT(cycle[0].to_string(), HasSubstr("swap.txt: the action dependency graph has a cycle"));
@@ -104,14 +104,14 @@ TEST(Adg, SwapPlanGivesACycleNamingBothRobots) {
 
 TEST(Adg, VisitorAfterARobotParkedForGoodIsReported) {
   const auto b =
-      build(kGrid, plan_of({{{1, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {3, 0}}}));
+      build(kAdgRoom, plan_of({{{1, 0}, {2, 0}}, {{0, 0}, {0, 0}, {1, 0}, {2, 0}, {3, 0}}}));
   ASSERT_FALSE(b.problems.empty());
   EXPECT_THAT(b.problems[0].to_string(),
               HasSubstr("robot 1: enters (x=2,y=0) at t=3 after robot 0 parked there for good"));
 }
 
 TEST(Adg, RobotsThatNeverMoveAddNoEdges) {
-  const auto b = build(kGrid, plan_of({{{0, 0}}, {{4, 2}, {4, 2}}}));
+  const auto b = build(kAdgRoom, plan_of({{{0, 0}}, {{4, 2}, {4, 2}}}));
   EXPECT_TRUE(b.problems.empty());
   EXPECT_EQ(b.adg.nodes(), 0u);
   EXPECT_TRUE(check_acyclic(b.adg, b.actions, "p").empty());
@@ -128,7 +128,7 @@ TEST(Adg, FootprintFollowsTheRobotsWidthAgainstTheCell) {
 // Regression: JetBots (radius 0.09 m) on 0.3 m cells collided, as a follower on an edge
 // midpoint was half a cell (0.15 m) from the robot ahead still on the next cell's centre.
 TEST(Adg, WideFollowerCrossesAnEdgeOnlyOnceTheRobotAheadReachedTheNextCell) {
-  const auto b = build(kGrid, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}),
+  const auto b = build(kAdgRoom, plan_of({{{1, 0}, {2, 0}, {3, 0}}, {{0, 0}, {1, 0}, {2, 0}}}),
                        Footprint::kCells);
   ASSERT_TRUE(b.problems.empty());
   // Robot 0 = nodes 0..3 ((1,0)->mid, mid->(2,0), (2,0)->mid, mid->(3,0)), robot 1 = 4..7.
@@ -140,8 +140,9 @@ TEST(Adg, WideFollowerCrossesAnEdgeOnlyOnceTheRobotAheadReachedTheNextCell) {
 }
 
 TEST(Adg, WideRobotCrossingWaitsUntilTheFirstHasLeftTheCellsEdge) {
-  const auto b = build(kGrid, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}),
-                       Footprint::kCells);
+  const auto b =
+      build(kAdgRoom, plan_of({{{0, 1}, {1, 1}, {2, 1}}, {{1, 0}, {1, 0}, {1, 1}, {1, 2}}}),
+            Footprint::kCells);
   ASSERT_TRUE(b.problems.empty());
   // Robot 0 leaves the edge (1,1)-(2,1) with its action 3; robot 1 (rotation = node 4) then
   // steps onto the edge (1,0)-(1,1) (node 5).
@@ -150,7 +151,7 @@ TEST(Adg, WideRobotCrossingWaitsUntilTheFirstHasLeftTheCellsEdge) {
 
 TEST(Adg, WideRobotsCannotFollowEachOtherRoundALoop) {
   const Cell c[4] = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
-  const auto b = build(kGrid, plan_of({{c[0], c[1]}, {c[1], c[2]}, {c[2], c[3]}, {c[3], c[0]}}),
+  const auto b = build(kAdgRoom, plan_of({{c[0], c[1]}, {c[1], c[2]}, {c[2], c[3]}, {c[3], c[0]}}),
                        Footprint::kCells);
   ASSERT_TRUE(b.problems.empty());
   const auto cycle = check_acyclic(b.adg, b.actions, "p");
@@ -161,10 +162,10 @@ TEST(Adg, WideRobotsCannotFollowEachOtherRoundALoop) {
 
 TEST(Adg, WideRobotsParkedForGoodAndSharedStartsAreStillReported) {
   const auto parked =
-      build(kGrid, plan_of({{{2, 0}}, {{0, 0}, {1, 0}, {2, 0}}}), Footprint::kCells);
+      build(kAdgRoom, plan_of({{{2, 0}}, {{0, 0}, {1, 0}, {2, 0}}}), Footprint::kCells);
   ASSERT_EQ(parked.problems.size(), 1u);
   EXPECT_THAT(parked.problems[0].message, HasSubstr("parked there for good"));
-  const auto shared = build(kGrid, plan_of({{{1, 1}, {2, 1}}, {{1, 1}}}), Footprint::kCells);
+  const auto shared = build(kAdgRoom, plan_of({{{1, 1}, {2, 1}}, {{1, 1}}}), Footprint::kCells);
   ASSERT_EQ(shared.problems.size(), 1u);
   EXPECT_THAT(shared.problems[0].message, HasSubstr("also starts"));
 }

@@ -22,7 +22,7 @@ namespace {
 // Entries sent one action ahead: the most room to switch.
 constexpr SwitchOptions kNear{.commit_actions = 1, .search_budget = 4096};
 
-Plan plan_of(std::vector<std::vector<Cell>> paths) {
+Plan tracker_plan_of(std::vector<std::vector<Cell>> paths) {
   Plan plan;
   for (auto& cells : paths) {
     grid::RobotPath p;
@@ -52,7 +52,7 @@ int64_t run_robot(SwitchableTracker& t, uint32_t r, double time_s) {
 Plan crossing(bool robot1_parks) {
   std::vector<Cell> one{{2, 0}, {2, 0}, {2, 0}, {2, 1}};
   if (!robot1_parks) one.push_back({2, 2});
-  return plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}}, one});
+  return tracker_plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}}, one});
 }
 
 TEST(SwitchableTracker, TheReadyRobotPassesFirstWhenTheOtherIsDelayed) {
@@ -126,10 +126,11 @@ TEST(SwitchableTracker, NoSwitchBehindARobotThatParksThere) {
 // 0 passes it at robot 1's report.
 TEST(SwitchableTracker, ARobotWhoseNextEntryCameUpAtAnotherRobotsReportIsTriedThen) {
   const Grid grid(5, 4, std::vector<uint8_t>(20, 0));
-  const auto actions = build_actions(plan_of({{{0, 1}, {0, 1}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                                              {{1, 0}, {1, 1}, {1, 2}},
-                                              {{3, 0}, {2, 0}, {2, 1}, {2, 2}}}),
-                                     Heading::kEast);
+  const auto actions =
+      build_actions(tracker_plan_of({{{0, 1}, {0, 1}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                     {{1, 0}, {1, 1}, {1, 2}},
+                                     {{3, 0}, {2, 0}, {2, 1}, {2, 2}}}),
+                    Heading::kEast);
   SwitchableTracker t(actions, passing_orders(actions, grid), SwitchOptions{.commit_actions = 2});
   const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
   EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{2, 0}));
@@ -205,11 +206,11 @@ TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
 // saving alone, before robot 0 was sent it; plain switchable had sent it. Now it is committed.
 TEST(SwitchableTracker, AnEntryDueNowIsNotTakenByFirstComeFirstServed) {
   const Grid grid(5, 4, std::vector<uint8_t>(20, 0));
-  const auto actions =
-      build_actions(plan_of({{{2, 0}, {2, 0}, {2, 0}, {2, 1}, {1, 1}},
-                             {{3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {2, 1}, {2, 2}},
-                             {{1, 1}, {2, 1}, {2, 2}, {2, 3}}}),
-                    Heading::kEast);
+  const auto actions = build_actions(
+      tracker_plan_of({{{2, 0}, {2, 0}, {2, 0}, {2, 1}, {1, 1}},
+                       {{3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {3, 1}, {2, 1}, {2, 2}},
+                       {{1, 1}, {2, 1}, {2, 2}, {2, 3}}}),
+      Heading::kEast);
   const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       SwitchOptions{.anticipate = true, .margin_s = 10.0});
@@ -245,7 +246,7 @@ Plan crossing_with_followers(int32_t first_follower = 5) {
     up.push_back({x, 0});
     paths.push_back(up);
   }
-  return plan_of(paths);
+  return tracker_plan_of(paths);
 }
 
 TEST(SwitchableTracker, LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLater) {
@@ -324,9 +325,9 @@ TEST(SwitchableTracker, LookaheadStopsAtTheFirstActionsWhenTheyLoseMoreThanAMove
 // (it would not wait at all if it arrived after 3 s, the other case the lookahead is skipped).
 TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
-  const auto actions =
-      build_actions(plan_of({{{1, 1}, {2, 1}, {3, 1}}, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 0}}}),
-                    Heading::kEast);
+  const auto actions = build_actions(
+      tracker_plan_of({{{1, 1}, {2, 1}, {3, 1}}, {{2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 0}}}),
+      Heading::kEast);
   const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
   SwitchableTracker t(actions, passing_orders(actions, grid),
                       SwitchOptions{.anticipate = true, .lookahead_actions = 24});
@@ -344,9 +345,10 @@ TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
 // behind robot 0 at (1, 1), the midpoint (1.5, 1) and (2, 1).
 struct Following {
   Grid grid{4, 3, std::vector<uint8_t>(12, 0)};
-  ActionPlan actions = build_actions(plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
-                                              {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
-                                     Heading::kEast);
+  ActionPlan actions =
+      build_actions(tracker_plan_of({{{0, 2}, {0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                     {{1, 0}, {1, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}}}),
+                    Heading::kEast);
   bool builds() const {
     std::vector<Problem> problems;
     build_adg(actions, grid, "test", problems);

@@ -9,8 +9,6 @@
 namespace smart::sim {
 namespace {
 
-agent::RobotModel model() { return test::sim_test_model(); }
-
 const grid::Grid kOpen(6, 3, std::vector<uint8_t>(18, 0), "open");
 
 agent::AgentAction move_east(uint32_t seq, double from_x, double to_x, double y) {
@@ -27,7 +25,7 @@ TEST(Fleet, StartPosesAreCellCentresInTheWorldFrame) {
 }
 
 TEST(Fleet, StepDrivesEveryAgentThroughItsActions) {
-  Fleet fleet(kOpen, model(), {}, start_poses(kOpen, 1.0, {{0, 0}, {0, 2}}, 0.0));
+  Fleet fleet(kOpen, test::sim_test_model(), {}, start_poses(kOpen, 1.0, {{0, 0}, {0, 2}}, 0.0));
   fleet.agent(0).on_window(1, {move_east(0, 0, 0.5, 2), move_east(1, 0.5, 1, 2)});
   for (int k = 0; k < 60 && fleet.agent(0).finished_seq() < 1; ++k) fleet.step();
   EXPECT_EQ(fleet.agent(0).finished_seq(), 1);
@@ -41,7 +39,7 @@ TEST(Fleet, StepDrivesEveryAgentThroughItsActions) {
 }
 
 TEST(Fleet, ExternalRobotsAreNotDrivenAndSitWhereTheyAreReported) {
-  Fleet fleet(kOpen, model(), {}, start_poses(kOpen, 1.0, {{0, 0}, {0, 2}}, 0.0));
+  Fleet fleet(kOpen, test::sim_test_model(), {}, start_poses(kOpen, 1.0, {{0, 0}, {0, 2}}, 0.0));
   fleet.set_external(1);
   EXPECT_TRUE(fleet.external(1));
   EXPECT_EQ(fleet.agent(1).state(), agent::LifecycleState::kInactive);

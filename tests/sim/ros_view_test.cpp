@@ -18,7 +18,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-agent::RobotModel model() {
+agent::RobotModel ros_view_model() {
   agent::RobotModel m;
   m.name = "test";
   m.radius_m = 0.2;
@@ -91,7 +91,7 @@ TEST(RosView, TheMapReachesAViewerThatJoinsLater) {
 TEST(RosView, PublishesPosesTfAndChosenRobotsPoseTopics) {
   const auto grid = test::grid_of({".....", ".....", "....."});
   const std::vector<agent::Pose2D> starts = {{1.0, 2.0, 0.0}, {3.0, 1.0, 1.5}, {4.0, 0.0, -3.0}};
-  World world(grid, model(), {}, starts);
+  World world(grid, ros_view_model(), {}, starts);
   dds::Domain domain(test::kRosView, test::loopback());
   dds::Participant sim_p(domain), ros_p(domain);
   const auto qos = dds::default_qos_profile();
@@ -155,8 +155,8 @@ TEST(RosView, PublishesPosesTfAndChosenRobotsPoseTopics) {
 
 TEST(RosView, TwoRunsUnderTheirNamespacesPublishOnTheirOwnTopics) {
   const auto grid = test::grid_of({".....", ".....", "....."});
-  World a(grid, model(), {}, {{1.0, 2.0, 0.0}, {3.0, 1.0, 0.0}});
-  World b(grid, model(), {}, {{4.0, 0.0, 0.0}});
+  World a(grid, ros_view_model(), {}, {{1.0, 2.0, 0.0}, {3.0, 1.0, 0.0}});
+  World b(grid, ros_view_model(), {}, {{4.0, 0.0, 0.0}});
   dds::Domain domain(test::kRosViewNamespaces, test::loopback());
   dds::Participant sim_p(domain), ros_p(domain);
   const auto qos = dds::default_qos_profile();

@@ -11,8 +11,6 @@
 namespace smart::sim {
 namespace {
 
-agent::RobotModel model() { return test::sim_test_model(); }
-
 const grid::Grid kLong(24, 4, std::vector<uint8_t>(96, 0), "long");
 
 // Cell-by-cell moves along row `row` (world y = 3 - row) from column `from` to column `to`.
@@ -43,9 +41,9 @@ struct ShardedFleet {
   std::size_t handovers = 0;
 
   ShardedFleet(uint32_t n, const std::vector<agent::Pose2D>& start)
-      : map(kLong, SimConfig{}, model(), n, start) {
+      : map(kLong, SimConfig{}, test::sim_test_model(), n, start) {
     for (uint32_t s = 0; s < n; ++s) {
-      fleets.push_back(std::make_unique<Fleet>(kLong, model(), SimConfig{}, start));
+      fleets.push_back(std::make_unique<Fleet>(kLong, test::sim_test_model(), SimConfig{}, start));
       shards.push_back(std::make_unique<FleetShard>(*fleets[s], map, s));
       boxes.push_back(shards[s]->initial_outbox());
     }
@@ -86,7 +84,8 @@ struct ShardedFleet {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(ShardMap, CutsAtCellEdgesBalanceTheStartsAlongTheLongerAxis) {
-  const ShardMap map(kLong, SimConfig{}, model(), 2, starts({{0, 0}, {1, 0}, {19, 0}, {20, 0}}));
+  const ShardMap map(kLong, SimConfig{}, test::sim_test_model(), 2,
+                     starts({{0, 0}, {1, 0}, {19, 0}, {20, 0}}));
   EXPECT_TRUE(map.along_x());
   EXPECT_DOUBLE_EQ(map.cut_m(1), 10.5);  // between the 2nd and 3rd start, at a cell edge
   EXPECT_EQ(map.region_of(10.4, 0), 0u);
@@ -100,8 +99,10 @@ TEST(ShardMap, CutsAtCellEdgesBalanceTheStartsAlongTheLongerAxis) {
 }
 
 TEST(ShardMap, RefusesMoreShardsThanCellsAcross) {
-  EXPECT_THROW(ShardMap(kLong, SimConfig{}, model(), 25, starts({{0, 0}})), std::invalid_argument);
-  EXPECT_THROW(ShardMap(kLong, SimConfig{}, model(), 0, starts({{0, 0}})), std::invalid_argument);
+  EXPECT_THROW(ShardMap(kLong, SimConfig{}, test::sim_test_model(), 25, starts({{0, 0}})),
+               std::invalid_argument);
+  EXPECT_THROW(ShardMap(kLong, SimConfig{}, test::sim_test_model(), 0, starts({{0, 0}})),
+               std::invalid_argument);
 }
 
 // Robots crossing borders both ways, one turning first: every pose, every period, bit for bit
@@ -109,7 +110,7 @@ TEST(ShardMap, RefusesMoreShardsThanCellsAcross) {
 TEST(FleetShard, RobotsCrossingBordersFollowTheUnshardedTrajectoriesBitForBit) {
   const auto start = starts({{0, 0}, {23, 2}, {5, 1}, {12, 3}});
   for (const uint32_t n : {2u, 3u}) {
-    Fleet whole(kLong, model(), SimConfig{}, start);
+    Fleet whole(kLong, test::sim_test_model(), SimConfig{}, start);
     ShardedFleet sharded(n, start);
     const std::vector<std::vector<agent::AgentAction>> plan{
         drive_row(0, 0, 20), drive_row(2, 23, 2), drive_row(1, 5, 14), {}};
@@ -151,7 +152,7 @@ TEST(FleetShard, AContactAcrossTheBorderIsSimulatedAndCountedOnce) {
   for (uint32_t s = 0; s < west.size(); ++s) west[s].seq = s;
   ShardedFleet sharded(2, start);
   ASSERT_DOUBLE_EQ(sharded.map.cut_m(1), 11.5);
-  Fleet whole(kLong, model(), SimConfig{}, start);
+  Fleet whole(kLong, test::sim_test_model(), SimConfig{}, start);
   for (Fleet* f : {&whole}) {
     f->agent(0).on_window(1, drive_row(2, 6, 16));
     f->agent(1).on_window(1, west);
@@ -173,7 +174,7 @@ TEST(FleetShard, AContactAcrossTheBorderIsSimulatedAndCountedOnce) {
   EXPECT_NEAR(gap, whole.world().contacts().min_gap_m, 0.02);
   EXPECT_LT(gap, 0.0);
   const double x0 = sharded.of(0).world().motion(0).x_m, x1 = sharded.of(1).world().motion(1).x_m;
-  EXPECT_GT(x1 - x0, 2 * model().radius_m) << "still overlapping, or passed through";
+  EXPECT_GT(x1 - x0, 2 * test::sim_test_model().radius_m) << "still overlapping, or passed through";
 }
 
 }  // namespace

@@ -11,7 +11,9 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "smart/grid/grid.hpp"
 #include "smart/lifelong/window_planner.hpp"
 #include "smart/tools/planner_node.hpp"
 
@@ -31,6 +33,9 @@ class FakePlanner final : public lifelong::WindowPlanner {
 };
 
 // Every robot stays where it is.
+// A 5 x 4 map without obstacles.
+inline grid::Grid open_grid_5x4() { return grid::Grid(5, 4, std::vector<uint8_t>(20, 0)); }
+
 inline lifelong::PlannedWindow stay(const planning::WindowRequest& r) {
   lifelong::PlannedWindow w;
   for (const auto c : r.start) w.paths.emplace_back(static_cast<std::size_t>(r.steps) + 1, c);

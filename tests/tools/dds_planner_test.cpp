@@ -26,8 +26,6 @@ const dds::QosProfile& lan() {
   return qos;
 }
 
-grid::Grid open_grid() { return grid::Grid(5, 4, std::vector<uint8_t>(20, 0)); }
-
 planning::WindowRequest request(grid::Cell a, grid::Cell b, double time_s) {
   planning::WindowRequest r;
   r.start = {a, b};
@@ -64,7 +62,7 @@ void after_ms(uint64_t ms) {
 TEST(DdsPlanner, WithoutAPlannerInTimeTheRunIsToldHowToStartOne) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
   dds::Participant p(domain, "nobody");
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   auto o = options(1);
   o.wait_s = 0.3;
   try {
@@ -82,7 +80,7 @@ TEST(DdsPlanner, WithoutAPlannerInTimeTheRunIsToldHowToStartOne) {
 // run refuses to and says which planner does; the chosen one serves until the run ends.
 TEST(DdsPlanner, TheEarliestPlannerPlansTheRunAndASecondIsRefused) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   auto first = std::make_unique<Served>(domain, "dp", stay, "first");
   after_ms(first->node.info().started_ms);
   Served second(domain, "dp", stay, "second");
@@ -152,7 +150,7 @@ lifelong::PlannedWindow bad_window(const planning::WindowRequest& r) {
 
 TEST(DdsPlanner, EveryBadWindowIsRefusedWithTheReason) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   Served served(domain, "bad", bad_window);
   dds::Participant p(domain, "bad");
   DdsPlanner planner(p, lan(), g, 2, 3, options(30));
@@ -179,7 +177,7 @@ TEST(DdsPlanner, EveryBadWindowIsRefusedWithTheReason) {
 
 TEST(DdsPlanner, ALateReplyIsRefusedAndTheRunGoesOn) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   std::promise<void> release;
   auto released = release.get_future().share();
   Served served(domain, "late", [released](const planning::WindowRequest& r) {
@@ -200,7 +198,7 @@ TEST(DdsPlanner, ALateReplyIsRefusedAndTheRunGoesOn) {
 // reader (it can neither be taken nor displace the real reply) and counted.
 TEST(DdsPlanner, AStrangersForgedReplyIsFilteredOutAndTheChosenPlannersIsTaken) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   std::promise<void> release;
   auto released = release.get_future().share();
   Served served(domain, "forged", [released](const planning::WindowRequest& r) {
@@ -239,7 +237,7 @@ TEST(DdsPlanner, AStrangersForgedReplyIsFilteredOutAndTheChosenPlannersIsTaken) 
 
 TEST(DdsPlanner, APlannerThatLeavesHasEveryLaterWindowRefusedAtOnce) {
   dds::Domain domain(test::kDdsPlanner, test::loopback());
-  const auto g = open_grid();
+  const auto g = test::open_grid_5x4();
   auto served = std::make_unique<Served>(domain, "gone", stay, "leaver");
   dds::Participant p(domain, "gone");
   DdsPlanner planner(p, lan(), g, 2, 3, options(30));

@@ -22,8 +22,6 @@ using test::Served;
 using test::stay;
 using ::testing::HasSubstr;
 
-grid::Grid open_grid() { return grid::Grid(5, 4, std::vector<uint8_t>(20, 0)); }
-
 planning::WindowRequest request_of_two() {
   planning::WindowRequest r;
   r.start = {{0, 0}, {4, 3}};
@@ -80,7 +78,7 @@ TEST(PlannerNode, AnnouncesItselfThenPlansTheRequestsOfTheRunThatNamesIt) {
   EXPECT_EQ(me.planner_id, served.node.info().planner_id);
   EXPECT_STREQ(me.name, "fake");
   EXPECT_EQ(me.pid, static_cast<int32_t>(getpid()));
-  wire::PlanProblemBuffer problem(11, me, open_grid(), 2, 3);
+  wire::PlanProblemBuffer problem(11, me, test::open_grid_5x4(), 2, 3);
   monitor.problem.write(problem.view());
   wire::PlanRequestBuffer request;
   for (uint64_t window = 1; window <= 2; ++window) {
@@ -101,7 +99,7 @@ TEST(PlannerNode, ABadRequestOrThePlannersFailureIsAnsweredWithTheReason) {
     return r.time_s > 100 ? w : stay(r);
   });
   const auto me = monitor.announcement();
-  wire::PlanProblemBuffer problem(11, me, open_grid(), 2, 3);
+  wire::PlanProblemBuffer problem(11, me, test::open_grid_5x4(), 2, 3);
   monitor.problem.write(problem.view());
   auto bad = request_of_two();
   bad.start[1] = {5, 3};  // off the 5x4 map
@@ -130,7 +128,7 @@ TEST(PlannerNode, ARunThatNamesAnotherPlannerIsRefusedNamingIt) {
   other.started_ms = 1;
   std::snprintf(other.name, sizeof(other.name), "lacam");
   std::snprintf(other.host, sizeof(other.host), "lab-2");
-  wire::PlanProblemBuffer problem(11, other, open_grid(), 2, 3);
+  wire::PlanProblemBuffer problem(11, other, test::open_grid_5x4(), 2, 3);
   monitor.problem.write(problem.view());
   ASSERT_EQ(served.outcome.wait_for(30s), std::future_status::ready);
   const auto out = served.outcome.get();
@@ -146,7 +144,7 @@ TEST(PlannerNode, ServingEndsWhenTheRunsProblemGoes) {
   auto monitor = std::make_unique<MonitorSide>(domain);
   Served served(domain, "pn", stay);
   const auto me = monitor->announcement();
-  wire::PlanProblemBuffer problem(11, me, open_grid(), 2, 3);
+  wire::PlanProblemBuffer problem(11, me, test::open_grid_5x4(), 2, 3);
   monitor->problem.write(problem.view());
   wire::PlanRequestBuffer request;
   request.set(11, me.planner_id, 1, 0.1, request_of_two());
