@@ -139,8 +139,8 @@ enum DomainId : int {
   kLifelongRandom = 230,     // the last id --domain takes (Cyclone's port formula)
   // 101..230 are taken: later tests count down from 100.
   kLifelongPipePlanner = 100,
-  kDdsPlanner = 99,          // tests/tools/dds_planner_test.cpp, one test after the other
-  kPlannerNode = 98,         // tests/tools/planner_node_test.cpp
+  kDdsPlanner = 99,          // tests/tools/dds_planner_test.cpp (its first TEST; below the rest)
+  kPlannerNode = 98,         // tests/tools/planner_node_test.cpp (the same)
   kLifelongDdsPlanner = 97,  // the run, then its in-process reference
   kExperimentLifelong = 95,  // and 96 (--jobs 2)
   kLifelongLorrOutput = 94,
@@ -165,6 +165,17 @@ enum DomainId : int {
   kSwitchableLifelongLookahead = 70,  // the switchable-lookahead run of kSwitchableLifelong
   kShardPeerRepeats = 69,
   kSwitchableLifelongOneLocation = 68,  // kSwitchableLifelong's switchable run, no chains
+  // One a TEST: ctest runs the TESTs of one file side by side too. kDdsPlanner and kPlannerNode
+  // were shared by their files' TESTs, and two PlannerNode tests on one domain answered each
+  // other's requests under ASan (2026-12-01).
+  kPlannerNodeBadRequest = 67,
+  kPlannerNodeOtherPlanner = 66,
+  kPlannerNodeProblemGoes = 65,
+  kDdsPlannerEarliest = 64,
+  kDdsPlannerBadWindows = 63,
+  kDdsPlannerLate = 62,
+  kDdsPlannerForged = 61,
+  kDdsPlannerLeaves = 60,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

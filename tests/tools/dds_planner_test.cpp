@@ -79,7 +79,7 @@ TEST(DdsPlanner, WithoutAPlannerInTimeTheRunIsToldHowToStartOne) {
 // As a second monitor is refused: the earliest planner plans the run, a later one of the same
 // run refuses to and says which planner does; the chosen one serves until the run ends.
 TEST(DdsPlanner, TheEarliestPlannerPlansTheRunAndASecondIsRefused) {
-  dds::Domain domain(test::kDdsPlanner, test::loopback());
+  dds::Domain domain(test::kDdsPlannerEarliest, test::loopback());
   const auto g = test::open_grid_5x4();
   auto first = std::make_unique<Served>(domain, "dp", stay, "first");
   after_ms(first->node.info().started_ms);
@@ -105,7 +105,7 @@ TEST(DdsPlanner, TheEarliestPlannerPlansTheRunAndASecondIsRefused) {
   const auto refused = second.outcome.get();
   EXPECT_EQ(refused.end, PlannerNode::End::kRefused);
   EXPECT_THAT(refused.detail,
-              HasSubstr("refused: run 'dp' on domain " + std::to_string(test::kDdsPlanner) +
+              HasSubstr("refused: run 'dp' on domain " + std::to_string(test::kDdsPlannerEarliest) +
                         " is planned by planner 'first' (pid "));
   const auto r = request({0, 0}, {4, 3}, 1);
   const auto w = plan(*planner, r);
@@ -149,7 +149,7 @@ lifelong::PlannedWindow bad_window(const planning::WindowRequest& r) {
 }
 
 TEST(DdsPlanner, EveryBadWindowIsRefusedWithTheReason) {
-  dds::Domain domain(test::kDdsPlanner, test::loopback());
+  dds::Domain domain(test::kDdsPlannerBadWindows, test::loopback());
   const auto g = test::open_grid_5x4();
   Served served(domain, "bad", bad_window);
   dds::Participant p(domain, "bad");
@@ -176,7 +176,7 @@ TEST(DdsPlanner, EveryBadWindowIsRefusedWithTheReason) {
 }
 
 TEST(DdsPlanner, ALateReplyIsRefusedAndTheRunGoesOn) {
-  dds::Domain domain(test::kDdsPlanner, test::loopback());
+  dds::Domain domain(test::kDdsPlannerLate, test::loopback());
   const auto g = test::open_grid_5x4();
   std::promise<void> release;
   auto released = release.get_future().share();
@@ -197,7 +197,7 @@ TEST(DdsPlanner, ALateReplyIsRefusedAndTheRunGoesOn) {
 // the request and answers it first with the chosen planner's id, is filtered out before the
 // reader (it can neither be taken nor displace the real reply) and counted.
 TEST(DdsPlanner, AStrangersForgedReplyIsFilteredOutAndTheChosenPlannersIsTaken) {
-  dds::Domain domain(test::kDdsPlanner, test::loopback());
+  dds::Domain domain(test::kDdsPlannerForged, test::loopback());
   const auto g = test::open_grid_5x4();
   std::promise<void> release;
   auto released = release.get_future().share();
@@ -236,7 +236,7 @@ TEST(DdsPlanner, AStrangersForgedReplyIsFilteredOutAndTheChosenPlannersIsTaken) 
 }
 
 TEST(DdsPlanner, APlannerThatLeavesHasEveryLaterWindowRefusedAtOnce) {
-  dds::Domain domain(test::kDdsPlanner, test::loopback());
+  dds::Domain domain(test::kDdsPlannerLeaves, test::loopback());
   const auto g = test::open_grid_5x4();
   auto served = std::make_unique<Served>(domain, "gone", stay, "leaver");
   dds::Participant p(domain, "gone");

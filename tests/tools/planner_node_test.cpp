@@ -91,7 +91,7 @@ TEST(PlannerNode, AnnouncesItselfThenPlansTheRequestsOfTheRunThatNamesIt) {
 }
 
 TEST(PlannerNode, ABadRequestOrThePlannersFailureIsAnsweredWithTheReason) {
-  dds::Domain domain(test::kPlannerNode, test::loopback());
+  dds::Domain domain(test::kPlannerNodeBadRequest, test::loopback());
   MonitorSide monitor(domain);
   Served served(domain, "pn", [](const planning::WindowRequest& r) {
     lifelong::PlannedWindow w;
@@ -118,7 +118,7 @@ TEST(PlannerNode, ABadRequestOrThePlannersFailureIsAnsweredWithTheReason) {
 }
 
 TEST(PlannerNode, ARunThatNamesAnotherPlannerIsRefusedNamingIt) {
-  dds::Domain domain(test::kPlannerNode, test::loopback());
+  dds::Domain domain(test::kPlannerNodeOtherPlanner, test::loopback());
   MonitorSide monitor(domain);
   Served served(domain, "pn", stay);
   (void)monitor.announcement();
@@ -134,13 +134,13 @@ TEST(PlannerNode, ARunThatNamesAnotherPlannerIsRefusedNamingIt) {
   const auto out = served.outcome.get();
   EXPECT_EQ(out.end, PlannerNode::End::kRefused);
   EXPECT_EQ(out.detail,
-            "refused: run 'pn' on domain " + std::to_string(test::kPlannerNode) +
+            "refused: run 'pn' on domain " + std::to_string(test::kPlannerNodeOtherPlanner) +
                 " is planned by planner 'lacam' (pid 77 on lab-2); stop that planner, or start "
                 "this one with another --run");
 }
 
 TEST(PlannerNode, ServingEndsWhenTheRunsProblemGoes) {
-  dds::Domain domain(test::kPlannerNode, test::loopback());
+  dds::Domain domain(test::kPlannerNodeProblemGoes, test::loopback());
   auto monitor = std::make_unique<MonitorSide>(domain);
   Served served(domain, "pn", stay);
   const auto me = monitor->announcement();
