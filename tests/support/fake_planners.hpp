@@ -32,10 +32,10 @@ class FakePlanner final : public lifelong::WindowPlanner {
   std::optional<lifelong::PlannedWindow> out_;
 };
 
-// Every robot stays where it is.
 // A 5 x 4 map without obstacles.
 inline grid::Grid open_grid_5x4() { return grid::Grid(5, 4, std::vector<uint8_t>(20, 0)); }
 
+// Every robot stays where it is.
 inline lifelong::PlannedWindow stay(const planning::WindowRequest& r) {
   lifelong::PlannedWindow w;
   for (const auto c : r.start) w.paths.emplace_back(static_cast<std::size_t>(r.steps) + 1, c);
