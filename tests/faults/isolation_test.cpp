@@ -84,7 +84,7 @@ TEST_F(Isolation, AMonitorAndASimOfDifferentRunsNeverMeet) {
 }
 
 TEST_F(Isolation, ARunNameOutsideTheAllowedCharactersIsBadInput) {
-  auto args = with("run", random_map(kIsolationNamedRuns, "5"));
+  auto args = with("run", random_map(kIsolationBadName, "5"));
   args.insert(args.end(), {"--run", "a b"});
   const auto r = run_smart(args, 30s, "iso_bad_name");
   EXPECT_EQ(r.code, 2);

@@ -526,36 +526,37 @@ TEST(LifelongRun, TheBuiltInPlannerDrivesARunOverDdsAsItsOwnProcess) {
 }
 
 TEST(LifelongRun, BadFlagsAreRefusedWithTheFix) {
-  auto r = lifelong({"--lifelong", maze_problem(), "--plan", "p.txt"}, kLifelongRandom, "ll_bad1");
+  auto r =
+      lifelong({"--lifelong", maze_problem(), "--plan", "p.txt"}, kLifelongBadFlags, "ll_bad1");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("drop --plan and --scen"));
-  r = lifelong({"--tasks", "random", "--duration-s", "5"}, kLifelongRandom, "ll_bad2");
+  r = lifelong({"--tasks", "random", "--duration-s", "5"}, kLifelongBadFlags, "ll_bad2");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--tasks random needs --map MAP and --agents N"));
   const auto resume = run_smart({"monitor", "--lifelong", maze_problem(), "--resume", "--domain",
-                                 std::to_string(kLifelongRandom)},
+                                 std::to_string(kLifelongBadFlags)},
                                 30s, "ll_bad_resume", true);
   EXPECT_EQ(resume.code, 2);
   EXPECT_THAT(resume.out, HasSubstr("a lifelong run cannot be taken over"));
-  r = lifelong({"--duration-s", "5"}, kLifelongRandom, "ll_bad3");
+  r = lifelong({"--duration-s", "5"}, kLifelongBadFlags, "ll_bad3");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("--map, --scen, --plan required"));
   r = lifelong({"--lifelong", maze_problem(), "--planner-cmd", "python3 p.py",
                 "--planner-timeout-s", "20", "--timeout-s", "30"},
-               kLifelongRandom, "ll_bad4");
+               kLifelongBadFlags, "ll_bad4");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("give a --timeout-s above twice the planner's timeout"));
   r = lifelong({"--lifelong", maze_problem(), "--planner", "external", "--planner-cmd", "p"},
-               kLifelongRandom, "ll_bad5");
+               kLifelongBadFlags, "ll_bad5");
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.out, HasSubstr("--planner external and --planner-cmd: choose one"));
   r = lifelong({"--lifelong", maze_problem(), "--planner", "external", "--planner-wait-s", "0.2",
                 "--run", "ll_nobody"},
-               kLifelongRandom, "ll_bad6");
+               kLifelongBadFlags, "ll_bad6");
   EXPECT_NE(r.code, 0);
   EXPECT_THAT(r.out, HasSubstr("no planner announced itself on run 'll_nobody'"));
   EXPECT_THAT(r.out, HasSubstr("start one with `smart planner --domain " +
-                               std::to_string(kLifelongRandom) + " --run ll_nobody`"));
+                               std::to_string(kLifelongBadFlags) + " --run ll_nobody`"));
 }
 
 // Regression: a run without --out writes the sim's world files to a scratch folder, removed only

@@ -289,7 +289,7 @@ TEST_F(SwitchableRun, ResumeRefusesSwitchingNamingTheFlags) {
                             "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
                             "--plan", (b_ / "smart-examples/scen_1_paths.txt").string(), "--axis",
                             "rowcol", "--agents", "10", "--resume", "--execution", "switchable",
-                            "--domain", std::to_string(kSwitchableRun), "--no-progress"},
+                            "--domain", std::to_string(kSwitchableResume), "--no-progress"},
                            60s, "switchable_resume", true);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("--resume with --execution switchable"), std::string::npos) << r.out;

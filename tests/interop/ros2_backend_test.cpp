@@ -265,18 +265,18 @@ TEST(Ros2Calibrate, DoctorChecksEachBasesOdometryAndWheels) {
 
 TEST(Ros2Backend, BadRobotListsAndMissingTransformFilesAreNamed) {
   const auto bad = run_smart({"agent", "--backend", "ros2", "--robot-ids", "3-1", "--domain",
-                              std::to_string(kRos2OdomAtStart)},
+                              std::to_string(kRos2BadRobotLists)},
                              20s, "ros2_bad_ids", true);
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.out.find("'3-1' is not ascending"), std::string::npos) << bad.out;
   const auto both = run_smart({"agent", "--backend", "jetbot", "--robot-ids", "0-1", "--domain",
-                               std::to_string(kRos2OdomAtStart)},
+                               std::to_string(kRos2BadRobotLists)},
                               20s, "ros2_jetbot_many", true);
   EXPECT_NE(both.code, 0);
   EXPECT_NE(both.out.find("one robot per process"), std::string::npos) << both.out;
   const auto missing =
       run_smart({"agent", "--backend", "ros2", "--robot-ids", "0", "--pose-transform",
-                 "/nonexistent/robot_{id}.yaml", "--domain", std::to_string(kRos2OdomAtStart)},
+                 "/nonexistent/robot_{id}.yaml", "--domain", std::to_string(kRos2BadRobotLists)},
                 20s, "ros2_missing_transform", true);
   EXPECT_NE(missing.code, 0);
   EXPECT_NE(missing.out.find("/nonexistent/robot_0.yaml"), std::string::npos) << missing.out;

@@ -176,6 +176,15 @@ enum DomainId : int {
   kDdsPlannerLate = 62,
   kDdsPlannerForged = 61,
   kDdsPlannerLeaves = 60,
+  // Shared by the TESTs of a file until scripts/check-test-domains.py (2026-12-01).
+  kCalibrateTrim = 59,
+  kCalibrateTrimAsk = 58,
+  kCalibrateTrimSignal = 57,
+  kBenchRunBadSize = 56,
+  kIsolationBadName = 55,
+  kLifelongBadFlags = 54,
+  kRos2BadRobotLists = 53,
+  kSwitchableResume = 52,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

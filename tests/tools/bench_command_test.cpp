@@ -87,7 +87,7 @@ TEST(BenchCommand, RunNamesTheFailingSize) {
       run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
                  (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
                  (b / "smart-examples/example_paths_xy.txt").string(), "--agents", "5", "--domain",
-                 std::to_string(kBenchRun), "--out", temp_file("bench_run_bad").string()},
+                 std::to_string(kBenchRunBadSize), "--out", temp_file("bench_run_bad").string()},
                 60s, "bench_run_bad");
   EXPECT_EQ(r.code, 1);
   std::filesystem::remove_all(temp_file("bench_run_bad"));

@@ -123,7 +123,7 @@ nlohmann::json trim(const std::vector<std::string>& extra, const std::string& ta
                                 "2.5",
                                 "--yes",
                                 "--domain",
-                                std::to_string(kCalibrate)};
+                                std::to_string(kCalibrateTrim)};
   args.insert(args.end(), extra.begin(), extra.end());
   const auto r = smart_no_stdin(args, tag);
   EXPECT_EQ(r.code, 0) << r.out;
@@ -151,9 +151,10 @@ TEST(CalibrateTrim, FindsAJetbotsWeakWheelAndItsProposalDrivesStraight) {
 }
 
 TEST(CalibrateTrim, AsksBeforeMovingAndDoesNotMoveWithoutAYes) {
-  const auto r = smart_no_stdin({"calibrate", "trim", "--robot-id", "0", "--i2c", "emulated",
-                                 "--emulate-pose", "0,0,0", "--domain", std::to_string(kCalibrate)},
-                                "calibrate_trim_ask");
+  const auto r =
+      smart_no_stdin({"calibrate", "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose",
+                      "0,0,0", "--domain", std::to_string(kCalibrateTrimAsk)},
+                     "calibrate_trim_ask");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("Type yes to go"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("not confirmed"), std::string::npos) << r.out;
@@ -166,7 +167,7 @@ TEST(CalibrateTrim, ASignalStopsTheTrialAndTheWheels) {
   common::ChildProcess p(
       {"/bin/sh", "-c", "exec \"$0\" \"$@\" </dev/null 2>&1", smart_exe().string(), "calibrate",
        "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0,0,0", "--seconds", "30",
-       "--yes", "--domain", std::to_string(kCalibrate)},
+       "--yes", "--domain", std::to_string(kCalibrateTrimSignal)},
       out);
   std::this_thread::sleep_for(1500ms);
   p.signal(SIGINT);
