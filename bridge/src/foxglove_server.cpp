@@ -23,11 +23,6 @@ using tcp = net::ip::tcp;
 namespace {
 constexpr std::size_t kMaxClientMessage = std::size_t{64} * 1024;
 
-struct Frame {
-  std::shared_ptr<const std::string> bytes;
-  bool binary = true;
-};
-
 bool offers_subprotocol(std::string_view header) {
   // Sec-WebSocket-Protocol: a comma-separated list (RFC 6455, 11.3.4).
   std::size_t at = 0;
@@ -44,6 +39,12 @@ bool offers_subprotocol(std::string_view header) {
 }  // namespace
 
 struct FoxgloveServer::Impl : std::enable_shared_from_this<Impl> {
+  // Nested, not in an anonymous namespace: Session holds them, and g++ warns
+  // (-Wsubobject-linkage) when a unity build includes this file into another.
+  struct Frame {
+    std::shared_ptr<const std::string> bytes;
+    bool binary = true;
+  };
   struct Session;
   ServerOptions options;
   std::vector<Channel> channels;

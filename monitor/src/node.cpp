@@ -27,7 +27,11 @@ uint64_t wall_clock_run_id() {
 namespace {
 using SteadyClock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
+}  // namespace
 
+// Named, not anonymous: MonitorNode::Impl (declared in the header) holds one, and g++ warns
+// (-Wsubobject-linkage) when a unity build includes this file into another.
+namespace node_writer {
 // The supervisor's decisions, written to DDS. Windows are packed (Cyclone's write batching,
 // dds/writer.hpp) and go out together when the pump's turn ends (flush) or, before a tick's
 // answer, so that a host finds the windows the answer counts already sent.
@@ -65,6 +69,10 @@ class DdsRunWriter final : public RunWriter {
   dds::WireWriter<smart_msg_ActionWindow> actions_;
   dds::WireWriter<smart_msg_Clock> clock_;
 };
+}  // namespace node_writer
+using node_writer::DdsRunWriter;
+
+namespace {
 
 SupervisorConfig with_run_id(SupervisorConfig c, int domain_id, double cell_m) {
   if (c.run_id == 0) c.run_id = wall_clock_run_id();
