@@ -90,15 +90,23 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
   for (std::size_t q = 0; q < queue.size() && queue.size() < nodes; ++q) {
     const uint32_t u = queue[q], robot = queue_robot[q];
     if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
-    for (uint32_t e = leave_begin_[u]; e < leave_begin_[u + 1]; ++e) {
-      const uint32_t x = leave_stays_[e];
-      const bool differs = x == h || x == s.i || x == s.j;
+    const Look& l = look_[u];  // in cache: add() marked it
+    const uint32_t leaves = l.leaves < 255 ? l.leaves : leave_begin_[u + 1] - leave_begin_[u];
+    for (uint32_t e = 0; e < leaves; ++e) {
+      const uint32_t x = e == 0 ? l.leave : leave_stays_[leave_begin_[u] + e];
+      if (x != h && x != s.i && x != s.j) {
+        // The same next stay in both orders, its robot and entry kept in its link.
+        const Link& next = link_[x];
+        if (next.next != kNoAction && next.next_robot != robot && next.next_enter != kNoAction) {
+          add(next.next_enter, next.next_robot);
+        }
+        continue;
+      }
       for (const Swap& o : orders) {
         const uint32_t next = next_in(x, o);
         if (next != kNoAction && stay_[next].robot != robot && stay_[next].enter != kNoAction) {
           add(stay_[next].enter, stay_[next].robot);
         }
-        if (!differs) break;
       }
     }
   }
@@ -118,6 +126,9 @@ void SwitchableTracker::init_look() {
     look_[n].robot = a.robot;
     look_[n].seq = a.seq;
     look_[n].type = a.type;
+    const uint32_t leaves = leave_begin_[n + 1] - leave_begin_[n];
+    if (leaves > 0) look_[n].leave = leave_stays_[leave_begin_[n]];
+    look_[n].leaves = static_cast<uint8_t>(std::min<uint32_t>(leaves, 255));
   }
 }
 

@@ -53,7 +53,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
     for (uint32_t p = first; p < end; ++p) {
       location_[p] = loc;
-      link_[p] = {p == first ? kNoAction : p - 1, p + 1 == end ? kNoAction : p + 1};
+      link(p, p == first ? kNoAction : p - 1, p + 1 == end ? kNoAction : p + 1);
     }
   }
   const std::size_t nodes = actions.actions.size();
@@ -90,6 +90,18 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
   const uint32_t other = link_[stay].next;
   if (other == kNoAction) return {};
   return {other, stay_[other].robot != stay_[stay].robot};
+}
+
+void SwitchableTracker::link(uint32_t stay, uint32_t prev, uint32_t next) {
+  link_[stay].prev = prev;
+  link_next(stay, next);
+}
+
+void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
+  Link& l = link_[stay];
+  l.next = next;
+  l.next_robot = next == kNoAction ? 0 : stay_[next].robot;
+  l.next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
 }
 
 // The smallest robot id in `set`, taken out of it (the set is not empty).
@@ -447,10 +459,10 @@ void SwitchableTracker::relink(uint32_t stay) {
   edge(h, i, -1);
   edge(i, j, -1);
   edge(j, k, -1);
-  if (h != kNoAction) link_[h].next = j;
+  if (h != kNoAction) link_next(h, j);
   if (k != kNoAction) link_[k].prev = i;
-  link_[j] = {h, i};
-  link_[i] = {j, k};
+  link(j, h, i);
+  link(i, j, k);
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);

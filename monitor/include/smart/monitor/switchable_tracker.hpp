@@ -195,10 +195,16 @@ class SwitchableTracker final : public Execution {
   PassingOrders orders_;
   std::vector<uint32_t> location_;  // stay id -> location
   // stay id -> the stays before and after it at its location (kNoAction: none): the current
-  // order as a list, one lookup for a neighbour (an array of positions took four).
+  // order as a list, one lookup for a neighbour (an array of positions took four). With the next
+  // stay's robot and entry (a stay's never change; set with `next`, link()): the lookahead's
+  // cone walk reads them here, where reading stay_[next] cost it a cache miss per Type-2 edge,
+  // a third of its time (docs/execution.md, "Cost").
   struct Link {
     uint32_t prev = kNoAction, next = kNoAction;
+    uint32_t next_robot = 0, next_enter = kNoAction;
   };
+  void link(uint32_t stay, uint32_t prev, uint32_t next);
+  void link_next(uint32_t stay, uint32_t next);
   std::vector<Link> link_;
   std::vector<Stay> stay_;                           // stay id -> the stay
   std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
@@ -249,12 +255,18 @@ class SwitchableTracker final : public Execution {
   // it is in and the order whose expected finish `time_s` is computed (NaN while computed: a
   // cycle), with the action's robot, place and kind, in one place: one cache line per action
   // looked at (reading the plan's actions too cost a miss each in the monitor's runs).
+  // Also the first stay the action leaves and how many it leaves (255: count them in
+  // leave_begin_; the rest: leave_stays_), read by the cone's walk where the action's record is
+  // already in cache.
   struct alignas(32) Look {
     uint32_t cone = 0, order = 0;
     double time_s = 0;
     uint32_t robot = 0, seq = 0;
+    uint32_t leave = kNoAction;
     grid::ActionType type = grid::ActionType::kMove;
+    uint8_t leaves = 0;
   };
+  static_assert(sizeof(Look) == 32);
   void next_mark(uint32_t& id, uint32_t Look::*mark);  // a new cone or order id
   std::vector<uint32_t> cone_, cone_robot_;            // the compared actions and their robots
   std::vector<uint32_t> walk_, walk_robot_;            // a second walk's (chain_saves; scratch)
