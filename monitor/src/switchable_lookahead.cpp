@@ -91,7 +91,7 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
     const uint32_t u = queue[q], robot = queue_robot[q];
     if (u + 1 < actions_.offset[robot + 1]) add(u + 1, robot);
     const Look& l = look_[u];  // in cache: add() marked it
-    const uint32_t leaves = l.leaves < 255 ? l.leaves : leave_begin_[u + 1] - leave_begin_[u];
+    const uint32_t leaves = stays_of(l.leaves, leave_begin_, u);
     for (uint32_t e = 0; e < leaves; ++e) {
       const uint32_t x = e == 0 ? l.leave : leave_stays_[leave_begin_[u] + e];
       if (x != h && x != s.i && x != s.j) {
@@ -124,8 +124,10 @@ void SwitchableTracker::init_look() {
   for (std::size_t n = 0; n < look_.size(); ++n) {
     const auto& a = actions_.actions[n];
     look_[n].robot = a.robot;
-    look_[n].seq = a.seq;
     look_[n].type = a.type;
+    const uint32_t enters = enter_begin_[n + 1] - enter_begin_[n];
+    if (enters > 0) look_[n].enter = enter_stays_[enter_begin_[n]];
+    look_[n].enters = static_cast<uint8_t>(std::min<uint32_t>(enters, 255));
     const uint32_t leaves = leave_begin_[n + 1] - leave_begin_[n];
     if (leaves > 0) look_[n].leave = leave_stays_[leave_begin_[n]];
     look_[n].leaves = static_cast<uint8_t>(std::min<uint32_t>(leaves, 255));
@@ -145,8 +147,9 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
   }
   look.order = order_id_;
   const Look& a = look;
-  if (a.seq == finished_[a.robot] && sent_by(a.robot, node)) {
-    return look.time_s = finish_estimate(a.robot, a.seq);
+  const uint32_t seq = node - actions_.offset[a.robot];
+  if (seq == finished_[a.robot] && sent_by(a.robot, node)) {
+    return look.time_s = finish_estimate(a.robot, seq);
   }
   look.time_s = std::numeric_limits<double>::quiet_NaN();  // being computed
   const auto done = [&](uint32_t robot, uint32_t pred) {
@@ -155,13 +158,21 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
     return finish_estimate(robot, pred - actions_.offset[robot]);
   };
   double start = now_s_;
-  if (a.seq > finished_[a.robot]) start = std::max(start, done(a.robot, node - 1));
-  for (uint32_t e = enter_begin_[node]; e < enter_begin_[node + 1]; ++e) {
-    const uint32_t prev = prev_in(enter_stays_[e], s);
-    if (prev == kNoAction || stay_[prev].robot == a.robot || stay_[prev].leave == kNoAction) {
-      continue;
+  if (seq > finished_[a.robot]) start = std::max(start, done(a.robot, node - 1));
+  const uint32_t enters = stays_of(a.enters, enter_begin_, node);
+  for (uint32_t e = 0; e < enters; ++e) {
+    const uint32_t x = e == 0 ? a.enter : enter_stays_[enter_begin_[node] + e];
+    const Link& l = link_[x];
+    // The previous stay's robot and leaving from the link, unless the swap changes it (x is i,
+    // j, or the stay after j: prev_in).
+    uint32_t robot = l.prev_robot, leave = l.prev_leave;
+    if (s.swapped && (x == s.i || x == s.j || l.prev == s.j)) {
+      const uint32_t prev = prev_in(x, s);
+      robot = prev == kNoAction ? 0 : stay_[prev].robot;
+      leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
     }
-    start = std::max(start, done(stay_[prev].robot, stay_[prev].leave));
+    if (leave == kNoAction || robot == a.robot) continue;
+    start = std::max(start, done(robot, leave));
   }
   return look_[node].time_s = start + durations_.mean_s(a.type);
 }
@@ -172,7 +183,7 @@ double SwitchableTracker::cone_cost(const Swap& s) {
   double cost = 0;
   for (const uint32_t u : cone_) {
     const Look& a = look_[u];
-    const bool last = a.seq + 1 == actions_.count(a.robot) || look_[u + 1].cone != cone_id_;
+    const bool last = u + 1 == actions_.offset[a.robot + 1] || look_[u + 1].cone != cone_id_;
     if (last) cost += expect(u, s);
   }
   return cost;

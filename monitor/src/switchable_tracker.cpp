@@ -53,7 +53,8 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
     for (uint32_t p = first; p < end; ++p) {
       location_[p] = loc;
-      link(p, p == first ? kNoAction : p - 1, p + 1 == end ? kNoAction : p + 1);
+      link_prev(p, p == first ? kNoAction : p - 1);
+      link_next(p, p + 1 == end ? kNoAction : p + 1);
     }
   }
   const std::size_t nodes = actions.actions.size();
@@ -92,9 +93,11 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
   return {other, stay_[other].robot != stay_[stay].robot};
 }
 
-void SwitchableTracker::link(uint32_t stay, uint32_t prev, uint32_t next) {
-  link_[stay].prev = prev;
-  link_next(stay, next);
+void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
+  Link& l = link_[stay];
+  l.prev = prev;
+  l.prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
+  l.prev_leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
 }
 
 void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
@@ -460,9 +463,11 @@ void SwitchableTracker::relink(uint32_t stay) {
   edge(i, j, -1);
   edge(j, k, -1);
   if (h != kNoAction) link_next(h, j);
-  if (k != kNoAction) link_[k].prev = i;
-  link(j, h, i);
-  link(i, j, k);
+  if (k != kNoAction) link_prev(k, i);
+  link_prev(j, h);
+  link_next(j, i);
+  link_prev(i, j);
+  link_next(i, k);
   edge(h, j, +1);
   edge(j, i, +1);
   edge(i, k, +1);

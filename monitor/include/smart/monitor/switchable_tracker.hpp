@@ -196,14 +196,16 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> location_;  // stay id -> location
   // stay id -> the stays before and after it at its location (kNoAction: none): the current
   // order as a list, one lookup for a neighbour (an array of positions took four). With the next
-  // stay's robot and entry (a stay's never change; set with `next`, link()): the lookahead's
-  // cone walk reads them here, where reading stay_[next] cost it a cache miss per Type-2 edge,
+  // stay's robot and entry and the previous one's robot and leaving (a stay's never change; set
+  // with the neighbour, link_prev() and link_next()): the lookahead's cone walk and expected
+  // times read them here, where reading stay_[next] cost the walk a cache miss per Type-2 edge,
   // a third of its time (docs/execution.md, "Cost").
   struct Link {
     uint32_t prev = kNoAction, next = kNoAction;
     uint32_t next_robot = 0, next_enter = kNoAction;
+    uint32_t prev_robot = 0, prev_leave = kNoAction;
   };
-  void link(uint32_t stay, uint32_t prev, uint32_t next);
+  void link_prev(uint32_t stay, uint32_t prev);
   void link_next(uint32_t stay, uint32_t next);
   std::vector<Link> link_;
   std::vector<Stay> stay_;                           // stay id -> the stay
@@ -255,17 +257,21 @@ class SwitchableTracker final : public Execution {
   // it is in and the order whose expected finish `time_s` is computed (NaN while computed: a
   // cycle), with the action's robot, place and kind, in one place: one cache line per action
   // looked at (reading the plan's actions too cost a miss each in the monitor's runs).
-  // Also the first stay the action leaves and how many it leaves (255: count them in
-  // leave_begin_; the rest: leave_stays_), read by the cone's walk where the action's record is
-  // already in cache.
+  // Also the first stays the action enters and leaves and how many of each (255: count them in
+  // enter_begin_, leave_begin_; the rest: enter_stays_, leave_stays_), read by the cone's walk
+  // and expect() where the action's record is already in cache. Its place in its robot's queue
+  // is node - actions_.offset[robot] (a table of a few kB).
   struct alignas(32) Look {
     uint32_t cone = 0, order = 0;
     double time_s = 0;
-    uint32_t robot = 0, seq = 0;
-    uint32_t leave = kNoAction;
+    uint32_t robot = 0;
+    uint32_t enter = kNoAction, leave = kNoAction;
     grid::ActionType type = grid::ActionType::kMove;
-    uint8_t leaves = 0;
+    uint8_t enters = 0, leaves = 0;
   };
+  static uint32_t stays_of(uint8_t count, const std::vector<uint32_t>& begin, uint32_t node) {
+    return count < 255 ? count : begin[node + 1] - begin[node];
+  }
   static_assert(sizeof(Look) == 32);
   void next_mark(uint32_t& id, uint32_t Look::*mark);  // a new cone or order id
   std::vector<uint32_t> cone_, cone_robot_;            // the compared actions and their robots
