@@ -95,9 +95,9 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
     for (uint32_t e = 0; e < leaves; ++e) {
       const uint32_t x = e == 0 ? l.leave : leave_stays_[leave_begin_[u] + e];
       if (x != h && x != s.i && x != s.j) {
-        // The same next stay in both orders, its robot and entry kept in its link.
-        const Link& next = link_[x];
-        if (next.next != kNoAction && next.next_robot != robot && next.next_enter != kNoAction) {
+        // The same next stay in both orders (none: no entry), its robot and entry in near_.
+        const Near& next = near_[x];
+        if (next.next_enter != kNoAction && next.next_robot != robot) {
           add(next.next_enter, next.next_robot);
         }
         continue;
@@ -162,11 +162,10 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
   const uint32_t enters = stays_of(a.enters, enter_begin_, node);
   for (uint32_t e = 0; e < enters; ++e) {
     const uint32_t x = e == 0 ? a.enter : enter_stays_[enter_begin_[node] + e];
-    const Link& l = link_[x];
-    // The previous stay's robot and leaving from the link, unless the swap changes it (x is i,
-    // j, or the stay after j: prev_in).
-    uint32_t robot = l.prev_robot, leave = l.prev_leave;
-    if (s.swapped && (x == s.i || x == s.j || l.prev == s.j)) {
+    // The previous stay's robot and leaving from near_, unless the swap changes it (x is i, j,
+    // or the stay after j: prev_in).
+    uint32_t robot = near_[x].prev_robot, leave = near_[x].prev_leave;
+    if (s.swapped && (x == s.i || x == s.j || x == link_[s.j].next)) {
       const uint32_t prev = prev_in(x, s);
       robot = prev == kNoAction ? 0 : stay_[prev].robot;
       leave = prev == kNoAction ? kNoAction : stay_[prev].leave;

@@ -49,6 +49,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   const auto count = static_cast<uint32_t>(stay_.size());
   location_.resize(count);
   link_.resize(count);
+  if (options_.lookahead_actions > 0) near_.resize(count);
   for (uint32_t loc = 0; loc + 1 < orders_.begin.size(); ++loc) {
     const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
     for (uint32_t p = first; p < end; ++p) {
@@ -94,17 +95,17 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
 }
 
 void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
-  Link& l = link_[stay];
-  l.prev = prev;
-  l.prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
-  l.prev_leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
+  link_[stay].prev = prev;
+  if (near_.empty()) return;
+  near_[stay].prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
+  near_[stay].prev_leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
 }
 
 void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
-  Link& l = link_[stay];
-  l.next = next;
-  l.next_robot = next == kNoAction ? 0 : stay_[next].robot;
-  l.next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
+  link_[stay].next = next;
+  if (near_.empty()) return;
+  near_[stay].next_robot = next == kNoAction ? 0 : stay_[next].robot;
+  near_[stay].next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
 }
 
 // The smallest robot id in `set`, taken out of it (the set is not empty).
@@ -137,7 +138,7 @@ bool SwitchableTracker::sent_by(uint32_t robot, uint32_t node) const {
 // (docs/execution.md, "switchable-opt").
 bool SwitchableTracker::committed(uint32_t robot, uint32_t node) const {
   if (sent_by(robot, node)) return true;
-  const uint32_t seq = actions_.actions[node].seq;
+  const uint32_t seq = node - actions_.offset[robot];  // its place, without reading the action
   return options_.anticipate && seq == enqueued_[robot] && pending_[node] == 0 &&
          finished_[robot] + options_.commit_actions >= seq;
 }
@@ -515,7 +516,7 @@ double SwitchableTracker::finish_estimate(uint32_t robot, uint32_t seq) const {
 // infinite for a robot more than horizon_actions away (not expected anywhere yet).
 double SwitchableTracker::arrival(uint32_t stay) const {
   const Stay& x = stay_[stay];
-  const uint32_t seq = actions_.actions[x.enter].seq;
+  const uint32_t seq = x.enter - actions_.offset[x.robot];
   if (seq <= finished_[x.robot]) return now_s_;
   if (seq - finished_[x.robot] > options_.horizon_actions) {
     return std::numeric_limits<double>::infinity();
@@ -532,14 +533,16 @@ PassQueue SwitchableTracker::queue_of(uint32_t i, uint32_t j) const {
   PassQueue q{now_s_, {arrival(i), 0}, {arrival(j), 0}, kInf};
   if (!std::isfinite(q.i.arrive_s) || !std::isfinite(q.j.arrive_s)) return q;
   const auto stay_s = [this](uint32_t x, double arrive_s) {
-    return finish_estimate(stay_[x].robot, actions_.actions[stay_[x].leave].seq) - arrive_s;
+    const Stay& stay = stay_[x];
+    return finish_estimate(stay.robot, stay.leave - actions_.offset[stay.robot]) - arrive_s;
   };
   q.i.stay_s = stay_s(i, q.i.arrive_s);
   q.j.stay_s = stay_s(j, q.j.arrive_s);
   const auto h = before(i);
   if (h.stay != kNoAction && stay_[h.stay].leave != kNoAction &&
       !finished_by(stay_[h.stay].robot, stay_[h.stay].leave)) {
-    q.free_s = finish_estimate(stay_[h.stay].robot, actions_.actions[stay_[h.stay].leave].seq);
+    const Stay& first = stay_[h.stay];
+    q.free_s = finish_estimate(first.robot, first.leave - actions_.offset[first.robot]);
   }
   const auto k = after(j);
   if (k.edge && stay_[k.stay].enter != kNoAction && stay_[k.stay].robot != stay_[i].robot) {

@@ -195,19 +195,23 @@ class SwitchableTracker final : public Execution {
   PassingOrders orders_;
   std::vector<uint32_t> location_;  // stay id -> location
   // stay id -> the stays before and after it at its location (kNoAction: none): the current
-  // order as a list, one lookup for a neighbour (an array of positions took four). With the next
-  // stay's robot and entry and the previous one's robot and leaving (a stay's never change; set
-  // with the neighbour, link_prev() and link_next()): the lookahead's cone walk and expected
-  // times read them here, where reading stay_[next] cost the walk a cache miss per Type-2 edge,
-  // a third of its time (docs/execution.md, "Cost").
+  // order as a list, one lookup for a neighbour (an array of positions took four).
   struct Link {
     uint32_t prev = kNoAction, next = kNoAction;
+  };
+  // switchable-lookahead only: stay id -> the next stay's robot and entry, the previous one's
+  // robot and leaving (kNoAction: none; a stay's never change, so they change with the order:
+  // link_prev(), link_next()). The cone's walk and expect() read them here, where reading
+  // stay_[next] cost the walk a cache miss per Type-2 edge, a third of its time; kept out of
+  // Link, whose 8 bytes the tries and releases read (in it, they made those slower).
+  struct Near {
     uint32_t next_robot = 0, next_enter = kNoAction;
     uint32_t prev_robot = 0, prev_leave = kNoAction;
   };
   void link_prev(uint32_t stay, uint32_t prev);
   void link_next(uint32_t stay, uint32_t next);
   std::vector<Link> link_;
+  std::vector<Near> near_;  // empty unless lookahead_actions > 0
   std::vector<Stay> stay_;                           // stay id -> the stay
   std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
   std::vector<uint32_t> leave_begin_, leave_stays_;  // node -> stays it leaves (CSR)
