@@ -49,12 +49,50 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-// Starts `smart args...` in the background, stdout to `out`.
+// Starts `smart args...` in the background, stdout to `out`; its log (stderr) to `log` if given.
 inline common::ChildProcess start_smart(const std::vector<std::string>& args,
-                                        const std::filesystem::path& out) {
+                                        const std::filesystem::path& out,
+                                        const std::filesystem::path& log = {}) {
   std::vector<std::string> argv{smart_exe().string()};
   argv.insert(argv.end(), args.begin(), args.end());
+  if (!log.empty()) {
+    argv.insert(argv.begin(), {"/bin/sh", "-c", "exec \"$0\" \"$@\" 2>'" + log.string() + "'"});
+  }
   return common::ChildProcess(argv, out);
+}
+
+// Waits until `out` holds `text` while `p` runs: an event, not a guessed time (a loaded machine
+// starts processes slower than any bound). False if `p` exited without writing it, or nothing
+// came within `hang` (which only catches a hang).
+inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path& out,
+                            const std::string& text,
+                            std::chrono::seconds hang = std::chrono::seconds(60)) {
+  const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const bool ran = p.running();
+    if (slurp(out).find(text) != std::string::npos) return true;
+    if (!ran) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// Waits until `p` catches signal `sig` (its handler is installed: SigCgt of /proc/PID/status,
+// proc(5)), so that the signal a test sends reaches the handler, not the default action. False
+// if `p` exited first or `hang` passed.
+inline bool wait_for_handler(common::ChildProcess& p, int sig,
+                             std::chrono::seconds hang = std::chrono::seconds(60)) {
+  const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
+  const auto status = "/proc/" + std::to_string(p.pid()) + "/status";
+  while (p.running() && std::chrono::steady_clock::now() < deadline) {
+    std::istringstream in(slurp(status));
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("SigCgt:", 0) != 0) continue;
+      if ((std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1u) return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
 }
 
 // The port `smart serve --port 0` (stdout to `out`) says it listens on ("http://127.0.0.1:PORT"),
