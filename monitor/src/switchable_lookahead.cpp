@@ -125,12 +125,15 @@ void SwitchableTracker::init_look() {
     const auto& a = actions_.actions[n];
     look_[n].robot = a.robot;
     look_[n].type = a.type;
-    const uint32_t enters = enter_begin_[n + 1] - enter_begin_[n];
-    if (enters > 0) look_[n].enter = enter_stays_[enter_begin_[n]];
-    look_[n].enters = static_cast<uint8_t>(std::min<uint32_t>(enters, 255));
-    const uint32_t leaves = leave_begin_[n + 1] - leave_begin_[n];
-    if (leaves > 0) look_[n].leave = leave_stays_[leave_begin_[n]];
-    look_[n].leaves = static_cast<uint8_t>(std::min<uint32_t>(leaves, 255));
+    // A node's first stay of a CSR and how many (255: more, counted by stays_of()).
+    const auto first = [n](const std::vector<uint32_t>& begin, const std::vector<uint32_t>& stays,
+                           uint32_t& stay, uint8_t& count) {
+      const uint32_t c = begin[n + 1] - begin[n];
+      if (c > 0) stay = stays[begin[n]];
+      count = static_cast<uint8_t>(std::min<uint32_t>(c, 255));
+    };
+    first(enter_begin_, enter_stays_, look_[n].enter, look_[n].enters);
+    first(leave_begin_, leave_stays_, look_[n].leave, look_[n].leaves);
   }
 }
 

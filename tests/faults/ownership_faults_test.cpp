@@ -63,8 +63,8 @@ TEST_F(Faults, ASecondMonitorIsRefusedNamingTheOwnerAndTheFirstRunIsUndisturbed)
   const auto first_out = temp_file("faults_first.out");
   const auto first_log = temp_file("faults_first.log");
   auto first = start_smart(with("monitor", d, plan()), first_out, first_log);
-  // It logs this once it owns the run (MonitorNode::run, after owned()); a guessed 1.5 s was
-  // not enough on a loaded machine.
+  // It logs this once it owns the run (MonitorNode::run, after owned()): waited for, not a
+  // guessed 1.5 s, which a loaded machine may exceed.
   ASSERT_TRUE(wait_for_output(first, first_log, "waiting for the sim")) << slurp(first_log);
   // The sim joins only after the second monitor was refused: a lock-step run of these 20 robots
   // takes about a second, so with the sim already there the first run could be over before the
