@@ -77,24 +77,6 @@ inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path
   return false;
 }
 
-// Waits until `p` catches signal `sig` (its handler is installed: SigCgt of /proc/PID/status,
-// proc(5)), so that the signal a test sends reaches the handler, not the default action. False
-// if `p` exited first or `hang` passed.
-inline bool wait_for_handler(common::ChildProcess& p, int sig,
-                             std::chrono::seconds hang = std::chrono::seconds(60)) {
-  const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
-  const auto status = "/proc/" + std::to_string(p.pid()) + "/status";
-  while (p.running() && std::chrono::steady_clock::now() < deadline) {
-    std::istringstream in(slurp(status));
-    for (std::string line; std::getline(in, line);) {
-      if (line.rfind("SigCgt:", 0) != 0) continue;
-      if ((std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1u) return true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 // The port `smart serve --port 0` (stdout to `out`) says it listens on ("http://127.0.0.1:PORT"),
 // waited for until it says so or exits: a loaded machine starts it slower than any guessed bound.
 // 0 if it exited first, or said nothing within `hang` (which only catches a hang).

@@ -169,9 +169,9 @@ TEST(CalibrateTrim, ASignalStopsTheTrialAndTheWheels) {
        "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0,0,0", "--seconds", "30",
        "--yes", "--domain", std::to_string(kCalibrateTrimSignal)},
       out);
-  // Once its handler is in place, not after a guessed time: a SIGINT before it kills the
-  // process, and a loaded machine may take longer than any bound to get there.
-  ASSERT_TRUE(wait_for_handler(p, SIGINT)) << slurp(out);
+  // A guessed time, still: waiting for SigCgt of /proc/PID/status saw the /bin/sh that execs
+  // smart catch SIGINT, and the signal killed it before the exec (2026-12-01, a fresh clone).
+  std::this_thread::sleep_for(1500ms);
   p.signal(SIGINT);
   EXPECT_EQ(p.wait(5s).value_or(-1), 3) << slurp(out);
   EXPECT_NE(slurp(out).find("stopped by signal"), std::string::npos) << slurp(out);
