@@ -14,7 +14,8 @@
 namespace smart::hw {
 
 EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
-                               std::string object, uint16_t port, double accel, const EmulatedFlaws& flaws)
+                               std::string object, uint16_t port, double accel,
+                               const EmulatedFlaws& flaws, Stepping stepping)
     : cfg_(config),
       wheel_base_m_(wheel_base_m),
       accel_(accel),
@@ -26,6 +27,7 @@ EmulatedJetbot::EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, 
       noise_(flaws.seed) {
   regs_[pca9685::kMode1] = pca9685::kSleep | pca9685::kAllCall;  // power-on default: asleep
   if (port_ != 0) fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (stepping == Stepping::kManual) return;
   thread_ = std::thread([this] {
     auto next = std::chrono::steady_clock::now();
     while (!stop_) {

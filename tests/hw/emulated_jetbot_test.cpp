@@ -11,10 +11,17 @@
 namespace smart::hw {
 namespace {
 
+// `seconds` of the model in its thread's 10 ms steps.
+void advance(EmulatedJetbot& bot, double seconds) {
+  for (int i = 0; i < static_cast<int>(std::lround(seconds / 0.01)); ++i) bot.advance(0.01);
+}
+
 TEST(EmulatedJetbot, TheRealDriverMovesItAndItStopsWhenOutputsGoOff) {
   JetbotConfig c;
   c.left.sign = -1;  // the emulator's wiring matches the configuration
-  EmulatedJetbot bot(c, 0.1025, {0, 0, 0}, "", 0);
+  // Stepped here, 10 ms at a time: the model's time is told, not slept (a loaded machine
+  // stretches a sleep).
+  EmulatedJetbot bot(c, 0.1025, {0, 0, 0}, "", 0, 2.0, {}, Stepping::kManual);
   EXPECT_EQ(bot.commanded().left_mps, 0.0);  // asleep until init
   JetbotDrive drive(bot, c, [](double) {});
   EXPECT_TRUE(drive.configure().ok());
@@ -22,7 +29,7 @@ TEST(EmulatedJetbot, TheRealDriverMovesItAndItStopsWhenOutputsGoOff) {
   drive.set_wheel_speeds({0.3, 0.3});
   EXPECT_NEAR(bot.commanded().left_mps, 0.3, 0.01);
   EXPECT_NEAR(bot.commanded().right_mps, 0.3, 0.01);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  advance(bot, 0.5);
   EXPECT_GT(bot.pose().x_m, 0.05);
   drive.set_wheel_speeds({-0.2, 0.2});
   EXPECT_NEAR(bot.commanded().left_mps, -0.2, 0.01);
@@ -58,7 +65,7 @@ TEST(EmulatedJetbot, StreamsItsPoseAsViconDatagrams) {
 TEST(EmulatedJetbot, RealisticFlawsDeadBandLagAndNoise) {
   JetbotConfig plain;
   EmulatedFlaws flaws = realistic_flaws(7);
-  EmulatedJetbot bot(plain, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
+  EmulatedJetbot bot(plain, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws, Stepping::kManual);
   JetbotDrive drive(bot, plain, [](double) {});
   EXPECT_TRUE(drive.configure().ok());
   EXPECT_TRUE(drive.activate().ok());
@@ -67,17 +74,17 @@ TEST(EmulatedJetbot, RealisticFlawsDeadBandLagAndNoise) {
   JetbotConfig compensated;
   compensated.left.alpha = compensated.right.alpha = 1.0 - 60.0 / 255.0;
   compensated.left.beta = compensated.right.beta = 60.0 / 255.0;
-  EmulatedJetbot lab(compensated, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws);
+  EmulatedJetbot lab(compensated, 0.1025, {0, 0, 0}, "", 0, 100.0, flaws, Stepping::kManual);
   JetbotDrive lab_drive(lab, compensated, [](double) {});
   EXPECT_TRUE(lab_drive.configure().ok());
   EXPECT_TRUE(lab_drive.activate().ok());
   lab_drive.set_wheel_speeds({0.1, 0.3});
   EXPECT_NEAR(lab.commanded().left_mps, 0.1, 0.005);
   EXPECT_NEAR(lab.commanded().right_mps, 0.3, 0.005);
-  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  advance(lab, 0.03);
   // A 0.1 s time constant: still rising (without it, one 10 ms step would reach 0.3 m/s).
   EXPECT_LT(lab.wheel_speeds().right_mps, 0.95 * 0.3);
-  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  advance(lab, 0.6);
   EXPECT_NEAR(lab.wheel_speeds().right_mps, 0.3, 0.01);
 }
 

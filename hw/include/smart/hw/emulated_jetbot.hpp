@@ -51,11 +51,16 @@ struct EmulatedFlaws {
 // Positioning Performance", Sensors 17(7):1591, 2017; latency: Vicon Tracker's stated < 10 ms).
 EmulatedFlaws realistic_flaws(uint64_t seed);
 
+// Who advances the model: its own thread every 10 ms of wall time (a robot beside real
+// processes), or the caller through advance() (tests of the model itself: a loaded machine
+// stretches any wall-clock wait, a told time does not).
+enum class Stepping : uint8_t { kThread, kManual };
+
 class EmulatedJetbot : public I2cBus {
  public:
   EmulatedJetbot(const JetbotConfig& config, double wheel_base_m, agent::Pose2D start,
                  std::string vicon_object, uint16_t vicon_port, double accel_mps2 = 2.0,
-                 const EmulatedFlaws& flaws = {});
+                 const EmulatedFlaws& flaws = {}, Stepping stepping = Stepping::kThread);
   ~EmulatedJetbot() override;
 
   void write(uint8_t address, const std::vector<uint8_t>& bytes) override;
@@ -66,7 +71,7 @@ class EmulatedJetbot : public I2cBus {
   // Wheel speed targets decoded from the current registers (no dynamics).
   agent::WheelSpeeds commanded() const;
   uint64_t writes() const;
-  // Advances the wheel model by dt (the thread calls this every 10 ms).
+  // Advances the wheel model by dt (with Stepping::kThread, the thread calls this every 10 ms).
   void advance(double dt);
 
  private:
