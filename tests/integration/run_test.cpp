@@ -34,8 +34,8 @@ class Run : public ::testing::Test {
             "--no-progress"};
   }
   // 100 robots of SMART's warehouse plan: ~540 s of sim time. Unpaced it can now end in under
-  // 4 s, so the tests that kill a process 2.5 s in pace the sim to 20x real time (about 27 s):
-  // the process dies mid-run however fast the machine.
+  // 4 s, so the tests that kill a process once its first action has finished pace the sim to 20x
+  // real time (about 27 s): the process dies mid-run however fast the machine.
   std::vector<std::string> long_run_args(int domain) {
     return {"--map",        (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
             "--scen",       (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
@@ -125,7 +125,8 @@ TEST_F(Run, LockStepRunsOfTheSamePlanGiveIdenticalNumbersPacedOrNot) {
 TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   auto margs = long_run_args(kRunKillSim);
   margs.insert(margs.begin(), "monitor");
-  margs.insert(margs.end(), {"--timeout-s", "3"});
+  const auto dir = temp_file("kill_monitor");
+  margs.insert(margs.end(), {"--timeout-s", "3", "--out", dir.string()});
   const auto mout = temp_file("kill_monitor.out");
   auto monitor = start_smart(margs, mout);
   common::ChildProcess sim(
@@ -133,7 +134,9 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
        "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--agents", "100",
        "--domain", std::to_string(kRunKillSim), "--real-time-factor", "20"},
       "/dev/null");
-  std::this_thread::sleep_for(2500ms);  // the run is under way
+  // The run is under way once an action has finished (a guessed 2.5 s before: on a loaded
+  // machine the sim may not have joined by then).
+  ASSERT_TRUE(wait_for_progress(monitor, dir)) << slurp(mout);
   ASSERT_TRUE(monitor.running());
   sim.signal(SIGKILL);
   const auto rc = monitor.wait(30s);
@@ -144,16 +147,18 @@ TEST_F(Run, KillingTheSimHostMakesTheMonitorReportFailureInsteadOfHanging) {
   EXPECT_TRUE(j["sim_lost"].get<bool>());
   EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("sim host"));
   std::filesystem::remove(mout);
+  std::filesystem::remove_all(dir);
 }
 
 // Regression: `smart run` noticed its own sim child had died only after --timeout-s of silence.
 TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
   auto args = long_run_args(kRunKillChild);
   args.insert(args.begin(), "run");
-  args.insert(args.end(), {"--timeout-s", "60", "--real-time-factor", "20"});
+  const auto dir = temp_file("kill_child");
+  args.insert(args.end(), {"--timeout-s", "60", "--real-time-factor", "20", "--out", dir.string()});
   const auto out = temp_file("kill_child.out");
   auto run = start_smart(args, out);
-  std::this_thread::sleep_for(2500ms);  // the run is under way
+  ASSERT_TRUE(wait_for_progress(run, dir)) << slurp(out);  // under way: an action finished
   ASSERT_TRUE(run.running());
   // The sim is `smart run`'s only child.
   std::ifstream children("/proc/" + std::to_string(run.pid()) + "/task/" +
@@ -170,6 +175,7 @@ TEST_F(Run, SmartRunReportsItsDeadSimChildAtOnce) {
   EXPECT_TRUE(j["sim_lost"].get<bool>());
   EXPECT_THAT(j["error"].get<std::string>(), HasSubstr("killed by signal 9"));
   std::filesystem::remove(out);
+  std::filesystem::remove_all(dir);
 }
 
 // Regression: in a run short enough that the sim host's only status sample was its final one,

@@ -1,7 +1,9 @@
 // Runs the real `smart` executable as a child process and collects its stdout.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -71,6 +73,23 @@ inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path
   while (std::chrono::steady_clock::now() < deadline) {
     const bool ran = p.running();
     if (slurp(out).find(text) != std::string::npos) return true;
+    if (!ran) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// Waits until a run with `--out dir` has finished an action (a row in dir/progress.csv after
+// its header, results_format.hpp kProgressCsv): the run is under way, its robots moving. False
+// if `p` exited first or nothing came within `hang` (which only catches a hang).
+inline bool wait_for_progress(common::ChildProcess& p, const std::filesystem::path& dir,
+                              std::chrono::seconds hang = std::chrono::seconds(60)) {
+  const auto file = dir / "progress.csv";
+  const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const bool ran = p.running();
+    const auto text = slurp(file);
+    if (std::count(text.begin(), text.end(), '\n') >= 2) return true;
     if (!ran) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

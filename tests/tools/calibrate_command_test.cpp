@@ -169,9 +169,10 @@ TEST(CalibrateTrim, ASignalStopsTheTrialAndTheWheels) {
        "trim", "--robot-id", "0", "--i2c", "emulated", "--emulate-pose", "0,0,0", "--seconds", "30",
        "--yes", "--domain", std::to_string(kCalibrateTrimSignal)},
       out);
-  // A guessed time, still: waiting for SigCgt of /proc/PID/status saw the /bin/sh that execs
-  // smart catch SIGINT, and the signal killed it before the exec (2026-12-01, a fresh clone).
-  std::this_thread::sleep_for(1500ms);
+  // Signalled once it says it drives (its handler is in place then): a guessed 1.5 s before it
+  // would fail on a loaded machine, and SigCgt of /proc/PID/status showed the /bin/sh that execs
+  // smart catching SIGINT, which then killed the shell before the exec (2026-12-01).
+  ASSERT_TRUE(wait_for_output(p, out, "Ctrl-C stops the wheels")) << slurp(out);
   p.signal(SIGINT);
   EXPECT_EQ(p.wait(5s).value_or(-1), 3) << slurp(out);
   EXPECT_NE(slurp(out).find("stopped by signal"), std::string::npos) << slurp(out);

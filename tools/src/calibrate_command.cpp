@@ -98,6 +98,9 @@ int run_trim(const TrimOptions& o) {
     spdlog::error("not confirmed: the robot did not move (answer yes, or pass --yes)");
     return kExitRunFailed;
   }
+  // Said once the signal handler is in place: a person (or a test) knows Ctrl-C now stops it.
+  std::cerr << "Robot " << o.robot_id << " driving for " << o.trial.seconds
+            << " s; Ctrl-C stops the wheels." << std::endl;
   auto trial = o.trial;
   trial.stop = &g_stop_requested;
   const auto samples = commissioning::drive_straight(trial, o.robot_id, io);
