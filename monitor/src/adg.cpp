@@ -252,7 +252,12 @@ std::size_t apply_switches(PassingOrders& orders, const std::vector<PassingSwitc
            !matched && k < orders.begin[sw.location + 1]; ++k) {
         auto& a = orders.stays[k - 1];
         auto& b = orders.stays[k];
-        if (a.robot != sw.second || b.robot != sw.first || entered_by(b.enter, sw.time_s)) continue;
+        if (a.robot != sw.second || b.robot != sw.first) continue;
+        if (sw.first_enter != kUnrecorded || sw.second_enter != kUnrecorded) {
+          if (b.enter != sw.first_enter || a.enter != sw.second_enter) continue;  // those stays
+        } else if (entered_by(b.enter, sw.time_s)) {
+          continue;
+        }
         std::swap(a, b);
         matched = true;
       }

@@ -55,6 +55,10 @@ class DdsRunWriter final : public RunWriter {
     if (on_action_finished) on_action_finished(robot, seq, sim_time_s);
   }
   std::function<void(uint32_t, uint32_t, double)> on_action_finished;
+  void switched(const PassingSwitch& s) override {
+    if (on_switch) on_switch(s);
+  }
+  std::function<void(const PassingSwitch&)> on_switch;
   void answer_tick(const wire::Tick& answer) override {
     actions_.flush();
     clock_.write(wire::to_wire(answer, dds::kMonitorClockSource));
@@ -145,6 +149,7 @@ struct MonitorNode::Impl {
         senders(robots) {
     writer.set_source(sup.execution());
     writer.on_action_finished = o.on_action_finished;
+    writer.on_switch = o.on_switch;
   }
 
   // True when the sample passed; otherwise it is counted and (rate-limited) logged.

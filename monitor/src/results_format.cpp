@@ -407,8 +407,24 @@ void append_row(std::string& out, const SwitchRow& r) {
   put(out, r.x);
   put(out, r.y);
   put(out, r.first);
-  put(out, r.second, '\n');
+  put(out, r.second);
+  put(out, r.first_seq);
+  put(out, r.second_seq, '\n');
 }
+
+namespace {
+
+// An empty field is "not recorded"; anything else a seq.
+bool optional_seq(std::string_view f, std::optional<uint32_t>& out) {
+  out.reset();
+  if (f.empty()) return true;
+  uint32_t v = 0;
+  if (!number(f, v)) return false;
+  out = v;
+  return true;
+}
+
+}  // namespace
 
 std::vector<SwitchRow> parse_switches_csv(std::string_view text) {
   std::vector<SwitchRow> out;
@@ -416,10 +432,14 @@ std::vector<SwitchRow> parse_switches_csv(std::string_view text) {
     SwitchRow r;
     if (!number(next_field(line), r.time_s) || !number(next_field(line), r.x) ||
         !number(next_field(line), r.y) || !number(next_field(line), r.first) ||
-        !number(next_field(line), r.second) || !line.empty() || r.time_s < 0 || r.x < 0 ||
-        r.y < 0) {
+        !number(next_field(line), r.second) || r.time_s < 0 || r.x < 0 || r.y < 0 ||
+        (!line.empty() && (std::count(line.begin(), line.end(), ',') != 1 ||
+                           !optional_seq(next_field(line), r.first_seq) ||
+                           !optional_seq(next_field(line), r.second_seq) || !line.empty()))) {
       throw bad_row(kSwitchesCsv, line_no,
-                    std::string(kSwitchesHeader) + " (time and cells >= 0, robot ids)");
+                    std::string(kSwitchesHeader) +
+                        " (time and cells >= 0, robot ids, action seqs or empty; the last two "
+                        "may be left out)");
     }
     out.push_back(r);
   });

@@ -37,9 +37,11 @@ RunSupervisor::RunSupervisor(const Instance& instance, const SupervisorConfig& c
                              RunWriter& writer)
     : in_(&instance), config_(config), writer_(writer) {
   if (config.switchable) {
-    switchable_.emplace(instance.actions,
-                        passing_orders(instance.actions, instance.grid, instance.adg.footprint),
-                        config.switch_options);
+    auto orders = passing_orders(instance.actions, instance.grid, instance.adg.footprint);
+    unreplayed_switches_ = apply_switches(orders, config.resume_switches);
+    res_.switches = config.resume_switches;  // switches.csv lists the run's, before and after
+    switchable_.emplace(instance.actions, std::move(orders), config.switch_options,
+                        !config.resume_switches.empty());
     exec_ = &*switchable_;
     res_.execution = execution_name(config.switch_options);
   } else {
@@ -87,7 +89,9 @@ void RunSupervisor::advance_time(double time_s) {
   if (!exec_->lifelong() || over()) return;
   std::vector<uint32_t> sent(exec_->robots());
   for (uint32_t r = 0; r < sent.size(); ++r) sent[r] = static_cast<uint32_t>(sent_.mark(r));
-  for (const uint32_t r : exec_->on_time(time_s, sent)) publish_window(r);
+  const auto changed = exec_->on_time(time_s, sent);
+  take_switches();
+  for (const uint32_t r : changed) publish_window(r);
   res_.total_actions = exec_->total();
 }
 
@@ -98,7 +102,18 @@ void RunSupervisor::end(Outcome outcome, std::string error) {
 
 void RunSupervisor::start(double now_s) {
   std::fill(robot_seen_s_.begin(), robot_seen_s_.end(), now_s);
+  if (switchable_) switchable_->unpause();  // rebuilt (resume()): it may switch again
+  take_switches();  // the first windows may follow switches made at once (anticipation)
   for (uint32_t r = 0; r < exec_->robots(); ++r) publish_window(r);
+}
+
+void RunSupervisor::take_switches() {
+  const auto* all = exec_->switches();
+  if (all == nullptr) return;
+  for (; taken_switches_ < all->size(); ++taken_switches_) {
+    res_.switches.push_back((*all)[taken_switches_]);
+    writer_.switched((*all)[taken_switches_]);
+  }
 }
 
 void RunSupervisor::publish_window(uint32_t robot) {
@@ -163,16 +178,12 @@ void RunSupervisor::apply_progress(const ProgressEvent& p, double sim_time_s) {
       writer_.action_finished(p.robot, s, sim_time_s);
     }
   }
+  take_switches();  // before the windows they change
   for (const uint32_t r : u.robots_changed) {
     publish_window(r);
     if (exec_->robot_done(r)) mark_done(r, sim_time_s);
   }
   res_.finished_actions = exec_->finished_total();
-  if (const auto* all = exec_->switches(); all && all->size() > res_.switches.size()) {
-    res_.switches.insert(res_.switches.end(),
-                         all->begin() + static_cast<std::ptrdiff_t>(res_.switches.size()),
-                         all->end());
-  }
 }
 
 PlanSnapshot RunSupervisor::plan_snapshot() const {
@@ -436,6 +447,12 @@ std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
   std::vector<int64_t> target(exec_->robots(), -1);
   uint64_t run = 0;
   std::string error = resume_check(reported, target, run);
+  if (error.empty() && unreplayed_switches_ > 0) {
+    error = "cannot resume: " + std::to_string(unreplayed_switches_) + " of the " +
+            std::to_string(config_.resume_switches.size()) +
+            " switches given match no pair of this plan's passing orders; give the switches.csv "
+            "of the run being resumed, with its plan, --agents and --execution";
+  }
   if (error.empty() && run == 0) {
     error = "cannot resume: the hosts report no progress yet; start a new run";
   }
@@ -445,9 +462,11 @@ std::string RunSupervisor::resume(const std::vector<ProgressEvent>& reported) {
     for (uint32_t r = 0; r < target.size() && error.empty(); ++r) {
       if (static_cast<int64_t>(exec_->finished(r)) - 1 == target[r]) continue;
       error = "cannot resume: robot " + std::to_string(r) + " reports action " +
-              std::to_string(target[r]) +
-              " finished, which this plan's dependency graph does not allow; use the plan, "
-              "--agents and --initial-heading of the run being resumed";
+              std::to_string(target[r]) + " finished, which this plan's dependency graph " +
+              (switchable_ ? "with the switches given " : "") +
+              "does not allow; use the plan, --agents and --initial-heading of the run being "
+              "resumed" +
+              (switchable_ ? ", and its live switches.csv (--resume-switches)" : "");
     }
   }
   if (!error.empty()) {

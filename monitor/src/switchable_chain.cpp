@@ -65,6 +65,9 @@ bool SwitchableTracker::try_chain(uint32_t i,
   const uint32_t passed = stay_[i].robot, ready = stay_[after(i).stay].robot;
   if (compares_chains()) collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
   std::vector<uint32_t> chain{i};
+  // The stay each one passes, taken before it is relinked: with two stays of the robot passed
+  // at one location, the one before a stay afterwards may be its own.
+  std::vector<uint32_t> passes{after(i).stay};
   relink(i);
   uint32_t next = chain_link(path, passed, ready);
   for (;;) {
@@ -80,6 +83,7 @@ bool SwitchableTracker::try_chain(uint32_t i,
     if (options_.anticipate && !compares_chains() && !(saving(next, after(next).stay) > 0)) {
       break;
     }
+    passes.push_back(after(next).stay);
     relink(next);
     chain.push_back(next);
     const Reach r = chain_cycle(chain);
@@ -88,10 +92,11 @@ bool SwitchableTracker::try_chain(uint32_t i,
       return false;  // undone
     }
     if (r == Reach::kNone) {
-      for (const uint32_t s : chain) {
-        const uint32_t j = before(s).stay;
-        switches_.push_back({time_s, location_[s], ready, passed, anticipated});
-        settle(j);
+      for (std::size_t n = 0; n < chain.size(); ++n) {
+        const uint32_t s = chain[n];
+        switches_.push_back({time_s, location_[s], ready, passed, anticipated,
+                             stay_[passes[n]].enter, stay_[s].enter});
+        settle(before(s).stay);
       }
       if (anticipated) anticipated_ += chain.size();
       chained_ += chain.size();

@@ -28,10 +28,11 @@ void index_stays(const std::vector<Stay>& stays, std::size_t nodes, bool enter,
 }  // namespace
 
 SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders orders,
-                                     SwitchOptions options)
+                                     SwitchOptions options, bool paused)
     : actions_(actions),
       orders_(std::move(orders)),
       options_(options),
+      paused_(paused),
       pending_(actions.actions.size(), 0),
       finished_(actions.robots(), 0),
       enqueued_(actions.robots(), 0),
@@ -80,6 +81,15 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   dirty_.reset();
   std::vector<uint32_t> changed;  // before the first windows: all are sent then
   try_switches(0.0, changed);
+}
+
+// The robots that may switch now are tried at the next progress.
+void SwitchableTracker::unpause() {
+  if (!paused_) return;
+  paused_ = false;
+  for (uint32_t r = 0; r < finished_.size(); ++r) {
+    if (candidate(r)) dirty_.set(r);
+  }
 }
 
 SwitchableTracker::Neighbour SwitchableTracker::before(uint32_t stay) const {
@@ -242,7 +252,7 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
 // they keep their place. Every robot in ahead_ is decided before this returns, so no entry
 // waits for a decision between progress reports.
 void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& changed) {
-  std::size_t budget = 4 * finished_.size() + 16;
+  std::size_t budget = paused_ ? 0 : 4 * finished_.size() + 16;
   while ((dirty_.any() || ahead_.any()) && budget-- > 0) {
     if (dirty_.none()) {
       const uint32_t r = take_first(ahead_);
@@ -325,7 +335,8 @@ bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<ui
       break;
   }
   forget_refusal(robot);
-  switches_.push_back({time_s, location_[mine], robot, first.robot});
+  switches_.push_back(
+      {time_s, location_[mine], robot, first.robot, false, stay_[mine].enter, first.enter});
   swap_with_next(theirs, changed);
   return true;
 }
@@ -585,7 +596,7 @@ bool SwitchableTracker::anticipate(uint32_t robot, double time_s, std::vector<ui
     const Reach r = reaches(node, second.leave, stay_[i].leave, second.enter, path);
     if (r == Reach::kPath && whole_chain && try_chain(i, path, time_s, changed, true)) return true;
     if (r != Reach::kNone || whole_chain) continue;
-    switches_.push_back({time_s, location_[i], second.robot, robot, true});
+    switches_.push_back({time_s, location_[i], second.robot, robot, true, second.enter, node});
     ++anticipated_;
     swap_with_next(i, changed);
     return true;

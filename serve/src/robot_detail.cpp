@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "smart/monitor/results.hpp"
 #include "smart/monitor/results_format.hpp"
 
 namespace smart::serve {
@@ -125,19 +126,9 @@ json starts_and_goals(const monitor::Instance& in, double cell_m) {
 
 monitor::Adg ended_adg(const monitor::Instance& in, const std::vector<results::SwitchRow>& rows,
                        const std::vector<double>& finish_s, std::size_t* unmatched) {
-  std::vector<monitor::PassingSwitch> switches;
-  const double w = in.grid.width(), h = in.grid.height();
-  for (const auto& r : rows) {
-    const double x2 = 2 * r.x, y2 = 2 * r.y;
-    const bool on_map =
-        x2 == std::floor(x2) && y2 == std::floor(y2) && r.x <= w - 1 && r.y <= h - 1;
-    const auto location = on_map ? static_cast<uint32_t>(in.grid.half_index(
-                                       {static_cast<int32_t>(x2), static_cast<int32_t>(y2)}))
-                                 : monitor::kNoAction;  // matches no location
-    switches.push_back({r.time_s, location, r.first, r.second});
-  }
   auto orders = monitor::passing_orders(in.actions, in.grid, in.adg.footprint);
-  const std::size_t missed = monitor::apply_switches(orders, switches, finish_s);
+  const std::size_t missed = monitor::apply_switches(
+      orders, monitor::passing_switches(in.grid, in.actions, rows), finish_s);
   if (unmatched != nullptr) *unmatched = missed;
   return monitor::adg_of_orders(orders, in.actions, in.adg.footprint);
 }

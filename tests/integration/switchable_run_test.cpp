@@ -3,7 +3,9 @@
 // lock-step; and a two-robot crossing where one delayed robot is passed, with exact numbers.
 // Real processes and DDS on loopback, each run in its own domain.
 #include <gtest/gtest.h>
+#include <signal.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -91,7 +93,7 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
   const auto csv = slurp(a_dir / "switches.csv");
   EXPECT_EQ(csv, slurp(b_dir / "switches.csv"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time_s,x,y,first,second");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time_s,x,y,first,second,first_seq,second_seq");
   EXPECT_EQ(a["aet_s"], b["aet_s"]);
   EXPECT_EQ(a["waiting_time_s"], b["waiting_time_s"]);
   EXPECT_FALSE(std::filesystem::exists(plain_dir / "switches.csv"));
@@ -264,8 +266,9 @@ TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNu
   EXPECT_NEAR(sw["aet_s"].get<double>(), 8.65, 1e-9);
   EXPECT_NEAR(sw["makespan_s"].get<double>(), 9.6, 1e-9);
   EXPECT_NEAR(sw["waiting_time_s"]["total"].get<double>(), 0.0, 1e-9);
-  // Robot 1 passed robot 0 at (2, 1).
-  EXPECT_EQ(slurp(dir / "switchable" / "switches.csv"), "time_s,x,y,first,second\n3.3,2,1,1,0\n");
+  // Robot 1 passed robot 0 at (2, 1): its action 2 enters the cell before robot 0's action 3.
+  EXPECT_EQ(slurp(dir / "switchable" / "switches.csv"),
+            "time_s,x,y,first,second,first_seq,second_seq\n3.3,2,1,1,0,2,3\n");
   // robots.csv: robot, finish, waiting, stops, actions (then the motion bound).
   const auto rows = [&](const std::string& execution) {
     std::ifstream in(dir / execution / "robots.csv");
@@ -283,8 +286,9 @@ TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNu
   std::filesystem::remove_all(dir);
 }
 
-// A monitor taking over a run cannot know the switches made: refused, with the fix.
-TEST_F(SwitchableRun, ResumeRefusesSwitchingNamingTheFlags) {
+// A monitor taking over a switchable run needs the switches made: refused without them, with
+// the fix.
+TEST_F(SwitchableRun, ResumeWithoutTheSwitchesIsRefusedNamingTheFlag) {
   const auto r = run_smart({"monitor", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
                             "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
                             "--plan", (b_ / "smart-examples/scen_1_paths.txt").string(), "--axis",
@@ -293,6 +297,88 @@ TEST_F(SwitchableRun, ResumeRefusesSwitchingNamingTheFlags) {
                            60s, "switchable_resume", true);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find("--resume with --execution switchable"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--resume-switches"), std::string::npos) << r.out;
+}
+
+// `smart monitor` of SMART's 100-robot plan under delays, switchable, against `smart sim`.
+std::vector<std::string> resumable_monitor(const std::filesystem::path& b, int domain,
+                                           const std::filesystem::path& out) {
+  return {"monitor",
+          "--map",
+          (b / "maps/warehouse-10-20-10-2-1.map").string(),
+          "--scen",
+          (b / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
+          "--plan",
+          (b / "smart-examples/scen_1_paths.txt").string(),
+          "--axis",
+          "rowcol",
+          "--agents",
+          "100",
+          "--domain",
+          std::to_string(domain),
+          "--execution",
+          "switchable",
+          "--out",
+          out.string(),
+          "--no-progress"};
+}
+
+// A switchable run's monitor killed mid-run, after it switched, is replaced by `smart monitor
+// --resume --resume-switches` with its live switches.csv: the new monitor rebuilds the passing
+// orders the first had reached and the run ends clean (without them it could not: robots that
+// passed others report actions the plan's orders do not allow, or are sent into a location
+// another was sent into).
+TEST_F(SwitchableRun, AResumedMonitorReplaysTheSwitchesMadeAndFinishesClean) {
+  const auto dir = temp_file("switchable_resume_run");
+  std::filesystem::remove_all(dir);
+  common::ChildProcess sim(
+      {smart_exe().string(), "sim", "--map", (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
+       "--scen", (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--agents", "100",
+       "--domain", std::to_string(kSwitchableResumeRun), "--delay-probability", "0.01",
+       "--delay-min-s", "1", "--delay-max-s", "4", "--seed", "1"},
+      "/dev/null");
+  const auto first_out = temp_file("switchable_resume_first.out");
+  auto first = start_smart(resumable_monitor(b_, kSwitchableResumeRun, dir / "first"), first_out);
+  // Killed once it has switched five times (rows of its live switches.csv).
+  ASSERT_TRUE(wait_for_rows(first, dir / "first" / "switches.csv", 5)) << slurp(first_out);
+  first.signal(SIGKILL);
+  ASSERT_TRUE(first.wait(5s).has_value());
+  const auto made = slurp(dir / "first" / "switches.csv");
+  const auto replayed = std::count(made.begin(), made.end(), '\n') - 1;
+
+  auto args = resumable_monitor(b_, kSwitchableResumeRun, dir / "second");
+  args.insert(args.end(),
+              {"--resume", "--resume-switches", (dir / "first" / "switches.csv").string()});
+  const auto r = run_smart(args, 180s, "switchable_resume_second");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = r.last_json();
+  EXPECT_TRUE(j["success"].get<bool>()) << j.dump();
+  EXPECT_EQ(j["finished_actions"], j["total_actions"]);
+  EXPECT_EQ(j["rejected_progress"], 0);
+  EXPECT_EQ(j["collisions"], 0);
+  EXPECT_GT(j["resumed"]["finished_before"].get<int>(), 0);
+  // Its switches.csv lists the run's switches: the first monitor's, then its own.
+  const auto all = slurp(dir / "second" / "switches.csv");
+  EXPECT_EQ(all.substr(0, made.size()), made);
+  EXPECT_GE(j["execution"]["switches"].get<long>(), replayed);
+  ASSERT_EQ(sim.wait(10s).value_or(-1), 0) << "the sim host did not stop with the resumed run";
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove(first_out);
+}
+
+// Switches of another run: the row that matches no pair of this plan is named, before any DDS.
+TEST_F(SwitchableRun, ResumeSwitchesOfAnotherRunNameTheRowThatDoesNotFit) {
+  const auto dir = temp_file("switchable_resume_mismatch");
+  std::filesystem::create_directories(dir);
+  // Robot 1 is not directly after robot 0 at cell (0,0) with its action 0 there.
+  std::ofstream(dir / "switches.csv") << "time_s,x,y,first,second,first_seq,second_seq\n"
+                                         "1.5,0,0,1,0,0,0\n";
+  auto args = resumable_monitor(b_, kSwitchableResumeMismatch, dir / "out");
+  args.insert(args.end(), {"--resume", "--resume-switches", (dir / "switches.csv").string()});
+  const auto r = run_smart(args, 60s, "switchable_resume_mismatch", true);
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("switches.csv line 2: robot 1 passing robot 0"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

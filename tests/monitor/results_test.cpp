@@ -195,6 +195,38 @@ TEST(Results, ProgressIsFlushedRowByRowForLiveViews) {
   std::filesystem::remove_all(dir);
 }
 
+// switches.csv while a switchable run goes (what --resume-switches replays): each row on disk
+// once added, its stays named by their entering actions' seqs, read back onto the same stays;
+// a seq the robot does not have matches nothing.
+TEST(Results, SwitchesAreFlushedAsMadeAndReadBackOntoTheirStays) {
+  const auto in = tiny_instance();
+  const auto orders = passing_orders(in.actions, in.grid);
+  const auto loc = static_cast<uint32_t>(in.grid.half_index(HalfCell::of({1, 1})));
+  const auto& a = orders.stays[orders.begin[loc]];
+  const auto& b = orders.stays[orders.begin[loc] + 1];
+  ASSERT_NE(a.robot, b.robot);
+  const PassingSwitch made{2.5, loc, b.robot, a.robot, false, b.enter, a.enter};
+  const auto dir = temp_dir("switches");
+  SwitchesCsvWriter w(dir);
+  w.add(switch_row(in.grid, &in.actions, made));
+  const auto text = slurp(dir / "switches.csv");
+  const auto seq = [&](uint32_t robot, uint32_t node) {
+    return std::to_string(node - in.actions.offset[robot]);
+  };
+  EXPECT_EQ(text, "time_s,x,y,first,second,first_seq,second_seq\n2.5,1,1," +
+                      std::to_string(b.robot) + "," + std::to_string(a.robot) + "," +
+                      seq(b.robot, b.enter) + "," + seq(a.robot, a.enter) + "\n");
+  auto rows = results::parse_switches_csv(text);
+  EXPECT_EQ(passing_switches(in.grid, in.actions, rows), std::vector<PassingSwitch>{made});
+  auto replayed = orders;
+  EXPECT_EQ(apply_switches(replayed, passing_switches(in.grid, in.actions, rows)), 0u);
+  EXPECT_EQ(replayed.stays[orders.begin[loc]].robot, b.robot);
+  rows[0].first_seq = 99;
+  auto other = orders;
+  EXPECT_EQ(apply_switches(other, passing_switches(in.grid, in.actions, rows)), 1u);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Results, FinishedCountsAreReplacedWhole) {
   const auto dir = temp_dir("finished");
   std::filesystem::create_directories(dir);

@@ -93,6 +93,41 @@ TEST(SwitchableTracker, TheReadyRobotPassesFirstWhenTheOtherIsDelayed) {
   EXPECT_EQ(plain.enqueued(1), 2u);
 }
 
+// A resume's rebuild (run_supervisor.hpp resume()): on the orders a stopped monitor had
+// reached, its switches replayed (apply_switches, by the stays' entries), a paused tracker fed
+// the hosts' progress sends what that monitor had sent and switches nothing itself; unpaused,
+// it switches again.
+TEST(SwitchableTracker, APausedTrackerRebuildsTheOrdersReachedAndSwitchesOnlyOnceUnpaused) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker stopped(actions, passing_orders(actions, grid), kNear);
+  stopped.on_progress(1, 0, 1.0);  // robot 1 passes robot 0 (as in the test above)
+  ASSERT_EQ(stopped.switches()->size(), 1u);
+  const PassingSwitch made = stopped.switches()->front();
+  EXPECT_EQ(made.first_enter, actions.offset[1] + 2);  // robot 1's entry into the cell
+  EXPECT_EQ(made.second_enter, actions.offset[0] + 3);
+
+  auto orders = passing_orders(actions, grid);
+  ASSERT_EQ(apply_switches(orders, {made}), 0u);
+  SwitchableTracker rebuilt(actions, orders, kNear, true);
+  EXPECT_EQ(rebuilt.order_at(cell), (std::vector<uint32_t>{1, 0}));
+  rebuilt.on_progress(1, 0, 0.0);
+  EXPECT_EQ(rebuilt.enqueued(1), stopped.enqueued(1));
+  EXPECT_EQ(rebuilt.enqueued(0), stopped.enqueued(0));
+  EXPECT_TRUE(rebuilt.switches()->empty());
+
+  // The plan's orders, paused: robot 1 ready, robot 0 late, and no switch until unpaused.
+  SwitchableTracker paused(actions, passing_orders(actions, grid), kNear, true);
+  paused.on_progress(1, 0, 1.0);
+  EXPECT_TRUE(paused.switches()->empty());
+  EXPECT_EQ(paused.order_at(cell), (std::vector<uint32_t>{0, 1}));
+  paused.unpause();
+  paused.on_progress(1, 1, 1.5);
+  ASSERT_EQ(paused.switches()->size(), 1u);
+  EXPECT_EQ(paused.order_at(cell), (std::vector<uint32_t>{1, 0}));
+}
+
 // Robot 1 is ready while robot 0 was already sent its entry: no switch.
 TEST(SwitchableTracker, ARobotThatWasSentItsEntryKeepsItsPlace) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));

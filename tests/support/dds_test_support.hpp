@@ -185,6 +185,8 @@ enum DomainId : int {
   kLifelongBadFlags = 54,
   kRos2BadRobotLists = 53,
   kSwitchableResume = 52,
+  kSwitchableResumeRun = 51,
+  kSwitchableResumeMismatch = 50,
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -79,21 +79,28 @@ inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path
   return false;
 }
 
-// Waits until a run with `--out dir` has finished an action (a row in dir/progress.csv after
-// its header, results_format.hpp kProgressCsv): the run is under way, its robots moving. False
-// if `p` exited first or nothing came within `hang` (which only catches a hang).
-inline bool wait_for_progress(common::ChildProcess& p, const std::filesystem::path& dir,
-                              std::chrono::seconds hang = std::chrono::seconds(60)) {
-  const auto file = dir / "progress.csv";
+// Waits until `file` (a CSV with a header that `p` appends to) holds `rows` rows: an event, not
+// a guessed time. False if `p` exited first or they did not come within `hang` (which only
+// catches a hang).
+inline bool wait_for_rows(common::ChildProcess& p, const std::filesystem::path& file,
+                          std::size_t rows, std::chrono::seconds hang = std::chrono::seconds(60)) {
   const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
   while (std::chrono::steady_clock::now() < deadline) {
     const bool ran = p.running();
     const auto text = slurp(file);
-    if (std::count(text.begin(), text.end(), '\n') >= 2) return true;
+    if (static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) >= rows + 1) {
+      return true;
+    }
     if (!ran) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
+}
+
+// Until a run with `--out dir` has finished an action (a row of dir/progress.csv,
+// results_format.hpp kProgressCsv): the run is under way, its robots moving.
+inline bool wait_for_progress(common::ChildProcess& p, const std::filesystem::path& dir) {
+  return wait_for_rows(p, dir / "progress.csv", 1);
 }
 
 // The port `smart serve --port 0` (stdout to `out`) says it listens on ("http://127.0.0.1:PORT"),

@@ -396,7 +396,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
   if (!o.out.empty()) {
     std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
     if (result.execution != "adg") {
-      monitor::write_switches_csv(o.out, problem.grid, result.switches);
+      monitor::write_switches_csv(o.out, problem.grid, nullptr, result.switches);
     }
   }
   std::cout << summary.dump(2) << std::endl;

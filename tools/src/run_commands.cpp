@@ -266,6 +266,7 @@ namespace {
 struct ResultsTaps {
   std::optional<monitor::StatesCsvWriter> states;
   std::optional<monitor::ProgressCsvWriter> progress;
+  std::optional<monitor::SwitchesCsvWriter> switches;  // a switchable run's, as they are made
   std::optional<record::LiveRecording> recording;
 };
 
@@ -294,9 +295,44 @@ void tap_results(const MonitorCliOptions& o, const monitor::Instance& in, double
   mo.on_finished = [&progress = taps.progress](const results::ProgressRow& row) {
     progress->add(row);
   };
+  if (mo.run.switchable) {
+    taps.switches.emplace(o.out);
+    for (const auto& s : mo.run.resume_switches) {
+      taps.switches->add(monitor::switch_row(in.grid, &in.actions, s));
+    }
+    mo.on_switch = [&taps, &in](const monitor::PassingSwitch& s) {
+      taps.switches->add(monitor::switch_row(in.grid, &in.actions, s));
+    };
+  }
   mo.on_robots_finished = [dir = o.out](const std::vector<uint32_t>& finished) {
     monitor::write_finished_csv(dir, finished);
   };
+}
+
+// --resume-switches FILE: the stopped monitor's switches, each checked as it is replayed onto
+// this plan's passing orders (a row that swaps no pair there is named: another run's file).
+std::vector<monitor::PassingSwitch> resume_switches(const std::filesystem::path& file,
+                                                    const monitor::Instance& in) {
+  const auto where = "--resume-switches " + file.string();
+  std::vector<monitor::PassingSwitch> out;
+  try {
+    out = monitor::passing_switches(
+        in.grid, in.actions,
+        results::parse_switches_csv(grid::read_text_file(file, "switches file")));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
+  }
+  auto orders = monitor::passing_orders(in.actions, in.grid, in.adg.footprint);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    if (monitor::apply_switches(orders, {out[k]}) == 0) continue;
+    throw std::invalid_argument(
+        where + " line " + std::to_string(k + 2) + ": robot " + std::to_string(out[k].first) +
+        " passing robot " + std::to_string(out[k].second) +
+        " there matches no pair of this plan's passing orders (with the rows before it "
+        "replayed); give the switches.csv of the run being resumed, with its plan, --agents and "
+        "--execution");
+  }
+  return out;
 }
 
 int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
@@ -316,6 +352,9 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
         ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
         "--qos lan or wifi, or --sim-hosts 1");
   }
+  auto mo = monitor_options(o);
+  // Read before the results' taps open a new switches.csv, which may be this very file.
+  if (!o.resume_switches.empty()) mo.run.resume_switches = resume_switches(o.resume_switches, in);
   std::unique_ptr<PrivateRunKey> private_key;
   if (spawn_sim_child) private_key = own_run_key(o.sim);
   std::vector<common::ChildProcess> sims;
@@ -323,7 +362,6 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   dds::Domain domain(o.sim.dds.domain, domain_config(o.sim.dds, profile, "monitor"));
   dds::Participant participant(domain, o.sim.dds.run);
   prove_member(participant, o.sim.dds, "monitor");
-  auto mo = monitor_options(o);
   mo.robot_radius_m = model.radius_m;
   mo.run.robot_radius_m = model.radius_m;  // real time: reported poses watched for contacts
   if (in.adg.footprint == monitor::Footprint::kCells) {
@@ -420,6 +458,10 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   mon->add_flag("--resume", mo->resume,
                 "take over a run whose monitor died: its run id and finished actions come from "
                 "the sim hosts' progress (same plan, --agents and --initial-heading)");
+  mon->add_option("--resume-switches", mo->resume_switches,
+                  "with --resume of a switchable run: the stopped monitor's switches.csv (its "
+                  "--out folder's, written as the run went), to rebuild its passing orders")
+      ->type_name("FILE");
   mon->add_flag("--require-sim-status", mo->require_sim_status,
                 "real time: succeed only with a `smart sim` host's final status (its collision "
                 "counts); lock-step runs always need it");

@@ -389,10 +389,17 @@ monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
 }
 
 monitor::MonitorOptions monitor_options(const MonitorCliOptions& o) {
-  if (o.resume && o.execution != MonitorCliOptions::Execution::kAdg) {
+  const bool switching = o.execution != MonitorCliOptions::Execution::kAdg;
+  if (o.resume && switching && o.resume_switches.empty()) {
     throw std::invalid_argument(
-        "--resume with --execution switchable: the switches made are not in the robots' "
-        "reports, so a new monitor could not rebuild the passing orders; start the run again");
+        "--resume with --execution " + std::string(execution_name(switch_options(o))) +
+        ": the switches made are not in the robots' reports; give the stopped monitor's "
+        "switches.csv (written as the run went into its --out folder) with --resume-switches");
+  }
+  if (!o.resume_switches.empty() && (!o.resume || !switching)) {
+    throw std::invalid_argument(
+        "--resume-switches " + o.resume_switches.string() +
+        ": only with --resume and a switching --execution (the one of the run being resumed)");
   }
   monitor::MonitorOptions mo;
   mo.run.lockstep = o.sim.clock == sim::ClockMode::kLockstep;

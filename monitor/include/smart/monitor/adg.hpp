@@ -84,8 +84,10 @@ Adg adg_of_orders(const PassingOrders& orders, const ActionPlan& actions, Footpr
 
 // Replays a switchable run's switches (switchable_tracker.hpp; switches.csv) in order on the
 // plan's passing orders: each puts `first`'s stay directly before `second`'s at its location,
-// where second's came directly before it; of such pairs, the first whose `first` stay was not yet
-// entered at the switch time (`finish_s` by node, NaN: never finished; empty: the first pair).
+// where second's came directly before it: the pair of stays the switch names by their entries
+// (PassingSwitch::first_enter, second_enter) or, where it names none (files written before
+// those were), the first pair whose `first` stay was not yet entered at the switch time
+// (`finish_s` by node, NaN: never finished; empty: the first pair).
 // Returns how many switches matched no pair (skipped: e.g. a results folder of another plan).
 std::size_t apply_switches(PassingOrders& orders, const std::vector<PassingSwitch>& switches,
                            const std::vector<double>& finish_s = {});

@@ -41,6 +41,9 @@ struct MonitorOptions {
   // Each action of a plan's run as it finishes (RunWriter::action_finished: robot, seq, sim
   // time), on the monitor's thread: e.g. a recording made while the run goes.
   std::function<void(uint32_t, uint32_t, double)> on_action_finished;
+  // Each switch of a passing order (a switchable run) as it is made, before any window it
+  // changes is published (RunWriter::switched): e.g. the live switches.csv a resume replays.
+  std::function<void(const PassingSwitch&)> on_switch;
   // Each robot's finished actions (by robot), when any changed, at most once a second of wall
   // time: a live view's robot panel (e.g. write_finished_csv, results.hpp).
   std::function<void(const std::vector<uint32_t>&)> on_robots_finished;

@@ -101,9 +101,28 @@ void append_stats(const std::filesystem::path& file, const Instance& instance,
 // Writes summary.json, stats.csv, robots.csv and actions.csv into `dir` (created if missing).
 // Throws std::runtime_error naming the file when it cannot be written.
 // switches.csv (results_format.hpp kSwitchesCsv): every switch of a passing order, located in
-// cells of `grid` (.5 on an edge midpoint).
+// cells of `grid` (.5 on an edge midpoint), its stays by the seqs of their entering actions in
+// `actions` (none: a lifelong run's, whose actions are no fixed plan).
+results::SwitchRow switch_row(const Grid& grid, const ActionPlan* actions, const PassingSwitch& s);
 void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
-                        const std::vector<PassingSwitch>& switches);
+                        const ActionPlan* actions, const std::vector<PassingSwitch>& switches);
+// switches.csv's rows as switches of the plan `actions` on `grid` (apply_switches): a row off the
+// map, or naming a seq the robot does not have, matches no pair there.
+std::vector<PassingSwitch> passing_switches(const Grid& grid, const ActionPlan& actions,
+                                            const std::vector<results::SwitchRow>& rows);
+
+// switches.csv in `dir` while a run goes: a row per switch as it is made, flushed before the
+// windows it changes are published, so that `smart monitor --resume --resume-switches` can
+// rebuild the passing orders a monitor that stopped had reached. write_results() writes the
+// whole file again at the end.
+class SwitchesCsvWriter {
+ public:
+  explicit SwitchesCsvWriter(const std::filesystem::path& dir);
+  void add(const results::SwitchRow& row);
+
+ private:
+  std::ofstream out_;
+};
 
 void write_results(const std::filesystem::path& dir, const Instance& instance,
                    const MonitorResult& result, const RunInfo& info);

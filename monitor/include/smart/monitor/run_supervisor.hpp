@@ -36,7 +36,10 @@
 //   enqueued) is counted and described in notes(); stale (duplicate, older) progress is harmless.
 // - resume(): rebuild the tracker from the hosts' last progress (a fixpoint: what robot A
 //   finished may have waited for robot B, so each robot is fed as far as is enqueued, again
-//   and again, until nothing more is accepted).
+//   and again, until nothing more is accepted). A switchable run is rebuilt on the passing
+//   orders the stopped monitor had reached (config.resume_switches replayed), switching nothing
+//   while it is fed (SwitchableTracker::paused): what it then sends is what the stopped
+//   monitor had sent, so no robot is sent into a location another holds an entry to.
 #pragma once
 
 #include <cstdint>
@@ -158,6 +161,9 @@ struct SupervisorConfig {
   // A plan's run: passing orders may switch while it goes (issue 29, switchable_tracker.hpp).
   bool switchable = false;
   SwitchOptions switch_options = {};
+  // Resuming a switchable run (resume()): the switches the stopped monitor had made, in order
+  // (its live switches.csv), replayed onto the plan's passing orders before the tracker is built.
+  std::vector<PassingSwitch> resume_switches = {};
 };
 
 // Samples as the supervisor sees them (the edge converts the wire types).
@@ -192,6 +198,10 @@ class RunWriter {
   // (MonitorResult::action_finish_s), said once per action as it is decided (a recording made
   // while the run goes, record/live_recording.hpp). Lifelong runs do not say it.
   virtual void action_finished(uint32_t /*robot*/, uint32_t /*seq*/, double /*sim_time_s*/) {}
+  // A passing order switched (a switchable run), said before any window it changes is
+  // published: kept where a new monitor can find it (results.hpp SwitchesCsvWriter), the
+  // orders a resume must rebuild.
+  virtual void switched(const PassingSwitch& /*s*/) {}
 };
 
 class RunSupervisor {
@@ -242,6 +252,7 @@ class RunSupervisor {
   void end(Outcome outcome, std::string error);
   void advance_time(double time_s);
   void publish_window(uint32_t robot);
+  void take_switches();  // the execution's new switches: into the results, said to the writer
   void apply_progress(const ProgressEvent& p, double sim_time_s);
   void try_answer(double now_s);
   void update_waiting(double sim_time_s);
@@ -259,6 +270,8 @@ class RunSupervisor {
   std::optional<ExecutionTracker> tracker_;      // a plan's run
   std::optional<SwitchableTracker> switchable_;  // a plan's run with --execution switchable
   Execution* exec_ = nullptr;
+  std::size_t taken_switches_ = 0;       // of exec_->switches()
+  std::size_t unreplayed_switches_ = 0;  // of config.resume_switches: matched no pair
   wire::MonitorHandshake handshake_;
   wire::SyncCounter sent_;                     // end of the windows published, per robot
   std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick

@@ -73,7 +73,13 @@ namespace smart::monitor {
 
 class SwitchableTracker final : public Execution {
  public:
-  SwitchableTracker(const ActionPlan& actions, PassingOrders orders, SwitchOptions options = {});
+  // `orders`: the plan's (passing_orders), or a stopped run's with its switches replayed
+  // (apply_switches). Paused (a resume's rebuild): progress only advances robots, nothing
+  // switches and every entry due is sent in its place, as the stopped monitor had sent it;
+  // until unpause().
+  SwitchableTracker(const ActionPlan& actions, PassingOrders orders, SwitchOptions options = {},
+                    bool paused = false);
+  void unpause();
 
   ProgressUpdate on_progress(uint32_t robot, int64_t finished_seq, double time_s) override;
   ActionWindowRange window(uint32_t robot, uint32_t cap) const override;
@@ -211,11 +217,12 @@ class SwitchableTracker final : public Execution {
   void link_prev(uint32_t stay, uint32_t prev);
   void link_next(uint32_t stay, uint32_t next);
   std::vector<Link> link_;
-  std::vector<Near> near_;  // empty unless lookahead_actions > 0
+  std::vector<Near> near_;                           // empty unless lookahead_actions > 0
   std::vector<Stay> stay_;                           // stay id -> the stay
   std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
   std::vector<uint32_t> leave_begin_, leave_stays_;  // node -> stays it leaves (CSR)
   SwitchOptions options_;
+  bool paused_ = false;
   std::vector<uint32_t> pending_;
   std::vector<uint32_t> finished_, enqueued_;
   std::size_t finished_total_ = 0;

@@ -52,12 +52,18 @@ inline const char* execution_name(const SwitchOptions& o) {
 }
 
 // One switch: at `location` (half-cell index), `first` now passes before `second`, at `time_s`.
+// The two stays are named by the actions that enter them (node ids of the run's ActionPlan),
+// which tell a robot's visits to one location apart: a resumed monitor replays the switches
+// onto exactly the stays they swapped (adg.hpp apply_switches). kUnrecorded where not known
+// (lifelong runs; switches.csv files written before 2026-12-02).
+inline constexpr uint32_t kUnrecorded = 0xffffffffu;
 struct PassingSwitch {
   double time_s = 0;
   uint32_t location = 0;
   uint32_t first = 0;        // the robot that was ready
   uint32_t second = 0;       // the robot that was meant to pass first
   bool anticipated = false;  // by expected times before `second` was sent (switchable-opt)
+  uint32_t first_enter = kUnrecorded, second_enter = kUnrecorded;  // node ids
   bool operator==(const PassingSwitch&) const = default;
 };
 

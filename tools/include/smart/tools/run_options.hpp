@@ -109,6 +109,8 @@ struct MonitorCliOptions {
   std::optional<uint32_t> switch_chain_locations;
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
+  // --resume-switches FILE: a switchable run's live switches.csv, replayed by --resume.
+  std::filesystem::path resume_switches;
   // Success needs a sim host's final status: lock-step, `smart run`, or --require-sim-status.
   bool require_sim_status = false;
   bool progress = true;
