@@ -396,49 +396,12 @@ void append_stats(const std::filesystem::path& file, const Instance& in, const M
   out << stats_row(in, r, info);
 }
 
-// Each switch of a passing order, its location in cells (half-cell index: x2 + y2 * (2w - 1)).
-results::SwitchRow switch_row(const Grid& grid, const ActionPlan* actions, const PassingSwitch& s) {
-  const auto across = static_cast<uint32_t>(2 * grid.width() - 1);
-  const uint32_t x2 = s.location % across, y2 = s.location / across;  // half cells
-  results::SwitchRow row{s.time_s, x2 / 2.0, y2 / 2.0, s.first, s.second, {}, {}};
-  const auto seq = [actions](uint32_t robot, uint32_t node) -> std::optional<uint32_t> {
-    if (actions == nullptr || node == kUnrecorded || robot >= actions->robots()) return {};
-    return node - actions->offset[robot];
-  };
-  row.first_seq = seq(s.first, s.first_enter);
-  row.second_seq = seq(s.second, s.second_enter);
-  return row;
-}
-
 void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
                         const ActionPlan* actions, const std::vector<PassingSwitch>& switches) {
   std::string text(results::kSwitchesHeader);
   text += '\n';
   for (const auto& s : switches) results::append_row(text, switch_row(grid, actions, s));
   open_out(dir / results::kSwitchesCsv) << text;
-}
-
-std::vector<PassingSwitch> passing_switches(const Grid& grid, const ActionPlan& actions,
-                                            const std::vector<results::SwitchRow>& rows) {
-  std::vector<PassingSwitch> out;
-  const double w = grid.width(), h = grid.height();
-  const auto none = static_cast<uint32_t>(actions.actions.size());  // no stay enters it
-  const auto node = [&](uint32_t robot, const std::optional<uint32_t>& seq) {
-    if (!seq) return kUnrecorded;
-    return robot < actions.robots() && *seq < actions.count(robot) ? actions.offset[robot] + *seq
-                                                                   : none;
-  };
-  for (const auto& r : rows) {
-    const double x2 = 2 * r.x, y2 = 2 * r.y;
-    const bool on_map =
-        x2 == std::floor(x2) && y2 == std::floor(y2) && r.x <= w - 1 && r.y <= h - 1;
-    const auto location = on_map ? static_cast<uint32_t>(grid.half_index(
-                                       {static_cast<int32_t>(x2), static_cast<int32_t>(y2)}))
-                                 : kNoAction;  // matches no location
-    out.push_back({r.time_s, location, r.first, r.second, false, node(r.first, r.first_seq),
-                   node(r.second, r.second_seq)});
-  }
-  return out;
 }
 
 SwitchesCsvWriter::SwitchesCsvWriter(const std::filesystem::path& dir) {

@@ -409,7 +409,8 @@ void append_row(std::string& out, const SwitchRow& r) {
   put(out, r.first);
   put(out, r.second);
   put(out, r.first_seq);
-  put(out, r.second_seq, '\n');
+  put(out, r.second_seq);
+  put(out, r.anticipated ? 1 : 0, '\n');
 }
 
 namespace {
@@ -424,6 +425,19 @@ bool optional_seq(std::string_view f, std::optional<uint32_t>& out) {
   return true;
 }
 
+// The columns after `second`: both seqs (empty: not recorded) and anticipated (0 or 1).
+bool switch_tail(std::string_view line, SwitchRow& r) {
+  uint32_t anticipated = 0;
+  if (std::count(line.begin(), line.end(), ',') != 2 ||
+      !optional_seq(next_field(line), r.first_seq) ||
+      !optional_seq(next_field(line), r.second_seq) || !number(next_field(line), anticipated) ||
+      anticipated > 1) {
+    return false;
+  }
+  r.anticipated = anticipated == 1;
+  return true;
+}
+
 }  // namespace
 
 std::vector<SwitchRow> parse_switches_csv(std::string_view text) {
@@ -433,13 +447,11 @@ std::vector<SwitchRow> parse_switches_csv(std::string_view text) {
     if (!number(next_field(line), r.time_s) || !number(next_field(line), r.x) ||
         !number(next_field(line), r.y) || !number(next_field(line), r.first) ||
         !number(next_field(line), r.second) || r.time_s < 0 || r.x < 0 || r.y < 0 ||
-        (!line.empty() && (std::count(line.begin(), line.end(), ',') != 1 ||
-                           !optional_seq(next_field(line), r.first_seq) ||
-                           !optional_seq(next_field(line), r.second_seq) || !line.empty()))) {
+        (!line.empty() && !switch_tail(line, r))) {
       throw bad_row(kSwitchesCsv, line_no,
                     std::string(kSwitchesHeader) +
-                        " (time and cells >= 0, robot ids, action seqs or empty; the last two "
-                        "may be left out)");
+                        " (time and cells >= 0, robot ids, action seqs or empty, anticipated 0 or "
+                        "1; the last three may be left out)");
     }
     out.push_back(r);
   });

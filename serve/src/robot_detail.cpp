@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "smart/monitor/results.hpp"
+#include "smart/monitor/adg.hpp"
 #include "smart/monitor/results_format.hpp"
 
 namespace smart::serve {

@@ -93,7 +93,8 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
   const auto csv = slurp(a_dir / "switches.csv");
   EXPECT_EQ(csv, slurp(b_dir / "switches.csv"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), switches + 1);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "time_s,x,y,first,second,first_seq,second_seq");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "time_s,x,y,first,second,first_seq,second_seq,anticipated");
   EXPECT_EQ(a["aet_s"], b["aet_s"]);
   EXPECT_EQ(a["waiting_time_s"], b["waiting_time_s"]);
   EXPECT_FALSE(std::filesystem::exists(plain_dir / "switches.csv"));
@@ -268,7 +269,7 @@ TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNu
   EXPECT_NEAR(sw["waiting_time_s"]["total"].get<double>(), 0.0, 1e-9);
   // Robot 1 passed robot 0 at (2, 1): its action 2 enters the cell before robot 0's action 3.
   EXPECT_EQ(slurp(dir / "switchable" / "switches.csv"),
-            "time_s,x,y,first,second,first_seq,second_seq\n3.3,2,1,1,0,2,3\n");
+            "time_s,x,y,first,second,first_seq,second_seq,anticipated\n3.3,2,1,1,0,2,3,0\n");
   // robots.csv: robot, finish, waiting, stops, actions (then the motion bound).
   const auto rows = [&](const std::string& execution) {
     std::ifstream in(dir / execution / "robots.csv");
@@ -371,8 +372,9 @@ TEST_F(SwitchableRun, ResumeSwitchesOfAnotherRunNameTheRowThatDoesNotFit) {
   const auto dir = temp_file("switchable_resume_mismatch");
   std::filesystem::create_directories(dir);
   // Robot 1 is not directly after robot 0 at cell (0,0) with its action 0 there.
-  std::ofstream(dir / "switches.csv") << "time_s,x,y,first,second,first_seq,second_seq\n"
-                                         "1.5,0,0,1,0,0,0\n";
+  std::ofstream(dir / "switches.csv")
+      << "time_s,x,y,first,second,first_seq,second_seq,anticipated\n"
+         "1.5,0,0,1,0,0,0,0\n";
   auto args = resumable_monitor(b_, kSwitchableResumeMismatch, dir / "out");
   args.insert(args.end(), {"--resume", "--resume-switches", (dir / "switches.csv").string()});
   const auto r = run_smart(args, 60s, "switchable_resume_mismatch", true);

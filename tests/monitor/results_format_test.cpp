@@ -193,15 +193,16 @@ TEST(ResultsFormat, LifelongTaskAndThroughputRowsRoundTrip) {
 }
 
 // switches.csv (issue 29): written and read by one definition; a bad row names its line. The
-// entering actions' seqs may be empty (not recorded) or, in files written before them, absent.
+// entering actions' seqs may be empty (not recorded); files written before them and the
+// anticipated column have five columns.
 TEST(ResultsFormat, SwitchRowsRoundTripAndABadRowNamesItsLine) {
   std::string csv(kSwitchesHeader);
   csv += '\n';
-  append_row(csv, SwitchRow{12.25, 3, 4.5, 7, 2, 40, 38});
-  append_row(csv, SwitchRow{13.5, 1, 0, 2, 7, {}, {}});
+  append_row(csv, SwitchRow{12.25, 3, 4.5, 7, 2, 40, 38, true});
+  append_row(csv, SwitchRow{13.5, 1, 0, 2, 7, {}, {}, false});
   EXPECT_EQ(csv,
-            "time_s,x,y,first,second,first_seq,second_seq\n12.25,3,4.5,7,2,40,38\n"
-            "13.5,1,0,2,7,,\n");
+            "time_s,x,y,first,second,first_seq,second_seq,anticipated\n"
+            "12.25,3,4.5,7,2,40,38,1\n13.5,1,0,2,7,,,0\n");
   const auto rows = parse_switches_csv(csv + "14,2,2,1,3\n");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].y, 4.5);
@@ -209,12 +210,14 @@ TEST(ResultsFormat, SwitchRowsRoundTripAndABadRowNamesItsLine) {
   EXPECT_EQ(rows[0].second, 2u);
   EXPECT_EQ(rows[0].first_seq, 40u);
   EXPECT_EQ(rows[0].second_seq, 38u);
-  EXPECT_FALSE(rows[1].first_seq || rows[1].second_seq);
-  EXPECT_FALSE(rows[2].first_seq || rows[2].second_seq);
+  EXPECT_TRUE(rows[0].anticipated);
+  EXPECT_FALSE(rows[1].first_seq || rows[1].second_seq || rows[1].anticipated);
+  EXPECT_FALSE(rows[2].first_seq || rows[2].second_seq || rows[2].anticipated);
   EXPECT_EQ(rows[2].second, 3u);
   for (const char* bad :
        {"1,2,3,4\n", "1,2,3,4,x\n", "-1,2,3,4,5\n", "1,nan,3,4,5\n", "1,2,3,4,5,6\n",
-        "1,2,3,4,5,6,7,8\n", "1,2,3,4,5,-6,7\n", "1,2,3,4,5,6,x\n"}) {
+        "1,2,3,4,5,6,7\n", "1,2,3,4,5,6,7,0,0\n", "1,2,3,4,5,-6,7,0\n", "1,2,3,4,5,6,x,0\n",
+        "1,2,3,4,5,6,7,2\n", "1,2,3,4,5,6,7,\n"}) {
     try {
       (void)parse_switches_csv(csv + bad);
       ADD_FAILURE() << bad;

@@ -205,7 +205,7 @@ TEST(Results, SwitchesAreFlushedAsMadeAndReadBackOntoTheirStays) {
   const auto& a = orders.stays[orders.begin[loc]];
   const auto& b = orders.stays[orders.begin[loc] + 1];
   ASSERT_NE(a.robot, b.robot);
-  const PassingSwitch made{2.5, loc, b.robot, a.robot, false, b.enter, a.enter};
+  const PassingSwitch made{2.5, loc, b.robot, a.robot, true, b.enter, a.enter};
   const auto dir = temp_dir("switches");
   SwitchesCsvWriter w(dir);
   w.add(switch_row(in.grid, &in.actions, made));
@@ -213,9 +213,9 @@ TEST(Results, SwitchesAreFlushedAsMadeAndReadBackOntoTheirStays) {
   const auto seq = [&](uint32_t robot, uint32_t node) {
     return std::to_string(node - in.actions.offset[robot]);
   };
-  EXPECT_EQ(text, "time_s,x,y,first,second,first_seq,second_seq\n2.5,1,1," +
+  EXPECT_EQ(text, "time_s,x,y,first,second,first_seq,second_seq,anticipated\n2.5,1,1," +
                       std::to_string(b.robot) + "," + std::to_string(a.robot) + "," +
-                      seq(b.robot, b.enter) + "," + seq(a.robot, a.enter) + "\n");
+                      seq(b.robot, b.enter) + "," + seq(a.robot, a.enter) + ",1\n");
   auto rows = results::parse_switches_csv(text);
   EXPECT_EQ(passing_switches(in.grid, in.actions, rows), std::vector<PassingSwitch>{made});
   auto replayed = orders;

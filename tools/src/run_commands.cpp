@@ -417,6 +417,32 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   return result.success() ? kExitSuccess : kExitRunFailed;
 }
 
+// `smart monitor`: the monitor alone, against hosts started elsewhere (or taking a run over).
+void register_monitor_command(CLI::App& app, int& exit_code) {
+  auto mo = std::make_shared<MonitorCliOptions>();
+  auto* mon = app.add_subcommand("monitor",
+                                 "Execute a plan: publish action windows, track "
+                                 "progress, detect completion/deadlock, write results");
+  add_monitor_options(mon, *mo);
+  add_task_source_options(mon, mo->sim.source);
+  add_lifelong_options(mon, mo->lifelong);
+  mon->add_flag("--resume", mo->resume,
+                "take over a run whose monitor died: its run id and finished actions come from "
+                "the sim hosts' progress (same plan, --agents and --initial-heading)");
+  mon->add_option("--resume-switches", mo->resume_switches,
+                  "with --resume of a switchable run: the stopped monitor's switches.csv (its "
+                  "--out folder's, written as the run went), to rebuild its passing orders")
+      ->type_name("FILE");
+  mon->add_flag("--require-sim-status", mo->require_sim_status,
+                "real time: succeed only with a `smart sim` host's final status (its collision "
+                "counts); lock-step runs always need it");
+  group_options(mon);
+  mon->callback([&exit_code, mo] {
+    install_stop_handlers();
+    exit_code = mo->sim.source.active() ? run_lifelong(*mo, false) : run_monitor(*mo, false);
+  });
+}
+
 }  // namespace
 
 void register_run_commands(CLI::App& app, int& exit_code) {
@@ -448,28 +474,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
     exit_code = run_sim(*so);
   });
 
-  auto mo = std::make_shared<MonitorCliOptions>();
-  auto* mon = app.add_subcommand("monitor",
-                                 "Execute a plan: publish action windows, track "
-                                 "progress, detect completion/deadlock, write results");
-  add_monitor_options(mon, *mo);
-  add_task_source_options(mon, mo->sim.source);
-  add_lifelong_options(mon, mo->lifelong);
-  mon->add_flag("--resume", mo->resume,
-                "take over a run whose monitor died: its run id and finished actions come from "
-                "the sim hosts' progress (same plan, --agents and --initial-heading)");
-  mon->add_option("--resume-switches", mo->resume_switches,
-                  "with --resume of a switchable run: the stopped monitor's switches.csv (its "
-                  "--out folder's, written as the run went), to rebuild its passing orders")
-      ->type_name("FILE");
-  mon->add_flag("--require-sim-status", mo->require_sim_status,
-                "real time: succeed only with a `smart sim` host's final status (its collision "
-                "counts); lock-step runs always need it");
-  group_options(mon);
-  mon->callback([&exit_code, mo] {
-    install_stop_handlers();
-    exit_code = mo->sim.source.active() ? run_lifelong(*mo, false) : run_monitor(*mo, false);
-  });
+  register_monitor_command(app, exit_code);
 
   auto ro = std::make_shared<MonitorCliOptions>();
   auto* run = app.add_subcommand("run",

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "smart/monitor/action_builder.hpp"
+#include "smart/monitor/results_format.hpp"
 #include "smart/monitor/switching.hpp"
 #include "smart/monitor/vocabulary.hpp"
 
@@ -91,6 +92,15 @@ Adg adg_of_orders(const PassingOrders& orders, const ActionPlan& actions, Footpr
 // Returns how many switches matched no pair (skipped: e.g. a results folder of another plan).
 std::size_t apply_switches(PassingOrders& orders, const std::vector<PassingSwitch>& switches,
                            const std::vector<double>& finish_s = {});
+
+// A switch as a switches.csv row (results_format.hpp SwitchRow): its location in cells of `grid`
+// (.5 on an edge midpoint), its stays by the seqs of their entering actions in `actions` (none
+// when null: a lifelong run's, whose actions are no fixed plan). And rows back as switches of
+// the plan `actions` (apply_switches): a row off the map, or naming a seq the robot does not
+// have, matches no pair there.
+results::SwitchRow switch_row(const Grid& grid, const ActionPlan* actions, const PassingSwitch& s);
+std::vector<PassingSwitch> passing_switches(const Grid& grid, const ActionPlan& actions,
+                                            const std::vector<results::SwitchRow>& rows);
 
 // `source` names the plan in Problems. Problems found are appended to `problems`.
 Adg build_adg(const ActionPlan& actions, const Grid& grid, const std::string& source,

@@ -100,16 +100,10 @@ void append_stats(const std::filesystem::path& file, const Instance& instance,
 
 // Writes summary.json, stats.csv, robots.csv and actions.csv into `dir` (created if missing).
 // Throws std::runtime_error naming the file when it cannot be written.
-// switches.csv (results_format.hpp kSwitchesCsv): every switch of a passing order, located in
-// cells of `grid` (.5 on an edge midpoint), its stays by the seqs of their entering actions in
-// `actions` (none: a lifelong run's, whose actions are no fixed plan).
-results::SwitchRow switch_row(const Grid& grid, const ActionPlan* actions, const PassingSwitch& s);
+// switches.csv (results_format.hpp kSwitchesCsv): every switch of a passing order (adg.hpp
+// switch_row; `actions` null: a lifelong run's, whose actions are no fixed plan).
 void write_switches_csv(const std::filesystem::path& dir, const Grid& grid,
                         const ActionPlan* actions, const std::vector<PassingSwitch>& switches);
-// switches.csv's rows as switches of the plan `actions` on `grid` (apply_switches): a row off the
-// map, or naming a seq the robot does not have, matches no pair there.
-std::vector<PassingSwitch> passing_switches(const Grid& grid, const ActionPlan& actions,
-                                            const std::vector<results::SwitchRow>& rows);
 
 // switches.csv in `dir` while a run goes: a row per switch as it is made, flushed before the
 // windows it changes are published, so that `smart monitor --resume --resume-switches` can

@@ -39,9 +39,11 @@ inline constexpr std::string_view kThroughputCsv = "throughput.csv";
 // A switchable run's switches of passing orders (issue 29): time_s, x, y (the location, cells;
 // .5 on an edge midpoint), first (the robot that passed first), second (the one planned first),
 // first_seq, second_seq (the robots' actions entering the location: which visits; empty when not
-// recorded, and absent in files written before 2026-12-02).
+// recorded), anticipated (1: made by expected times, switchable-opt and -lookahead); the last
+// three absent in files written before 2026-12-02.
 inline constexpr std::string_view kSwitchesCsv = "switches.csv";
-inline constexpr std::string_view kSwitchesHeader = "time_s,x,y,first,second,first_seq,second_seq";
+inline constexpr std::string_view kSwitchesHeader =
+    "time_s,x,y,first,second,first_seq,second_seq,anticipated";
 inline constexpr std::array<std::string_view, 9> kFiles = {
     kSummaryJson, kStatsCsv,  kRobotsCsv,     kActionsCsv, kStatesCsv,
     kTasksCsv,    kEventsCsv, kThroughputCsv, kSwitchesCsv};
@@ -219,14 +221,16 @@ std::vector<ThroughputRow> parse_throughput_csv(std::string_view text);
 
 // switches.csv (kSwitchesHeader): a row per switch of a passing order (issue 29): when, where (in
 // cells, .5 on an edge midpoint), the robot that passed first and the robot planned first, and
-// the seq of each one's action entering the location (written by every switchable plan run;
-// rows of the five older columns read without them). The live file a run appends to
-// (monitor --out) is what `monitor --resume --resume-switches` replays.
+// the seq of each one's action entering the location (written by every switchable plan run),
+// and whether it was anticipated; rows of the five older columns are read without them. The
+// live file a run appends to (monitor --out) is what `monitor --resume --resume-switches`
+// replays.
 struct SwitchRow {
   double time_s = 0;
   double x = 0, y = 0;
   uint32_t first = 0, second = 0;
   std::optional<uint32_t> first_seq = {}, second_seq = {};
+  bool anticipated = false;
 };
 void append_row(std::string& out, const SwitchRow& row);
 // Throws std::invalid_argument naming the line of a malformed row (times and cells >= 0).
