@@ -118,11 +118,12 @@ bool number(std::string_view f, T& out) {
   return true;
 }
 
-// An empty field is "not known"; anything else must be a finite number.
-bool optional_number(std::string_view f, std::optional<double>& out) {
+// An empty field is "not known"; anything else must be a number (finite: number()).
+template <class T>
+bool optional_number(std::string_view f, std::optional<T>& out) {
   out.reset();
   if (f.empty()) return true;
-  double v = 0;
+  T v = 0;
   if (!number(f, v)) return false;
   out = v;
   return true;
@@ -415,22 +416,12 @@ void append_row(std::string& out, const SwitchRow& r) {
 
 namespace {
 
-// An empty field is "not recorded"; anything else a seq.
-bool optional_seq(std::string_view f, std::optional<uint32_t>& out) {
-  out.reset();
-  if (f.empty()) return true;
-  uint32_t v = 0;
-  if (!number(f, v)) return false;
-  out = v;
-  return true;
-}
-
 // The columns after `second`: both seqs (empty: not recorded) and anticipated (0 or 1).
 bool switch_tail(std::string_view line, SwitchRow& r) {
   uint32_t anticipated = 0;
   if (std::count(line.begin(), line.end(), ',') != 2 ||
-      !optional_seq(next_field(line), r.first_seq) ||
-      !optional_seq(next_field(line), r.second_seq) || !number(next_field(line), anticipated) ||
+      !optional_number(next_field(line), r.first_seq) ||
+      !optional_number(next_field(line), r.second_seq) || !number(next_field(line), anticipated) ||
       anticipated > 1) {
     return false;
   }

@@ -23,35 +23,34 @@ class SwitchableRun : public ::testing::Test {
     b_ = benchmarks_dir();
     if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
   }
-  // The run's summary; its results in `out`.
+  // `smart COMMAND` of SMART's 100-robot warehouse plan with `execution`, results in `out`.
+  std::vector<std::string> plan_args(const std::string& command, int domain,
+                                     const std::string& execution,
+                                     const std::filesystem::path& out) const {
+    return {command,
+            "--map",
+            (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
+            "--scen",
+            (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
+            "--plan",
+            (b_ / "smart-examples/scen_1_paths.txt").string(),
+            "--axis",
+            "rowcol",
+            "--agents",
+            "100",
+            "--domain",
+            std::to_string(domain),
+            "--execution",
+            execution,
+            "--out",
+            out.string(),
+            "--no-progress"};
+  }
+  // The run's summary under LoRR-style delays; its results in `out`.
   nlohmann::json run(int domain, const std::string& execution, const std::filesystem::path& out) {
-    const std::vector<std::string> args{
-        "run",
-        "--map",
-        (b_ / "maps/warehouse-10-20-10-2-1.map").string(),
-        "--scen",
-        (b_ / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
-        "--plan",
-        (b_ / "smart-examples/scen_1_paths.txt").string(),
-        "--axis",
-        "rowcol",
-        "--agents",
-        "100",
-        "--domain",
-        std::to_string(domain),
-        "--delay-probability",
-        "0.01",
-        "--delay-min-s",
-        "1",
-        "--delay-max-s",
-        "4",
-        "--seed",
-        "1",
-        "--execution",
-        execution,
-        "--out",
-        out.string(),
-        "--no-progress"};
+    auto args = plan_args("run", domain, execution, out);
+    args.insert(args.end(), {"--delay-probability", "0.01", "--delay-min-s", "1", "--delay-max-s",
+                             "4", "--seed", "1"});
     const auto r = run_smart(args, 180s, "switchable_" + execution);
     EXPECT_EQ(r.code, 0) << r.out;
     return r.last_json();
@@ -301,29 +300,6 @@ TEST_F(SwitchableRun, ResumeWithoutTheSwitchesIsRefusedNamingTheFlag) {
   EXPECT_NE(r.out.find("--resume-switches"), std::string::npos) << r.out;
 }
 
-// `smart monitor` of SMART's 100-robot plan under delays, switchable, against `smart sim`.
-std::vector<std::string> resumable_monitor(const std::filesystem::path& b, int domain,
-                                           const std::filesystem::path& out) {
-  return {"monitor",
-          "--map",
-          (b / "maps/warehouse-10-20-10-2-1.map").string(),
-          "--scen",
-          (b / "scens/warehouse-10-20-10-2-1-random-1.scen").string(),
-          "--plan",
-          (b / "smart-examples/scen_1_paths.txt").string(),
-          "--axis",
-          "rowcol",
-          "--agents",
-          "100",
-          "--domain",
-          std::to_string(domain),
-          "--execution",
-          "switchable",
-          "--out",
-          out.string(),
-          "--no-progress"};
-}
-
 // A switchable run's monitor killed mid-run, after it switched, is replaced by `smart monitor
 // --resume --resume-switches` with its live switches.csv: the new monitor rebuilds the passing
 // orders the first had reached and the run ends clean (without them it could not: robots that
@@ -339,7 +315,8 @@ TEST_F(SwitchableRun, AResumedMonitorReplaysTheSwitchesMadeAndFinishesClean) {
        "--delay-min-s", "1", "--delay-max-s", "4", "--seed", "1"},
       "/dev/null");
   const auto first_out = temp_file("switchable_resume_first.out");
-  auto first = start_smart(resumable_monitor(b_, kSwitchableResumeRun, dir / "first"), first_out);
+  auto first = start_smart(plan_args("monitor", kSwitchableResumeRun, "switchable", dir / "first"),
+                           first_out);
   // Killed once it has switched five times (rows of its live switches.csv).
   ASSERT_TRUE(wait_for_rows(first, dir / "first" / "switches.csv", 5)) << slurp(first_out);
   first.signal(SIGKILL);
@@ -347,7 +324,7 @@ TEST_F(SwitchableRun, AResumedMonitorReplaysTheSwitchesMadeAndFinishesClean) {
   const auto made = slurp(dir / "first" / "switches.csv");
   const auto replayed = std::count(made.begin(), made.end(), '\n') - 1;
 
-  auto args = resumable_monitor(b_, kSwitchableResumeRun, dir / "second");
+  auto args = plan_args("monitor", kSwitchableResumeRun, "switchable", dir / "second");
   args.insert(args.end(),
               {"--resume", "--resume-switches", (dir / "first" / "switches.csv").string()});
   const auto r = run_smart(args, 180s, "switchable_resume_second");
@@ -375,7 +352,7 @@ TEST_F(SwitchableRun, ResumeSwitchesOfAnotherRunNameTheRowThatDoesNotFit) {
   std::ofstream(dir / "switches.csv")
       << "time_s,x,y,first,second,first_seq,second_seq,anticipated\n"
          "1.5,0,0,1,0,0,0,0\n";
-  auto args = resumable_monitor(b_, kSwitchableResumeMismatch, dir / "out");
+  auto args = plan_args("monitor", kSwitchableResumeMismatch, "switchable", dir / "out");
   args.insert(args.end(), {"--resume", "--resume-switches", (dir / "switches.csv").string()});
   const auto r = run_smart(args, 60s, "switchable_resume_mismatch", true);
   EXPECT_EQ(r.code, 2) << r.out;

@@ -63,38 +63,35 @@ inline common::ChildProcess start_smart(const std::vector<std::string>& args,
   return common::ChildProcess(argv, out);
 }
 
-// Waits until `out` holds `text` while `p` runs: an event, not a guessed time (a loaded machine
-// starts processes slower than any bound). False if `p` exited without writing it, or nothing
-// came within `hang` (which only catches a hang).
-inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path& out,
-                            const std::string& text,
-                            std::chrono::seconds hang = std::chrono::seconds(60)) {
+// Waits until `done()` while `p` runs: an event, not a guessed time (a loaded machine starts
+// processes slower than any bound). False if `p` exited first, or it did not come within `hang`
+// (which only catches a hang).
+template <class Done>
+bool wait_while_running(common::ChildProcess& p, std::chrono::seconds hang, Done done) {
   const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
   while (std::chrono::steady_clock::now() < deadline) {
     const bool ran = p.running();
-    if (slurp(out).find(text) != std::string::npos) return true;
+    if (done()) return true;
     if (!ran) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
 }
 
-// Waits until `file` (a CSV with a header that `p` appends to) holds `rows` rows: an event, not
-// a guessed time. False if `p` exited first or they did not come within `hang` (which only
-// catches a hang).
+// Until `out` holds `text`.
+inline bool wait_for_output(common::ChildProcess& p, const std::filesystem::path& out,
+                            const std::string& text,
+                            std::chrono::seconds hang = std::chrono::seconds(60)) {
+  return wait_while_running(p, hang, [&] { return slurp(out).find(text) != std::string::npos; });
+}
+
+// Until `file` (a CSV with a header that `p` appends to) holds `rows` rows.
 inline bool wait_for_rows(common::ChildProcess& p, const std::filesystem::path& file,
                           std::size_t rows, std::chrono::seconds hang = std::chrono::seconds(60)) {
-  const auto deadline = std::chrono::steady_clock::now() + hang * kSlowdown;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const bool ran = p.running();
+  return wait_while_running(p, hang, [&] {
     const auto text = slurp(file);
-    if (static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) >= rows + 1) {
-      return true;
-    }
-    if (!ran) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) >= rows + 1;
+  });
 }
 
 // Until a run with `--out dir` has finished an action (a row of dir/progress.csv,
