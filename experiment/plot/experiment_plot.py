@@ -24,6 +24,9 @@ Figures (each when its data exist):
   paired           switching runs (issue 29): each run's change against plain ADG's run of the
                    same cell and seed, in %: total waiting, and AET (plan runs) or tasks finished
                    (lifelong runs); a line per switching execution, zero marked
+  paired_uncertainty  the same against the uncertainty setting, a tick per setting in the
+                   grid's order (when a grid sweeps disturbances: a line per setting at one fleet
+                   size hides the sweep in a legend); robots become a line when they vary
   throughput_time  lifelong runs: tasks finished and the last minute's throughput over sim time
                    (each cell's throughput.csv, at every replanning), a panel per team size,
                    the band one standard deviation over the repeats
@@ -129,6 +132,22 @@ def shown(axis, value):
                      for k, v in settings.items())
 
 
+def disturbance(value):
+    """An uncertainty setting as a tick: LoRR-style delays and stalls in the docs' words
+    ("delays p 0.01, 1-4 s", "stalls p 0.05, 2 s"), any other setting as the legend shows it."""
+    try:
+        d = json.loads(value)
+    except ValueError:
+        return value
+    delays = {"delay_probability", "delay_min_s", "delay_max_s"}
+    if isinstance(d, dict) and set(d) == delays:
+        return (f"delays p {plain(d['delay_probability'])}, "
+                f"{plain(d['delay_min_s'])}-{plain(d['delay_max_s'])} s")
+    if isinstance(d, dict) and set(d) == {"stall_probability", "stall_s"}:
+        return f"stalls p {plain(d['stall_probability'])}, {plain(d['stall_s'])} s"
+    return shown("uncertainty", value)
+
+
 def plain(v):
     return f"{v:g}"
 
@@ -173,7 +192,11 @@ def dress_panel(ax, panel):
     ax.set_ylabel(panel["ylabel"])
     ax.set_title(panel["title"], fontsize=10)
     ax.grid(True, alpha=0.3)
-    if panel["legend_title"]:
+    where = panel.get("legend", "inside")  # "right": beside the axes; "none": another panel's
+    if panel["legend_title"] and where == "right":
+        ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8, loc="upper left",
+                  bbox_to_anchor=(1.02, 1.0))
+    elif panel["legend_title"] and where == "inside":
         ax.legend(title=panel["legend_title"], fontsize=8, title_fontsize=8)
 
 
@@ -214,7 +237,13 @@ def draw_panel(ax, panel, uniform_n):
                             xytext=(4, 4), fontsize=7)
         xs += px
         ys += py
-    panel["xscale"] = set_x_axis(ax, xs)
+    if "categories" in panel:  # x is a category's index: its name as the tick
+        panel["xscale"] = "linear"
+        ax.set_xticks(range(len(panel["categories"])),
+                      [c.replace(", ", ",\n") for c in panel["categories"]], fontsize=7)
+        ax.set_xlim(-0.5, len(panel["categories"]) - 0.5)
+    else:
+        panel["xscale"] = set_x_axis(ax, xs)
     panel["yscale"] = set_y_axis(ax, panel["field"], ys)
     dress_panel(ax, panel)
 
@@ -385,14 +414,18 @@ def paired_rows(rows):
     return out
 
 
+def paired_metrics(prows):
+    lifelong = any(number(r.get("paired.tasks_pct")) is not None for r in prows)
+    return [("paired.waiting_pct", "total waiting against plain ADG (%)"),
+            ("paired.tasks_pct", "tasks finished against plain ADG (%)") if lifelong
+            else ("paired.aet_pct", "AET against plain ADG (%)")]
+
+
 def paired_figure(rows, out_dir, written, described):
     prows = paired_rows(rows)
     if not prows:
         return
-    lifelong = any(number(r.get("paired.tasks_pct")) is not None for r in prows)
-    metrics = [("paired.waiting_pct", "total waiting against plain ADG (%)"),
-               ("paired.tasks_pct", "tasks finished against plain ADG (%)") if lifelong
-               else ("paired.aet_pct", "AET against plain ADG (%)")]
+    metrics = paired_metrics(prows)
     lay = Layout(prows, "agents")
     if "execution" not in lay.lines:
         lay.lines.insert(0, "execution")
@@ -401,6 +434,32 @@ def paired_figure(rows, out_dir, written, described):
         panel["kind"] = "paired"
     figure(out_dir, "paired", lay.title("Against plain ADG, paired by seed", prows), panels,
            written, described)
+
+
+def paired_uncertainty_figure(rows, out_dir, written, described):
+    """The paired changes against the uncertainty setting: x is the setting's place in the grid
+    (results.csv's order, which is the spec's), its tick the setting in words."""
+    prows = paired_rows(rows)
+    settings = list(dict.fromkeys(r.get("uncertainty", "") for r in prows))
+    if len(settings) < 2:
+        return
+    for r in prows:
+        r["uncertainty_index"] = str(settings.index(r.get("uncertainty", "")))
+    lay = Layout(prows, "uncertainty_index", exclude=("uncertainty",))
+    if "execution" not in lay.lines:
+        lay.lines.insert(0, "execution")
+    if len(values_of(prows, "agents")) > 1:
+        lay.lines.insert(0, "agents")
+    panels = lay.panels_for(prows, paired_metrics(prows), "uncertainty")
+    last = max(panel["col"] for panel in panels)
+    for panel in panels:
+        panel["kind"] = "paired"
+        panel["categories"] = [disturbance(v) for v in settings]
+        # One legend, beside the last column: inside, a sweep's lines leave it no room.
+        panel["legend"] = "right" if panel["col"] == last else "none"
+    figure(out_dir, "paired_uncertainty",
+           lay.title("Against plain ADG by disturbance, paired by seed", prows), panels, written,
+           described)
 
 
 def lifelong_figures(results_dir, rows, out_dir, written, described):
@@ -508,6 +567,7 @@ def main():
     planner_figure(rows, out_dir, written, described)
     sweep_figures(rows, out_dir, written, described)
     paired_figure(rows, out_dir, written, described)
+    paired_uncertainty_figure(rows, out_dir, written, described)
     lifelong_figures(results_dir, rows, out_dir, written, described)
     write_table(rows, out_dir, written)
     path = os.path.join(out_dir, "figures.json")

@@ -49,7 +49,7 @@ class ExperimentPlot(unittest.TestCase):
         for r in table:
             r["success_rate"] = "1" if r["success"] == "true" else "0"
         for name, fig in figures.items():
-            if name == "paired":  # derived from pairs of rows: test_paired_changes_...
+            if name.startswith("paired"):  # derived from pairs of rows: test_paired_changes_...
                 continue
             for panel in fig["panels"]:
                 rows = table
@@ -174,6 +174,45 @@ class ExperimentPlot(unittest.TestCase):
             self.assertAlmostEqual(p["sd"], math.sqrt(200))
         self.assertEqual([round(p["mean"], 9) for p in aet["series"][0]["points"]], [0.0, 0.0])
         self.assertAlmostEqual(aet["series"][0]["points"][0]["sd"], math.sqrt(50))
+
+    def test_a_disturbance_sweep_is_paired_against_its_settings_in_the_grids_order(self):
+        # Three settings in the grid's order (not sorted: "{}" would sort between them), plain and
+        # switchable on seeds 0 and 1: switchable waits 10 %, 20 % and 30 % less on seed 0 and
+        # 2 points less again on seed 1. At one fleet size the paired figure has one x; this one
+        # has a tick per setting, in words.
+        columns = COLUMNS + ["execution", "waiting_time_s.total"]
+        settings = ['{"delay_max_s":4.0,"delay_min_s":1.0,"delay_probability":0.02}', "{}",
+                    '{"stall_probability":0.05,"stall_s":2.0}']
+        rows = []
+        for u, setting in enumerate(settings):
+            for k in (0, 1):
+                rows.append(row(agents=200, uncertainty=setting, repeat=k, execution="adg",
+                                **{"waiting_time_s.total": 1000 + k, "aet_s": 200}))
+                rows.append(row(agents=200, uncertainty=setting, repeat=k, execution="switchable",
+                                **{"waiting_time_s.total": (1000 + k) * (0.9 - 0.1 * u - 0.02 * k),
+                                   "aet_s": 190}))
+        for r in rows:
+            r["cell"] += "-" + r["execution"]
+        out, figures, _ = self.plot(rows, columns)
+        fig = figures["paired_uncertainty"]
+        self.assertTrue((out / "paired_uncertainty.pdf").is_file())
+        waiting, aet = fig["panels"]
+        self.assertEqual(waiting["categories"],
+                         ["delays p 0.02, 1-4 s", "default", "stalls p 0.05, 2 s"])
+        self.assertEqual(waiting["xticklabels"][0], "delays p 0.02,\n1-4 s")
+        self.assertEqual(waiting["xlabel"], "uncertainty")
+        self.assertEqual([s["label"] for s in waiting["series"]], ["switchable"])
+        points = waiting["series"][0]["points"]
+        self.assertEqual([p["x"] for p in points], [0, 1, 2])
+        self.assertEqual([p["n"] for p in points], [2, 2, 2])
+        for p, want in zip(points, (-11.0, -21.0, -31.0)):
+            self.assertAlmostEqual(p["mean"], want)
+            self.assertAlmostEqual(p["sd"], math.sqrt(2))
+        self.assertAlmostEqual(aet["series"][0]["points"][1]["mean"], -5.0)
+        # One setting: nothing to sweep, no such figure.
+        _, figures, _ = self.plot([r for r in rows if r["uncertainty"] == "{}"], columns)
+        self.assertIn("paired", figures)
+        self.assertNotIn("paired_uncertainty", figures)
 
     def test_lifelong_pairs_show_tasks_finished_and_plan_runs_without_plain_have_none(self):
         columns = COLUMNS + ["execution", "waiting_time_s.total", "lifelong.tasks_finished",
