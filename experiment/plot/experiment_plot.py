@@ -49,13 +49,16 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
-LINE_AXES = ["plan", "execution", "switch_commit_actions", "robot", "qos", "uncertainty", "replan_period_s", "clock"]
+LINE_AXES = ["plan", "execution", "switch_commit_actions", "switch_chain_locations", "robot", "qos",
+             "uncertainty", "replan_period_s", "lookahead", "clock"]
 PANEL_AXES = ["map"]
 POOLED_AXES = ["scen"]
 AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
               "clock": "clock", "map": "map", "scen": "scen", "agents": "robots",
               "replan_period_s": "replan period (s)", "execution": "execution",
-              "switch_commit_actions": "entries sent (actions ahead)"}
+              "switch_commit_actions": "entries sent (actions ahead)",
+              "switch_chain_locations": "chain (locations)",
+              "lookahead": "commit cut look-ahead (actions)"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")
 
@@ -390,7 +393,7 @@ def sweep_figures(rows, out_dir, written, described):
 # What a switching run is paired with plain ADG's run by: everything of its cell but the
 # execution (and the commit distance, which plain ADG has not), and the seed.
 PAIR_KEYS = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock",
-             "replan_period_s", "repeat"]
+             "replan_period_s", "lookahead", "repeat"]
 PAIRED_FIELDS = (("waiting_time_s.total", "paired.waiting_pct"), ("aet_s", "paired.aet_pct"),
                  ("lifelong.tasks_finished", "paired.tasks_pct"))
 
@@ -519,8 +522,12 @@ def write_table(rows, out_dir, written):
         keys.insert(keys.index("plan") + 1, "execution")
     if len(values_of(rows, "switch_commit_actions")) > 1:
         keys.insert(keys.index("plan") + 1 + switching, "switch_commit_actions")
+    if len(values_of(rows, "switch_chain_locations")) > 1:
+        keys.insert(keys.index("plan") + 1 + switching, "switch_chain_locations")
     if lifelong:
         keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
+    if len(values_of(rows, "lookahead")) > 1:
+        keys.insert(keys.index("uncertainty") + 1 + lifelong, "lookahead")
     groups = defaultdict(list)
     for r in rows:
         groups[tuple(r.get(k, "") for k in keys)].append(r)

@@ -145,7 +145,7 @@ std::pair<fs::path, std::optional<double>> make_plan(Campaign& c, const Cell& ce
   return c.plans[key] = {plan, *read_runtime(plan)};
 }
 
-// A lifelong cell: its task stream, duration, replanning period and planner.
+// A lifelong cell: its task stream, duration, replanning period, look-ahead and planner.
 std::vector<std::string> lifelong_argv(const Campaign& c, const Cell& cell) {
   const auto& l = *c.spec.lifelong;
   const auto& source = c.files[cell.instance].first.string();
@@ -158,6 +158,7 @@ std::vector<std::string> lifelong_argv(const Campaign& c, const Cell& cell) {
   if (l.task_errands) argv.insert(argv.end(), {"--task-errands", std::to_string(*l.task_errands)});
   argv.insert(argv.end(), {"--duration-s", nlohmann::json(l.duration_s).dump(), "--replan-period-s",
                            nlohmann::json(l.replan_period_s.at(cell.period)).dump()});
+  if (cell.lookahead != 0) argv.insert(argv.end(), {"--lookahead", std::to_string(cell.lookahead)});
   const auto& planner = c.spec.plans.at(cell.plan);
   if (planner.source == PlanSource::kCommand) {
     argv.insert(argv.end(), {"--planner-cmd", planner.text});

@@ -365,9 +365,16 @@ void read_lifelong(const YAML::Node& root, const std::string& src, Spec& s) {
         ls.replan_period_s.push_back(number_in(kv.second, src, field, 0.05, 3600));
       }
       if (ls.replan_period_s.empty()) fail(src, kv.second, field, "give at least one period");
+    } else if (key == "lookahead") {
+      ls.lookahead.clear();
+      for (const auto k : whole_numbers(kv.second, src, field, 1, 1000, "from 1 to 1000 actions")) {
+        ls.lookahead.push_back(static_cast<uint32_t>(k));
+      }
+      if (ls.lookahead.empty()) fail(src, kv.second, field, "give at least one, e.g. [4, 8]");
     } else {
       fail(src, kv.first, field,
-           "unknown; the fields are map or problem, duration_s, task_errands, replan_period_s");
+           "unknown; the fields are map or problem, duration_s, task_errands, replan_period_s, "
+           "lookahead");
     }
   }
   if (ls.map.empty() == ls.problem.empty()) {
@@ -390,6 +397,12 @@ std::string instance_stem(const Spec& s, std::size_t i) {
 }
 
 std::size_t periods(const Spec& s) { return s.lifelong ? s.lifelong->replan_period_s.size() : 1; }
+
+// The commit cut's look-aheads of a lifelong grid (0: smart run's default, the flag not given).
+std::vector<uint32_t> lookaheads(const Spec& s) {
+  if (!s.lifelong || s.lifelong->lookahead.empty()) return {0};
+  return s.lifelong->lookahead;
+}
 
 void flatten(const json& j, const std::string& prefix, json& row) {
   for (const auto& [k, v] : j.items()) {
@@ -425,6 +438,7 @@ const std::vector<std::string> kParams{"cell",
                                        "switch_commit_actions",
                                        "switch_chain_locations",
                                        "replan_period_s",
+                                       "lookahead",
                                        "planner_runtime_s"};
 }  // namespace
 
@@ -483,19 +497,22 @@ std::vector<Cell> expand(const Spec& s) {
           for (const auto& qos : s.qos) {
             for (std::size_t u = 0; u < s.uncertainty.size(); ++u) {
               for (std::size_t t = 0; t < periods(s); ++t) {
-                for (const auto& e : s.executions) {
-                  for (const auto& [commit, chain] : switching_axis(s, e)) {
-                    for (std::size_t r = 0; r < s.repeats; ++r) {
-                      auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
-                                 std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
-                      if (s.plans.size() > 1) key += "-" + s.plans[p].name;
-                      if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
-                      if (periods(s) > 1) key += "-p" + std::to_string(t);
-                      if (e != "adg") key += "-" + e;  // plain cells keep their folders
-                      if (commit != 0) key += "-c" + std::to_string(commit);
-                      if (chain != 0) key += "-k" + std::to_string(chain);
-                      key += "-r" + std::to_string(r);
-                      cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit, chain});
+                for (const uint32_t look : lookaheads(s)) {
+                  for (const auto& e : s.executions) {
+                    for (const auto& [commit, chain] : switching_axis(s, e)) {
+                      for (std::size_t r = 0; r < s.repeats; ++r) {
+                        auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
+                                   std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
+                        if (s.plans.size() > 1) key += "-" + s.plans[p].name;
+                        if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
+                        if (periods(s) > 1) key += "-p" + std::to_string(t);
+                        if (look != 0) key += "-l" + std::to_string(look);
+                        if (e != "adg") key += "-" + e;  // plain cells keep their folders
+                        if (commit != 0) key += "-c" + std::to_string(commit);
+                        if (chain != 0) key += "-k" + std::to_string(chain);
+                        key += "-r" + std::to_string(r);
+                        cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit, chain, look});
+                      }
                     }
                   }
                 }
@@ -555,6 +572,7 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);
+    if (c.lookahead != 0) row["lookahead"] = c.lookahead;
     row.erase("axis");
     // A LoRR problem brings its team: its size is summary.json's robots.
     if (c.agents == 0) row["agents"] = summary.value("robots", json(nullptr));

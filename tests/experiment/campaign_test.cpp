@@ -212,6 +212,27 @@ TEST_F(Campaign, ALifelongExperimentMeasuresThroughputOverSeeds) {
   EXPECT_THAT(slurp(dir_ / "out" / "figures" / "table.md"), HasSubstr("throughput (tasks/min)"));
 }
 
+// The commit cut's look-ahead axis reaches smart run: the run's own summary says it kept that
+// many actions per robot.
+TEST_F(Campaign, ALifelongLookaheadAxisIsPassedToEachRun) {
+  const auto spec = dir_ / "lookahead.yaml";
+  std::ofstream(spec) << "name: la\nlifelong:\n  map: "
+                      << (b_ / "maps/random-32-32-20.map").string()
+                      << "\n  duration_s: 10\n  lookahead: [3, 5]\nagents: [4]\n";
+  const auto r = run(spec, kExperimentLookahead);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.with_results, 2u);
+  const auto rows = lines_of(dir_ / "out" / "results.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_THAT(rows[0], HasSubstr(",replan_period_s,lookahead,"));
+  for (const auto& [cell, kept] : {std::pair{"0-random-32-32-20-n4-footbot-lan-l3-r0", 3},
+                                   std::pair{"0-random-32-32-20-n4-footbot-lan-l5-r0", 5}}) {
+    const auto summary =
+        nlohmann::json::parse(slurp(dir_ / "out" / "cells" / cell / "summary.json"));
+    EXPECT_EQ(summary["lifelong"]["lookahead"], kept) << cell;
+  }
+}
+
 TEST_F(Campaign, BadInputIsNamedBeforeAnythingRuns) {
   EXPECT_THAT([&] { run(write_spec("clock: fast\n")); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spec.yaml:")));

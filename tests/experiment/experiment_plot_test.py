@@ -250,6 +250,36 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("| plan | execution | switch_commit_actions |", text)
         self.assertIn("| switchable | 6 |", text)
 
+    def test_chain_lengths_are_lines_and_lookaheads_pair_with_plain_adg_at_their_own(self):
+        # Chains of 1 and 8 locations were pooled into one line before (a grid axis averaged).
+        # Plain ADG waits 1000 s with the commit cut's look-ahead 4 and 2000 s with 8;
+        # switchable-opt 900 s and 1900 s: -10 % and -5 %, each against its own look-ahead's
+        # plain run (against the other's: +90 % or -55 %).
+        columns = COLUMNS + ["execution", "switch_chain_locations", "lookahead",
+                             "waiting_time_s.total"]
+        rows = [row(agents=10, repeat=k, execution="adg", **{"waiting_time_s.total": 500})
+                for k in (0, 1)]
+        rows += [row(agents=10, repeat=k, execution="switchable", switch_chain_locations=c,
+                     **{"waiting_time_s.total": 400 + c}) for k in (0, 1) for c in (1, 8)]
+        for r in rows:
+            r["cell"] += "-" + r["execution"] + str(r.get("switch_chain_locations", ""))
+        _, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        waiting = figures["waiting"]["panels"][0]
+        self.assertEqual([s["label"] for s in waiting["series"]],
+                         ["adg", "switchable / 1", "switchable / 8"])
+        rows = [row(agents=10, repeat=k, lookahead=la, execution=e, **{
+            "waiting_time_s.total": 1000 * (la // 4) - (100 if e != "adg" else 0)})
+            for k in (0, 1) for la in (4, 8) for e in ("adg", "switchable-opt")]
+        for r in rows:
+            r["cell"] += "-" + r["execution"] + str(r["lookahead"])
+        _, figures, _ = self.plot(rows, columns)
+        waiting = figures["paired"]["panels"][0]
+        self.assertEqual([s["label"] for s in waiting["series"]],
+                         ["switchable-opt / 4", "switchable-opt / 8"])
+        self.assertEqual([round(s["points"][0]["mean"], 9) for s in waiting["series"]],
+                         [-10.0, -5.0])
+
     def test_points_with_different_counts_say_their_n(self):
         rows = [row(agents=5), row(agents=5, repeat=1), row(agents=10)]
         _, figures, table = self.plot(rows)

@@ -385,6 +385,31 @@ TEST(Spec, ALifelongSpecHasTeamSizesPlannersPeriodsAndDelaysAsAxes) {
   EXPECT_THAT(csv, HasSubstr("clock,execution,replan_period_s,lifelong.throughput_per_min\n"));
 }
 
+// The commit cut's look-ahead (`smart run --lookahead`, actions kept per robot) is an axis of a
+// lifelong grid: each value its own cells (and folders, "-l4"), passed to smart run, a column
+// of its own, so that plain ADG pairs with switching at the same look-ahead.
+TEST(Spec, ALifelongGridTakesTheCommitCutsLookaheadAsAnAxis) {
+  const auto s = parse_spec(
+      "name: l\nlifelong: {map: m.map, lookahead: [4, 8]}\nagents: [10]\n"
+      "executions: [adg, switchable-opt]\n",
+      "l.yaml");
+  EXPECT_EQ(s.lifelong->lookahead, (std::vector<uint32_t>{4, 8}));
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 4u);
+  EXPECT_EQ(cells[0].key, "0-m-n10-footbot-lan-l4-r0");
+  EXPECT_EQ(cells[1].key, "0-m-n10-footbot-lan-l4-switchable-opt-r0");
+  EXPECT_EQ(cells[3].key, "0-m-n10-footbot-lan-l8-switchable-opt-r0");
+  EXPECT_EQ(cells[3].lookahead, 8u);
+  const auto row = result_row(s, cells[3], {{"lifelong", {{"lookahead", 8}}}});
+  EXPECT_EQ(row["lookahead"], 8);
+  EXPECT_THAT(results_csv({row}), HasSubstr("execution,replan_period_s,lookahead,"));
+  // Without it, no flag, no column, the folders as before.
+  const auto plain = parse_spec("name: l\nlifelong: {map: m.map}\nagents: [10]\n", "l.yaml");
+  EXPECT_EQ(expand(plain).at(0).key, "0-m-n10-footbot-lan-r0");
+  EXPECT_EQ(expand(plain).at(0).lookahead, 0u);
+  EXPECT_FALSE(result_row(plain, expand(plain).at(0), json::object()).contains("lookahead"));
+}
+
 TEST(Spec, ALorrProblemBringsItsTeam) {
   const auto s =
       parse_spec("name: lorr\nlifelong: {problem: maze.domain/maze-example_40.json}\n", "l.yaml");
@@ -413,6 +438,10 @@ TEST(Spec, LifelongMistakesNameTheFileLineAndField) {
               HasSubstr("ll.yaml:4: maps: a lifelong experiment has no plan files"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m, replan_period_s: [0]}\nagents: [1]\n"),
               HasSubstr("lifelong.replan_period_s: a number from 0.05 to 3600"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m, lookahead: [0]}\nagents: [1]\n"),
+              HasSubstr("ll.yaml:2: lifelong.lookahead: from 1 to 1000 actions"));
+  EXPECT_THAT(error("name: a\nlifelong: {map: m, lookahead: [four]}\nagents: [1]\n"),
+              HasSubstr("lifelong.lookahead: 'four' is not a whole number"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m, windows: 3}\nagents: [1]\n"),
               HasSubstr("lifelong.windows: unknown; the fields are map or problem"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m}\nagents: [1]\nplanners: [{planner: lacam}]\n"),

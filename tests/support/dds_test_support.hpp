@@ -187,6 +187,7 @@ enum DomainId : int {
   kSwitchableResume = 52,
   kSwitchableResumeRun = 51,
   kSwitchableResumeMismatch = 50,
+  kExperimentLookahead = 48,  // and 49 (--jobs 2)
 };
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }

@@ -33,6 +33,8 @@
 //     duration_s: 120                 # sim seconds per run; default 60
 //     task_errands: 1                 # errands per random task (optional)
 //     replan_period_s: [1, 2]         # an axis; default [1]
+//     lookahead: [4, 8]               # `smart run --lookahead` (actions the commit cut keeps
+//                                     # per robot), an axis; default: its default
 //   planners: [{planner: builtin}, {name: greedy, command: "python3 greedy_planner.py"}]
 //                                     # --planner-cmd per command; default [{planner: builtin}]
 //   uncertainty: [{}, {delay_probability: 0.01, delay_max_s: 2}]   # LoRR-style delays too
@@ -66,6 +68,7 @@ struct LifelongSpec {
   double duration_s = 60;
   std::optional<int> task_errands;
   std::vector<double> replan_period_s{1.0};
+  std::vector<uint32_t> lookahead;  // empty: `smart run`'s default
 };
 
 struct Spec {
@@ -102,10 +105,11 @@ struct Cell {
   std::string execution = "adg";
   uint32_t commit_actions = 0;   // --switch-commit-actions; 0: not given
   uint32_t chain_locations = 0;  // --switch-chain-locations; 0: not given
+  uint32_t lookahead = 0;        // lifelong: --lookahead; 0: not given
 };
 
 // The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period,
-// execution, switch_commit_actions, switch_chain_locations, repeat).
+// lookahead, execution, switch_commit_actions, switch_chain_locations, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
