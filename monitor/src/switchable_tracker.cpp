@@ -37,7 +37,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       finished_(actions.robots(), 0),
       enqueued_(actions.robots(), 0),
       dirty_(actions.robots()),
-      seen_(actions.actions.size(), 0),
+      mark_(actions.actions.size()),
       parent_(actions.actions.size(), 0),
       refused_(actions.robots()),
       with_refusal_(actions.robots()),
@@ -60,6 +60,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   const std::size_t nodes = actions.actions.size();
+  for (std::size_t n = 0; n < nodes; ++n) mark_[n].robot = actions.actions[n].robot;
   index_stays(stay_, nodes, true, enter_begin_, enter_stays_);
   index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
   if (options_.anticipate) {
@@ -125,12 +126,7 @@ uint32_t SwitchableTracker::take_first(RobotSet& set) {
   return static_cast<uint32_t>(first);
 }
 
-bool SwitchableTracker::finished_node(uint32_t node) const {
-  const auto& a = actions_.actions[node];
-  return a.seq < finished_[a.robot];
-}
-
-// The same for a stay's actions, whose robot is known (no lookup of the action).
+// Whether `robot`'s action `node` has finished (its robot known: no lookup of the action).
 bool SwitchableTracker::finished_by(uint32_t robot, uint32_t node) const {
   return node < actions_.offset[robot] + finished_[robot];
 }
@@ -418,14 +414,15 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
     uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
     std::vector<std::pair<uint32_t, uint32_t>>& path) {
   if (++stamp_ == 0) {
-    std::fill(seen_.begin(), seen_.end(), 0);
+    for (auto& m : mark_) m.seen = 0;
     stamp_ = 1;
   }
   stack_.assign(1, to);
-  seen_[to] = stamp_;
+  mark_[to].seen = stamp_;
   const auto push = [&](uint32_t v, uint32_t u) {  // parent_[v] = u: the path goes v -> u
-    if (seen_[v] == stamp_ || finished_node(v)) return;
-    seen_[v] = stamp_;
+    Mark& m = mark_[v];
+    if (m.seen == stamp_ || finished_by(m.robot, v)) return;
+    m.seen = stamp_;
     parent_[v] = u;
     stack_.push_back(v);
   };
@@ -436,12 +433,12 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
     if (u == from) {
       for (uint32_t v = from; v != to; v = parent_[v]) {
         const uint32_t w = parent_[v];
-        if (actions_.actions[v].robot != actions_.actions[w].robot) path.emplace_back(v, w);
+        if (mark_[v].robot != mark_[w].robot) path.emplace_back(v, w);
       }
       return Reach::kPath;
     }
     if (++visited > options_.search_budget) return Reach::kBudget;
-    if (actions_.actions[u].seq > 0) push(u - 1, u);
+    if (u > actions_.offset[mark_[u].robot]) push(u - 1, u);  // not its robot's first action
     for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
       const auto b = before(enter_stays_[i]);
       if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
