@@ -9,6 +9,9 @@
 # inside one run can.
 # With LIFELONG=1, the same for a lifelong run instead (LiveAdg's switching): 1000 robots on
 # that map, random single-errand tasks, LoRR-style delays (p = 0.01, 1-4 s), 120 sim s, seed 1.
+# With DENSE=1, LaCAM's 1000-robot plan of random-64-64-10 (random-1 scenario, planned here by
+# `smart plan --algorithm lacam`) under LoRR-style delays (p = 0.01, 1-4 s, seed 0): the dense map
+# where the deadlock search costs most (docs/execution.md, "On a dense random map under delays").
 # Usage: bench/switching_cost.sh [REPEATS] [OUT_DIR] (SMART, SMART_BENCHMARKS, DOMAIN (92:
 # outside the tests' ids), MODES (the executions, space separated) override). Needs perf
 # (Debian: linux-perf) and a kernel that lets this user sample (kernel.perf_event_paranoid <= 1,
@@ -24,11 +27,20 @@ mkdir -p "$out"
 # walk_cone, cone_saving and next_mark (the lookahead's cone, since 2026-11-29) were missing from
 # this list until 2026-12-01: the lookahead's share was measured without its cone walk
 # (docs/execution.md, "Cost").
-switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers)|ActionDurations::|queue_saving'
+switching='SwitchableTracker::(try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|ActionDurations::|queue_saving'
 tracker='(ExecutionTracker|SwitchableTracker|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
   --plan "$bench/smart-examples/scen_1_1000_paths.txt" --axis rowcol --agents 1000)
+if [ "${DENSE:-0}" = 1 ]; then
+  "$smart" plan --map "$bench/maps/random-64-64-10.map" \
+    --scen "$bench/scens/random-64-64-10-random-1.scen" --agents 1000 --algorithm lacam \
+    --out "$out/lacam-1000.txt" > "$out/plan.log"
+  run_args=(--map "$bench/maps/random-64-64-10.map"
+    --scen "$bench/scens/random-64-64-10-random-1.scen" --plan "$out/lacam-1000.txt" --axis xy
+    --agents 1000 --delay-probability 0.01 --delay-min-s 1 --delay-max-s 4 --seed 0
+    --state-rate-hz 0)
+fi
 if [ "${LIFELONG:-0}" = 1 ]; then
   # monitor/src/live_adg_switching.cpp, live_adg_chain.cpp, live_adg_anticipation.cpp and
   # live_adg_lookahead.cpp: all but the graph's growth and plain dispatch (advance, finish,

@@ -49,7 +49,8 @@ SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32
       const uint32_t leave = stay_[u].leave, enter = stay_[v].enter;
       if (leave == kNoAction || enter == kNoAction || finished_by(stay_[u].robot, leave)) continue;
       chain_path_.clear();
-      const Reach r = reaches(enter, leave, kNoAction, kNoAction, chain_path_);
+      // Not bounded by the order: the chain's new edges are not in it yet.
+      const Reach r = reaches(enter, leave, kNoAction, kNoAction, chain_path_, false);
       if (r != Reach::kNone) return r;
     }
   }
@@ -92,6 +93,7 @@ bool SwitchableTracker::try_chain(uint32_t i,
       return false;  // undone
     }
     if (r == Reach::kNone) {
+      order_swapped(chain);
       for (std::size_t n = 0; n < chain.size(); ++n) {
         const uint32_t s = chain[n];
         switches_.push_back({time_s, location_[s], ready, passed, anticipated,

@@ -76,6 +76,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       ++pending_[stay_[s].enter];
     }
   }
+  init_order();
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
   // First come, first served from the robots' first reports on: at the start nobody is late,
   // and the entries about to be sent are decided by anticipation (ahead_) alone.
@@ -410,23 +411,31 @@ void SwitchableTracker::unsettle_watchers(uint32_t node) {
 // happen before `to`, few actions for a robot near its location. Searching forwards walks the
 // whole future of `from` instead: at 1000 robots it ran out of budget in 4216 of 5939 searches
 // (each a switch refused) and took 6 % of the monitor's CPU (docs/execution.md, "Cost").
+// Two exact bounds (switchable_order.cpp): an action ordered before `from` cannot follow it, and
+// an action sent already waits for finished actions alone (a switch only adds edges into unsent
+// entries), so neither leads back to `from`, unsent; nor does anything before them. Without
+// them the searches behind a robot far from its location walked to the budget and gave up.
 SwitchableTracker::Reach SwitchableTracker::reaches(
     uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-    std::vector<std::pair<uint32_t, uint32_t>>& path) {
-  if (++stamp_ == 0) {
-    for (auto& m : mark_) m.seen = 0;
-    stamp_ = 1;
-  }
+    std::vector<std::pair<uint32_t, uint32_t>>& path, bool by_order) {
+  next_stamp();
   stack_.assign(1, to);
   mark_[to].seen = stamp_;
+  const bool unsent = !sent_by(mark_[from].robot, from);
+  const uint32_t lowest = by_order && ordered_ ? mark_[from].ord : 0;
   const auto push = [&](uint32_t v, uint32_t u) {  // parent_[v] = u: the path goes v -> u
     Mark& m = mark_[v];
-    if (m.seen == stamp_ || finished_by(m.robot, v)) return;
+    if (m.seen == stamp_ || m.ord < lowest) return;
+    if (unsent ? sent_by(m.robot, v) : finished_by(m.robot, v)) return;
     m.seen = stamp_;
     parent_[v] = u;
     stack_.push_back(v);
   };
   std::size_t visited = 0;
+  const auto done = [&](Reach r) {
+    search_visits_ += visited;
+    return r;
+  };
   while (!stack_.empty()) {
     const uint32_t u = stack_.back();
     stack_.pop_back();
@@ -435,9 +444,9 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
         const uint32_t w = parent_[v];
         if (mark_[v].robot != mark_[w].robot) path.emplace_back(v, w);
       }
-      return Reach::kPath;
+      return done(Reach::kPath);
     }
-    if (++visited > options_.search_budget) return Reach::kBudget;
+    if (++visited > options_.search_budget) return done(Reach::kBudget);
     if (u > actions_.offset[mark_[u].robot]) push(u - 1, u);  // not its robot's first action
     for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
       const auto b = before(enter_stays_[i]);
@@ -446,13 +455,22 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
       if (!(v == skip_from && u == skip_to)) push(v, u);
     }
   }
-  return Reach::kNone;
+  return done(Reach::kNone);
+}
+
+uint32_t SwitchableTracker::next_stamp() {
+  if (++stamp_ == 0) {
+    for (auto& m : mark_) m.seen = 0;
+    stamp_ = 1;
+  }
+  return stamp_;
 }
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
 void SwitchableTracker::swap_with_next(uint32_t stay, std::vector<uint32_t>& changed) {
   const uint32_t j = after(stay).stay;
   relink(stay);
+  order_swapped({stay});
   settle(j);
   const uint32_t robot = stay_[j].robot;
   if (advance(robot)) changed.push_back(robot);

@@ -24,6 +24,13 @@
 // j -> i, i -> k at each) closes a cycle, otherwise undone before anything is sent (i's entry at
 // each must be unsent, j must leave each again). switchable_chain.cpp.
 // Deterministic: the robots whose situation changed are tried in id order after each progress.
+// The deadlock search is bounded by a topological order of the unfinished actions, kept up as
+// the orders switch (Pearce and Kelly, "A dynamic topological sort algorithm for directed
+// acyclic graphs", ACM JEA 11, 2006): a path from i.enter to j.leave passes only actions
+// ordered between them, so the search never walks the actions that must happen before i.enter,
+// nor those sent already (they wait for finished actions alone). Both prunes are exact: a search
+// that finds a path finds the same one, and most of those that ran out of budget get an answer
+// (switchable_order.cpp).
 //
 // Anticipation (options.anticipate, `--execution switchable-opt`): the moment an entry i is to
 // be sent (its robot within `commit_actions`, nothing left to wait for) is the last moment its
@@ -110,6 +117,13 @@ class SwitchableTracker final : public Execution {
   const ActionDurations& durations() const { return durations_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
+  // The search's topological order holds on every edge between unfinished actions (tests: the
+  // order is checked after switches), and it was never given up (a cycle found while ordering;
+  // the search then runs unbounded by it, as before).
+  bool order_holds() const;
+  bool ordered() const { return ordered_; }
+  // Actions the deadlock search visited in all (tests, the bench).
+  std::size_t search_visits() const { return search_visits_; }
   // Unfinished Type-2 predecessors of an action (node id), as the current orders give them.
   uint32_t pending(uint32_t node) const { return pending_[node]; }
   // Its Type-2 predecessors (node ids, finished or not) in the current orders, appended to out.
@@ -143,8 +157,18 @@ class SwitchableTracker final : public Execution {
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
   void try_switches(double time_s, std::vector<uint32_t>& changed);
   enum class Reach : uint8_t { kNone, kPath, kBudget };
+  // by_order: bounded by the topological order (not while a chain's swaps are tried: their
+  // new edges are not ordered yet).
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-                std::vector<std::pair<uint32_t, uint32_t>>& path);
+                std::vector<std::pair<uint32_t, uint32_t>>& path, bool by_order = true);
+  uint32_t next_stamp();
+  // The topological order (switchable_order.cpp).
+  void init_order();
+  void order_swapped(const std::vector<uint32_t>& stays);
+  bool order_edge(uint32_t from, uint32_t to);
+  bool order_walk(uint32_t start, uint32_t bound, bool forward, uint32_t stop,
+                  std::vector<uint32_t>& out);
+  bool unordered(uint32_t from, uint32_t to) const;
   bool has_edge(uint32_t from, uint32_t to) const;
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   bool path_holds(uint32_t robot) const;
@@ -225,16 +249,21 @@ class SwitchableTracker final : public Execution {
   std::vector<uint32_t> pending_;
   std::vector<uint32_t> finished_, enqueued_;
   std::size_t finished_total_ = 0;
-  RobotSet dirty_;              // robots to try: their situation changed since they were tried
+  RobotSet dirty_;  // robots to try: their situation changed since they were tried
   // Per node, the deadlock search's stamp and the node's robot side by side: the search reads
   // both for every action it meets, where reading the plan's action (48 bytes) cost a cache miss
   // of its own. On LaCAM's 1000-robot plan under delays the search took 6.3 % of the monitor's
   // CPU under switchable, 5.9 % so (one run each; docs/execution.md, "Cost").
+  // And its place in the topological order (ord): the search reads it for each action too.
   struct Mark {
-    uint32_t seen = 0, robot = 0;
+    uint32_t seen = 0, robot = 0, ord = 0;
   };
   std::vector<Mark> mark_;
   uint32_t stamp_ = 0;
+  std::size_t search_visits_ = 0;
+  bool ordered_ = true;  // mark_'s ord is a topological order (false: given up, never again)
+  std::vector<std::pair<uint32_t, uint32_t>> unordered_;  // new edges not ordered yet
+  std::vector<uint32_t> forward_, backward_, pool_;       // one edge's reordering (scratch)
   std::vector<PassingSwitch> switches_;
   // Per robot, its last refused switch: the entry, the stay it would pass, and why.
   struct Refusal {
