@@ -51,7 +51,11 @@ if [ "${LIFELONG:-0}" = 1 ]; then
     --task-errands 1 --duration-s 120 --delay-probability 0.01 --delay-min-s 1 --delay-max-s 4
     --seed 1)
 fi
-share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid: smart run's own)
+# DATA: "tracker% switching% switching-of-user%" of the monitor (the lowest pid: smart run's own):
+# the last of its user-space samples alone. The kernel's share of the monitor's samples (mostly
+# wake-ups while it waits in lock-step) moved from 23 to 60 % between identical runs on this
+# machine (2026-12-02), and the first two shares with it.
+share() {
   local pid
   pid=$(perf script -i "$1" -F pid 2> /dev/null | sort -n | head -1 | tr -d ' ')
   perf report -i "$1" --pid "$pid" --sort sym --stdio --percentage relative 2> /dev/null |
@@ -59,7 +63,8 @@ share() {  # DATA: "tracker% switching% samples" of the monitor (the lowest pid:
     awk -v sw="$switching" -v tr="$tracker" '{p = $1; sub("%", "", p)}
       $0 ~ tr {t += p}
       $0 ~ sw {s += p}
-      END {printf "%.2f %.2f\n", t, s}'
+      $2 != "[k]" {u += p}
+      END {printf "%.2f %.2f %.2f\n", t, s, (u > 0 ? 100 * s / u : 0)}'
 }
 modes=(adg switchable switchable-opt switchable-lookahead)
 [ -z "${MODES:-}" ] || read -r -a modes <<< "$MODES"  # e.g. MODES="switchable-lookahead"
@@ -72,13 +77,15 @@ for mode in "${modes[@]}"; do
     echo "$mode $i $(share "$dir.data")" | tee -a "$out/shares.txt"
   done
 done
-awk '{t[$1] += $3; tt[$1] += $3 * $3; s[$1] += $4; ss[$1] += $4 * $4; n[$1]++}
+awk '{t[$1] += $3; tt[$1] += $3 * $3; s[$1] += $4; ss[$1] += $4 * $4; n[$1]++
+    u[$1] += $5; uu[$1] += $5 * $5}
   END {
     for (m in n) {
       sdt = n[m] > 1 ? sqrt((tt[m] - t[m] * t[m] / n[m]) / (n[m] - 1)) : 0
       sds = n[m] > 1 ? sqrt((ss[m] - s[m] * s[m] / n[m]) / (n[m] - 1)) : 0
-      printf "%-15s monitor CPU in the tracker %.1f ± %.1f %%, in switching %.1f ± %.1f %% (%d runs)\n",
-        m, t[m] / n[m], sdt, s[m] / n[m], sds, n[m]
+      sdu = n[m] > 1 ? sqrt((uu[m] - u[m] * u[m] / n[m]) / (n[m] - 1)) : 0
+      printf "%-15s monitor CPU in the tracker %.1f ± %.1f %%, in switching %.1f ± %.1f %% (of user-space samples %.1f ± %.1f %%; %d runs)\n",
+        m, t[m] / n[m], sdt, s[m] / n[m], sds, u[m] / n[m], sdu, n[m]
     }
   }' "$out/shares.txt" | sort
 echo "machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg)"
