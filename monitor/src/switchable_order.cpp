@@ -27,10 +27,7 @@ void SwitchableTracker::init_order() {
   queue.reserve(nodes);
   for (uint32_t n = 0; n < nodes; ++n) {
     in[n] = (n > actions_.offset[mark_[n].robot] ? 1 : 0);
-    for (uint32_t i = enter_begin_[n]; i < enter_begin_[n + 1]; ++i) {
-      const auto b = before(enter_stays_[i]);
-      in[n] += b.edge && stay_[b.stay].leave != kNoAction;
-    }
+    each_edge_in(n, [&](uint32_t) { ++in[n]; });
     if (in[n] == 0) queue.push_back(n);
   }
   const auto visit = [&](uint32_t v) {
@@ -41,10 +38,7 @@ void SwitchableTracker::init_order() {
     mark_[u].ord = static_cast<uint32_t>(head);
     const uint32_t robot = mark_[u].robot;
     if (u + 1 < actions_.offset[robot] + actions_.count(robot)) visit(u + 1);
-    for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
-      const auto next = after(leave_stays_[i]);
-      if (next.edge && stay_[next.stay].enter != kNoAction) visit(stay_[next.stay].enter);
-    }
+    each_edge_out(u, visit);
   }
   ordered_ = queue.size() == nodes;
 }
@@ -129,20 +123,14 @@ bool SwitchableTracker::order_walk(uint32_t start, uint32_t bound, bool forward,
     const uint32_t robot = mark_[u].robot, first = actions_.offset[robot];
     if (forward) {
       if (u + 1 < first + actions_.count(robot)) push(u + 1);
-      for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
-        const auto next = after(leave_stays_[i]);
-        if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
-        const uint32_t v = stay_[next.stay].enter;
+      each_edge_out(u, [&](uint32_t v) {
         if (!unordered(u, v)) push(v);
-      }
-      continue;
-    }
-    if (u > first) push(u - 1);
-    for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
-      const auto b = before(enter_stays_[i]);
-      if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
-      const uint32_t v = stay_[b.stay].leave;
-      if (!unordered(v, u)) push(v);
+      });
+    } else {
+      if (u > first) push(u - 1);
+      each_edge_in(u, [&](uint32_t v) {
+        if (!unordered(v, u)) push(v);
+      });
     }
   }
   return !cycle;
@@ -158,11 +146,9 @@ bool SwitchableTracker::order_holds() const {
         mark_[u + 1].ord <= mark_[u].ord) {
       return false;
     }
-    for (uint32_t i = leave_begin_[u]; i < leave_begin_[u + 1]; ++i) {
-      const auto next = after(leave_stays_[i]);
-      if (!next.edge || stay_[next.stay].enter == kNoAction) continue;
-      if (mark_[stay_[next.stay].enter].ord <= mark_[u].ord) return false;
-    }
+    bool up = true;
+    each_edge_out(u, [&](uint32_t v) { up = up && mark_[v].ord > mark_[u].ord; });
+    if (!up) return false;
   }
   return true;
 }

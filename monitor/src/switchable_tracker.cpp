@@ -448,22 +448,18 @@ SwitchableTracker::Reach SwitchableTracker::reaches(
     }
     if (++visited > options_.search_budget) return done(Reach::kBudget);
     if (u > actions_.offset[mark_[u].robot]) push(u - 1, u);  // not its robot's first action
-    for (uint32_t i = enter_begin_[u]; i < enter_begin_[u + 1]; ++i) {
-      const auto b = before(enter_stays_[i]);
-      if (!b.edge || stay_[b.stay].leave == kNoAction) continue;
-      const uint32_t v = stay_[b.stay].leave;
+    each_edge_in(u, [&](uint32_t v) {
       if (!(v == skip_from && u == skip_to)) push(v, u);
-    }
+    });
   }
   return done(Reach::kNone);
 }
 
-uint32_t SwitchableTracker::next_stamp() {
+void SwitchableTracker::next_stamp() {
   if (++stamp_ == 0) {
     for (auto& m : mark_) m.seen = 0;
     stamp_ = 1;
   }
-  return stamp_;
 }
 
 // h, i, j, k -> h, j, i, k at i's location (i = `stay`), the pending counts following the edges.
@@ -641,10 +637,7 @@ bool SwitchableTracker::deadlocked() const {
 }
 
 void SwitchableTracker::predecessors(uint32_t node, std::vector<uint32_t>& out) const {
-  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
-    const auto b = before(enter_stays_[i]);
-    if (b.edge && stay_[b.stay].leave != kNoAction) out.push_back(stay_[b.stay].leave);
-  }
+  each_edge_in(node, [&](uint32_t leave) { out.push_back(leave); });
 }
 
 std::vector<uint32_t> SwitchableTracker::order_at(uint32_t location) const {

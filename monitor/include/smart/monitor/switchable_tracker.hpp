@@ -161,7 +161,7 @@ class SwitchableTracker final : public Execution {
   // new edges are not ordered yet).
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
                 std::vector<std::pair<uint32_t, uint32_t>>& path, bool by_order = true);
-  uint32_t next_stamp();
+  void next_stamp();
   // The topological order (switchable_order.cpp).
   void init_order();
   void order_swapped(const std::vector<uint32_t>& stays);
@@ -169,6 +169,22 @@ class SwitchableTracker final : public Execution {
   bool order_walk(uint32_t start, uint32_t bound, bool forward, uint32_t stop,
                   std::vector<uint32_t>& out);
   bool unordered(uint32_t from, uint32_t to) const;
+  // The Type-2 edges into `node` (f(the leave before it)) and out of it (f(the entry after it)),
+  // as the current orders give them.
+  template <class F>
+  void each_edge_in(uint32_t node, F&& f) const {
+    for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
+      const auto b = before(enter_stays_[i]);
+      if (b.edge && stay_[b.stay].leave != kNoAction) f(stay_[b.stay].leave);
+    }
+  }
+  template <class F>
+  void each_edge_out(uint32_t node, F&& f) const {
+    for (uint32_t i = leave_begin_[node]; i < leave_begin_[node + 1]; ++i) {
+      const auto next = after(leave_stays_[i]);
+      if (next.edge && stay_[next.stay].enter != kNoAction) f(stay_[next.stay].enter);
+    }
+  }
   bool has_edge(uint32_t from, uint32_t to) const;
   bool still_refused(uint32_t robot, uint32_t node, uint32_t theirs) const;
   bool path_holds(uint32_t robot) const;
