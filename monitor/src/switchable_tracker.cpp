@@ -42,8 +42,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       refused_(actions.robots()),
       with_refusal_(actions.robots()),
       unsettled_(actions.robots()),
-      sent_s_(options.anticipate ? actions.actions.size() : 0, 0.0),
-      finished_s_(actions.robots(), 0.0),
+      started_s_(options.anticipate ? actions.robots() : 0, 0.0),
       decided_(options.anticipate ? actions.actions.size() : 0, 0),
       ahead_(actions.robots()) {
   stay_ = std::move(orders_.stays);  // orders_ keeps each location's range of stay ids
@@ -172,7 +171,7 @@ bool SwitchableTracker::advance(uint32_t robot) {
       ahead_.set(robot);  // its place is decided before it is sent (try_switches)
       break;
     }
-    if (options_.anticipate) sent_s_[node] = now_s_;
+    if (options_.anticipate && seq == finished_[robot]) started_s_[robot] = now_s_;
     ++enqueued_[robot];
   }
   if (enqueued_[robot] == before_count) return false;
@@ -511,14 +510,23 @@ void SwitchableTracker::settle(uint32_t j) {
 }
 
 // Anticipation (switchable_tracker.hpp). A report of one finished action is a duration sample:
-// from its start (the previous finish, or its sending when later) to now.
+// from its start (the previous finish, or its sending when later) to now. The robot's next
+// action starts now if it was sent already (advance() sets the time when it is sent later):
+// reports come in time order (lock-step ticks, the monitor's clock), so an action sent before the
+// report was sent no later than now. Kept per robot, not per action: reading each action's
+// sending time was a cache miss a report, 2.5 % of the monitor's CPU on a dense map
+// (docs/execution.md, "On a dense random map under delays").
 void SwitchableTracker::observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s) {
-  const uint32_t node = actions_.offset[robot] + from;
-  if (upto == from + 1) {
-    durations_.observe(actions_.actions[node].type,
-                       time_s - std::max(finished_s_[robot], sent_s_[node]));
-  }
-  finished_s_[robot] = time_s;
+  if (upto == from + 1)
+    durations_.observe(kind(actions_.offset[robot] + from), time_s - started_s_[robot]);
+  started_s_[robot] = time_s;
+}
+
+// An action's kind from the prefix sums of moves (the plan's 48-byte action would be a cache
+// line of its own; finish_estimate reads these sums anyway).
+grid::ActionType SwitchableTracker::kind(uint32_t node) const {
+  return moves_before_[node + 1] > moves_before_[node] ? grid::ActionType::kMove
+                                                       : grid::ActionType::kRotate;
 }
 
 // When `robot` is expected to finish action `seq` (not finished yet): O(1), the kinds of the
@@ -528,10 +536,8 @@ double SwitchableTracker::finish_estimate(uint32_t robot, uint32_t seq) const {
   if (seq < current) return now_s_;
   const uint32_t base = actions_.offset[robot];
   const uint32_t moves = moves_before_[base + seq + 1] - moves_before_[base + current + 1];
-  const double started =
-      enqueued_[robot] > current ? std::max(finished_s_[robot], sent_s_[base + current]) : -1.0;
-  return durations_.finish_s(now_s_, started, actions_.actions[base + current].type,
-                             {moves, seq - current - moves});
+  const double started = enqueued_[robot] > current ? started_s_[robot] : -1.0;
+  return durations_.finish_s(now_s_, started, kind(base + current), {moves, seq - current - moves});
 }
 
 // When a stay's robot is expected at the location: when it finishes the action before entering;

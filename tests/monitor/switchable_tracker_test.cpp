@@ -258,6 +258,48 @@ TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
   EXPECT_EQ(t.enqueued(0), 6u);  // decided: sent its way in, and the rest
 }
 
+// Anticipation times an action from its start: its robot's previous finish, or its sending when
+// later (a robot that waited at a location's edge). The crossing run by a tiny executor: every
+// robot runs its sent actions back to back, moves 0.5 s and rotations 1 s, each reported when
+// done, in 0.25 s steps. Robot 1 waits at the cell's edge for robot 0 (its entry is sent after
+// its previous action finished), yet the means are the durations exactly; timed from the
+// previous finish, the wait would count as moving. (The start is kept per robot since
+// 2026-12-02, where it was read per action: docs/execution.md, "On a dense random map".)
+TEST(SwitchableTracker, AnActionSentAfterItsRobotWaitedIsTimedFromItsSending) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions = build_actions(crossing(false), Heading::kEast);
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.commit_actions = 2, .anticipate = true, .margin_s = 0.5});
+  const auto duration_s = [&](uint32_t r) {
+    const auto type = actions.actions[actions.offset[r] + t.finished(r)].type;
+    return type == ActionType::kMove ? 0.5 : 1.0;
+  };
+  std::vector<double> start_s(2, 0.0);
+  std::vector<bool> running{t.enqueued(0) > 0, t.enqueued(1) > 0};
+  double waited_s = 0;
+  const auto start_sent = [&](double now_s) {  // a robot standing that was sent an action
+    for (uint32_t r = 0; r < 2; ++r) {
+      if (running[r] || t.enqueued(r) == t.finished(r)) continue;
+      waited_s += now_s - start_s[r];
+      running[r] = true;
+      start_s[r] = now_s;
+    }
+  };
+  for (double now_s = 0.25; !t.complete() && now_s < 100; now_s += 0.25) {
+    for (uint32_t r = 0; r < 2; ++r) {
+      if (!running[r] || now_s < start_s[r] + duration_s(r)) continue;
+      ASSERT_EQ(t.on_progress(r, t.finished(r), now_s).result, ProgressResult::kAdvanced);
+      start_s[r] = now_s;
+      running[r] = t.enqueued(r) > t.finished(r);
+      start_sent(now_s);
+    }
+  }
+  ASSERT_TRUE(t.complete());
+  EXPECT_GT(waited_s, 0.0);  // a robot did wait for a sending
+  EXPECT_DOUBLE_EQ(t.durations().mean_s(ActionType::kMove), 0.5);
+  EXPECT_DOUBLE_EQ(t.durations().mean_s(ActionType::kRotate), 1.0);
+}
+
 // Regression (found 2026-11-27, 800-1000 robots on random-64-64-10 without delays: switchable-opt
 // without anticipation 1.5 % AET behind plain ADG): robot 2 crosses (2, 1) first, robot 0 (from the
 // north) is next, robot 1 (from the east) waits at the cell's edge. When robot 2 leaves, robot 0's

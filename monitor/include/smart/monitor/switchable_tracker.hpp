@@ -210,6 +210,7 @@ class SwitchableTracker final : public Execution {
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
   double finish_estimate(uint32_t robot, uint32_t seq) const;
+  grid::ActionType kind(uint32_t node) const;
   double arrival(uint32_t stay) const;
   PassQueue queue_of(uint32_t i, uint32_t j) const;
   static double expected_saving(const PassQueue& q);
@@ -306,13 +307,12 @@ class SwitchableTracker final : public Execution {
   };
   // A leave -> the refusals whose path has a Type-2 edge from it.
   std::unordered_map<uint32_t, std::vector<Watcher>> watchers_;
-  // Anticipation: expected durations, when each action was sent and each robot last finished.
+  // Anticipation: expected durations, and when each robot's current action started.
   ActionDurations durations_;
   double now_s_ = 0;
-  std::vector<double> sent_s_;      // node -> when it was sent
-  std::vector<double> finished_s_;  // robot -> when its last action finished
-  std::vector<uint8_t> decided_;    // node -> its place was decided when it was to be sent
-  RobotSet ahead_;                  // robots whose next entry awaits that decision
+  std::vector<double> started_s_;  // robot -> when its first unfinished action started (or now)
+  std::vector<uint8_t> decided_;   // node -> its place was decided when it was to be sent
+  RobotSet ahead_;                 // robots whose next entry awaits that decision
   std::size_t anticipated_ = 0;
   std::vector<uint32_t> moves_before_;  // node -> moves before it in the plan (prefix sums)
   // Lookahead: the actions a pair's order affects (cone_); per action, the comparison whose cone
