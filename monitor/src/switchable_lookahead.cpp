@@ -96,7 +96,7 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
       const uint32_t x = e == 0 ? l.leave : leave_stays_[leave_begin_[u] + e];
       if (x != h && x != s.i && x != s.j) {
         // The same next stay in both orders (none: no entry), its robot and entry in near_.
-        const Near& next = near_[x];
+        const Near next = e == 0 ? near_[u] : near_of(x);
         if (next.next_enter != kNoAction && next.next_robot != robot) {
           add(next.next_enter, next.next_robot);
         }
@@ -167,7 +167,8 @@ double SwitchableTracker::expect(uint32_t node, const Swap& s) {
     const uint32_t x = e == 0 ? a.enter : enter_stays_[enter_begin_[node] + e];
     // The previous stay's robot and leaving from near_, unless the swap changes it (x is i, j,
     // or the stay after j: prev_in).
-    uint32_t robot = near_[x].prev_robot, leave = near_[x].prev_leave;
+    const Near near = e == 0 ? near_[node] : near_of(x);
+    uint32_t robot = near.prev_robot, leave = near.prev_leave;
     if (s.swapped && (x == s.i || x == s.j || x == link_[s.j].next)) {
       const uint32_t prev = prev_in(x, s);
       robot = prev == kNoAction ? 0 : stay_[prev].robot;

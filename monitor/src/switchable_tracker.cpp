@@ -49,7 +49,10 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   const auto count = static_cast<uint32_t>(stay_.size());
   location_.resize(count);
   link_.resize(count);
-  if (options_.lookahead_actions > 0) near_.resize(count);
+  const std::size_t nodes = actions.actions.size();
+  index_stays(stay_, nodes, true, enter_begin_, enter_stays_);  // before the links: link_prev()
+  index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
+  near_.resize(nodes);
   for (uint32_t loc = 0; loc + 1 < orders_.begin.size(); ++loc) {
     const uint32_t first = orders_.begin[loc], end = orders_.begin[loc + 1];
     for (uint32_t p = first; p < end; ++p) {
@@ -58,10 +61,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       link_next(p, p + 1 == end ? kNoAction : p + 1);
     }
   }
-  const std::size_t nodes = actions.actions.size();
   for (std::size_t n = 0; n < nodes; ++n) mark_[n].robot = actions.actions[n].robot;
-  index_stays(stay_, nodes, true, enter_begin_, enter_stays_);
-  index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
   if (options_.anticipate) {
     moves_before_.assign(nodes + 1, 0);
     for (std::size_t n = 0; n < nodes; ++n) {
@@ -105,18 +105,50 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
   return {other, stay_[other].robot != stay_[stay].robot};
 }
 
+// near_ holds a node's first entered and left stays' neighbours: updated when `stay` is one.
 void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
   link_[stay].prev = prev;
-  if (near_.empty()) return;
-  near_[stay].prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
-  near_[stay].prev_leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
+  const uint32_t node = stay_[stay].enter;
+  if (node == kNoAction || enter_stays_[enter_begin_[node]] != stay) return;
+  near_[node].prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
+  near_[node].prev_leave = prev == kNoAction ? kNoAction : stay_[prev].leave;
 }
 
 void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
   link_[stay].next = next;
-  if (near_.empty()) return;
-  near_[stay].next_robot = next == kNoAction ? 0 : stay_[next].robot;
-  near_[stay].next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
+  const uint32_t node = stay_[stay].leave;
+  if (node == kNoAction || leave_stays_[leave_begin_[node]] != stay) return;
+  near_[node].next_robot = next == kNoAction ? 0 : stay_[next].robot;
+  near_[node].next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
+}
+
+// What near_ keeps, for any stay.
+SwitchableTracker::Near SwitchableTracker::near_of(uint32_t stay) const {
+  Near n;
+  if (const uint32_t next = link_[stay].next; next != kNoAction) {
+    n.next_robot = stay_[next].robot;
+    n.next_enter = stay_[next].enter;
+  }
+  if (const uint32_t prev = link_[stay].prev; prev != kNoAction) {
+    n.prev_robot = stay_[prev].robot;
+    n.prev_leave = stay_[prev].leave;
+  }
+  return n;
+}
+
+bool SwitchableTracker::neighbours_hold() const {
+  for (uint32_t node = 0; node < near_.size(); ++node) {
+    const Near& n = near_[node];
+    if (enter_begin_[node] < enter_begin_[node + 1]) {
+      const Near want = near_of(enter_stays_[enter_begin_[node]]);
+      if (n.prev_robot != want.prev_robot || n.prev_leave != want.prev_leave) return false;
+    }
+    if (leave_begin_[node] < leave_begin_[node + 1]) {
+      const Near want = near_of(leave_stays_[leave_begin_[node]]);
+      if (n.next_robot != want.next_robot || n.next_enter != want.next_enter) return false;
+    }
+  }
+  return true;
 }
 
 // The smallest robot id in `set`, taken out of it (the set is not empty).
@@ -266,15 +298,19 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
   while (ahead_.any()) decide(take_first(ahead_), changed);
 }
 
-// The one stay `node` enters whose predecessor (another robot) has not left yet, when that is
-// all `node` waits for; kNoAction otherwise.
-uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
+// The one stay `node` (of `robot`) enters whose predecessor (another robot) has not left yet,
+// when that is all `node` waits for; kNoAction otherwise. The neighbours from near_ (one cache
+// line per node; the stay's list entry, its link and the predecessor's stay were a chain of four
+// dependent misses, docs/execution.md "Cost"); the stay's id only when it is the one.
+uint32_t SwitchableTracker::blocking_stay(uint32_t robot, uint32_t node) const {
   if (pending_[node] != 1) return kNoAction;
-  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
-    const uint32_t s = enter_stays_[i];
-    const auto b = before(s);
-    const Stay& first = stay_[b.stay];
-    if (b.edge && first.leave != kNoAction && !finished_by(first.robot, first.leave)) return s;
+  const uint32_t begin = enter_begin_[node], end = enter_begin_[node + 1];
+  for (uint32_t i = begin; i < end; ++i) {
+    const Near n = i == begin ? near_[node] : near_of(enter_stays_[i]);
+    if (n.prev_leave != kNoAction && n.prev_robot != robot &&
+        !finished_by(n.prev_robot, n.prev_leave)) {
+      return enter_stays_[i];
+    }
   }
   return kNoAction;
 }
@@ -282,7 +318,7 @@ uint32_t SwitchableTracker::blocking_stay(uint32_t node) const {
 bool SwitchableTracker::try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed) {
   const uint32_t seq = enqueued_[robot], node = actions_.offset[robot] + seq;
   if (finished_[robot] + reach() < seq) return false;  // not near yet
-  const uint32_t mine = blocking_stay(node);
+  const uint32_t mine = blocking_stay(robot, node);
   if (mine == kNoAction || stay_[mine].leave == kNoAction) return false;
   const uint32_t theirs = before(mine).stay;
   const Stay& first = stay_[theirs];

@@ -635,6 +635,12 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
                       << t.switches()->size() << (t.ordered() ? "" : " (given up)");
         return {};
       }
+      // So does each action's copy of its stays' neighbours (near_, read by the tries).
+      if (t.switches()->size() != switched && !t.neighbours_hold()) {
+        ADD_FAILURE() << "seed " << seed << ": an action's neighbours do not hold after switch "
+                      << t.switches()->size();
+        return {};
+      }
     }
     time_s += 0.1;
     if (++steps > 1'000'000u) return {};

@@ -122,6 +122,9 @@ class SwitchableTracker final : public Execution {
   // the search then runs unbounded by it, as before).
   bool order_holds() const;
   bool ordered() const { return ordered_; }
+  // Each action's copy of its first stays' neighbours agrees with the passing orders (tests: it
+  // is checked after switches, as the orders are).
+  bool neighbours_hold() const;
   // Actions the deadlock search visited in all (tests, the bench).
   std::size_t search_visits() const { return search_visits_; }
   // Unfinished Type-2 predecessors of an action (node id), as the current orders give them.
@@ -206,7 +209,7 @@ class SwitchableTracker final : public Execution {
     return options_.lookahead_actions > 0 && options_.chain_locations > 1;
   }
   bool chain_saves(const std::vector<uint32_t>& chain, double margin_s);
-  uint32_t blocking_stay(uint32_t node) const;
+  uint32_t blocking_stay(uint32_t robot, uint32_t node) const;
   // Anticipation.
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
   double finish_estimate(uint32_t robot, uint32_t seq) const;
@@ -245,19 +248,23 @@ class SwitchableTracker final : public Execution {
   struct Link {
     uint32_t prev = kNoAction, next = kNoAction;
   };
-  // switchable-lookahead only: stay id -> the next stay's robot and entry, the previous one's
-  // robot and leaving (kNoAction: none; a stay's never change, so they change with the order:
-  // link_prev(), link_next()). The cone's walk and expect() read them here, where reading
-  // stay_[next] cost the walk a cache miss per Type-2 edge, a third of its time; kept out of
-  // Link, whose 8 bytes the tries and releases read (in it, they made those slower).
+  // node -> the robot and entry of the stay after the first stay it leaves, and the robot and
+  // leaving of the stay before the first stay it enters (kNoAction: none; kept up by link_prev()
+  // and link_next() as the orders change); a node's other stays (a footprint's second location)
+  // are read from link_ and stay_ (near_of()). Read by the cone's walk, expect() and
+  // blocking_stay(). Kept per stay, they were the walk's largest cache miss (stay ids are grouped
+  // by location, so a robot's consecutive actions' stays lie far apart); per node, a robot's next
+  // actions share a cache line (docs/execution.md, "Cost"). Kept out of Link, whose 8 bytes the
+  // tries and releases read (in it, they made those slower).
   struct Near {
     uint32_t next_robot = 0, next_enter = kNoAction;
     uint32_t prev_robot = 0, prev_leave = kNoAction;
   };
+  Near near_of(uint32_t stay) const;
   void link_prev(uint32_t stay, uint32_t prev);
   void link_next(uint32_t stay, uint32_t next);
   std::vector<Link> link_;
-  std::vector<Near> near_;                           // empty unless lookahead_actions > 0
+  std::vector<Near> near_;                           // node -> its first stays' neighbours
   std::vector<Stay> stay_;                           // stay id -> the stay
   std::vector<uint32_t> enter_begin_, enter_stays_;  // node -> stays it enters (CSR)
   std::vector<uint32_t> leave_begin_, leave_stays_;  // node -> stays it leaves (CSR)
