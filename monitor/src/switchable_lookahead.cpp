@@ -75,7 +75,8 @@ void SwitchableTracker::walk_cone(const Swap& s, std::size_t nodes) {
     }
     // Read when the node is walked, later: fetched now, while the queue before it is walked;
     // and the robot's next action, which is added then (one past the end at most: a prefetch
-    // never faults). On SMART's plan this halved the walk's samples (docs/execution.md, "Cost").
+    // never faults). This halved the walk's samples (docs/execution.md, "A robot's next actions
+    // read together").
     __builtin_prefetch(near_.data() + node);
     __builtin_prefetch(look_.data() + node + 1);
     queue.push_back(node);

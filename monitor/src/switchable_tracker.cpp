@@ -301,7 +301,8 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
 // The one stay `node` (of `robot`) enters whose predecessor (another robot) has not left yet,
 // when that is all `node` waits for; kNoAction otherwise. The neighbours from near_ (one cache
 // line per node; the stay's list entry, its link and the predecessor's stay were a chain of four
-// dependent misses, docs/execution.md "Cost"); the stay's id only when it is the one.
+// dependent misses; docs/execution.md, "A robot's next actions read together"); the stay's id
+// only when it is the one.
 uint32_t SwitchableTracker::blocking_stay(uint32_t robot, uint32_t node) const {
   if (pending_[node] != 1) return kNoAction;
   const uint32_t begin = enter_begin_[node], end = enter_begin_[node + 1];
@@ -551,7 +552,7 @@ void SwitchableTracker::settle(uint32_t j) {
 // reports come in time order (lock-step ticks, the monitor's clock), so an action sent before the
 // report was sent no later than now. Kept per robot, not per action: reading each action's
 // sending time was a cache miss a report, 2.5 % of the monitor's CPU on a dense map
-// (docs/execution.md, "On a dense random map under delays").
+// (docs/execution.md, "A robot's next actions read together").
 void SwitchableTracker::observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s) {
   if (upto == from + 1)
     durations_.observe(kind(actions_.offset[robot] + from), time_s - started_s_[robot]);

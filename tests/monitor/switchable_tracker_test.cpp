@@ -264,7 +264,8 @@ TEST(SwitchableTracker, AnticipationKeepsTheOrderWhenNothingIsSaved) {
 // done, in 0.25 s steps. Robot 1 waits at the cell's edge for robot 0 (its entry is sent after
 // its previous action finished), yet the means are the durations exactly; timed from the
 // previous finish, the wait would count as moving. (The start is kept per robot since
-// 2026-12-02, where it was read per action: docs/execution.md, "On a dense random map".)
+// 2026-12-03, where it was read per action: docs/execution.md, "A robot's next actions read
+// together".)
 TEST(SwitchableTracker, AnActionSentAfterItsRobotWaitedIsTimedFromItsSending) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
   const auto actions = build_actions(crossing(false), Heading::kEast);

@@ -254,8 +254,8 @@ class SwitchableTracker final : public Execution {
   // are read from link_ and stay_ (near_of()). Read by the cone's walk, expect() and
   // blocking_stay(). Kept per stay, they were the walk's largest cache miss (stay ids are grouped
   // by location, so a robot's consecutive actions' stays lie far apart); per node, a robot's next
-  // actions share a cache line (docs/execution.md, "Cost"). Kept out of Link, whose 8 bytes the
-  // tries and releases read (in it, they made those slower).
+  // actions share a cache line (docs/execution.md, "A robot's next actions read together"). Kept
+  // out of Link, whose 8 bytes the tries and releases read (in it, they made those slower).
   struct Near {
     uint32_t next_robot = 0, next_enter = kNoAction;
     uint32_t prev_robot = 0, prev_leave = kNoAction;
