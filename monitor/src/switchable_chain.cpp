@@ -64,7 +64,6 @@ bool SwitchableTracker::try_chain(uint32_t i,
                                   const std::vector<std::pair<uint32_t, uint32_t>>& path,
                                   double time_s, std::vector<uint32_t>& changed, bool anticipated) {
   const uint32_t passed = stay_[i].robot, ready = stay_[after(i).stay].robot;
-  if (compares_chains()) collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
   std::vector<uint32_t> chain{i};
   // The stay each one passes, taken before it is relinked: with two stays of the robot passed
   // at one location, the one before a stay afterwards may be its own.
@@ -113,20 +112,30 @@ bool SwitchableTracker::try_chain(uint32_t i,
 }
 
 // The lookahead's comparison of a chain that closes no cycle (try_chain): over the actions
-// walked from the first location's pair in the plan's orders (collected before the swaps) and
-// in the chain's (walked now), each walk cut on its own, so that the robot passed, comparing
-// the chain back, gets the same actions and the opposite answer (one walk, in the plan's orders
-// alone, swapped pairs back and forth: 19-57 thousand switches a run at 750 robots). The chain
-// saves when the fleet's expected finish of those actions is sooner; otherwise the swaps are
-// undone here. It must save more than `margin_s`: nothing for first come, first served, the
-// lookahead's margin for anticipation, as for one location.
+// walked from the first location's pair in the orders before the swaps and in the chain's, each
+// walk cut on its own, so that the robot passed, comparing the chain back, gets the same actions
+// and the opposite answer (one walk, in the orders before the swaps alone, swapped pairs back
+// and forth: 19-57 thousand switches a run at 750 robots). The chain saves when the fleet's
+// expected finish of those actions is sooner; otherwise the swaps are undone here. It must save
+// more than `margin_s`: nothing for first come, first served, the lookahead's margin for
+// anticipation, as for one location.
+// The first walk is made here, with the swaps undone for it, not before the chain is built:
+// most chains close a cycle or stop before they are compared, and the walk made for each of
+// them was 59 % of the cone's walks in the replay bench (docs/execution.md, "A chain's cone
+// walked when it is compared").
 bool SwitchableTracker::chain_saves(const std::vector<uint32_t>& chain, double margin_s) {
   ++compared_;
   ++widened_;
   const uint32_t i = chain.front();
+  const auto undo = [&] {
+    for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
+  };
+  undo();
+  collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
+  for (const uint32_t s : chain) relink(s);
   collect_cone({before(i).stay, i, false}, options_.lookahead_nodes, true);
   const double chained_cost = cone_cost(Swap{});  // unswapped: the orders as they are now
-  for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
+  undo();
   const double kept_cost = cone_cost(Swap{});
   if (!(kept_cost - chained_cost > margin_s)) return false;
   for (const uint32_t s : chain) relink(s);
