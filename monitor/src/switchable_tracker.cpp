@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "smart/grid/grid.hpp"
+
 namespace smart::monitor {
 
 namespace {
@@ -106,6 +108,7 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
 }
 
 // near_ holds a node's first entered and left stays' neighbours: updated when `stay` is one.
+static_assert(grid::kMaxRobots < (int64_t{1} << 31), "Near::next_robot holds a robot id in 31 bits");
 void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
   link_[stay].prev = prev;
   const uint32_t node = stay_[stay].enter;
@@ -116,10 +119,21 @@ void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
 
 void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
   link_[stay].next = next;
+  if (const uint32_t enter = stay_[stay].enter;
+      enter != kNoAction && enter_stays_[enter_begin_[enter]] == stay) {
+    near_[enter].shared_next = shares_next(stay);
+  }
   const uint32_t node = stay_[stay].leave;
   if (node == kNoAction || leave_stays_[leave_begin_[node]] != stay) return;
   near_[node].next_robot = next == kNoAction ? 0 : stay_[next].robot;
   near_[node].next_enter = next == kNoAction ? kNoAction : stay_[next].enter;
+}
+
+// The stay after `stay` is another robot's, which leaves the location again: the entry of
+// `stay` could still switch with it.
+bool SwitchableTracker::shares_next(uint32_t stay) const {
+  const auto next = after(stay);
+  return next.edge && stay_[next.stay].leave != kNoAction;
 }
 
 // What near_ keeps, for any stay.
@@ -141,7 +155,10 @@ bool SwitchableTracker::neighbours_hold() const {
     const Near& n = near_[node];
     if (enter_begin_[node] < enter_begin_[node + 1]) {
       const Near want = near_of(enter_stays_[enter_begin_[node]]);
-      if (n.prev_robot != want.prev_robot || n.prev_leave != want.prev_leave) return false;
+      if (n.prev_robot != want.prev_robot || n.prev_leave != want.prev_leave ||
+          n.shared_next != shares_next(enter_stays_[enter_begin_[node]])) {
+        return false;
+      }
     }
     if (leave_begin_[node] < leave_begin_[node + 1]) {
       const Near want = near_of(leave_stays_[leave_begin_[node]]);
@@ -183,10 +200,14 @@ bool SwitchableTracker::committed(uint32_t robot, uint32_t node) const {
 
 // An entry that another robot's stay follows (it could still switch with it) waits to be sent
 // until its robot is near (commit_actions): sent actions are never taken back.
+// The first entered stay's answer from near_ (four dependent misses each time a robot's next
+// action was sent; docs/execution.md, "A chain's cone walked when it is compared").
 bool SwitchableTracker::needs_commit(uint32_t node) const {
-  for (uint32_t i = enter_begin_[node]; i < enter_begin_[node + 1]; ++i) {
-    const auto next = after(enter_stays_[i]);
-    if (next.edge && stay_[next.stay].leave != kNoAction) return true;
+  const uint32_t begin = enter_begin_[node], end = enter_begin_[node + 1];
+  if (begin == end) return false;
+  if (near_[node].shared_next) return true;
+  for (uint32_t i = begin + 1; i < end; ++i) {
+    if (shares_next(enter_stays_[i])) return true;
   }
   return false;
 }
