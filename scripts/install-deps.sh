@@ -31,6 +31,7 @@ packages=(
   python3-matplotlib
   iproute2 nftables
   gdb
+  linux-perf valgrind
 )
 # The web viewer's build and browser tests need node and npm; a machine may already have them
 # from elsewhere (NodeSource), whose nodejs conflicts with Debian's npm package.
