@@ -108,7 +108,8 @@ SwitchableTracker::Neighbour SwitchableTracker::after(uint32_t stay) const {
 }
 
 // near_ holds a node's first entered and left stays' neighbours: updated when `stay` is one.
-static_assert(grid::kMaxRobots < (int64_t{1} << 31), "Near::next_robot holds a robot id in 31 bits");
+static_assert(grid::kMaxRobots < (int64_t{1} << 31),
+              "Near::next_robot holds a robot id in 31 bits");
 void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
   link_[stay].prev = prev;
   const uint32_t node = stay_[stay].enter;
