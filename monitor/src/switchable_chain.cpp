@@ -107,8 +107,17 @@ bool SwitchableTracker::try_chain(uint32_t i,
     if (r == Reach::kBudget) break;
     next = chain_link(chain_path_, passed, ready);
   }
-  for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
+  undo_chain(chain);
   return false;
+}
+
+// The chain's swaps undone (the last first) and made again (in the order they were made).
+void SwitchableTracker::undo_chain(const std::vector<uint32_t>& chain) {
+  for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);
+}
+
+void SwitchableTracker::redo_chain(const std::vector<uint32_t>& chain) {
+  for (const uint32_t s : chain) relink(s);
 }
 
 // The lookahead's comparison of a chain that closes no cycle (try_chain): over the actions
@@ -127,18 +136,15 @@ bool SwitchableTracker::chain_saves(const std::vector<uint32_t>& chain, double m
   ++compared_;
   ++widened_;
   const uint32_t i = chain.front();
-  const auto undo = [&] {
-    for (std::size_t n = chain.size(); n-- > 0;) relink(before(chain[n]).stay);  // last first
-  };
-  undo();
+  undo_chain(chain);
   collect_cone({i, after(i).stay, false}, options_.lookahead_nodes);
-  for (const uint32_t s : chain) relink(s);
+  redo_chain(chain);
   collect_cone({before(i).stay, i, false}, options_.lookahead_nodes, true);
   const double chained_cost = cone_cost(Swap{});  // unswapped: the orders as they are now
-  undo();
+  undo_chain(chain);
   const double kept_cost = cone_cost(Swap{});
   if (!(kept_cost - chained_cost > margin_s)) return false;
-  for (const uint32_t s : chain) relink(s);
+  redo_chain(chain);
   return true;
 }
 

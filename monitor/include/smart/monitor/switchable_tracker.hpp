@@ -204,6 +204,8 @@ class SwitchableTracker final : public Execution {
   uint32_t chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t first,
                       uint32_t second) const;
   Reach chain_cycle(const std::vector<uint32_t>& chain);
+  void undo_chain(const std::vector<uint32_t>& chain);
+  void redo_chain(const std::vector<uint32_t>& chain);
   // switchable-lookahead with chains: a chain's orders compared with the plan's over one cone.
   bool compares_chains() const {
     return options_.lookahead_actions > 0 && options_.chain_locations > 1;
