@@ -90,25 +90,40 @@ TEST(AgentNode, AWindowRefusedByAcceptNeverReachesTheAgent) {
   EXPECT_EQ(a.run_id(), 0u);
 }
 
+// Robot 3, hosted beside robot 2, finishes after robot 2's unchanged progress was (not)
+// published: the writer delivers in order, so once robot 3's sample is here any second sample of
+// robot 2 would be too (its own instance: robot 3's cannot replace it). Waits for that event
+// where a fixed sleep had stood for "long enough".
 TEST(AgentNode, PublishesProgressOnlyWhenItChanges) {
   Rig rig(test::kAgentNodeProgress);
-  test::FakeRobot body(0.3);
+  test::FakeRobot body(0.3), marker_body(0.3);
   Agent a({2, test::footbot_model(), 0.1, 0.5}, body, body);
+  Agent marker({3, test::footbot_model(), 0.1, 0.5}, marker_body, marker_body);
   EXPECT_TRUE(a.activate().ok());
+  EXPECT_TRUE(marker.activate().ok());
   rig.node.host(a);
+  rig.node.host(marker);
   EXPECT_EQ(rig.node.publish_progress(), 0u);  // no run yet: nothing to say
   a.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
   a.step(0.0);  // already facing 0: the rotation finishes at once
   ASSERT_TRUE(rig.progress.wait_for_writers(1, 3000ms));
   EXPECT_EQ(rig.node.publish_progress(), 1u);
   EXPECT_EQ(rig.node.publish_progress(), 0u);  // unchanged: not published again
+  marker.on_window(9, {wire::from_wire(rotate_step(0, 0.0))});
+  marker.step(0.0);
+  EXPECT_EQ(rig.node.publish_progress(), 1u);  // robot 3 alone
   std::vector<smart_msg_Progress> got;
+  bool marker_seen = false;
   ASSERT_TRUE(eventually([&] {
-    rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
-    return !got.empty();
+    rig.progress.take_each([&](const smart_msg_Progress& p) {
+      if (p.robot_id == 3) {
+        marker_seen = true;
+      } else {
+        got.push_back(p);
+      }
+    });
+    return marker_seen;
   }));
-  std::this_thread::sleep_for(100ms);
-  rig.progress.take_each([&](const smart_msg_Progress& p) { got.push_back(p); });
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0].robot_id, 2u);
   EXPECT_EQ(got[0].run_id, 9u);
