@@ -38,23 +38,47 @@ uint32_t SwitchableTracker::chain_link(const std::vector<std::pair<uint32_t, uin
   return kNoAction;
 }
 
-// Any cycle the swaps of `chain` (each stay i now after the j it was before: h, j, i, k) close
-// goes through one of their new edges u -> v (h -> j, j -> i, i -> k), so through a path from v
-// to u: searched for each, the last path found left in chain_path_.
-SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32_t>& chain) {
+// The new edges u -> v of the chain's swaps (h -> j, j -> i, i -> k at each: each stay i now
+// after the j it was before), as f(u's leave, v's entry), in the order chain_cycle searches them.
+template <class F>
+void SwitchableTracker::each_chain_edge(const std::vector<uint32_t>& chain, F&& f) const {
   for (const uint32_t i : chain) {
     const uint32_t j = before(i).stay, h = before(j).stay, k = after(i).stay;
     for (const auto& [u, v] : {std::pair{j, i}, std::pair{h, j}, std::pair{i, k}}) {
       if (u == kNoAction || v == kNoAction || stay_[u].robot == stay_[v].robot) continue;
       const uint32_t leave = stay_[u].leave, enter = stay_[v].enter;
       if (leave == kNoAction || enter == kNoAction || finished_by(stay_[u].robot, leave)) continue;
-      chain_path_.clear();
-      // Not bounded by the order: the chain's new edges are not in it yet.
-      const Reach r = reaches(enter, leave, kNoAction, kNoAction, chain_path_, false);
-      if (r != Reach::kNone) return r;
+      if (!f(leave, enter)) return;
     }
   }
-  return Reach::kNone;
+}
+
+// Any cycle the swaps of `chain` close goes through one of their new edges u -> v, so through a
+// path from v to u: searched for each, the last path found left in chain_path_.
+SwitchableTracker::Reach SwitchableTracker::chain_cycle(const std::vector<uint32_t>& chain) {
+  const uint32_t floor = chain_floor(chain);
+  Reach r = Reach::kNone;
+  each_chain_edge(chain, [&](uint32_t leave, uint32_t enter) {
+    chain_path_.clear();
+    r = reaches(enter, leave, kNoAction, kNoAction, chain_path_, floor);
+    return r == Reach::kNone;
+  });
+  return r;
+}
+
+// The lowest place in the topological order an action on a path between unfinished actions may
+// have while the chain's swaps are made: the order holds on every edge but the chain's new ones,
+// so a path goes up the order from its start, and from the entry each new edge leads to. The
+// searches skip what is below (exact: no path from an entry can reach it, so they find the same
+// paths; only searches that ran out of budget may now finish; docs/execution.md, "A chain's
+// cycle checks bounded by the order").
+uint32_t SwitchableTracker::chain_floor(const std::vector<uint32_t>& chain) const {
+  uint32_t floor = kNoAction;
+  each_chain_edge(chain, [&](uint32_t, uint32_t enter) {
+    floor = std::min(floor, mark_[enter].ord);
+    return true;
+  });
+  return floor == kNoAction ? 0 : floor;
 }
 
 // `i` (before j, the ready robot's stay) refused by `path`: j passes i at i's location and at

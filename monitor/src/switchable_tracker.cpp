@@ -469,18 +469,19 @@ void SwitchableTracker::unsettle_watchers(uint32_t node) {
 // happen before `to`, few actions for a robot near its location. Searching forwards walks the
 // whole future of `from` instead: at 1000 robots it ran out of budget in 4216 of 5939 searches
 // (each a switch refused) and took 6 % of the monitor's CPU (docs/execution.md, "Cost").
-// Two exact bounds (switchable_order.cpp): an action ordered before `from` cannot follow it, and
+// Two exact bounds (switchable_order.cpp): an action ordered before `from` (before `floor`, when
+// a chain's new edges are not ordered yet: chain_floor()) cannot follow it, and
 // an action sent already waits for finished actions alone (a switch only adds edges into unsent
 // entries), so neither leads back to `from`, unsent; nor does anything before them. Without
 // them the searches behind a robot far from its location walked to the budget and gave up.
 SwitchableTracker::Reach SwitchableTracker::reaches(
     uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-    std::vector<std::pair<uint32_t, uint32_t>>& path, bool by_order) {
+    std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t floor) {
   next_stamp();
   stack_.assign(1, to);
   mark_[to].seen = stamp_;
   const bool unsent = !sent_by(mark_[from].robot, from);
-  const uint32_t lowest = by_order && ordered_ ? mark_[from].ord : 0;
+  const uint32_t lowest = !ordered_ ? 0 : floor == kNoAction ? mark_[from].ord : floor;
   const auto push = [&](uint32_t v, uint32_t u) {  // parent_[v] = u: the path goes v -> u
     Mark& m = mark_[v];
     if (m.seen == stamp_ || m.ord < lowest) return;

@@ -160,10 +160,11 @@ class SwitchableTracker final : public Execution {
   bool try_switch(uint32_t robot, double time_s, std::vector<uint32_t>& changed);
   void try_switches(double time_s, std::vector<uint32_t>& changed);
   enum class Reach : uint8_t { kNone, kPath, kBudget };
-  // by_order: bounded by the topological order (not while a chain's swaps are tried: their
-  // new edges are not ordered yet).
+  // floor: the lowest place in the topological order an action on a path may have (kNoAction:
+  // `from`'s; a chain's tried swaps lower it to their new edges' entries, which are not ordered
+  // yet: chain_floor()).
   Reach reaches(uint32_t from, uint32_t to, uint32_t skip_from, uint32_t skip_to,
-                std::vector<std::pair<uint32_t, uint32_t>>& path, bool by_order = true);
+                std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t floor = kNoAction);
   void next_stamp();
   // The topological order (switchable_order.cpp).
   void init_order();
@@ -204,6 +205,9 @@ class SwitchableTracker final : public Execution {
   uint32_t chain_link(const std::vector<std::pair<uint32_t, uint32_t>>& path, uint32_t first,
                       uint32_t second) const;
   Reach chain_cycle(const std::vector<uint32_t>& chain);
+  uint32_t chain_floor(const std::vector<uint32_t>& chain) const;
+  template <class F>
+  void each_chain_edge(const std::vector<uint32_t>& chain, F&& f) const;
   void undo_chain(const std::vector<uint32_t>& chain);
   void redo_chain(const std::vector<uint32_t>& chain);
   // switchable-lookahead with chains: a chain's orders compared with the plan's over one cone.
