@@ -28,9 +28,9 @@ mkdir -p "$out"
 # this list until 2026-12-01: the lookahead's share was measured without its cone walk
 # (docs/execution.md, "Cost"). needs_commit (whether a robot's next entry waits to be sent near
 # it: plain ADG sends it) was missing until 2026-12-03 (docs/execution.md, "A chain's cone
-# walked when it is compared").
-switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|ActionDurations::|queue_saving'
-tracker='(ExecutionTracker|SwitchableTracker|ActionDurations)::|queue_saving'
+# walked when it is compared"). RobotSet (the robots to try, robot_set.hpp) since 2026-12-06.
+switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|RobotSet::|ActionDurations::|queue_saving'
+tracker='(ExecutionTracker|SwitchableTracker|RobotSet|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
   --plan "$bench/smart-examples/scen_1_1000_paths.txt" --axis rowcol --agents 1000)

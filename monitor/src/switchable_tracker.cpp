@@ -81,7 +81,7 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
   // First come, first served from the robots' first reports on: at the start nobody is late,
   // and the entries about to be sent are decided by anticipation (ahead_) alone.
-  dirty_.reset();
+  dirty_.clear();
   std::vector<uint32_t> changed;  // before the first windows: all are sent then
   try_switches(0.0, changed);
 }
@@ -170,12 +170,6 @@ bool SwitchableTracker::neighbours_hold() const {
 }
 
 // The smallest robot id in `set`, taken out of it (the set is not empty).
-uint32_t SwitchableTracker::take_first(RobotSet& set) {
-  const auto first = set.find_first();
-  set.reset(first);
-  return static_cast<uint32_t>(first);
-}
-
 // Whether `robot`'s action `node` has finished (its robot known: no lookup of the action).
 bool SwitchableTracker::finished_by(uint32_t robot, uint32_t node) const {
   return node < actions_.offset[robot] + finished_[robot];
@@ -305,19 +299,19 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
   std::size_t budget = paused_ ? 0 : 4 * finished_.size() + 16;
   while ((dirty_.any() || ahead_.any()) && budget-- > 0) {
     if (dirty_.none()) {
-      const uint32_t r = take_first(ahead_);
+      const uint32_t r = ahead_.take_first();
       if (!anticipate(r, time_s, changed)) {
         decide(r, changed);
         continue;
       }
     } else {
-      const uint32_t r = take_first(dirty_);
+      const uint32_t r = dirty_.take_first();
       if (!candidate(r) || !try_switch(r, time_s, changed)) continue;
     }
     dirty_ |= unsettled_;  // a switch may have opened their way
   }
-  dirty_.reset();
-  while (ahead_.any()) decide(take_first(ahead_), changed);
+  dirty_.clear();
+  while (ahead_.any()) decide(ahead_.take_first(), changed);
 }
 
 // The one stay `node` (of `robot`) enters whose predecessor (another robot) has not left yet,

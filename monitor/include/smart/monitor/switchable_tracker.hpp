@@ -64,7 +64,6 @@
 #pragma once
 
 #include <algorithm>
-#include <boost/dynamic_bitset.hpp>
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -74,6 +73,7 @@
 #include "smart/monitor/action_durations.hpp"
 #include "smart/monitor/adg.hpp"
 #include "smart/monitor/execution.hpp"
+#include "smart/monitor/robot_set.hpp"
 #include "smart/monitor/switching.hpp"
 
 namespace smart::monitor {
@@ -137,10 +137,7 @@ class SwitchableTracker final : public Execution {
     uint32_t stay = kNoAction;
     bool edge = false;  // a different robot: a Type-2 edge
   };
-  // Robots by id: taken smallest first (the order that makes runs deterministic), in a word per
-  // 64 robots where a std::set allocated a node per insertion (bench: a tenth of the cost).
-  using RobotSet = boost::dynamic_bitset<uint64_t>;
-  static uint32_t take_first(RobotSet& set);
+  // Robots by id (robot_set.hpp): taken smallest first, the order that makes runs deterministic.
   Neighbour before(uint32_t stay) const;
   Neighbour after(uint32_t stay) const;
   bool finished_by(uint32_t robot, uint32_t node) const;
