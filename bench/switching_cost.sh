@@ -29,7 +29,7 @@ mkdir -p "$out"
 # (docs/execution.md, "Cost"). needs_commit (whether a robot's next entry waits to be sent near
 # it: plain ADG sends it) was missing until 2026-12-03 (docs/execution.md, "A chain's cone
 # walked when it is compared"). RobotSet (the robots to try, robot_set.hpp) since 2026-12-06.
-switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|RobotSet::|ActionDurations::|queue_saving'
+switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|chain_floor|each_chain_edge|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|RobotSet::|ActionDurations::|queue_saving'
 tracker='(ExecutionTracker|SwitchableTracker|RobotSet|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
@@ -47,7 +47,7 @@ if [ "${LIFELONG:-0}" = 1 ]; then
   # monitor/src/live_adg_switching.cpp, live_adg_chain.cpp, live_adg_anticipation.cpp and
   # live_adg_lookahead.cpp: all but the graph's growth and plain dispatch (advance, finish,
   # on_progress, append, commit_cut, truncate).
-  switching='LiveAdg::(queue_of|pop_first|try_switches|try_switch|held|shared|due|reach|next_move|stays_before|comes_back|dirty_after_release|reaches|has_edge|still_refused|add_edge|remove_edge|swap_order|observe|finish_estimate|arrival|expected_saving|anticipate|decide|settle_due|clear_marks|margin|saving|lookahead_saving|cone_saving|collect_cone|successors|expect|cone_cost|try_chain|chain_link|chain_swap|chain_cycle|undo_chain|chain_saves|switchable_pair)|ActionDurations::|queue_saving'
+  switching='LiveAdg::(queue_of|pop_first|try_switches|try_switch|held|shared|due|reach|next_move|stays_before|comes_back|dirty_after_release|reaches|has_edge|still_refused|add_edge|remove_edge|swap_order|observe|finish_estimate|arrival|expected_saving|anticipate|decide|settle_due|clear_marks|margin|saving|lookahead_saving|cone_saving|collect_cone|successors|expect|cone_cost|try_chain|chain_link|chain_swap|chain_cycle|chain_floor|each_chain_edge|undo_chain|chain_saves|switchable_pair)|ActionDurations::|queue_saving'
   tracker='(LiveAdg|ActionDurations)::|queue_saving'
   run_args=(--tasks random --map "$bench/maps/warehouse-10-20-10-2-1.map" --agents 1000
     --task-errands 1 --duration-s 120 --delay-probability 0.01 --delay-min-s 1 --delay-max-s 4
