@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <thread>
 
 #include "smart/dds/writer.hpp"
@@ -12,15 +14,40 @@
 namespace smart::hw {
 namespace {
 
-double steady_now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+// The sources' clock, told the time by the test (read from DDS's listener thread too): a pose
+// goes stale when the test moves the clock past its age limit, not after a sleep long enough on
+// an idle machine.
+struct TestClock {
+  std::atomic<double> now_s{100.0};
+  std::function<double()> fn() {
+    return [this] { return now_s.load(); };
+  }
+};
+
+// Writes `m` one sample at a time, each waited for (counted by the source) before the next,
+// until the source reads a valid pose: none is left in flight to refresh it afterwards. A sample
+// lost on the way (best effort) is written again after 2 s.
+template <class Writer, class Message>
+agent::PoseSample write_until_valid(Writer& w, const Message& m, RosPoseSource& src) {
+  agent::PoseSample p;
+  for (int i = 0; i < 200 && !p.valid; ++i) {
+    const auto before = src.samples();
+    w.write(m);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (src.samples() == before && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    p = src.read();
+  }
+  return p;
 }
 
 TEST(RosPoseSource, ReadsPoseStampedLikeAVrpnMocapPublisher) {
   dds::Domain domain(test::kRosPose, test::loopback());
   dds::Participant pub(domain), sub(domain);
   const geometry::FrameTransform identity;  // ROS poses are in metres
-  RosPoseSource src(sub, "/vrpn_mocap/jetbot1/pose", identity, 0.3, steady_now_s);
+  TestClock clock;
+  RosPoseSource src(sub, "/vrpn_mocap/jetbot1/pose", identity, 0.3, clock.fn());
   dds::Topic<geometry_msgs_msg_dds__PoseStamped_> topic(pub, "rt/vrpn_mocap/jetbot1/pose");
   dds::TopicQos q;
   q.reliability = dds::Reliability::kBestEffort;  // vrpn_mocap: sensor data QoS
@@ -32,19 +59,16 @@ TEST(RosPoseSource, ReadsPoseStampedLikeAVrpnMocapPublisher) {
   m.pose.position = {1.5, -0.5, 0.0};
   const double yaw = 2.0;
   m.pose.orientation = {0, 0, std::sin(yaw / 2), std::cos(yaw / 2)};
-  agent::PoseSample p;
-  for (int i = 0; i < 200 && !p.valid; ++i) {
-    w.write(m);
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    p = src.read();
-  }
+  const agent::PoseSample p = write_until_valid(w, m, src);
   ASSERT_TRUE(p.valid);
   EXPECT_DOUBLE_EQ(p.pose.x_m, 1.5);
   EXPECT_DOUBLE_EQ(p.pose.y_m, -0.5);
   EXPECT_NEAR(p.pose.yaw_rad, yaw, 1e-12);
   EXPECT_GE(src.samples(), 1u);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
-  EXPECT_FALSE(src.read().valid);
+  clock.now_s = clock.now_s + 0.29;
+  EXPECT_TRUE(src.read().valid) << "within its age limit of 0.3 s";
+  clock.now_s = clock.now_s + 0.02;
+  EXPECT_FALSE(src.read().valid) << "stale past 0.3 s";
 }
 
 // A ROS 2 base's odometry (nav_msgs/Odometry), its frame starting where the robot stood: the
@@ -53,8 +77,9 @@ TEST(RosPoseSource, ReadsOdometryThroughATransformAndGoesStale) {
   dds::Domain domain(test::kRosOdom, test::loopback());
   dds::Participant pub(domain), sub(domain);
   const geometry::FrameTransform start{1.0, M_PI / 2, {0.6, 0.3}};  // robot started at (0.6, 0.3)
+  TestClock clock;
   RosPoseSource src(sub, dds::ros_odom_topic(dds::ros_namespace("/robot_{id}", 4)), start, 0.3,
-                    steady_now_s, RosPoseSource::Message::kOdometry);
+                    clock.fn(), RosPoseSource::Message::kOdometry);
   dds::Topic<nav_msgs_msg_dds__Odometry_> topic(pub, "rt/robot_4/odom");
   dds::Writer<nav_msgs_msg_dds__Odometry_> w(pub, topic, dds::ros_sensor_qos().to_dds());
   ASSERT_TRUE(w.wait_for_readers(1, std::chrono::seconds(5)));
@@ -64,18 +89,15 @@ TEST(RosPoseSource, ReadsOdometryThroughATransformAndGoesStale) {
   m.child_frame_id = child;
   m.pose.pose.position = {0.3, 0.0, 0.0};  // 0.3 m ahead of the start
   m.pose.pose.orientation = {0, 0, 0, 1};
-  agent::PoseSample p;
-  for (int i = 0; i < 200 && !p.valid; ++i) {
-    w.write(m);
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    p = src.read();
-  }
+  const agent::PoseSample p = write_until_valid(w, m, src);
   ASSERT_TRUE(p.valid);
   EXPECT_NEAR(p.pose.x_m, 0.6, 1e-12);  // facing +y in the world: ahead is up
   EXPECT_NEAR(p.pose.y_m, 0.6, 1e-12);
   EXPECT_NEAR(p.pose.yaw_rad, M_PI / 2, 1e-12);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
-  EXPECT_FALSE(src.read().valid);
+  clock.now_s = clock.now_s + 0.29;
+  EXPECT_TRUE(src.read().valid) << "within its age limit of 0.3 s";
+  clock.now_s = clock.now_s + 0.02;
+  EXPECT_FALSE(src.read().valid) << "stale past 0.3 s";
   m.pose.pose.orientation = {0, 0, 0, 0};  // an unset quaternion has no heading
   const auto before = src.samples();
   for (int i = 0; i < 200 && src.samples() == before; ++i) {
