@@ -213,8 +213,21 @@ TEST(Durability, TransientLocalLateJoinerGetsLatestSampleOfEveryRobot) {
         seq[m.robot_id] = m.actions._buffer[0].seq;
       },
       [&] { return robots_seen == kRobots; }));
-  std::this_thread::sleep_for(200ms);
-  r.take_each([&](const smart_msg_ActionWindow& m) { ++count[m.robot_id]; });
+  // A marker written now, after the history: the writer delivers in order, so once it is here
+  // any older window still owed to a robot would be too (waited for, not slept on).
+  ActionWindowBuffer marker(kRobots, 1, 3);
+  w.write(marker.view());
+  bool marker_seen = false;
+  ASSERT_TRUE(take_until(
+      f.sub, r,
+      [&](const smart_msg_ActionWindow& m) {
+        if (m.robot_id == kRobots) {
+          marker_seen = true;
+        } else {
+          ++count[m.robot_id];
+        }
+      },
+      [&] { return marker_seen; }));
   for (uint32_t i = 0; i < kRobots; ++i) {
     EXPECT_EQ(count[i], 1) << "robot " << i << ": keep-last 1 means only the latest window";
     EXPECT_EQ(seq[i], 2u) << "robot " << i;
