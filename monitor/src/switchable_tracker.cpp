@@ -169,7 +169,6 @@ bool SwitchableTracker::neighbours_hold() const {
   return true;
 }
 
-// The smallest robot id in `set`, taken out of it (the set is not empty).
 // Whether `robot`'s action `node` has finished (its robot known: no lookup of the action).
 bool SwitchableTracker::finished_by(uint32_t robot, uint32_t node) const {
   return node < actions_.offset[robot] + finished_[robot];

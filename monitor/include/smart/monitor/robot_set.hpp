@@ -5,7 +5,7 @@
 // set read the summary first, so a set of a few robots among thousands is not scanned whole.
 // (A flat bitset scanned all 16 words of 1000 robots up to four times a try: 11 % of the
 // lookahead's instructions in the replay bench, less in a run; docs/execution.md, "A chain's
-// cycle checks bounded by the order".) Ids at or past size() are the caller's error (not
+// cycle checks bounded by the order".) Ids at or past the size are the caller's error (not
 // checked: a hot path).
 // Pure.
 #pragma once
@@ -22,9 +22,8 @@ class RobotSet {
   static constexpr uint32_t kNone = UINT32_MAX;
 
   explicit RobotSet(std::size_t robots = 0)
-      : size_(robots), words_((robots + 63) / 64, 0), summary_((words_.size() + 63) / 64, 0) {}
+      : words_((robots + 63) / 64, 0), summary_((words_.size() + 63) / 64, 0) {}
 
-  std::size_t size() const { return size_; }
   bool test(uint32_t robot) const { return (words_[robot / 64] >> (robot % 64)) & 1U; }
   void set(uint32_t robot) {
     words_[robot / 64] |= bit(robot);
@@ -83,7 +82,6 @@ class RobotSet {
     }
   }
 
-  std::size_t size_;
   std::vector<uint64_t> words_;    // bit r % 64 of word r / 64: robot r
   std::vector<uint64_t> summary_;  // bit w % 64 of word w / 64: words_[w] is not zero
 };
