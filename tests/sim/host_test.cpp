@@ -61,9 +61,24 @@ TEST(SimHost, LockStepWaitsForTheMonitorThenExecutesWindowsAndStops) {
     });
     return latest;
   };
-  // Nothing answered yet: the host must stay at tick 0.
-  std::this_thread::sleep_for(700ms);
-  EXPECT_EQ(latest_tick(), 0) << "the host stepped without the monitor's answer";
+  // Nothing answered yet: the host must stay at tick 0. A waiting host announces its tick again
+  // every CLOCK_REANNOUNCE_MS (idl/smart.idl): two announcements of tick 0 and none later show
+  // it waited a whole period without stepping (an event, not a guessed sleep).
+  int tick0_announcements = 0;
+  int64_t highest = -1;
+  dds::WaitSet clock_wait(mon_p);
+  clock_wait.attach_status(ticks.handle(), DDS_DATA_AVAILABLE_STATUS, 1);
+  for (const auto until = std::chrono::steady_clock::now() + 20s;
+       tick0_announcements < 2 && std::chrono::steady_clock::now() < until;) {
+    clock_wait.wait(100ms);
+    ticks.take_each([&](const smart_msg_Clock& c) {
+      if (c.source_id != dds::kSimClockSource) return;
+      highest = std::max<int64_t>(highest, c.tick);
+      if (c.tick == 0) ++tick0_announcements;
+    });
+  }
+  ASSERT_GE(tick0_announcements, 2) << "the host never announced (or re-announced) tick 0";
+  EXPECT_EQ(highest, 0) << "the host stepped without the monitor's answer";
 
   // Robot 0: two half-moves east; robot 1: nothing. Then answer tick 0 with the window total.
   dds::ActionWindowBuffer w0(0, run, 2), w1(1, run, 0);
