@@ -265,17 +265,24 @@ TEST(Listener, DataAvailableCallbackRunsAndStopsWithTheReader) {
   Topic<smart_msg_Progress> tp(f.pub, std::string(kProgressTopic));
   Topic<smart_msg_Progress> ts(f.sub, std::string(kProgressTopic));
   Writer<smart_msg_Progress> w(f.pub, tp, f.profile.progress.to_dds());
+  // A second reader on the same participant, alive throughout, marks a sample's arrival there:
+  // once its callback ran for the last sample, a listener left behind by the destroyed reader
+  // would have run too (instead of a 200 ms sleep).
+  std::atomic<int> marker_calls{0};
+  Reader<smart_msg_Progress> marker(f.sub, ts, f.profile.progress.to_dds(),
+                                    [&] { ++marker_calls; });
   std::atomic<int> calls{0};
   {
     Reader<smart_msg_Progress> r(f.sub, ts, f.profile.progress.to_dds(), [&] { ++calls; });
     Reader<smart_msg_Progress> moved = std::move(r);
-    ASSERT_TRUE(w.wait_for_readers(1, 5s));
+    ASSERT_TRUE(w.wait_for_readers(2, 5s));
     w.write(smart_msg_Progress{1, 1, 0, -1});
-    ASSERT_TRUE(wait_until([&] { return calls.load() > 0; }, 5000ms));
+    ASSERT_TRUE(wait_until([&] { return calls.load() > 0 && marker_calls.load() > 0; }, 5000ms));
   }
-  const int before = calls.load();
+  ASSERT_TRUE(wait_until([&] { return w.publication_matched().current_count == 1; }, 5000ms));
+  const int before = calls.load(), marked = marker_calls.load();
   w.write(smart_msg_Progress{1, 1, 1, -1});
-  std::this_thread::sleep_for(200ms);
+  ASSERT_TRUE(wait_until([&] { return marker_calls.load() > marked; }, 5000ms));
   EXPECT_EQ(calls.load(), before);
 }
 
