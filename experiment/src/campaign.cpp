@@ -59,10 +59,13 @@ struct Campaign {
   std::map<std::tuple<std::size_t, std::size_t, std::size_t>, std::pair<fs::path, double>> plans;
 
   fs::path cell_dir(const Cell& c) const { return out / "cells" / c.key; }
-  bool done(const Cell& c) const {
+  // The cell's summary.json, or a discarded value when there is none or it does not parse.
+  nlohmann::json summary(const Cell& c) const {
     std::ifstream in(cell_dir(c) / results::kSummaryJson);
-    return in && nlohmann::json::parse(in, nullptr, false).is_object();
+    if (!in) return nlohmann::json(nlohmann::json::value_t::discarded);
+    return nlohmann::json::parse(in, nullptr, false);
   }
+  bool done(const Cell& c) const { return ran_to_its_end(summary(c)); }
 };
 
 // The words that make the plan of (map, scen, agents) into `plan`.
@@ -235,10 +238,17 @@ void progress_bar(std::ostream& log, const Tally& t, std::size_t running, int jo
 void collect(const Campaign& c, Slot& s, int rc, Tally& t, bool bar, std::ostream& log) {
   t.busy_s += std::chrono::duration<double>(Clock::now() - s.started).count();
   ++t.finished;
-  if (!c.done(*s.cell)) {
+  const auto summary = c.summary(*s.cell);
+  if (!summary.is_object()) {
     ++t.errors;
     log << (bar ? "\n" : "") << "experiment: " << s.cell->key << " wrote no summary (exit code "
         << rc << "); see " << (c.cell_dir(*s.cell) / "run.log").string() << "\n";
+  } else if (!ran_to_its_end(summary)) {
+    ++t.errors;
+    log << (bar ? "\n" : "") << "experiment: " << s.cell->key
+        << " was stopped before its end (a signal?): not a result; running the experiment again "
+           "runs it again; see "
+        << (c.cell_dir(*s.cell) / "run.log").string() << "\n";
   } else if (!bar) {
     log << "experiment: " << t.finished << "/" << t.total << " " << s.cell->key << "\n";
   }
@@ -295,9 +305,8 @@ std::size_t write_results(Campaign& c) {
   std::vector<nlohmann::json> rows;
   std::ofstream jsonl(c.out / "results.jsonl");
   for (const auto& cell : c.cells) {
-    std::ifstream in(c.cell_dir(cell) / results::kSummaryJson);
-    const auto summary = nlohmann::json::parse(in, nullptr, false);
-    if (!in || !summary.is_object()) continue;
+    const auto summary = c.summary(cell);
+    if (!ran_to_its_end(summary)) continue;
     const auto runtime_s =
         c.spec.lifelong ? std::nullopt : std::optional<double>(make_plan(c, cell).second);
     rows.push_back(result_row(c.spec, cell, summary, runtime_s));

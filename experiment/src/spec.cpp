@@ -9,6 +9,8 @@
 #include <tuple>
 #include <utility>
 
+#include "smart/monitor/results_format.hpp"
+
 namespace smart::experiment {
 
 namespace {
@@ -511,7 +513,8 @@ std::vector<Cell> expand(const Spec& s) {
                         if (commit != 0) key += "-c" + std::to_string(commit);
                         if (chain != 0) key += "-k" + std::to_string(chain);
                         key += "-r" + std::to_string(r);
-                        cells.push_back({i, n, p, robot, qos, u, r, t, key, e, commit, chain, look});
+                        cells.push_back(
+                            {i, n, p, robot, qos, u, r, t, key, e, commit, chain, look});
                       }
                     }
                   }
@@ -551,6 +554,13 @@ std::vector<std::string> uncertainty_flags(const Spec& s, const Cell& c) {
   }
   flags.insert(flags.end(), {"--seed", std::to_string(c.repeat)});
   return flags;
+}
+
+bool ran_to_its_end(const json& summary) {
+  if (!summary.is_object()) return false;
+  const auto outcome = summary.find(results::summary_key::kOutcome);
+  return outcome == summary.end() || !outcome->is_string() ||
+         *outcome != results::summary_key::kOutcomeStopped;
 }
 
 json result_row(const Spec& s, const Cell& c, const json& summary,

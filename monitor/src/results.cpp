@@ -234,7 +234,7 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
   const double n = std::max<double>(1.0, static_cast<double>(r.robots.size()));
   nlohmann::json j = {
       {"success", r.success()},
-      {"outcome", to_string(r.outcome)},
+      {results::summary_key::kOutcome, to_string(r.outcome)},
       {"robots", r.robots.size()},
       {"aet_s", times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
       {"makespan_s", times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},

@@ -20,7 +20,7 @@ std::string_view to_string(Outcome o) {
     case Outcome::kHostLost:
       return "host lost";
     case Outcome::kStopped:
-      return "stopped";
+      return results::summary_key::kOutcomeStopped;
     case Outcome::kCollision:
       return "collision";
     case Outcome::kOffGoal:

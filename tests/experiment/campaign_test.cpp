@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "support/monitor_fixtures.hpp"
@@ -80,11 +82,30 @@ TEST_F(Campaign, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
   const auto kept = cells / "0-random-32-32-20-random-1-n1-footbot-lan-r0" / "summary.json";
   const auto kept_time = fs::last_write_time(kept);
   fs::remove(cells / "0-random-32-32-20-random-1-n2-footbot-lan-r1" / "summary.json");
+  // And a run stopped before its end (Ctrl-C: its summary written as it ended, outcome
+  // "stopped") is no result: no row, and the resumed campaign runs it again.
+  const auto stopped = cells / "0-random-32-32-20-random-1-n2-footbot-lan-r0" / "summary.json";
+  auto summary = nlohmann::json::parse(slurp(stopped));
+  summary["outcome"] = "stopped";
+  summary["success"] = false;
+  std::ofstream(stopped) << summary.dump();
+  experiment::CampaignOptions none_left;  // the grid with nothing run: results.csv rewritten
+  const std::atomic<bool> stop_now{true};
+  none_left.spec = spec;
+  none_left.out = dir_ / "out";
+  none_left.smart = smart_exe();
+  none_left.first_domain = kExperiment;
+  none_left.stop = &stop_now;
+  r = experiment::run_campaign(none_left, log_);
+  EXPECT_EQ(r.with_results, 2u);
+  EXPECT_FALSE(r.complete());
+  EXPECT_EQ(lines_of(dir_ / "out" / "results.csv").size(), 3u);
   r = run(spec);
   ASSERT_TRUE(r.complete()) << log_.str();
-  EXPECT_EQ(r.skipped, 3u);
+  EXPECT_EQ(r.skipped, 2u);
   EXPECT_EQ(r.with_results, 4u);
   EXPECT_EQ(fs::last_write_time(kept), kept_time);
+  EXPECT_EQ(nlohmann::json::parse(slurp(stopped))["outcome"], "success");
   EXPECT_EQ(lines_of(dir_ / "out" / "results.csv").size(), 5u);
   // The figures, as PNG, SVG and PDF, and the data they show (tests/experiment/
   // experiment_plot_test.py checks that data against results.csv).

@@ -476,5 +476,18 @@ TEST(ExperimentResults, ARowHasTheParametersAndEverySummaryFieldFlattened) {
   EXPECT_THAT(csv, HasSubstr(",7,,\"q\"\"uote\",\"x, y\","));       // row 2: no AET
 }
 
+// Regression: a campaign stopped with Ctrl-C (or a run killed by a signal) left the running cells'
+// summaries, written as the runs ended early (outcome "stopped"); a resumed campaign took them as
+// done and results.csv held the truncated runs as results.
+TEST(Results, ARunStoppedBeforeItsEndIsNoResult) {
+  using nlohmann::json;
+  EXPECT_TRUE(ran_to_its_end(json{{"outcome", "success"}, {"success", true}}));
+  EXPECT_TRUE(ran_to_its_end(json{{"outcome", "deadlock"}, {"success", false}}));  // it ended
+  EXPECT_TRUE(ran_to_its_end(json{{"success", true}}));  // a summary from before the outcome
+  EXPECT_FALSE(ran_to_its_end(json{{"outcome", "stopped"}, {"success", false}}));
+  EXPECT_FALSE(ran_to_its_end(json(json::value_t::discarded)));  // none, or it did not parse
+  EXPECT_FALSE(ran_to_its_end(json::array()));
+}
+
 }  // namespace
 }  // namespace smart::experiment

@@ -5,8 +5,10 @@
 //   built-in planner or the spec's command), runs up to `jobs` cells at once, each in its own DDS
 //   domain id (first_domain + slot) and folder OUT/cells/<key>/ (run.log, the results folder), and
 //   writes OUT/results.csv and OUT/results.jsonl, a row per cell with a summary (spec.hpp).
-//   Resumable: a cell whose summary.json parses is not run again. Once `stop` is set (SIGINT),
-//   the running cells are ended (SIGTERM: each writes what it has) and none is started.
+//   Resumable: a cell whose summary.json parses is not run again, unless its run was stopped
+//   before its end (ran_to_its_end, spec.hpp: such a summary is no result and no row). Once
+//   `stop` is set (SIGINT), the running cells are ended (SIGTERM: each writes what it has, as
+//   stopped) and none is started; the next campaign of the spec runs them again.
 // - plot_campaign(): the figures (PNG, SVG, PDF and figures.json, the data each shows) of OUT by
 //   experiment/plot/experiment_plot.py (python3-matplotlib, Debian).
 // Errors: std::invalid_argument for bad input (spec, files it names, options: the command's exit

@@ -125,6 +125,10 @@ std::vector<std::string> output_flags(const Spec& spec);
 // nested objects flattened with dots ("adg.type2"), arrays as JSON text.
 nlohmann::json result_row(const Spec& spec, const Cell& cell, const nlohmann::json& summary,
                           std::optional<double> planner_runtime_s = std::nullopt);
+// Whether a cell's summary.json is a result: it parses as an object and its run was not stopped
+// before its end (outcome "stopped": a run ended by a signal writes what it had then). A
+// resumed campaign runs such a cell again, and results.csv has no row for it.
+bool ran_to_its_end(const nlohmann::json& summary);
 // The rows as CSV: the union of their columns, parameters first, then summary fields sorted;
 // fields quoted when they hold a comma, a quote or a newline.
 std::string results_csv(const std::vector<nlohmann::json>& rows);

@@ -87,6 +87,11 @@ inline constexpr const char* kRobot = "robot";    // in "files"
 inline constexpr const char* kAxis = "axis";      // in "plan"
 inline constexpr const char* kFormat = "format";  // in "plan"
 inline constexpr const char* kRunId = "run_id";   // the run's id on the wire (samples carry it)
+// How the run ended (monitor/run_supervisor.hpp Outcome), and the outcome of a run stopped
+// before its end (a signal, or the monitor quit): what it had then, not a result (`smart
+// experiment` runs such a cell again).
+inline constexpr const char* kOutcome = "outcome";
+inline constexpr const char* kOutcomeStopped = "stopped";
 // A lifelong run's object and the keys of it that `smart experiment` reads.
 inline constexpr const char* kLifelong = "lifelong";
 inline constexpr const char* kTasksFinished = "tasks_finished";
