@@ -39,13 +39,15 @@ class Campaign : public ::testing::Test {
                         << extra;
     return spec;
   }
-  experiment::CampaignReport run(const fs::path& spec, int domain = kExperiment) {
+  experiment::CampaignReport run(const fs::path& spec, int domain = kExperiment,
+                                 const std::atomic<bool>* stop = nullptr) {
     experiment::CampaignOptions o;
     o.spec = spec;
     o.out = dir_ / "out";
     o.jobs = 2;
     o.first_domain = domain;
     o.smart = smart_exe();
+    o.stop = stop;
     log_.str("");
     return experiment::run_campaign(o, log_);
   }
@@ -89,14 +91,8 @@ TEST_F(Campaign, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
   summary["outcome"] = "stopped";
   summary["success"] = false;
   std::ofstream(stopped) << summary.dump();
-  experiment::CampaignOptions none_left;  // the grid with nothing run: results.csv rewritten
-  const std::atomic<bool> stop_now{true};
-  none_left.spec = spec;
-  none_left.out = dir_ / "out";
-  none_left.smart = smart_exe();
-  none_left.first_domain = kExperiment;
-  none_left.stop = &stop_now;
-  r = experiment::run_campaign(none_left, log_);
+  const std::atomic<bool> stop_now{true};  // the grid with nothing run: results.csv rewritten
+  r = run(spec, kExperiment, &stop_now);
   EXPECT_EQ(r.with_results, 2u);
   EXPECT_FALSE(r.complete());
   EXPECT_EQ(lines_of(dir_ / "out" / "results.csv").size(), 3u);
