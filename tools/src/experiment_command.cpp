@@ -18,7 +18,7 @@ namespace {
 struct ExperimentOptions {
   std::string spec, out;
   int jobs = 1;
-  int domain = 120;
+  int domain = experiment::CampaignOptions{}.first_domain;
 };
 
 int run_experiment(const ExperimentOptions& o) {
@@ -49,11 +49,13 @@ void register_experiment_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--jobs", o->jobs, "runs at once (each in its own DDS domain id)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  cmd->add_option("--domain", o->domain, "first DDS domain id (one per job)")
+  cmd->add_option("--domain", o->domain,
+                  "first DDS domain id (one per job; the default stays below the tests' ids)")
       ->check(CLI::Range(0, 230))
       ->capture_default_str();
   auto p = std::make_shared<std::pair<std::string, std::string>>();
-  auto* plot = cmd->add_subcommand("plot", "Figures (PNG, SVG, PDF; figures.json: the data shown) from an experiment's results");
+  auto* plot = cmd->add_subcommand(
+      "plot", "Figures (PNG, SVG, PDF; figures.json: the data shown) from an experiment's results");
   plot->add_option("results", p->first, "the folder `smart experiment` wrote")->required();
   plot->add_option("--out", p->second, "where the figures go (default: RESULTS/figures)");
   plot->callback([&exit_code, p] {
