@@ -181,8 +181,9 @@ void BM_ExecuteSwitchableOpt(benchmark::State& state) {
 // switchable-lookahead: anticipation comparing orders by every affected action's expected times.
 void BM_ExecuteSwitchableLookahead(benchmark::State& state) {
   execute<SwitchableTracker>(state, [](const ActionPlan& a, const Adg& g) {
-    return SwitchableTracker(a, passing_orders(a, map("warehouse-10-20-10-2-1"), g.footprint),
-                             SwitchOptions{.anticipate = true, .lookahead_actions = 24});
+    return SwitchableTracker(
+        a, passing_orders(a, map("warehouse-10-20-10-2-1"), g.footprint),
+        SwitchOptions{.anticipate = true, .lookahead_actions = kDefaultLookaheadActions});
   });
 }
 

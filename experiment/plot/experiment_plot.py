@@ -49,8 +49,11 @@ matplotlib.use("Agg")  # no display: files only
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: E402
 
-LINE_AXES = ["plan", "execution", "switch_commit_actions", "switch_chain_locations", "robot", "qos",
-             "uncertainty", "replan_period_s", "lookahead", "clock"]
+# The switching executions' knobs (`smart run --switch-*`), each an axis of its own.
+SWITCH_KNOBS = ["switch_commit_actions", "switch_chain_locations", "switch_margin_s",
+                "switch_horizon_actions", "switch_lookahead_actions"]
+LINE_AXES = ["plan", "execution"] + SWITCH_KNOBS + ["robot", "qos", "uncertainty",
+                                                    "replan_period_s", "lookahead", "clock"]
 PANEL_AXES = ["map"]
 POOLED_AXES = ["scen"]
 AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "uncertainty",
@@ -58,6 +61,9 @@ AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "un
               "replan_period_s": "replan period (s)", "execution": "execution",
               "switch_commit_actions": "entries sent (actions ahead)",
               "switch_chain_locations": "chain (locations)",
+              "switch_margin_s": "anticipation margin (s)",
+              "switch_horizon_actions": "anticipation horizon (actions)",
+              "switch_lookahead_actions": "lookahead reach (actions)",
               "lookahead": "commit cut look-ahead (actions)"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")
@@ -520,10 +526,11 @@ def write_table(rows, out_dir, written):
     switching = len(values_of(rows, "execution")) > 1
     if switching:
         keys.insert(keys.index("plan") + 1, "execution")
-    if len(values_of(rows, "switch_commit_actions")) > 1:
-        keys.insert(keys.index("plan") + 1 + switching, "switch_commit_actions")
-    if len(values_of(rows, "switch_chain_locations")) > 1:
-        keys.insert(keys.index("plan") + 1 + switching, "switch_chain_locations")
+    at = keys.index("plan") + 1 + switching
+    for knob in SWITCH_KNOBS:
+        if len(values_of(rows, knob)) > 1:
+            keys.insert(at, knob)
+            at += 1
     if lifelong:
         keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
     if len(values_of(rows, "lookahead")) > 1:

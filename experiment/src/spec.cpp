@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "smart/monitor/results_format.hpp"
@@ -207,8 +210,33 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   }
 }
 
-// A switching axis (switch_commit_actions, switch_chain_locations): whole numbers from 1 to
-// `hi` (smart run's range), for a switching execution; `example` shows a list.
+// Whether an execution reads a switching knob (`smart run` refuses it for the others).
+bool reads_knob(const std::string& execution, std::string_view field) {
+  if (field == "switch_lookahead_actions") return execution == "switchable-lookahead";
+  if (field == "switch_margin_s" || field == "switch_horizon_actions") {
+    return execution == "switchable-opt" || execution == "switchable-lookahead";
+  }
+  return execution != "adg";
+}
+
+// A switching axis must have an execution of the spec that reads it.
+void needs_a_reader(const YAML::Node& n, const std::string& src, const Spec& s,
+                    const std::string& field) {
+  if (std::ranges::any_of(s.executions, [&](const auto& e) { return reads_knob(e, field); })) {
+    return;
+  }
+  if (field == "switch_lookahead_actions") {
+    fail(src, n, field, "only switchable-lookahead takes it; add it to executions");
+  }
+  if (field == "switch_margin_s" || field == "switch_horizon_actions") {
+    fail(src, n, field,
+         "only switchable-opt and switchable-lookahead take it; add one of them to executions");
+  }
+  fail(src, n, field,
+       "only the switching executions take it; add switchable (or switchable-opt) to executions");
+}
+
+// A switching axis of whole numbers from 1 to `hi` (smart run's range); `example` shows a list.
 std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::string& src,
                                           const Spec& s, const std::string& field, long long hi,
                                           const std::string& range, const std::string& example) {
@@ -219,19 +247,8 @@ std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::str
     out.push_back(static_cast<uint32_t>(k));
   }
   if (out.empty()) fail(src, n, field, "is empty; give at least one, e.g. " + example);
-  if (std::ranges::count(s.executions, "adg") == static_cast<long>(s.executions.size())) {
-    fail(src, n, field,
-         "only the switching executions take it; add switchable (or switchable-opt) to executions");
-  }
+  needs_a_reader(n, src, s, field);
   return out;
-}
-
-// The commit distance, and chains.
-void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s) {
-  s.switch_commit_actions = read_switching_axis(root, src, s, "switch_commit_actions", 1000,
-                                                "from 1 to 1000 actions", "[2, 6]");
-  s.switch_chain_locations = read_switching_axis(root, src, s, "switch_chain_locations", 64,
-                                                 "from 1 to 64 locations", "[1, 8]");
 }
 
 double number_in(const YAML::Node& n, const std::string& src, const std::string& field, double lo,
@@ -245,6 +262,25 @@ double number_in(const YAML::Node& n, const std::string& src, const std::string&
     fail(src, n, field, "a number from " + json(lo).dump() + " to " + json(hi).dump());
   }
   return v;
+}
+
+// The commit distance, chains and anticipation's knobs.
+void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s) {
+  s.switch_commit_actions = read_switching_axis(root, src, s, "switch_commit_actions", 1000,
+                                                "from 1 to 1000 actions", "[2, 6]");
+  s.switch_chain_locations = read_switching_axis(root, src, s, "switch_chain_locations", 64,
+                                                 "from 1 to 64 locations", "[1, 8]");
+  s.switch_horizon_actions = read_switching_axis(root, src, s, "switch_horizon_actions", 1000,
+                                                 "from 1 to 1000 actions", "[12, 24]");
+  s.switch_lookahead_actions = read_switching_axis(root, src, s, "switch_lookahead_actions", 1000,
+                                                   "from 1 to 1000 actions", "[24, 48]");
+  if (const auto n = root["switch_margin_s"]) {
+    const std::string field = "switch_margin_s";
+    if (!n.IsSequence()) s.switch_margin_s.push_back(number_in(n, src, field, 0, 3600));
+    for (const auto& v : n) s.switch_margin_s.push_back(number_in(v, src, field, 0, 3600));
+    if (s.switch_margin_s.empty()) fail(src, n, field, "is empty; give at least one, e.g. [1, 10]");
+    needs_a_reader(n, src, s, field);
+  }
 }
 
 void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
@@ -291,12 +327,16 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
                                              "executions",
                                              "switch_commit_actions",
                                              "switch_chain_locations",
+                                             "switch_margin_s",
+                                             "switch_horizon_actions",
+                                             "switch_lookahead_actions",
                                              "state_rate_hz"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       fail(src, kv.first, key,
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
            "clock, uncertainty, executions, switch_commit_actions, switch_chain_locations, "
+           "switch_margin_s, switch_horizon_actions, switch_lookahead_actions, "
            "repeats, state_rate_hz "
            "(lifelong: lifelong, agents, planners)");
     }
@@ -439,6 +479,9 @@ const std::vector<std::string> kParams{"cell",
                                        "execution",
                                        "switch_commit_actions",
                                        "switch_chain_locations",
+                                       "switch_margin_s",
+                                       "switch_horizon_actions",
+                                       "switch_lookahead_actions",
                                        "replan_period_s",
                                        "lookahead",
                                        "planner_runtime_s"};
@@ -473,19 +516,53 @@ Spec parse_spec(std::string_view text, const std::string& src) {
 
 namespace {
 
-// The (commit distance, chain length) pairs an execution runs with: plain ADG has none (0: the
-// flag not given).
-std::vector<std::pair<uint32_t, uint32_t>> switching_axis(const Spec& s,
-                                                          const std::string& execution) {
-  if (execution == "adg") return {{0, 0}};
-  const auto or_none = [](const std::vector<uint32_t>& v) {
-    return v.empty() ? std::vector<uint32_t>{0} : v;
+// One setting of the switching knobs an execution runs with; 0 or none: the flag not given.
+struct Knobs {
+  uint32_t commit = 0, chain = 0;
+  std::optional<double> margin_s;
+  uint32_t horizon = 0, reach = 0;
+};
+
+// The knob settings of an execution: the product of the axes it reads (plain ADG reads none).
+std::vector<Knobs> switching_axis(const Spec& s, const std::string& e) {
+  const auto read = [&e](const auto& axis, std::string_view field) {
+    using V = typename std::decay_t<decltype(axis)>::value_type;
+    std::vector<std::optional<V>> out(axis.begin(), axis.end());
+    if (out.empty() || !reads_knob(e, field)) out = {std::nullopt};
+    return out;
   };
-  std::vector<std::pair<uint32_t, uint32_t>> axis;
-  for (const uint32_t commit : or_none(s.switch_commit_actions)) {
-    for (const uint32_t chain : or_none(s.switch_chain_locations)) axis.emplace_back(commit, chain);
+  std::vector<Knobs> axis;
+  for (const auto commit : read(s.switch_commit_actions, "switch_commit_actions")) {
+    for (const auto chain : read(s.switch_chain_locations, "switch_chain_locations")) {
+      for (const auto margin : read(s.switch_margin_s, "switch_margin_s")) {
+        for (const auto horizon : read(s.switch_horizon_actions, "switch_horizon_actions")) {
+          for (const auto reach : read(s.switch_lookahead_actions, "switch_lookahead_actions")) {
+            axis.push_back({commit.value_or(0), chain.value_or(0), margin, horizon.value_or(0),
+                            reach.value_or(0)});
+          }
+        }
+      }
+    }
   }
   return axis;
+}
+
+// A margin in a folder name: its shortest decimal form ("0.5", "10").
+std::string compact(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// The folder name's part for the knobs given; none for plain ADG (its folders stay as they were).
+std::string knobs_key(const std::string& e, const Knobs& k) {
+  std::string key = e == "adg" ? "" : "-" + e;
+  if (k.commit != 0) key += "-c" + std::to_string(k.commit);
+  if (k.chain != 0) key += "-k" + std::to_string(k.chain);
+  if (k.margin_s) key += "-m" + compact(*k.margin_s);
+  if (k.horizon != 0) key += "-h" + std::to_string(k.horizon);
+  if (k.reach != 0) key += "-a" + std::to_string(k.reach);
+  return key;
 }
 
 }  // namespace
@@ -501,7 +578,7 @@ std::vector<Cell> expand(const Spec& s) {
               for (std::size_t t = 0; t < periods(s); ++t) {
                 for (const uint32_t look : lookaheads(s)) {
                   for (const auto& e : s.executions) {
-                    for (const auto& [commit, chain] : switching_axis(s, e)) {
+                    for (const auto& k : switching_axis(s, e)) {
                       for (std::size_t r = 0; r < s.repeats; ++r) {
                         auto key = std::to_string(i) + "-" + instance_stem(s, i) + "-n" +
                                    std::to_string(n) + "-" + stem(robot) + "-" + stem(qos);
@@ -509,12 +586,9 @@ std::vector<Cell> expand(const Spec& s) {
                         if (s.uncertainty.size() > 1) key += "-u" + std::to_string(u);
                         if (periods(s) > 1) key += "-p" + std::to_string(t);
                         if (look != 0) key += "-l" + std::to_string(look);
-                        if (e != "adg") key += "-" + e;  // plain cells keep their folders
-                        if (commit != 0) key += "-c" + std::to_string(commit);
-                        if (chain != 0) key += "-k" + std::to_string(chain);
-                        key += "-r" + std::to_string(r);
-                        cells.push_back(
-                            {i, n, p, robot, qos, u, r, t, key, e, commit, chain, look});
+                        key += knobs_key(e, k) + "-r" + std::to_string(r);
+                        cells.push_back({i, n, p, robot, qos, u, r, t, key, e, k.commit, k.chain,
+                                         look, k.margin_s, k.horizon, k.reach});
                       }
                     }
                   }
@@ -536,6 +610,14 @@ std::vector<std::string> execution_flags(const Cell& c) {
   }
   if (c.chain_locations != 0) {
     flags.insert(flags.end(), {"--switch-chain-locations", std::to_string(c.chain_locations)});
+  }
+  if (c.margin_s) flags.insert(flags.end(), {"--switch-margin-s", json(*c.margin_s).dump()});
+  if (c.horizon_actions != 0) {
+    flags.insert(flags.end(), {"--switch-horizon-actions", std::to_string(c.horizon_actions)});
+  }
+  if (c.switch_lookahead_actions != 0) {
+    flags.insert(flags.end(),
+                 {"--switch-lookahead-actions", std::to_string(c.switch_lookahead_actions)});
   }
   return flags;
 }
@@ -579,6 +661,11 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
               {"execution", c.execution}};
   if (c.commit_actions != 0) row["switch_commit_actions"] = c.commit_actions;
   if (c.chain_locations != 0) row["switch_chain_locations"] = c.chain_locations;
+  if (c.margin_s) row["switch_margin_s"] = *c.margin_s;
+  if (c.horizon_actions != 0) row["switch_horizon_actions"] = c.horizon_actions;
+  if (c.switch_lookahead_actions != 0) {
+    row["switch_lookahead_actions"] = c.switch_lookahead_actions;
+  }
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);

@@ -250,6 +250,32 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("| plan | execution | switch_commit_actions |", text)
         self.assertIn("| switchable | 6 |", text)
 
+    def test_anticipation_knobs_are_lines_and_table_columns_of_their_own(self):
+        # switch_margin_s and switch_lookahead_actions were no axes before 2026-12-06: a sweep
+        # of them needed a build of its own. Two margins of the lookahead, two reaches: four
+        # lines beside plain ADG, each paired with the same plain run.
+        columns = COLUMNS + ["execution", "switch_margin_s", "switch_lookahead_actions",
+                             "waiting_time_s.total"]
+        rows = [row(agents=10, repeat=k, execution="adg", **{"waiting_time_s.total": 1000})
+                for k in (0, 1)]
+        rows += [row(agents=10, repeat=k, execution="switchable-lookahead", switch_margin_s=m,
+                     switch_lookahead_actions=a,
+                     **{"waiting_time_s.total": 1000 - 100 * m - a})
+                 for k in (0, 1) for m in (0.5, 3) for a in (24, 48)]
+        for r in rows:
+            r["cell"] += "-" + r["execution"] + str(r.get("switch_margin_s", "")) + \
+                str(r.get("switch_lookahead_actions", ""))
+        out, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        waiting = figures["paired"]["panels"][0]
+        self.assertEqual([s["label"] for s in waiting["series"]],
+                         ["switchable-lookahead / 0.5 / 24", "switchable-lookahead / 0.5 / 48",
+                          "switchable-lookahead / 3 / 24", "switchable-lookahead / 3 / 48"])
+        self.assertEqual([round(s["points"][0]["mean"], 9) for s in waiting["series"]],
+                         [-7.4, -9.8, -32.4, -34.8])
+        text = (out / "table.md").read_text()
+        self.assertIn("| plan | execution | switch_margin_s | switch_lookahead_actions |", text)
+
     def test_chain_lengths_are_lines_and_lookaheads_pair_with_plain_adg_at_their_own(self):
         # Chains of 1 and 8 locations were pooled into one line before (a grid axis averaged).
         # Plain ADG waits 1000 s with the commit cut's look-ahead 4 and 2000 s with 8;

@@ -300,6 +300,62 @@ TEST(Spec, SwitchChainLocationsAreAnAxisOfTheSwitchingExecutions) {
   EXPECT_EQ(lifelong[2].chain_locations, 8u);
 }
 
+// Anticipation's knobs are axes of the executions that read them: the margin and the horizon of
+// switchable-opt and the lookahead, the reach of the lookahead alone. An execution that does not
+// read a knob runs once (smart run would refuse the flag); a spec whose executions read none is
+// refused by the knob's name. Before 2026-12-06 sweeping them took a build of its own.
+TEST(Spec, AnticipationKnobsAreAxesOfTheExecutionsThatReadThem) {
+  const std::string base =
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
+  const auto s = parse_spec(base +
+                                "executions: [adg, switchable, switchable-opt, "
+                                "switchable-lookahead]\nswitch_margin_s: [0.5, 3]\n"
+                                "switch_horizon_actions: 24\nswitch_lookahead_actions: [24, 48]\n",
+                            "m.yaml");
+  const auto cells = expand(s);
+  std::vector<std::string> keys;
+  for (const auto& c : cells) keys.push_back(c.key);
+  const std::string cell = "0-s-n5-footbot-lan";
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{
+                cell + "-r0", cell + "-switchable-r0", cell + "-switchable-opt-m0.5-h24-r0",
+                cell + "-switchable-opt-m3-h24-r0", cell + "-switchable-lookahead-m0.5-h24-a24-r0",
+                cell + "-switchable-lookahead-m0.5-h24-a48-r0",
+                cell + "-switchable-lookahead-m3-h24-a24-r0",
+                cell + "-switchable-lookahead-m3-h24-a48-r0"}));
+  EXPECT_EQ(execution_flags(cells[1]), (std::vector<std::string>{"--execution", "switchable"}));
+  EXPECT_EQ(execution_flags(cells[5]),
+            (std::vector<std::string>{"--execution", "switchable-lookahead", "--switch-margin-s",
+                                      "0.5", "--switch-horizon-actions", "24",
+                                      "--switch-lookahead-actions", "48"}));
+  const auto row = result_row(s, cells[6], nlohmann::json::object());
+  EXPECT_EQ(row["switch_margin_s"], 3.0);
+  EXPECT_EQ(row["switch_horizon_actions"], 24);
+  EXPECT_EQ(row["switch_lookahead_actions"], 24);
+  EXPECT_FALSE(result_row(s, cells[1], nlohmann::json::object()).contains("switch_margin_s"));
+  EXPECT_NE(results_csv({row}).find(
+                ",execution,switch_margin_s,switch_horizon_actions,switch_lookahead_actions,"),
+            std::string::npos);
+  const auto fails = [&](const std::string& text, const std::string& what) {
+    try {
+      (void)parse_spec(base + text, "m.yaml");
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(what));
+    }
+  };
+  fails("executions: [adg, switchable]\nswitch_margin_s: [1]\n",
+        "m.yaml:7: switch_margin_s: only switchable-opt and switchable-lookahead take it");
+  fails("executions: [switchable-opt]\nswitch_lookahead_actions: [48]\n",
+        "m.yaml:7: switch_lookahead_actions: only switchable-lookahead takes it");
+  fails("executions: [switchable-opt]\nswitch_margin_s: [-1]\n",
+        "m.yaml:7: switch_margin_s: a number from 0.0 to 3600.0");
+  fails("executions: [switchable-opt]\nswitch_margin_s: []\n",
+        "m.yaml:7: switch_margin_s: is empty");
+  fails("executions: [switchable-opt]\nswitch_horizon_actions: [0]\n",
+        "m.yaml:7: switch_horizon_actions: from 1 to 1000 actions");
+}
+
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching
 // executions only: plain ADG cells run once, on the same seeds.
 TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {

@@ -203,5 +203,47 @@ TEST(RunOptions, SwitchingFlagsBecomeTheTrackersOptions) {
   EXPECT_THROW(parse({"--switch-chain-locations", "65"}), CLI::ParseError);
 }
 
+// Anticipation's knobs reach the tracker: the margin goes to the margin the execution reads
+// (switchable-opt's own, the lookahead's), the horizon to both, the reach to the lookahead; an
+// execution that does not read a knob refuses it by name rather than ignoring it.
+TEST(RunOptions, AnticipationKnobsReachTheExecutionThatReadsThem) {
+  const auto parse = [](const std::string& execution, std::vector<std::string> extra) {
+    MonitorCliOptions o;
+    CLI::App app;
+    add_monitor_options(&app, o);
+    std::vector<std::string> args{"--map", "m",      "--scen", "s",           "--plan",
+                                  "p",     "--axis", "xy",     "--execution", execution};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::reverse(args.begin(), args.end());
+    app.parse(args);
+    return monitor_options(o).run.switch_options;
+  };
+  const monitor::SwitchOptions defaults;
+  const auto opt =
+      parse("switchable-opt", {"--switch-margin-s", "3", "--switch-horizon-actions", "24"});
+  EXPECT_EQ(opt.margin_s, 3.0);
+  EXPECT_EQ(opt.lookahead_margin_s, defaults.lookahead_margin_s);
+  EXPECT_EQ(opt.horizon_actions, 24u);
+  EXPECT_EQ(opt.lookahead_actions, 0u);
+  const auto look = parse("switchable-lookahead",
+                          {"--switch-margin-s", "2.5", "--switch-lookahead-actions", "48"});
+  EXPECT_EQ(look.lookahead_margin_s, 2.5);
+  EXPECT_EQ(look.margin_s, defaults.margin_s);
+  EXPECT_EQ(look.lookahead_actions, 48u);
+  EXPECT_EQ(look.horizon_actions, defaults.horizon_actions);
+  EXPECT_EQ(parse("switchable-lookahead", {}).lookahead_actions, monitor::kDefaultLookaheadActions);
+  try {
+    parse("switchable", {"--switch-margin-s", "3"});
+    ADD_FAILURE() << "switchable took a margin it does not read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("--switch-margin-s: only --execution switchable-opt"));
+  }
+  EXPECT_THROW(parse("switchable-opt", {"--switch-lookahead-actions", "48"}),
+               std::invalid_argument);
+  EXPECT_THROW(parse("adg", {"--switch-horizon-actions", "24"}), std::invalid_argument);
+  EXPECT_THROW(parse("switchable-opt", {"--switch-margin-s", "-1"}), CLI::ParseError);
+  EXPECT_THROW(parse("switchable-lookahead", {"--switch-lookahead-actions", "0"}), CLI::ParseError);
+}
+
 }  // namespace
 }  // namespace smart::tools

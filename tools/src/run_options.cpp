@@ -188,6 +188,18 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
                   "locations in a row at once (1: one location at a time; default 8; "
                   "docs/execution.md)")
       ->check(CLI::Range(1u, 64u));
+  cmd->add_option("--switch-margin-s", o.switch_margin_s,
+                  "switchable-opt and -lookahead: the expected waiting an anticipated switch must "
+                  "save (default 10 s for switchable-opt, 0.5 s for the lookahead)")
+      ->check(finite_in(0.0, 3600.0));
+  cmd->add_option("--switch-horizon-actions", o.switch_horizon_actions,
+                  "switchable-opt and -lookahead: a robot farther than this many actions from a "
+                  "location is not expected there yet (default 12)")
+      ->check(CLI::Range(1u, 1000u));
+  cmd->add_option("--switch-lookahead-actions", o.switch_lookahead_actions,
+                  "switchable-lookahead: the two orders are compared over each robot's next this "
+                  "many actions (default 24)")
+      ->check(CLI::Range(1u, 1000u));
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
       ->check(finite_in(0.1, 1e9))
@@ -379,12 +391,35 @@ std::pair<uint32_t, uint32_t> parse_shard(const std::string& text) {
   return {i, n};
 }
 
+namespace {
+// A knob given to an execution that does not read it is refused, not silently ignored.
+void refuse_unread(bool given, bool read, const char* flag, const char* takers) {
+  if (given && !read) {
+    throw std::invalid_argument(std::string(flag) + ": only --execution " + takers +
+                                " reads it; drop it or pick one of those");
+  }
+}
+}  // namespace
+
 monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
+  using Execution = MonitorCliOptions::Execution;
+  const bool lookahead = o.execution == Execution::kSwitchableLookahead;
   monitor::SwitchOptions s{o.switch_commit_actions};
   s.chain_locations = o.switch_chain_locations.value_or(s.chain_locations);
-  s.anticipate = o.execution == MonitorCliOptions::Execution::kSwitchableOpt ||
-                 o.execution == MonitorCliOptions::Execution::kSwitchableLookahead;
-  if (o.execution == MonitorCliOptions::Execution::kSwitchableLookahead) s.lookahead_actions = 24;
+  s.anticipate = o.execution == Execution::kSwitchableOpt || lookahead;
+  refuse_unread(o.switch_margin_s.has_value(), s.anticipate, "--switch-margin-s",
+                "switchable-opt or switchable-lookahead");
+  refuse_unread(o.switch_horizon_actions.has_value(), s.anticipate, "--switch-horizon-actions",
+                "switchable-opt or switchable-lookahead");
+  refuse_unread(o.switch_lookahead_actions.has_value(), lookahead, "--switch-lookahead-actions",
+                "switchable-lookahead");
+  s.horizon_actions = o.switch_horizon_actions.value_or(s.horizon_actions);
+  if (lookahead) {
+    s.lookahead_actions = o.switch_lookahead_actions.value_or(monitor::kDefaultLookaheadActions);
+    s.lookahead_margin_s = o.switch_margin_s.value_or(s.lookahead_margin_s);
+  } else {
+    s.margin_s = o.switch_margin_s.value_or(s.margin_s);
+  }
   return s;
 }
 

@@ -19,8 +19,11 @@
 //   executions: [adg, switchable]     # `smart run --execution`; default [adg] (issue 29)
 //   switch_commit_actions: [2, 6]     # `--switch-commit-actions` of the switching executions
 //   switch_chain_locations: [1, 8]    # `--switch-chain-locations` of theirs (plan runs)
-//                                     # (an axis for them; adg cells run once); default: its
-//                                     # default
+//   switch_margin_s: [1, 3, 10]       # `--switch-margin-s` of switchable-opt and -lookahead
+//   switch_horizon_actions: [12, 24]  # `--switch-horizon-actions` of the same two
+//   switch_lookahead_actions: [24, 48]  # `--switch-lookahead-actions` of switchable-lookahead
+//                                     # (each an axis for the executions that read it; the
+//                                     # others, and adg cells, run once); default: its default
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
 //   state_rate_hz: 0                  # `smart run --state-rate-hz` of every run (0: states.csv
 //                                     # holds each robot's final state only; a 1000-robot,
@@ -83,10 +86,13 @@ struct Spec {
   // Execution uncertainty settings, each an object of stall_probability, stall_s, speed_sigma,
   // slip_sigma (default: one empty object, the robot model's own).
   std::vector<nlohmann::json> uncertainty{nlohmann::json::object()};
-  std::vector<std::string> executions{"adg"};    // plan experiments: adg, switchable
-  std::vector<uint32_t> switch_commit_actions;   // empty: `smart run`'s default
-  std::vector<uint32_t> switch_chain_locations;  // plan runs; empty: `smart run`'s default
-  std::optional<double> state_rate_hz;           // none: `smart run`'s default
+  std::vector<std::string> executions{"adg"};      // plan experiments: adg, switchable
+  std::vector<uint32_t> switch_commit_actions;     // empty: `smart run`'s default
+  std::vector<uint32_t> switch_chain_locations;    // plan runs; empty: `smart run`'s default
+  std::vector<double> switch_margin_s;             // switchable-opt, -lookahead; empty: default
+  std::vector<uint32_t> switch_horizon_actions;    // the same two; empty: default
+  std::vector<uint32_t> switch_lookahead_actions;  // switchable-lookahead; empty: default
+  std::optional<double> state_rate_hz;             // none: `smart run`'s default
   std::size_t repeats = 1;
 };
 
@@ -103,18 +109,22 @@ struct Cell {
   std::size_t period = 0;       // lifelong: index into spec.lifelong->replan_period_s
   std::string key;              // folder name, unique within the experiment, stable across runs
   std::string execution = "adg";
-  uint32_t commit_actions = 0;   // --switch-commit-actions; 0: not given
-  uint32_t chain_locations = 0;  // --switch-chain-locations; 0: not given
-  uint32_t lookahead = 0;        // lifelong: --lookahead; 0: not given
+  uint32_t commit_actions = 0;            // --switch-commit-actions; 0: not given
+  uint32_t chain_locations = 0;           // --switch-chain-locations; 0: not given
+  uint32_t lookahead = 0;                 // lifelong: --lookahead; 0: not given
+  std::optional<double> margin_s;         // --switch-margin-s; none: not given
+  uint32_t horizon_actions = 0;           // --switch-horizon-actions; 0: not given
+  uint32_t switch_lookahead_actions = 0;  // --switch-lookahead-actions; 0: not given
 };
 
 // The grid, in a fixed order (instance, agents, plan, robot, qos, uncertainty, period,
-// lookahead, execution, switch_commit_actions, switch_chain_locations, repeat).
+// lookahead, execution, switch_commit_actions, switch_chain_locations, switch_margin_s,
+// switch_horizon_actions, switch_lookahead_actions, repeat).
 std::vector<Cell> expand(const Spec& spec);
 
 // The `smart run` flags of a cell's uncertainty and seed.
 std::vector<std::string> uncertainty_flags(const Spec& spec, const Cell& cell);
-// The `smart run` flags of a cell's execution (--execution, --switch-commit-actions).
+// The `smart run` flags of a cell's execution (--execution and the --switch-* flags given).
 std::vector<std::string> execution_flags(const Cell& cell);
 // The `smart run` flags every run of the spec gets (--state-rate-hz).
 std::vector<std::string> output_flags(const Spec& spec);

@@ -18,6 +18,10 @@ namespace smart::monitor {
 // held ready robots for small expected savings, and lost at 750-1000 robots (1000 robots on
 // random-64-64-10 without delays: AET +1.1 % against plain ADG, -1.5 % at 10 s); at 50-200
 // robots 10 s is as good (docs/execution.md, "switchable-opt").
+// switchable-lookahead's reach unless told otherwise (`--switch-lookahead-actions`): the
+// reasons are SwitchOptions::lookahead_actions'.
+inline constexpr uint32_t kDefaultLookaheadActions = 24;
+
 struct SwitchOptions {
   uint32_t commit_actions = 6;       // a switchable entry is sent this many actions ahead
   std::size_t search_budget = 4096;  // actions the deadlock search may visit per candidate
@@ -32,7 +36,7 @@ struct SwitchOptions {
   // the cone where it differs between decisions and pairs switched back and forth (9-24
   // thousand switches a run at 750 robots, against 0.9-1.3 thousand); 12 actions waited 1-2
   // points more (docs/execution.md, "switchable-lookahead").
-  uint32_t lookahead_actions = 0;
+  uint32_t lookahead_actions = 0;  // switchable-lookahead: kDefaultLookaheadActions unless told
   std::size_t lookahead_nodes = 512;
   // A pair is first compared over this many of the cone's actions, and not over the rest when
   // the swap loses more than one move's expected duration there (switchable_lookahead.cpp).

@@ -107,6 +107,11 @@ struct MonitorCliOptions {
   uint32_t switch_commit_actions = 6;  // --switch-commit-actions
   // --switch-chain-locations (plan runs; none: SwitchOptions' default; lifelong runs refuse it)
   std::optional<uint32_t> switch_chain_locations;
+  // Anticipation's knobs (none: SwitchOptions' defaults): --switch-margin-s and
+  // --switch-horizon-actions (switchable-opt and -lookahead), --switch-lookahead-actions (the
+  // lookahead's reach). The executions that do not read one refuse it.
+  std::optional<double> switch_margin_s;
+  std::optional<uint32_t> switch_horizon_actions, switch_lookahead_actions;
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
   // --resume-switches FILE: a switchable run's live switches.csv, replayed by --resume.
