@@ -210,30 +210,48 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
   }
 }
 
-// Whether an execution reads a switching knob (`smart run` refuses it for the others).
+// The switching knobs, the executions that read each (`smart run` refuses it for the others),
+// and what a spec whose executions read none of it is told.
+struct KnobReaders {
+  std::string_view field;
+  std::vector<std::string_view> executions;
+  std::string_view hint;
+};
+const std::vector<KnobReaders>& knob_readers() {
+  static const std::vector<KnobReaders> k{
+      {"switch_lookahead_actions",
+       {"switchable-lookahead"},
+       "only switchable-lookahead takes it; add it to executions"},
+      {"switch_margin_s",
+       {"switchable-opt", "switchable-lookahead"},
+       "only switchable-opt and switchable-lookahead take it; add one of them to executions"},
+      {"switch_horizon_actions",
+       {"switchable-opt", "switchable-lookahead"},
+       "only switchable-opt and switchable-lookahead take it; add one of them to executions"},
+  };
+  return k;
+}
+const KnobReaders kEverySwitchingExecution{
+    "",
+    {"switchable", "switchable-opt", "switchable-lookahead"},
+    "only the switching executions take it; add switchable (or switchable-opt) to executions"};
+
+const KnobReaders& readers_of(std::string_view field) {
+  const auto& k = knob_readers();
+  const auto it = std::ranges::find(k, field, &KnobReaders::field);
+  return it == k.end() ? kEverySwitchingExecution : *it;
+}
+
 bool reads_knob(const std::string& execution, std::string_view field) {
-  if (field == "switch_lookahead_actions") return execution == "switchable-lookahead";
-  if (field == "switch_margin_s" || field == "switch_horizon_actions") {
-    return execution == "switchable-opt" || execution == "switchable-lookahead";
-  }
-  return execution != "adg";
+  return std::ranges::count(readers_of(field).executions, execution) > 0;
 }
 
 // A switching axis must have an execution of the spec that reads it.
 void needs_a_reader(const YAML::Node& n, const std::string& src, const Spec& s,
                     const std::string& field) {
-  if (std::ranges::any_of(s.executions, [&](const auto& e) { return reads_knob(e, field); })) {
-    return;
+  if (!std::ranges::any_of(s.executions, [&](const auto& e) { return reads_knob(e, field); })) {
+    fail(src, n, field, std::string(readers_of(field).hint));
   }
-  if (field == "switch_lookahead_actions") {
-    fail(src, n, field, "only switchable-lookahead takes it; add it to executions");
-  }
-  if (field == "switch_margin_s" || field == "switch_horizon_actions") {
-    fail(src, n, field,
-         "only switchable-opt and switchable-lookahead take it; add one of them to executions");
-  }
-  fail(src, n, field,
-       "only the switching executions take it; add switchable (or switchable-opt) to executions");
 }
 
 // A switching axis of whole numbers from 1 to `hi` (smart run's range); `example` shows a list.

@@ -182,17 +182,23 @@ TEST(RunOptions, MonitorOptionsCarryTheRunPolicy) {
 
 // --execution and the switching flags become the tracker's options: chains of 8 locations by
 // default, one location at a time with --switch-chain-locations 1, none past 64.
+// A plan run's monitor options from `--execution execution` and the flags of `extra`.
+monitor::SupervisorConfig parse_execution(const std::string& execution,
+                                          const std::vector<std::string>& extra) {
+  MonitorCliOptions o;
+  CLI::App app;
+  add_monitor_options(&app, o);
+  std::vector<std::string> args{"--map", "m",      "--scen", "s",           "--plan",
+                                "p",     "--axis", "xy",     "--execution", execution};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::reverse(args.begin(), args.end());
+  app.parse(args);
+  return monitor_options(o).run;
+}
+
 TEST(RunOptions, SwitchingFlagsBecomeTheTrackersOptions) {
-  const auto parse = [](std::vector<std::string> extra) {
-    MonitorCliOptions o;
-    CLI::App app;
-    add_monitor_options(&app, o);
-    std::vector<std::string> args{"--map", "m",      "--scen", "s",           "--plan",
-                                  "p",     "--axis", "xy",     "--execution", "switchable"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::reverse(args.begin(), args.end());
-    app.parse(args);
-    return monitor_options(o).run;
+  const auto parse = [](const std::vector<std::string>& extra) {
+    return parse_execution("switchable", extra);
   };
   EXPECT_TRUE(parse({}).switchable);
   EXPECT_EQ(parse({}).switch_options.chain_locations, 8u);
@@ -207,16 +213,8 @@ TEST(RunOptions, SwitchingFlagsBecomeTheTrackersOptions) {
 // (switchable-opt's own, the lookahead's), the horizon to both, the reach to the lookahead; an
 // execution that does not read a knob refuses it by name rather than ignoring it.
 TEST(RunOptions, AnticipationKnobsReachTheExecutionThatReadsThem) {
-  const auto parse = [](const std::string& execution, std::vector<std::string> extra) {
-    MonitorCliOptions o;
-    CLI::App app;
-    add_monitor_options(&app, o);
-    std::vector<std::string> args{"--map", "m",      "--scen", "s",           "--plan",
-                                  "p",     "--axis", "xy",     "--execution", execution};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::reverse(args.begin(), args.end());
-    app.parse(args);
-    return monitor_options(o).run.switch_options;
+  const auto parse = [](const std::string& execution, const std::vector<std::string>& extra) {
+    return parse_execution(execution, extra).switch_options;
   };
   const monitor::SwitchOptions defaults;
   const auto opt =
