@@ -3,10 +3,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <filesystem>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
@@ -565,11 +566,12 @@ std::vector<Knobs> switching_axis(const Spec& s, const std::string& e) {
   return axis;
 }
 
-// A margin in a folder name: its shortest decimal form ("0.5", "10").
+// A margin in a folder name: the shortest decimal that reads back as it ("0.5", "10"), so two
+// margins never share a folder (six significant digits did).
 std::string compact(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
+  return {buf.data(), end};
 }
 
 // The folder name's part for the knobs given; none for plain ADG (its folders stay as they were).

@@ -356,6 +356,18 @@ TEST(Spec, AnticipationKnobsAreAxesOfTheExecutionsThatReadThem) {
         "m.yaml:7: switch_horizon_actions: from 1 to 1000 actions");
 }
 
+// Regression (2026-12-06): a margin was written into the folder name with six significant
+// digits, so margins that differ past the sixth shared one folder and one run.
+TEST(Spec, MarginsThatDifferPastTheSixthDigitGetFoldersOfTheirOwn) {
+  const auto cells =
+      expand(parse_spec("name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n"
+                        "executions: [switchable-opt]\nswitch_margin_s: [0.1234567, 0.1234568]\n",
+                        "m.yaml"));
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_EQ(cells[0].key, "0-s-n5-footbot-lan-switchable-opt-m0.1234567-r0");
+  EXPECT_EQ(cells[1].key, "0-s-n5-footbot-lan-switchable-opt-m0.1234568-r0");
+}
+
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching
 // executions only: plain ADG cells run once, on the same seeds.
 TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {
