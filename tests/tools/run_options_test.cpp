@@ -209,6 +209,28 @@ TEST(RunOptions, SwitchingFlagsBecomeTheTrackersOptions) {
   EXPECT_THROW(parse({"--switch-chain-locations", "65"}), CLI::ParseError);
 }
 
+// Regression: `--execution adg --switch-commit-actions 2` ran plain ADG and ignored the flag
+// without a word, so a user comparing commit distances got one plain run per value. Plain ADG
+// reads neither switching flag and now refuses each by name; every switching execution takes
+// them.
+TEST(RunOptions, PlainAdgRefusesTheCommitAndChainFlagsItDoesNotRead) {
+  for (const std::string flag : {"--switch-commit-actions", "--switch-chain-locations"}) {
+    try {
+      parse_execution("adg", {flag, "2"});
+      ADD_FAILURE() << "plain ADG took " << flag;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), testing::HasSubstr(flag + ": only --execution switchable,"));
+    }
+    for (const std::string execution : {"switchable-opt", "switchable-lookahead"}) {
+      const auto s = parse_execution(execution, {flag, "2"}).switch_options;
+      EXPECT_EQ(flag == "--switch-commit-actions" ? s.commit_actions : s.chain_locations, 2u)
+          << execution << " " << flag;
+    }
+  }
+  EXPECT_EQ(parse_execution("switchable", {}).switch_options.commit_actions, 6u);
+  EXPECT_FALSE(parse_execution("adg", {}).switchable);
+}
+
 // Anticipation's knobs reach the tracker: the margin goes to the margin the execution reads
 // (switchable-opt's own, the lookahead's), the horizon to both, the reach to the lookahead; an
 // execution that does not read a knob refuses it by name rather than ignoring it.

@@ -178,15 +178,15 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
       ->capture_default_str();
   cmd->add_option(
          "--switch-commit-actions", o.switch_commit_actions,
-         "--execution switchable: a robot is sent a way into a shared location this many "
-         "actions ahead (fewer: more room to switch, but robots brake before such entries)")
-      ->check(CLI::Range(1u, 1000u))
-      ->capture_default_str();
-  cmd->add_option("--switch-chain-locations", o.switch_chain_locations,
-                  "plan runs: a ready robot that the deadlock search stops because the robot it "
-                  "would pass goes on ahead of it passes that robot at up to this many shared "
-                  "locations in a row at once (1: one location at a time; default 8; "
-                  "docs/execution.md)")
+         "switching executions: a robot is sent a way into a shared location this many "
+         "actions ahead (fewer: more room to switch, but robots brake before such entries; "
+         "default 6)")
+      ->check(CLI::Range(1u, 1000u));
+  cmd->add_option(
+         "--switch-chain-locations", o.switch_chain_locations,
+         "switching executions: a ready robot that the deadlock search stops because the robot "
+         "it would pass goes on ahead of it passes that robot at up to this many shared "
+         "locations in a row at once (1: one location at a time; default 8; docs/execution.md)")
       ->check(CLI::Range(1u, 64u));
   cmd->add_option("--switch-margin-s", o.switch_margin_s,
                   "switchable-opt and -lookahead: the expected waiting an anticipated switch must "
@@ -404,9 +404,16 @@ void refuse_unread(bool given, bool read, const char* flag, const char* takers) 
 monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
   using Execution = MonitorCliOptions::Execution;
   const bool lookahead = o.execution == Execution::kSwitchableLookahead;
-  monitor::SwitchOptions s{o.switch_commit_actions};
-  s.chain_locations = o.switch_chain_locations.value_or(s.chain_locations);
+  monitor::SwitchOptions s;
   s.anticipate = o.execution == Execution::kSwitchableOpt || lookahead;
+  const bool switching = o.execution != Execution::kAdg;
+  const char* switchers = "switchable, switchable-opt or switchable-lookahead";
+  refuse_unread(o.switch_commit_actions.has_value(), switching, "--switch-commit-actions",
+                switchers);
+  refuse_unread(o.switch_chain_locations.has_value(), switching, "--switch-chain-locations",
+                switchers);
+  s.commit_actions = o.switch_commit_actions.value_or(s.commit_actions);
+  s.chain_locations = o.switch_chain_locations.value_or(s.chain_locations);
   refuse_unread(o.switch_margin_s.has_value(), s.anticipate, "--switch-margin-s",
                 "switchable-opt or switchable-lookahead");
   refuse_unread(o.switch_horizon_actions.has_value(), s.anticipate, "--switch-horizon-actions",

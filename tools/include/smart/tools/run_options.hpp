@@ -104,9 +104,9 @@ struct MonitorCliOptions {
   // --execution: the plan's passing orders fixed (adg) or switched while it goes (issue 29).
   enum class Execution { kAdg, kSwitchable, kSwitchableOpt, kSwitchableLookahead };
   Execution execution = Execution::kAdg;
-  uint32_t switch_commit_actions = 6;  // --switch-commit-actions
-  // --switch-chain-locations (plan runs; none: SwitchOptions' default; lifelong runs refuse it)
-  std::optional<uint32_t> switch_chain_locations;
+  // --switch-commit-actions and --switch-chain-locations (none: SwitchOptions' defaults), read
+  // by every switching execution, plan and lifelong runs alike; plain ADG refuses them.
+  std::optional<uint32_t> switch_commit_actions, switch_chain_locations;
   // Anticipation's knobs (none: SwitchOptions' defaults): --switch-margin-s and
   // --switch-horizon-actions (switchable-opt and -lookahead), --switch-lookahead-actions (the
   // lookahead's reach). The executions that do not read one refuse it.
