@@ -32,18 +32,45 @@ bool plain_name(const std::string& s) {
              std::string::npos;
 }
 
+// A margin in a folder name: the shortest decimal that reads back as it ("0.5", "10"), so two
+// margins never share a folder (six significant digits did).
+std::string compact(double v) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
+  return {buf.data(), end};
+}
+
+// An axis lists each value once. A repeat (or, for robots and qos, another file of the same stem,
+// which names their folders) would run the first value's cells again, into the same folders.
+void once(std::set<std::string>& seen, const std::string& name, const YAML::Node& at,
+          const std::string& src, const std::string& field) {
+  if (!seen.insert(name).second) {
+    fail(src, at, field,
+         "'" + name + "' is listed twice; list each value once (a repeat runs the same cells)");
+  }
+}
+
+// What a list's values must not repeat: nothing (maps: one per scen), the value, or its file stem.
+enum class Distinct { kNo, kValue, kStem };
+
 // A list of strings (a single string is a list of one); `fallback` when the key is absent.
 std::vector<std::string> strings(const YAML::Node& root, const char* key, const std::string& src,
-                                 std::vector<std::string> fallback) {
+                                 std::vector<std::string> fallback, Distinct distinct) {
   const auto n = root[key];
   if (!n) {
     if (fallback.empty()) fail(src, root, key, "missing; give a list, e.g. [a, b]");
     return fallback;
   }
   std::vector<std::string> out;
+  std::set<std::string> seen;
   try {
     if (n.IsScalar()) return {n.as<std::string>()};
-    for (const auto& v : n) out.push_back(v.as<std::string>());
+    for (const auto& v : n) {
+      out.push_back(v.as<std::string>());
+      if (distinct == Distinct::kNo) continue;
+      const auto stem = std::filesystem::path(out.back()).stem().string();
+      once(seen, distinct == Distinct::kStem ? stem : out.back(), v, src, key);
+    }
   } catch (const YAML::Exception&) {
     fail(src, n, key, "expected a list of names, e.g. [a, b]");
   }
@@ -63,6 +90,7 @@ std::vector<long long> whole_numbers(const YAML::Node& n, const std::string& src
     list.push_back(n);
   }
   std::vector<long long> out;
+  std::set<std::string> seen;
   for (const auto& v : list) {
     long long k = 0;
     try {
@@ -71,6 +99,7 @@ std::vector<long long> whole_numbers(const YAML::Node& n, const std::string& src
       fail(src, v, field, "'" + v.as<std::string>("?") + "' is not a whole number");
     }
     if (k < lo || k > hi) fail(src, v, field, range);
+    once(seen, std::to_string(k), v, src, field);
     out.push_back(k);
   }
   return out;
@@ -158,8 +187,8 @@ void read_plan(const YAML::Node& root, const std::string& src, Spec& s) {
 }
 
 void read_instances(const YAML::Node& root, const std::string& src, Spec& s) {
-  const auto maps = strings(root, "maps", src, {});
-  const auto scens = strings(root, "scens", src, {});
+  const auto maps = strings(root, "maps", src, {}, Distinct::kNo);
+  const auto scens = strings(root, "scens", src, {}, Distinct::kValue);
   if (maps.size() != 1 && maps.size() != scens.size()) {
     fail(src, root["maps"], "maps",
          "give one map for every scen, or one map per scen (as many maps as scens)");
@@ -183,6 +212,7 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
     fail(src, list, "uncertainty", "a list of settings, e.g. [{}, {stall_probability: 0.05}]");
   }
   s.uncertainty.clear();
+  std::set<std::string> seen;
   for (const auto& entry : list) {
     if (!entry.IsMap()) fail(src, entry, "uncertainty", "each entry is a mapping, e.g. {}");
     json u = json::object();
@@ -207,6 +237,7 @@ void read_uncertainty(const YAML::Node& root, const std::string& src, Spec& s) {
       }
       u[key] = v;
     }
+    once(seen, u.dump(), entry, src, "uncertainty");
     s.uncertainty.push_back(u);
   }
 }
@@ -296,16 +327,20 @@ void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s
   if (const auto n = root["switch_margin_s"]) {
     const std::string field = "switch_margin_s";
     if (!n.IsSequence()) s.switch_margin_s.push_back(number_in(n, src, field, 0, 3600));
-    for (const auto& v : n) s.switch_margin_s.push_back(number_in(v, src, field, 0, 3600));
+    std::set<std::string> seen;
+    for (const auto& v : n) {
+      s.switch_margin_s.push_back(number_in(v, src, field, 0, 3600));
+      once(seen, compact(s.switch_margin_s.back()), v, src, field);
+    }
     if (s.switch_margin_s.empty()) fail(src, n, field, "is empty; give at least one, e.g. [1, 10]");
     needs_a_reader(n, src, s, field);
   }
 }
 
 void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
-  s.robots = strings(root, "robots", src, {"footbot"});
-  s.qos = strings(root, "qos", src, {"lan"});
-  s.executions = strings(root, "executions", src, {"adg"});
+  s.robots = strings(root, "robots", src, {"footbot"}, Distinct::kStem);
+  s.qos = strings(root, "qos", src, {"lan"}, Distinct::kStem);
+  s.executions = strings(root, "executions", src, {"adg"}, Distinct::kValue);
   for (const auto& e : s.executions) {
     if (e != "adg" && e != "switchable" && e != "switchable-opt" && e != "switchable-lookahead")
       fail(src, root["executions"], "executions",
@@ -419,8 +454,10 @@ void read_lifelong(const YAML::Node& root, const std::string& src, Spec& s) {
     } else if (key == "replan_period_s") {
       ls.replan_period_s.clear();
       if (kv.second.IsSequence()) {
+        std::set<std::string> seen;
         for (const auto& v : kv.second) {
           ls.replan_period_s.push_back(number_in(v, src, field, 0.05, 3600));
+          once(seen, compact(ls.replan_period_s.back()), v, src, field);
         }
       } else {
         ls.replan_period_s.push_back(number_in(kv.second, src, field, 0.05, 3600));
@@ -564,14 +601,6 @@ std::vector<Knobs> switching_axis(const Spec& s, const std::string& e) {
     }
   }
   return axis;
-}
-
-// A margin in a folder name: the shortest decimal that reads back as it ("0.5", "10"), so two
-// margins never share a folder (six significant digits did).
-std::string compact(double v) {
-  std::array<char, 32> buf{};
-  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
-  return {buf.data(), end};
 }
 
 // The folder name's part for the knobs given; none for plain ADG (its folders stay as they were).

@@ -368,6 +368,43 @@ TEST(Spec, MarginsThatDifferPastTheSixthDigitGetFoldersOfTheirOwn) {
   EXPECT_EQ(cells[1].key, "0-s-n5-footbot-lan-switchable-opt-m0.1234568-r0");
 }
 
+// Regression (2026-12-06): a value listed twice in an axis (agents: [5, 5]) made two cells of
+// one key, run twice into one folder with two rows in results.csv; robots or qos files of one
+// stem did the same. Each is refused at its line, naming the value.
+TEST(Spec, AValueListedTwiceInAnAxisIsRefusedAtItsLine) {
+  const std::string base = "name: a\nmaps: [m, m]\nscens: [s, t]\nplan: {planner: builtin}\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"agents: [5,\n  5]\n", "m.yaml:6: agents: '5' is listed twice; list each value once"},
+      {"agents: [5]\nrobots: [a/footbot.yaml, b/footbot.yaml]\n",
+       "m.yaml:6: robots: 'footbot' is listed twice"},
+      {"agents: [5]\nqos: [lan, lan]\n", "m.yaml:6: qos: 'lan' is listed twice"},
+      {"agents: [5]\nexecutions: [adg, switchable, adg]\n", "executions: 'adg' is listed twice"},
+      {"agents: [5]\nexecutions: [switchable-opt]\nswitch_margin_s: [1, 1.0]\n",
+       "m.yaml:7: switch_margin_s: '1' is listed twice"},
+      {"agents: [5]\nexecutions: [switchable]\nswitch_commit_actions: [4, 4]\n",
+       "switch_commit_actions: '4' is listed twice"},
+      {"agents: [5]\nuncertainty: [{}, {stall_s: 1}, {stall_s: 1.0}]\n",
+       "m.yaml:6: uncertainty: '{\"stall_s\":1.0}' is listed twice"},
+  };
+  for (const auto& [extra, expected] : cases) {
+    try {
+      (void)parse_spec(base + extra, "m.yaml");
+      ADD_FAILURE() << "accepted: " << extra;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(expected)) << extra;
+    }
+  }
+  // Scens of one map, and that map given once per scen, stay as they were.
+  EXPECT_EQ(expand(parse_spec(base + "agents: [5, 6]\n", "m.yaml")).size(), 4u);
+  const auto lifelong = [](const std::string& line) {
+    return "name: l\nlifelong: {map: w.map, duration_s: 10, " + line + "}\nagents: [4]\n";
+  };
+  EXPECT_THROW((void)parse_spec(lifelong("replan_period_s: [1, 1]"), "l.yaml"),
+               std::invalid_argument);
+  EXPECT_THROW((void)parse_spec(lifelong("lookahead: [4, 4]"), "l.yaml"), std::invalid_argument);
+  EXPECT_EQ(expand(parse_spec(lifelong("lookahead: [4, 8]"), "l.yaml")).size(), 2u);
+}
+
 // The commit distance of switching (`--switch-commit-actions`) is an axis of the switching
 // executions only: plain ADG cells run once, on the same seeds.
 TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {
