@@ -62,6 +62,15 @@ std::vector<std::string> lines_of(const fs::path& p) {
   return out;
 }
 
+// Regression (2026-12-06): the first id defaulted to 120, a test's own, so a campaign run beside
+// `make test` shared that test's discovery traffic. The ids of a campaign of two jobs (the
+// documented `--jobs 2`) are now below every test's.
+TEST(CampaignDefaults, ItsDefaultDomainsStayBelowEveryTestsOwn) {
+  const experiment::CampaignOptions o;
+  EXPECT_GE(o.first_domain, 0);
+  EXPECT_LT(o.first_domain + 2 - 1, kLowestTestDomain);
+}
+
 TEST_F(Campaign, RunsTheGridWritesOneRowPerRunAndResumesWhereItStopped) {
   const auto spec = write_spec();
   auto r = run(spec);
