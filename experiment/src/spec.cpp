@@ -314,6 +314,19 @@ double number_in(const YAML::Node& n, const std::string& src, const std::string&
   return v;
 }
 
+// An axis of numbers from lo to hi (a single number is a list of one), each listed once.
+std::vector<double> numbers(const YAML::Node& n, const std::string& src, const std::string& field,
+                            double lo, double hi) {
+  if (!n.IsSequence()) return {number_in(n, src, field, lo, hi)};
+  std::vector<double> out;
+  std::set<std::string> seen;
+  for (const auto& v : n) {
+    out.push_back(number_in(v, src, field, lo, hi));
+    once(seen, compact(out.back()), v, src, field);
+  }
+  return out;
+}
+
 // The commit distance, chains and anticipation's knobs.
 void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s) {
   s.switch_commit_actions = read_switching_axis(root, src, s, "switch_commit_actions", 1000,
@@ -326,12 +339,7 @@ void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s
                                                    "from 1 to 1000 actions", "[24, 48]");
   if (const auto n = root["switch_margin_s"]) {
     const std::string field = "switch_margin_s";
-    if (!n.IsSequence()) s.switch_margin_s.push_back(number_in(n, src, field, 0, 3600));
-    std::set<std::string> seen;
-    for (const auto& v : n) {
-      s.switch_margin_s.push_back(number_in(v, src, field, 0, 3600));
-      once(seen, compact(s.switch_margin_s.back()), v, src, field);
-    }
+    s.switch_margin_s = numbers(n, src, field, 0, 3600);
     if (s.switch_margin_s.empty()) fail(src, n, field, "is empty; give at least one, e.g. [1, 10]");
     needs_a_reader(n, src, s, field);
   }
@@ -452,16 +460,7 @@ void read_lifelong(const YAML::Node& root, const std::string& src, Spec& s) {
     } else if (key == "task_errands") {
       ls.task_errands = static_cast<int>(number_in(kv.second, src, field, 1, 64));
     } else if (key == "replan_period_s") {
-      ls.replan_period_s.clear();
-      if (kv.second.IsSequence()) {
-        std::set<std::string> seen;
-        for (const auto& v : kv.second) {
-          ls.replan_period_s.push_back(number_in(v, src, field, 0.05, 3600));
-          once(seen, compact(ls.replan_period_s.back()), v, src, field);
-        }
-      } else {
-        ls.replan_period_s.push_back(number_in(kv.second, src, field, 0.05, 3600));
-      }
+      ls.replan_period_s = numbers(kv.second, src, field, 0.05, 3600);
       if (ls.replan_period_s.empty()) fail(src, kv.second, field, "give at least one period");
     } else if (key == "lookahead") {
       ls.lookahead.clear();

@@ -223,9 +223,6 @@ TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNu
   std::ofstream(dir / "p.txt") << "Agent 0:(0,1,0)->(1,1,1)->(2,1,2)->(3,1,3)\n"
                                   "Agent 1:(2,0,0)->(2,0,1)->(2,0,2)->(2,1,3)->(2,2,4)\n";
   const auto run = [&](const std::string& execution) {
-    // Plain ADG switches nothing, so it refuses --switch-commit-actions.
-    std::vector<std::string> commit{"--switch-commit-actions", "1"};
-    if (execution == "adg") commit.clear();
     std::vector<std::string> args{"run",
                                   "--map",
                                   (dir / "m.map").string(),
@@ -252,7 +249,8 @@ TEST(SwitchableCrossing, RegressionADelayedRobotIsPassedAtTheCrossingWithExactNu
                                   "--out",
                                   (dir / execution).string(),
                                   "--no-progress"};
-    args.insert(args.end(), commit.begin(), commit.end());
+    // Plain ADG switches nothing, so it refuses --switch-commit-actions.
+    if (execution != "adg") args.insert(args.end(), {"--switch-commit-actions", "1"});
     const auto r = run_smart(args, 60s * kSlowdown, "switch_crossing_" + execution);
     EXPECT_EQ(r.code, 0) << r.out;
     const auto j = r.last_json();
