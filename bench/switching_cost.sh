@@ -13,7 +13,8 @@
 # `smart plan --algorithm lacam`) under LoRR-style delays (p = 0.01, 1-4 s, seed 0): the dense map
 # where the deadlock search costs most (docs/execution.md, "On a dense random map under delays").
 # Usage: bench/switching_cost.sh [REPEATS] [OUT_DIR] (SMART, SMART_BENCHMARKS, DOMAIN (92:
-# outside the tests' ids), MODES (the executions, space separated) override). Needs perf
+# outside the tests' ids), MODES (the executions, space separated) override; RUN_ARGS adds flags
+# to every run, e.g. RUN_ARGS="--switch-lookahead-actions 64" with MODES=switchable-lookahead). Needs perf
 # (Debian: linux-perf) and a kernel that lets this user sample (kernel.perf_event_paranoid <= 1,
 # or root).
 set -euo pipefail
@@ -70,11 +71,13 @@ share() {
 }
 modes=(adg switchable switchable-opt switchable-lookahead)
 [ -z "${MODES:-}" ] || read -r -a modes <<< "$MODES"  # e.g. MODES="switchable-lookahead"
+extra=()
+[ -z "${RUN_ARGS:-}" ] || read -r -a extra <<< "$RUN_ARGS"
 for mode in "${modes[@]}"; do
   for i in $(seq 1 "$repeats"); do
     dir="$out/$mode-$i"
     perf record -q -F 997 -o "$dir.data" -- "$smart" run "${run_args[@]}" \
-      --execution "$mode" --out "$dir" --no-progress --domain "${DOMAIN:-92}" \
+      --execution "$mode" "${extra[@]}" --out "$dir" --no-progress --domain "${DOMAIN:-92}" \
       > "$dir.out" 2> "$dir.err"
     echo "$mode $i $(share "$dir.data")" | tee -a "$out/shares.txt"
   done
