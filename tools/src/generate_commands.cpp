@@ -184,8 +184,10 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
   return kExitSuccess;
 }
 
-void register_generate_commands(CLI::App& app, int& exit_code) {
-  register_walk_command(app, exit_code);
+namespace {
+
+// `smart gen-map KIND`: a seeded MovingAI map.
+void register_gen_map_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GenMapOptionsPublic>();
   auto kind = std::make_shared<MapKind>(MapKind::kWarehouse);
   auto out = std::make_shared<std::string>();
@@ -221,7 +223,10 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   gm->add_option("--margin", o->warehouse.margin, "warehouse: free cells around the shelf area")
       ->capture_default_str();
   gm->callback([&exit_code, o, kind, out] { exit_code = generate_map(*kind, *out, *o); });
+}
 
+// `smart gen-scen`: a seeded MovingAI scenario for a map.
+void register_gen_scen_command(CLI::App& app, int& exit_code) {
   auto so = std::make_shared<PlanOptions>();
   auto* gs = app.add_subcommand("gen-scen", "Generate a MovingAI scenario for a map (seeded)");
   gs->add_option("--map", so->map, "the MovingAI .map the agents stand on")->required();
@@ -233,7 +238,10 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
   gs->add_option("--out", so->out, "the .scen file to write")->required();
   gs->callback(
       [&exit_code, so] { exit_code = generate_scen(so->map, so->agents, so->seed, so->out); });
+}
 
+// `smart plan`: a plan from one of the built-in planners, checked before it is written.
+void register_plan_command(CLI::App& app, int& exit_code) {
   auto po = std::make_shared<PlanOptions>();
   auto* pl = app.add_subcommand(
       "plan",
@@ -258,6 +266,15 @@ void register_generate_commands(CLI::App& app, int& exit_code) {
     exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out,
                               po->algorithm);
   });
+}
+
+}  // namespace
+
+void register_generate_commands(CLI::App& app, int& exit_code) {
+  register_walk_command(app, exit_code);
+  register_gen_map_command(app, exit_code);
+  register_gen_scen_command(app, exit_code);
+  register_plan_command(app, exit_code);
 }
 
 }  // namespace smart::tools

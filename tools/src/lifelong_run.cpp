@@ -335,6 +335,33 @@ monitor::MonitorResult execute(const MonitorCliOptions& o, const dds::Participan
   return result;
 }
 
+// summary.json (and a switching run's switches.csv) written, the summary printed, the verdict
+// last; the exit code.
+int report_lifelong(const MonitorCliOptions& o, const LifelongProblem& problem,
+                    const lifelong::LifelongExecution& exec, const LifelongFiles& files,
+                    const monitor::MonitorResult& result, const monitor::RunInfo& info) {
+  auto summary = monitor::run_summary_json(result, info);
+  summary[results::summary_key::kLifelong] =
+      lifelong_json(problem, o, exec, files, result.sim_time_s);
+  if (!o.out.empty()) {
+    std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
+    if (result.execution != "adg") {
+      monitor::write_switches_csv(o.out, problem.grid, nullptr, result.switches);
+    }
+  }
+  std::cout << summary.dump(2) << std::endl;
+  if (!result.success()) spdlog::error("run failed: {}", result.error);
+  if (!result.success() && exec.stats().planner_max_ms > 500 * o.sim.timeout_s) {
+    // A lock-step sim waits for the monitor's answer at most --timeout-s; a planner call holds
+    // it (distance tables are a BFS over the map per goal cell, guide paths an A* per robot).
+    spdlog::error(
+        "a planning call took {:.1f} s, longer than half of --timeout-s {} s that the sim waits "
+        "for an answer: give a larger --timeout-s, or fewer robots on this map",
+        exec.stats().planner_max_ms / 1000, o.sim.timeout_s);
+  }
+  return result.success() ? kExitSuccess : kExitRunFailed;
+}
+
 }  // namespace
 
 int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
@@ -390,26 +417,7 @@ int run_lifelong(MonitorCliOptions o, bool spawn_sim) {
     monitor::apply_sim_reports(result, sim_words(o));
   }
   if (lorr) write_lorr_output(o, *lorr, exec, result);
-  auto summary = monitor::run_summary_json(result, info);
-  summary[results::summary_key::kLifelong] =
-      lifelong_json(problem, o, exec, files, result.sim_time_s);
-  if (!o.out.empty()) {
-    std::ofstream(std::filesystem::path(o.out) / results::kSummaryJson) << summary.dump(2) << "\n";
-    if (result.execution != "adg") {
-      monitor::write_switches_csv(o.out, problem.grid, nullptr, result.switches);
-    }
-  }
-  std::cout << summary.dump(2) << std::endl;
-  if (!result.success()) spdlog::error("run failed: {}", result.error);
-  if (!result.success() && exec.stats().planner_max_ms > 500 * o.sim.timeout_s) {
-    // A lock-step sim waits for the monitor's answer at most --timeout-s; a planner call holds
-    // it (distance tables are a BFS over the map per goal cell, guide paths an A* per robot).
-    spdlog::error(
-        "a planning call took {:.1f} s, longer than half of --timeout-s {} s that the sim waits "
-        "for an answer: give a larger --timeout-s, or fewer robots on this map",
-        exec.stats().planner_max_ms / 1000, o.sim.timeout_s);
-  }
-  return result.success() ? kExitSuccess : kExitRunFailed;
+  return report_lifelong(o, problem, exec, files, result, info);
 }
 
 }  // namespace smart::tools

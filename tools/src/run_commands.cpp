@@ -260,7 +260,6 @@ std::unique_ptr<PrivateRunKey> own_run_key(SimCliOptions& o) {
 
 namespace {
 
-// Runs the monitor; with `spawn_sim` also a `smart sim` child process with matching options.
 // What the monitor's callbacks feed while the run goes: the live results files and, with --mcap,
 // the recording made beside the run from the same rows (record/live_recording.hpp).
 struct ResultsTaps {
@@ -335,6 +334,71 @@ std::vector<monitor::PassingSwitch> resume_switches(const std::filesystem::path&
   return out;
 }
 
+// A sharded sim hands robots over between hosts in lock-step; a link model's delays would
+// reorder those handovers.
+void check_shards(const SimCliOptions& o, const dds::QosProfile& profile) {
+  if (o.shards <= 1) return;
+  if (o.clock == sim::ClockMode::kLockstep && !profile.link.to_host.active() &&
+      !profile.link.to_monitor.active()) {
+    return;
+  }
+  throw std::invalid_argument(
+      "--sim-hosts " + std::to_string(o.shards) +
+      ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
+      "--qos lan or wifi, or --sim-hosts 1");
+}
+
+// monitor/adg.hpp: half-cell locations would let a robot on an edge midpoint come within half a
+// cell of one on the next cell's centre.
+void log_cell_footprint(const agent::RobotModel& model, double cell_m) {
+  spdlog::info(
+      "robots of radius {} m ({}) are wider than a quarter of a {} m cell: a robot crossing an "
+      "edge holds both cells, so following robots keep a cell apart",
+      model.radius_m, model.name, cell_m);
+}
+
+// The run's info once it ended: CPU (the recording's thread is not the monitor's work; the
+// reaped sim hosts when this process spawned them) and, with sims, their reports merged into
+// `result`.
+monitor::RunInfo finished_run_info(const MonitorCliOptions& o, const std::string& robot_file,
+                                   ResultsTaps& taps, bool own_sims,
+                                   monitor::MonitorResult& result) {
+  auto info = run_info(o, robot_file);
+  auto& recording = taps.recording;
+  if (recording) {
+    recording->stop();
+    spdlog::info("recording: {:.1f} s of CPU beside the run", recording->cpu_s());
+  }
+  info.monitor_cpu_s = common::cpu_seconds_self() - (recording ? recording->cpu_s() : 0.0);
+  if (own_sims) {
+    info.sim_cpu_s = common::cpu_seconds_children();
+    const auto words = sim_words(o);
+    if (!o.out.empty()) info.sim_handovers = sim_handovers(words);
+    monitor::apply_sim_reports(result, words);
+  }
+  return info;
+}
+
+// Results written, the summary printed first and the verdict and warnings last (on a terminal
+// the JSON buried them); the exit code.
+int report_run(const MonitorCliOptions& o, const monitor::Instance& in,
+               const monitor::MonitorResult& result, const monitor::RunInfo& info,
+               ResultsTaps& taps) {
+  if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
+  if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
+  std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
+  if (taps.recording) print_recording(taps.recording->finish(o.out), o.mcap);
+  if (!result.success()) spdlog::error("run failed: {}", result.error);
+  if (const auto& c = result.first_pose_contact) {
+    spdlog::warn(
+        "the robots' reported poses show {} contact(s), first robots {} and {} at {:.1f} s "
+        "({:.3f} m overlap): check the robots' sizes, pose calibration and the plan's spacing",
+        result.pose_contacts, c->a, c->b, c->t_s, -c->gap_m);
+  }
+  return result.success() ? kExitSuccess : kExitRunFailed;
+}
+
+// Runs the monitor; with `spawn_sim_child` also `smart sim` child processes with matching options.
 int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   check_plan_run_flags(o);
   // A run this process starts whole gets a run (partition) of its own unless one was named.
@@ -345,13 +409,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   const auto model = agent::load_robot_model(robot_file);  // fail early on a bad model
   const auto profile = run_qos_profile(o.sim.dds);
   check_real_time_factor(o.sim);
-  if (o.sim.shards > 1 && (o.sim.clock != sim::ClockMode::kLockstep ||
-                           profile.link.to_host.active() || profile.link.to_monitor.active())) {
-    throw std::invalid_argument(
-        "--sim-hosts " + std::to_string(o.sim.shards) +
-        ": a sharded sim runs in lock-step without a link model; use --clock lockstep and "
-        "--qos lan or wifi, or --sim-hosts 1");
-  }
+  check_shards(o.sim, profile);
   auto mo = monitor_options(o);
   // Read before the results' taps open a new switches.csv, which may be this very file.
   if (!o.resume_switches.empty()) mo.run.resume_switches = resume_switches(o.resume_switches, in);
@@ -364,14 +422,7 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   prove_member(participant, o.sim.dds, "monitor");
   mo.robot_radius_m = model.radius_m;
   mo.run.robot_radius_m = model.radius_m;  // real time: reported poses watched for contacts
-  if (in.adg.footprint == monitor::Footprint::kCells) {
-    // monitor/adg.hpp: half-cell locations would let a robot on an edge midpoint come within
-    // half a cell of one on the next cell's centre.
-    spdlog::info(
-        "robots of radius {} m ({}) are wider than a quarter of a {} m cell: a robot crossing "
-        "an edge holds both cells, so following robots keep a cell apart",
-        model.radius_m, model.name, o.sim.world.cell_m);
-  }
+  if (in.adg.footprint == monitor::Footprint::kCells) log_cell_footprint(model, o.sim.world.cell_m);
   mo.run.require_sim_status = mo.run.require_sim_status || spawn_sim_child;
   // Its own sim host's exit is seen at once (host_check); a slow start on a loaded machine is not
   // a lost host.
@@ -388,33 +439,8 @@ int run_monitor(MonitorCliOptions o, bool spawn_sim_child) {
   for (auto& sim : sims) {
     if (!sim.wait(std::chrono::seconds(5))) sim.terminate();
   }
-  auto info = run_info(o, robot_file);
-  auto& recording = taps.recording;
-  if (recording) {
-    recording->stop();
-    spdlog::info("recording: {:.1f} s of CPU beside the run", recording->cpu_s());
-  }
-  // The monitor's own CPU: the recording's thread is not the monitor's work.
-  info.monitor_cpu_s = common::cpu_seconds_self() - (recording ? recording->cpu_s() : 0.0);
-  if (!sims.empty()) {
-    info.sim_cpu_s = common::cpu_seconds_children();  // the reaped sim hosts
-    const auto words = sim_words(o);
-    if (!o.out.empty()) info.sim_handovers = sim_handovers(words);
-    monitor::apply_sim_reports(result, words);
-  }
-  if (!o.out.empty()) monitor::write_results(o.out, in, result, info);
-  if (!o.stats.empty()) monitor::append_stats(o.stats, in, result, info);
-  // The summary first, the verdict and warnings last: on a terminal the JSON buried them.
-  std::cout << monitor::summary_json(in, result, info).dump(2) << std::endl;
-  if (recording) print_recording(recording->finish(o.out), o.mcap);
-  if (!result.success()) spdlog::error("run failed: {}", result.error);
-  if (const auto& c = result.first_pose_contact) {
-    spdlog::warn(
-        "the robots' reported poses show {} contact(s), first robots {} and {} at {:.1f} s "
-        "({:.3f} m overlap): check the robots' sizes, pose calibration and the plan's spacing",
-        result.pose_contacts, c->a, c->b, c->t_s, -c->gap_m);
-  }
-  return result.success() ? kExitSuccess : kExitRunFailed;
+  const auto info = finished_run_info(o, robot_file, taps, !sims.empty(), result);
+  return report_run(o, in, result, info, taps);
 }
 
 // `smart monitor`: the monitor alone, against hosts started elsewhere (or taking a run over).

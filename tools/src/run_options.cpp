@@ -231,6 +231,45 @@ void add_task_source_options(CLI::App* cmd, TaskSourceOptions& o) {
       ->capture_default_str();
 }
 
+namespace {
+
+// Who plans a lifelong run's windows: the built-in planner, a `smart planner` over DDS or a
+// command over a pipe, and what happens when its window is refused.
+void add_window_planner_options(CLI::App* cmd, LifelongCliOptions& o) {
+  static const EnumNames<LifelongCliOptions::Planner> kPlannerNames{
+      {"builtin", LifelongCliOptions::Planner::kBuiltin},
+      {"external", LifelongCliOptions::Planner::kExternal}};
+  add_enum_option(cmd, "--planner", o.planner, kPlannerNames,
+                  "who plans the windows: 'builtin' (PIBT in this process) or 'external' (wait for "
+                  "a `smart planner` in the run, over DDS; docs/planner-protocol.md)")
+      ->capture_default_str();
+  cmd->add_option("--planner-wait-s", o.planner_wait_s,
+                  "--planner external: wall seconds to wait for a planner to announce itself")
+      ->check(finite_in(0.1, 86400.0))
+      ->capture_default_str();
+  cmd->add_option("--planner-cmd", o.planner_cmd,
+                  "plan windows with this command instead of the built-in planner: it runs under "
+                  "sh -c and speaks newline-delimited JSON on stdin/stdout "
+                  "(docs/planner-protocol.md; examples/planners/)");
+  cmd->add_option(
+         "--planner-timeout-s", o.planner_timeout_s,
+         "wall seconds an external planner has to answer a window (a later answer is refused "
+         "as late; robots stop at the cut)")
+      ->check(finite_in(0.01, 3600.0))
+      ->capture_default_str();
+  static const EnumNames<LifelongCliOptions::Fallback> kFallbackNames{
+      {"stop", LifelongCliOptions::Fallback::kStop},
+      {"builtin", LifelongCliOptions::Fallback::kBuiltin}};
+  add_enum_option(
+      cmd, "--planner-fallback", o.planner_fallback, kFallbackNames,
+      "when an external planner's window is refused: 'stop' (robots finish the committed "
+      "actions and wait for the next window) or 'builtin' (the built-in planner plans "
+      "that window)")
+      ->capture_default_str();
+}
+
+}  // namespace
+
 void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
   cmd->add_option("--duration-s", o.duration_s, "how long a lifelong run goes (sim seconds)")
       ->check(finite_in(0.1, 1e7))
@@ -270,36 +309,7 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
   cmd->add_option("--lorr-output", o.lorr_output,
                   "also write the run as a League of Robot Runners output JSON (PlanViz, LoRR "
                   "tools): actions discretised to 0.1 s ticks, as the file says");
-  static const EnumNames<LifelongCliOptions::Planner> kPlannerNames{
-      {"builtin", LifelongCliOptions::Planner::kBuiltin},
-      {"external", LifelongCliOptions::Planner::kExternal}};
-  add_enum_option(cmd, "--planner", o.planner, kPlannerNames,
-                  "who plans the windows: 'builtin' (PIBT in this process) or 'external' (wait for "
-                  "a `smart planner` in the run, over DDS; docs/planner-protocol.md)")
-      ->capture_default_str();
-  cmd->add_option("--planner-wait-s", o.planner_wait_s,
-                  "--planner external: wall seconds to wait for a planner to announce itself")
-      ->check(finite_in(0.1, 86400.0))
-      ->capture_default_str();
-  cmd->add_option("--planner-cmd", o.planner_cmd,
-                  "plan windows with this command instead of the built-in planner: it runs under "
-                  "sh -c and speaks newline-delimited JSON on stdin/stdout "
-                  "(docs/planner-protocol.md; examples/planners/)");
-  cmd->add_option(
-         "--planner-timeout-s", o.planner_timeout_s,
-         "wall seconds an external planner has to answer a window (a later answer is refused "
-         "as late; robots stop at the cut)")
-      ->check(finite_in(0.01, 3600.0))
-      ->capture_default_str();
-  static const EnumNames<LifelongCliOptions::Fallback> kFallbackNames{
-      {"stop", LifelongCliOptions::Fallback::kStop},
-      {"builtin", LifelongCliOptions::Fallback::kBuiltin}};
-  add_enum_option(
-      cmd, "--planner-fallback", o.planner_fallback, kFallbackNames,
-      "when an external planner's window is refused: 'stop' (robots finish the committed "
-      "actions and wait for the next window) or 'builtin' (the built-in planner plans "
-      "that window)")
-      ->capture_default_str();
+  add_window_planner_options(cmd, o);
 }
 
 void check_plan_run_flags(const MonitorCliOptions& o) {
