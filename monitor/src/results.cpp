@@ -216,14 +216,15 @@ nlohmann::json when_known_json(const Instance& in, const MonitorResult& r, const
   }
   return j;
 }
-}  // namespace
-
-nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
-  double sum = 0, makespan = 0;
-  // Times are known once every action finished, whatever the verdict (a run with a collision
-  // still has an AET worth reporting), except for robots done before a resume.
+// AET and makespan: known once every action finished, whatever the verdict (a run with a
+// collision still has an AET worth reporting), except for robots done before a resume.
+nlohmann::json times_json(const MonitorResult& r) {
+  double sum = 0, makespan = 0, waiting = 0;
+  uint64_t stops = 0;
   bool times_known = r.finished_actions == r.total_actions;
   for (const auto& m : r.robots) {
+    waiting += m.waiting_time_s;
+    stops += m.stops;
     if (std::isnan(m.finish_time_s)) {
       times_known = false;
       continue;
@@ -232,12 +233,21 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
     makespan = std::max(makespan, m.finish_time_s);
   }
   const double n = std::max<double>(1.0, static_cast<double>(r.robots.size()));
-  nlohmann::json j = {
+  const auto known = [times_known](double v) {
+    return times_known ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  return {{"aet_s", known(sum / n)},
+          {"makespan_s", known(makespan)},
+          {"waiting_time_s", {{"mean", waiting / n}, {"total", waiting}}},
+          {"stops", stops}};
+}
+
+// What the run did: its verdict, contacts, progress and the samples it refused.
+nlohmann::json outcome_json(const MonitorResult& r) {
+  return {
       {"success", r.success()},
       {results::summary_key::kOutcome, to_string(r.outcome)},
       {"robots", r.robots.size()},
-      {"aet_s", times_known ? nlohmann::json(sum / n) : nlohmann::json(nullptr)},
-      {"makespan_s", times_known ? nlohmann::json(makespan) : nlohmann::json(nullptr)},
       {"sim_time_s", r.sim_time_s},
       {"wall_time_s", r.wall_time_s},
       {"sim_speed", r.wall_time_s > 0 ? r.sim_time_s / r.wall_time_s : 0.0},
@@ -262,6 +272,13 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
       {"rejected_examples", r.rejected_examples},
       {"suspected_intruders", suspects_json(r)},
       {"run_id", r.run_id},
+      {"first_report_wall_s", r.first_progress_wall_s},
+  };
+}
+
+// Where the run came from: its run, seed, clock, hosts, QoS, files and versions.
+nlohmann::json origin_json(const RunInfo& info) {
+  return {
       {"run", info.run},
       {"seed", info.seed},
       {"clock", info.clock},
@@ -274,20 +291,18 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
        {{"map", info.map}, {"scen", info.scen}, {"plan", info.plan}, {"robot", info.robot}}},
       {"versions", {{"smart_dds", SMART_VERSION}, {"cyclonedds", DDS_VERSION}}},
   };
+}
+}  // namespace
+
+nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
+  auto j = outcome_json(r);
+  j.update(times_json(r));
+  j.update(origin_json(info));
   j.update(pose_contacts_json(r));
-  j["first_report_wall_s"] = r.first_progress_wall_s;
-  double waiting = 0;
-  uint64_t stops = 0;
-  for (const auto& m : r.robots) {
-    waiting += m.waiting_time_s;
-    stops += m.stops;
-  }
-  j["waiting_time_s"] = {{"mean", waiting / n}, {"total", waiting}};
   j["execution"] = {{"mode", r.execution},
                     {"switches", r.switches.size()},
                     {"anticipated", std::ranges::count_if(
                                         r.switches, [](const auto& s) { return s.anticipated; })}};
-  j["stops"] = stops;
   j.update(resources_json(r, info));
   if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;
