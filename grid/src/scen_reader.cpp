@@ -1,23 +1,57 @@
 #include "smart/grid/scen_reader.hpp"
 
+#include <array>
 #include <map>
+#include <optional>
 
 #include "smart/grid/text.hpp"
 
 namespace smart::grid {
+
+namespace {
+
+// One row's width, height, start and goal (the fields after bucket and map), or nullopt with
+// each bad field added to `problems`.
+std::optional<std::array<int32_t, 6>> scen_row(const std::vector<std::string_view>& fields,
+                                               const std::string& source, int ln,
+                                               std::vector<Problem>& problems) {
+  std::array<int32_t, 6> v{};
+  bool ok = true;
+  const char* names[6] = {"width", "height", "start_x", "start_y", "goal_x", "goal_y"};
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto p = parse_int(fields[k + 2]);
+    if (!p || *p < 0 || *p > kMaxGridSide) {
+      problems.push_back({source, ln, -1,
+                          std::string(names[k]) + " is '" + excerpt(fields[k + 2]) +
+                              "'; it must be a whole number from 0 to " +
+                              std::to_string(kMaxGridSide)});
+      ok = false;
+    } else {
+      v[k] = static_cast<int32_t>(*p);
+    }
+  }
+  if (!parse_double(fields[8])) {
+    problems.push_back(
+        {source, ln, -1, "optimal length is '" + excerpt(fields[8]) + "'; it must be a number"});
+    ok = false;
+  }
+  if (!ok) return std::nullopt;
+  return v;
+}
+
+}  // namespace
 
 Scenario parse_scen(std::string_view text, const std::string& source, std::size_t max_agents) {
   Scenario scen;
   scen.source = source;
   const auto lines = split_lines(text);
   std::vector<Problem> problems;
-  std::size_t i = 0;
   if (lines.empty() || !trim(lines[0]).starts_with("version")) {
     problems.push_back(
         {source, 1, -1, "missing 'version 1' header; is this a MovingAI .scen file?"});
     throw InputError(problems);
   }
-  for (i = 1; i < lines.size(); ++i) {
+  for (std::size_t i = 1; i < lines.size(); ++i) {
     if (max_agents > 0 && scen.agents.size() >= max_agents) break;
     const auto line = lines[i];
     const int ln = static_cast<int>(i) + 1;
@@ -31,31 +65,13 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
                               std::to_string(fields.size())});
       continue;
     }
-    long long v[6];
-    bool ok = true;
-    const char* names[6] = {"width", "height", "start_x", "start_y", "goal_x", "goal_y"};
-    for (int k = 0; k < 6; ++k) {
-      const auto p = parse_int(fields[static_cast<std::size_t>(k) + 2]);
-      if (!p || *p < 0 || *p > kMaxGridSide) {
-        problems.push_back(
-            {source, ln, -1,
-             std::string(names[k]) + " is '" + excerpt(fields[static_cast<std::size_t>(k) + 2]) +
-                 "'; it must be a whole number from 0 to " + std::to_string(kMaxGridSide)});
-        ok = false;
-      } else {
-        v[k] = *p;
-      }
-    }
-    if (!parse_double(fields[8])) {
-      problems.push_back(
-          {source, ln, -1, "optimal length is '" + excerpt(fields[8]) + "'; it must be a number"});
-      ok = false;
-    }
-    if (!ok) continue;
+    const auto row = scen_row(fields, source, ln, problems);
+    if (!row) continue;
+    const auto& v = *row;
     if (scen.agents.empty()) {
       scen.map_name = std::string(trim(fields[1]));
-      scen.map_width = static_cast<int32_t>(v[0]);
-      scen.map_height = static_cast<int32_t>(v[1]);
+      scen.map_width = v[0];
+      scen.map_height = v[1];
     } else if (v[0] != scen.map_width || v[1] != scen.map_height) {
       problems.push_back({source, ln, -1,
                           "map size " + std::to_string(v[0]) + "x" + std::to_string(v[1]) +
@@ -64,9 +80,7 @@ Scenario parse_scen(std::string_view text, const std::string& source, std::size_
                               " of the first row; a scenario belongs to one map"});
       continue;
     }
-    scen.agents.push_back({{static_cast<int32_t>(v[2]), static_cast<int32_t>(v[3])},
-                           {static_cast<int32_t>(v[4]), static_cast<int32_t>(v[5])},
-                           ln});
+    scen.agents.push_back({{v[2], v[3]}, {v[4], v[5]}, ln});
   }
   if (problems.empty() && max_agents > 0 && scen.agents.size() < max_agents) {
     problems.push_back({source, 0, -1,
