@@ -82,18 +82,7 @@ void World::Impl::robot_force(uint32_t i, double t, const double* q, const doubl
 void World::Impl::find_contacts(bool everyone) {
   const double r = model.radius_m;
   const double now = static_cast<double>(substep) * cfg.physics_step_s;
-  const auto W = grid.width(), H = grid.height();
-  for (const auto t : touched) head[t] = kNoRobot;
-  touched.clear();
-  for (auto i = static_cast<uint32_t>(n); i-- > 0;) {
-    if (presence[i] == Presence::kAbsent) continue;
-    const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
-    if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) continue;
-    const auto ci = static_cast<std::size_t>(grid.index(c));
-    next[i] = head[ci];
-    head[ci] = i;
-    touched.push_back(ci);
-  }
+  bin_robots();
   pairs_now.clear();
   wall.clear();
   std::fill(in_contact.begin(), in_contact.end(), 0);
@@ -132,7 +121,29 @@ void World::Impl::find_contacts(bool everyone) {
     }
   }
   wall_begin[n] = static_cast<uint32_t>(wall.size());
-  // Per-robot overlap lists from the pairs, in the order found (deterministic).
+  build_touch_lists();
+  count_robot_contacts(now);
+  stats.robot_wall_now = walls_now;
+}
+
+// Each present robot in its cell's list (head, next), the lists of the last snapshot cleared.
+void World::Impl::bin_robots() {
+  const auto W = grid.width(), H = grid.height();
+  for (const auto t : touched) head[t] = kNoRobot;
+  touched.clear();
+  for (auto i = static_cast<uint32_t>(n); i-- > 0;) {
+    if (presence[i] == Presence::kAbsent) continue;
+    const auto c = cell_at(grid, cfg.cell_m, x[i], y[i]);
+    if (c.x < 0 || c.y < 0 || c.x >= W || c.y >= H) continue;
+    const auto ci = static_cast<std::size_t>(grid.index(c));
+    next[i] = head[ci];
+    head[ci] = i;
+    touched.push_back(ci);
+  }
+}
+
+// Per-robot overlap lists from the pairs, in the order found (deterministic).
+void World::Impl::build_touch_lists() {
   std::fill(touch_begin.begin(), touch_begin.end(), 0);
   for (const auto p : pairs_now) {
     ++touch_begin[(p >> 32) + 1];
@@ -146,8 +157,6 @@ void World::Impl::find_contacts(bool everyone) {
     touch[fill_at[a]++] = b;
     touch[fill_at[b]++] = a;
   }
-  count_robot_contacts(now);
-  stats.robot_wall_now = walls_now;
 }
 
 // Robot-robot contact episodes of the snapshot's pairs (a bounce within the debounce window is

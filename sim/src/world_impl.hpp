@@ -93,6 +93,8 @@ struct World::Impl : detail::RobotForces {
   void move(uint32_t i, std::size_t to);
   void pack();
   void find_contacts(bool everyone);
+  void bin_robots();
+  void build_touch_lists();
   void count_robot_contacts(double now);
   void substep_once(double h);
   void move_ghosts(double h);
