@@ -77,5 +77,25 @@ TEST(CliCommon, ALockstepRunThatDropsRealPacketsIsWarnedOfTheWallTimeCost) {
   EXPECT_DOUBLE_EQ(dds::find_qos_profile("sim-lossy-wifi").link.to_host.loss_per_mille, 200);
 }
 
+// `smart run --help` showed `--execution adg|switchable|...=0`: CLI11 printed an enum
+// option's default as its number.
+TEST(CliCommon, AnEnumFlagsHelpShowsItsDefaultByName) {
+  enum class Mode { kPlain, kFast };
+  const EnumNames<Mode> names{{"plain", Mode::kPlain}, {"fast", Mode::kFast}};
+  CLI::App app;
+  Mode mode = Mode::kFast;
+  std::optional<Mode> unset, set = Mode::kPlain;
+  add_enum_option(&app, "--mode", mode, names, "a mode")->capture_default_str();
+  add_enum_option(&app, "--unset", unset, names, "no default")->capture_default_str();
+  add_enum_option(&app, "--set", set, names, "an optional one")->capture_default_str();
+  EXPECT_EQ(app.get_option("--mode")->get_default_str(), "fast");
+  EXPECT_EQ(app.get_option("--unset")->get_default_str(), "");
+  EXPECT_EQ(app.get_option("--set")->get_default_str(), "plain");
+  EXPECT_THAT(app.help(), HasSubstr("plain|fast=fast"));
+  EXPECT_THAT(app.help(), ::testing::Not(HasSubstr("=1")));
+  app.parse(std::vector<std::string>{"plain", "--mode"});  // CLI11 takes them reversed
+  EXPECT_EQ(mode, Mode::kPlain);
+}
+
 }  // namespace
 }  // namespace smart::tools

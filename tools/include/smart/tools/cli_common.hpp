@@ -8,6 +8,7 @@
 #include <atomic>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -89,6 +90,15 @@ CLI::Option* add_enum_option(CLI::App* cmd, const std::string& flag, T& value,
         return "'" + s + "' is not one of " + list;
       },
       "", "one of " + list));
+  // capture_default_str() shows the default by its name: CLI11 would print the enum's number
+  // (`--execution ...=0` in --help before).
+  opt->default_function([&value, names]() -> std::string {
+    if constexpr (std::is_same_v<T, E>) {
+      return enum_name(value, names);
+    } else {
+      return value ? enum_name(*value, names) : std::string();
+    }
+  });
   return opt;
 }
 
