@@ -245,7 +245,7 @@ void register_plan_command(CLI::App& app, int& exit_code) {
   auto po = std::make_shared<PlanOptions>();
   auto* pl = app.add_subcommand(
       "plan",
-      "Plan conflict-free paths (prioritized planning with space-time A*, or PIBT); writes a "
+      "Plan conflict-free paths (prioritized planning with space-time A*, PIBT or LaCAM); writes a "
       "SMART timed plan (axis xy) that passes `smart check-plan`");
   pl->add_option("--map", po->map, "MovingAI .map file")->required();
   pl->add_option("--scen", po->scen, "MovingAI .scen file (starts and goals)")->required();
