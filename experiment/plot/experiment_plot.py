@@ -31,7 +31,9 @@ Figures (each when its data exist):
                    (each cell's throughput.csv, at every replanning), a panel per team size,
                    the band one standard deviation over the repeats
   table.md         one row per cell of the grid (repeats folded): runs, success, AET, makespan,
-                   sim speed, collisions, planner seconds, and throughput for lifelong runs
+                   sim speed, collisions, planner seconds, and throughput for lifelong runs;
+                   with switching executions also waiting, switches and the paired changes
+                   against plain ADG (waiting, and AET or, lifelong, tasks: mean +- sd in %)
   figures.json     per figure: title, caption, and per panel its axes, scales, tick labels and
                    series of points {x, mean, sd, n} with the results.csv values they match
 Prints one JSON line naming the files written.
@@ -538,29 +540,43 @@ def write_table(rows, out_dir, written):
     groups = defaultdict(list)
     for r in rows:
         groups[tuple(r.get(k, "") for k in keys)].append(r)
+    # The changes against plain ADG paired by seed (the paired figure's numbers), which the
+    # means of two columns hide: each seed's own delays and tasks cancel out.
+    paired = defaultdict(list)
+    for r in paired_rows(rows) if switching else []:
+        paired[tuple(r.get(k, "") for k in keys)].append(r)
+    paired_columns = ([("paired.waiting_pct", "waiting against plain ADG (%)"),
+                       ("paired.tasks_pct", "tasks against plain ADG (%)") if lifelong
+                       else ("paired.aet_pct", "AET against plain ADG (%)")] if paired else [])
 
     def stat(rs, field, fmt="{:.1f}"):
         vs = [v for v in (number(r.get(field)) for r in rs) if v is not None]
         if not vs:
             return "-"
         m, sd = mean_sd(vs)
-        return (fmt + " \u00b1 " + fmt).format(m, sd) if sd is not None else fmt.format(m)
+        sd_fmt = fmt.replace("+", "")  # a change is signed, its spread not
+        return (fmt + " \u00b1 " + sd_fmt).format(m, sd) if sd is not None else fmt.format(m)
 
     lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
              "collisions | planner (s) |" + (" throughput (tasks/min) |" if lifelong else "")
-             + (" waiting (s) | switches |" if switching else ""),
-             "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0) + (2 if switching else 0))]
+             + (" waiting (s) | switches |" if switching else "")
+             + "".join(f" {title} |" for _, title in paired_columns),
+             "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0) + (2 if switching else 0)
+                             + len(paired_columns))]
     for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
         rs = groups[key]
         ok = sum(1 for r in rs if r.get("success") == "true")
-        lines.append("| " + " | ".join(str(k) for k in key) + f" | {len(rs)} | {ok}/{len(rs)} | "
+        cells = [disturbance(k) if name == "uncertainty" else str(k) for name, k in zip(keys, key)]
+        lines.append("| " + " | ".join(cells) + f" | {len(rs)} | {ok}/{len(rs)} | "
                      + " | ".join([stat(rs, "aet_s"), stat(rs, "makespan_s"),
                                    stat(rs, "sim_speed"), stat(rs, "collisions", "{:.0f}"),
                                    stat(rs[:1], "planner_runtime_s", "{:.2f}")]
                                   + ([stat(rs, "lifelong.throughput_per_min")] if lifelong
                                      else [])
                                   + ([stat(rs, "waiting_time_s.total"),
-                                      stat(rs, "execution.switches")] if switching else []))
+                                      stat(rs, "execution.switches")] if switching else [])
+                                  + [stat(paired.get(key, []), field, "{:+.1f}")
+                                     for field, _ in paired_columns])
                      + " |")
     path = os.path.join(out_dir, "table.md")
     with open(path, "w") as f:

@@ -231,6 +231,44 @@ class ExperimentPlot(unittest.TestCase):
         _, figures, _ = self.plot([r for r in rows if r["execution"] != "adg"], columns)
         self.assertNotIn("paired", figures)
 
+    def test_the_table_gives_the_paired_changes_and_the_uncertainty_in_words(self):
+        # table.md had the means of each cell only (the paired changes were in the figures
+        # alone: every comparison in docs/execution.md was computed again by hand) and the
+        # uncertainty setting as JSON. Plain ADG waits 1000 and 1200 s, switchable 900 and 1020
+        # s on the same seeds: -10 % and -15 %, -12.5 +- 3.5 % paired (the means' ratio says
+        # -11.4 %); its AET 95 and 98 s against 100: -5 % and -2 %.
+        columns = COLUMNS + ["execution", "waiting_time_s.total", "execution.switches"]
+        delays = json.dumps({"delay_probability": 0.01, "delay_min_s": 1, "delay_max_s": 4})
+        rows = [row(agents=10, repeat=k, execution="adg", uncertainty=delays,
+                    **{"waiting_time_s.total": w, "execution.switches": 0})
+                for k, w in ((0, 1000), (1, 1200))]
+        rows += [row(agents=10, repeat=k, execution="switchable", uncertainty=delays, aet_s=a,
+                     **{"waiting_time_s.total": w, "execution.switches": 7})
+                 for k, w, a in ((0, 900, 95), (1, 1020, 98))]
+        for r in rows:
+            r["cell"] += "-" + r["execution"]
+        out, figures, table = self.plot(rows, columns)
+        self.assert_points_match_results(figures, table)
+        lines = (out / "table.md").read_text().splitlines()
+        header = [c.strip() for c in lines[0].strip("|").split("|")]
+        self.assertEqual(header[-2:], ["waiting against plain ADG (%)",
+                                       "AET against plain ADG (%)"])
+        self.assertEqual(len(lines[1].strip("|").split("|")), len(header))
+        cells = {r[header.index("execution")]: r for r in
+                 ([c.strip() for c in line.strip("|").split("|")] for line in lines[2:])}
+        self.assertEqual(cells["switchable"][-2:], ["-12.5 \u00b1 3.5", "-3.5 \u00b1 2.1"])
+        self.assertEqual(cells["adg"][-2:], ["-", "-"])
+        self.assertEqual(cells["adg"][header.index("uncertainty")], "delays p 0.01, 1-4 s")
+        # Lifelong: tasks finished, not AET.
+        columns += ["lifelong.tasks_finished", "lifelong.throughput_per_min"]
+        for r in rows:
+            r["lifelong.tasks_finished"] = 110 if r["execution"] != "adg" else 100
+            r["lifelong.throughput_per_min"] = r["lifelong.tasks_finished"] / 5
+        out, _, _ = self.plot(rows, columns)
+        lines = (out / "table.md").read_text().splitlines()
+        self.assertTrue(lines[0].endswith("| tasks against plain ADG (%) |"))
+        self.assertIn("| +10.0 \u00b1 0.0 |", [line[line.rindex("|", 0, -1):] for line in lines])
+
     def test_commit_distances_of_switchable_are_lines_of_their_own(self):
         columns = COLUMNS + ["execution", "switch_commit_actions", "waiting_time_s.total"]
         rows = [row(agents=n, repeat=k, execution="adg", **{"waiting_time_s.total": 100 * n})
