@@ -98,7 +98,7 @@ std::vector<long long> whole_numbers(const YAML::Node& n, const std::string& src
     } catch (const YAML::Exception&) {
       fail(src, v, field, "'" + v.as<std::string>("?") + "' is not a whole number");
     }
-    if (k < lo || k > hi) fail(src, v, field, range);
+    if (k < lo || k > hi) fail(src, v, field, std::to_string(k) + " is out of range: " + range);
     once(seen, std::to_string(k), v, src, field);
     out.push_back(k);
   }
@@ -309,7 +309,9 @@ double number_in(const YAML::Node& n, const std::string& src, const std::string&
   } catch (const YAML::Exception&) {
   }
   if (!(v >= lo && v <= hi)) {
-    fail(src, n, field, "a number from " + json(lo).dump() + " to " + json(hi).dump());
+    fail(src, n, field,
+         "'" + n.as<std::string>("?") + "' is not a number from " + json(lo).dump() + " to " +
+             json(hi).dump());
   }
   return v;
 }

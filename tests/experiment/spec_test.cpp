@@ -125,7 +125,8 @@ TEST(Spec, MistakesNameTheFileLineAndField) {
        "plan.command: must write {plan}"},
       {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {file: p}\nrepeat: 3\n",
        "spec.yaml:6: repeat: unknown field"},
-      {"name: a\nmaps: [m]\nscens: [s]\nagents: [0]\nplan: {file: p}\n", "agents: fleet sizes"},
+      {"name: a\nmaps: [m]\nscens: [s]\nagents: [0]\nplan: {file: p}\n",
+       "agents: 0 is out of range: fleet sizes"},
       {"name: a\nmaps: [m]\nscens: [s]\nagents: [1]\nplan: {file: p}\nclock: fast\n",
        "spec.yaml:6: clock: lockstep or realtime"},
       {"name: [a\n", "spec.yaml:"},
@@ -231,7 +232,8 @@ TEST(Spec, StateRateHzIsPassedToEveryRunAndCheckedAtItsLine) {
       (void)parse_spec(base + "state_rate_hz: " + bad + "\n", "s.yaml");
       ADD_FAILURE() << "accepted state_rate_hz: " << bad;
     } catch (const std::invalid_argument& e) {
-      EXPECT_THAT(e.what(), HasSubstr("s.yaml:6: state_rate_hz: a number from 0.0 to 1000.0"))
+      EXPECT_THAT(e.what(), HasSubstr("s.yaml:6: state_rate_hz: '" + bad +
+                                      "' is not a number from 0.0 to 1000.0"))
           << bad;
     }
   }
@@ -290,7 +292,7 @@ TEST(Spec, SwitchChainLocationsAreAnAxisOfTheSwitchingExecutions) {
   fails(base + "switch_chain_locations: [2]\n",
         "k.yaml:6: switch_chain_locations: only the switching executions take it");
   fails(base + "executions: [switchable]\nswitch_chain_locations: [65]\n",
-        "k.yaml:7: switch_chain_locations: from 1 to 64 locations");
+        "k.yaml:7: switch_chain_locations: 65 is out of range: from 1 to 64 locations");
   // Lifelong runs chain too (monitor/src/live_adg_chain.cpp).
   const auto lifelong = expand(
       parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [adg, switchable]\n"
@@ -349,11 +351,11 @@ TEST(Spec, AnticipationKnobsAreAxesOfTheExecutionsThatReadThem) {
   fails("executions: [switchable-opt]\nswitch_lookahead_actions: [48]\n",
         "m.yaml:7: switch_lookahead_actions: only switchable-lookahead takes it");
   fails("executions: [switchable-opt]\nswitch_margin_s: [-1]\n",
-        "m.yaml:7: switch_margin_s: a number from 0.0 to 3600.0");
+        "m.yaml:7: switch_margin_s: '-1' is not a number from 0.0 to 3600.0");
   fails("executions: [switchable-opt]\nswitch_margin_s: []\n",
         "m.yaml:7: switch_margin_s: is empty");
   fails("executions: [switchable-opt]\nswitch_horizon_actions: [0]\n",
-        "m.yaml:7: switch_horizon_actions: from 1 to 1000 actions");
+        "m.yaml:7: switch_horizon_actions: 0 is out of range: from 1 to 1000 actions");
 }
 
 // Regression (2026-12-06): a margin was written into the folder name with six significant
@@ -442,7 +444,7 @@ TEST(Spec, SwitchCommitActionsAreAnAxisOfTheSwitchingExecutions) {
   fails("switch_commit_actions: [2]\n",
         "c.yaml:6: switch_commit_actions: only the switching executions take it; add switchable");
   fails("executions: [switchable]\nswitch_commit_actions: [0]\n",
-        "c.yaml:7: switch_commit_actions: from 1 to 1000 actions");
+        "c.yaml:7: switch_commit_actions: 0 is out of range: from 1 to 1000 actions");
   fails("executions: [switchable]\nswitch_commit_actions: [two]\n",
         "c.yaml:7: switch_commit_actions: 'two' is not a whole number");
 }
@@ -542,9 +544,10 @@ TEST(Spec, LifelongMistakesNameTheFileLineAndField) {
   EXPECT_THAT(error("name: a\nlifelong: {map: m}\nagents: [1]\nmaps: [x]\n"),
               HasSubstr("ll.yaml:4: maps: a lifelong experiment has no plan files"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m, replan_period_s: [0]}\nagents: [1]\n"),
-              HasSubstr("lifelong.replan_period_s: a number from 0.05 to 3600"));
-  EXPECT_THAT(error("name: a\nlifelong: {map: m, lookahead: [0]}\nagents: [1]\n"),
-              HasSubstr("ll.yaml:2: lifelong.lookahead: from 1 to 1000 actions"));
+              HasSubstr("lifelong.replan_period_s: '0' is not a number from 0.05 to 3600"));
+  EXPECT_THAT(
+      error("name: a\nlifelong: {map: m, lookahead: [0]}\nagents: [1]\n"),
+      HasSubstr("ll.yaml:2: lifelong.lookahead: 0 is out of range: from 1 to 1000 actions"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m, lookahead: [four]}\nagents: [1]\n"),
               HasSubstr("lifelong.lookahead: 'four' is not a whole number"));
   EXPECT_THAT(error("name: a\nlifelong: {map: m, windows: 3}\nagents: [1]\n"),
