@@ -24,6 +24,28 @@ bool ExecutionTracker::advance(uint32_t robot) {
   return enqueued_[robot] != before;
 }
 
+const char* to_string(WaitCause cause) {
+  switch (cause) {
+    case WaitCause::kAtLocation:
+      return "at_location";
+    case WaitCause::kAtLocationWaiting:
+      return "at_location_waiting";
+    case WaitCause::kEntering:
+      return "entering";
+    case WaitCause::kOnItsWayNear:
+      return "on_its_way_near";
+    case WaitCause::kOnItsWayFar:
+      return "on_its_way_far";
+    case WaitCause::kOnItsWayWaiting:
+      return "on_its_way_waiting";
+    case WaitCause::kHeld:
+      return "held";
+    case WaitCause::kNoAction:
+      return "no_action";
+  }
+  return "unknown";
+}
+
 ProgressUpdate check_progress(const Execution& e, uint32_t robot, int64_t finished_seq) {
   ProgressUpdate u;
   if (robot >= e.robots()) {

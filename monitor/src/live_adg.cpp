@@ -166,6 +166,36 @@ std::vector<NodeRef> LiveAdg::waits_for(uint32_t r, uint32_t seq) const {
   return {in.begin(), in.end()};
 }
 
+std::optional<WaitCause> LiveAdg::wait_cause(uint32_t r) const {
+  const auto& rb = robots_[r];
+  if (rb.enqueued > rb.finished) return std::nullopt;
+  if (rb.enqueued >= end(r)) return WaitCause::kNoAction;
+  const Node& n = node(r, rb.enqueued);
+  if (n.pending == 0) return WaitCause::kHeld;
+  auto cause = WaitCause::kAtLocation;
+  for (const NodeRef p : n.in) cause = std::max(cause, blocker_state(p));
+  return cause;
+}
+
+// What the robot of an unfinished leave is doing: its stay began with its last move before the
+// leave (live_adg_switching.cpp: a stay runs from the move that enters to the next move); none
+// among its unfinished actions: it entered already, or stood there from the start.
+WaitCause LiveAdg::blocker_state(NodeRef leave) const {
+  const auto& ib = robots_[leave.robot];
+  uint32_t enter = leave.seq;
+  while (enter > ib.finished && action(leave.robot, enter - 1).type != ActionType::kMove) --enter;
+  if (enter == ib.finished) {
+    return ib.enqueued == ib.finished ? WaitCause::kAtLocationWaiting : WaitCause::kAtLocation;
+  }
+  --enter;  // the move that enters
+  if (enter == ib.finished) {
+    return ib.enqueued > enter ? WaitCause::kEntering : WaitCause::kOnItsWayWaiting;
+  }
+  if (ib.enqueued == ib.finished) return WaitCause::kOnItsWayWaiting;
+  const uint32_t commit = switching_ ? switching_->commit_actions : SwitchOptions{}.commit_actions;
+  return enter - ib.finished > commit ? WaitCause::kOnItsWayFar : WaitCause::kOnItsWayNear;
+}
+
 CommitCut LiveAdg::commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const {
   const auto n = static_cast<uint32_t>(robots_.size());
   CommitCut cut;

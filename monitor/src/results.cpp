@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #ifndef SMART_VERSION
 #error "SMART_VERSION comes from the project's version (monitor/CMakeLists.txt)"
@@ -236,9 +237,15 @@ nlohmann::json times_json(const MonitorResult& r) {
   const auto known = [times_known](double v) {
     return times_known ? nlohmann::json(v) : nlohmann::json(nullptr);
   };
+  nlohmann::json wait = {{"mean", waiting / n}, {"total", waiting}};
+  if (r.waiting_by_cause_s) {
+    for (std::size_t c = 0; c < kWaitCauses; ++c) {
+      wait["by_cause"][to_string(static_cast<WaitCause>(c))] = (*r.waiting_by_cause_s)[c];
+    }
+  }
   return {{"aet_s", known(sum / n)},
           {"makespan_s", known(makespan)},
-          {"waiting_time_s", {{"mean", waiting / n}, {"total", waiting}}},
+          {"waiting_time_s", std::move(wait)},
           {"stops", stops}};
 }
 

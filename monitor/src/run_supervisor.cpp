@@ -215,9 +215,17 @@ void RunSupervisor::update_waiting(double sim_time_s) {
     if (w) {
       res_.robots[r].waiting_time_s += dt;
       if (!waiting_[r]) ++res_.robots[r].stops;
+      count_wait_cause(r, dt);
     }
     waiting_[r] = w;
   }
+}
+
+void RunSupervisor::count_wait_cause(uint32_t robot, double dt) {
+  const auto cause = exec_->wait_cause(robot);
+  if (!cause) return;
+  if (!res_.waiting_by_cause_s) res_.waiting_by_cause_s.emplace();
+  (*res_.waiting_by_cause_s)[static_cast<std::size_t>(*cause)] += dt;
 }
 
 void RunSupervisor::check_end() {

@@ -35,6 +35,60 @@ TEST(LiveAdg, ACrossingIsOrderedAndExecuted) {
   EXPECT_EQ(adg.enqueued(1), 5u);
 }
 
+// Robot 1, above (5,1), waits for robot 0 to pass along row 1; robot 0 waits at (2,1) for robot
+// 2 crossing it first. What robot 1 waits for changes as robot 0 comes (execution.hpp
+// WaitCause): far, waiting itself, near, entering, at the location; then none.
+TEST(LiveAdg, AWaitIsClassifiedByWhatItsBlockerDoes) {
+  const auto g = open_map(7, 3);
+  LiveAdg adg(g, {{0, 1}, {5, 0}, {2, 0}}, Heading::kEast);
+  const Paths window{{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {4, 1}, {5, 1}, {6, 1}},
+                     {{5, 0}, {5, 0}, {5, 0}, {5, 0}, {5, 0}, {5, 0}, {5, 0}, {5, 1}, {5, 2}},
+                     {{2, 0}, {2, 1}, {2, 2}}};
+  ASSERT_TRUE(adg.append(window, 0).empty());
+  ASSERT_EQ(adg.waits_for(1, 2), (std::vector<NodeRef>{{0, 10}}));  // robot 0 leaving (5,1)
+  ASSERT_EQ(adg.waits_for(0, 3), (std::vector<NodeRef>{{2, 3}}));   // robot 2 leaving (2,1)
+  EXPECT_EQ(adg.wait_cause(1), std::nullopt) << "it has actions to execute";
+  adg.on_progress(1, 1, 1.0);
+  // Robot 0's entry (its half-move 9) is 9 actions away: more than the 6 a switchable entry is
+  // sent ahead.
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kOnItsWayFar);
+  adg.on_progress(0, 2, 2.0);  // robot 0 at the midpoint before (2,1), waiting for robot 2
+  EXPECT_EQ(adg.wait_cause(0), WaitCause::kOnItsWayNear);  // robot 2 moves, 2 actions away
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kOnItsWayWaiting);
+  adg.on_progress(2, 3, 3.0);                              // robot 2 left (2,1)
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kOnItsWayNear);  // 6 actions away now
+  adg.on_progress(0, 8, 4.0);
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kEntering);
+  adg.on_progress(0, 9, 5.0);
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kAtLocation);
+  adg.on_progress(0, 10, 6.0);
+  EXPECT_EQ(adg.wait_cause(1), std::nullopt);
+  adg.on_progress(0, 11, 7.0);
+  EXPECT_EQ(adg.wait_cause(0), WaitCause::kNoAction) << "until the next window";
+}
+
+// Robot 3 follows robot 0 east along row 1; robot 0 waits at the midpoint before (2,1) for robot
+// 2 crossing it: robot 3 then waits behind a robot that holds the location and waits itself.
+TEST(LiveAdg, AWaitBehindARobotThatWaitsWhereItStandsIsAQueue) {
+  const auto g = open_map(5, 3);
+  LiveAdg adg(g, {{1, 1}, {4, 0}, {2, 0}, {0, 1}}, Heading::kEast);
+  const Paths window{{{1, 1}, {1, 1}, {1, 1}, {2, 1}, {3, 1}},
+                     {{4, 0}},
+                     {{2, 0}, {2, 1}, {2, 2}},
+                     {{0, 1}, {0, 1}, {0, 1}, {1, 1}, {1, 1}, {2, 1}}};
+  ASSERT_TRUE(adg.append(window, 0).empty());
+  ASSERT_EQ(adg.waits_for(0, 1), (std::vector<NodeRef>{{2, 3}}));  // robot 2 leaving (2,1)
+  ASSERT_EQ(adg.waits_for(3, 1), (std::vector<NodeRef>{{0, 0}}));  // robot 0 leaving (1,1)
+  ASSERT_EQ(adg.waits_for(3, 2), (std::vector<NodeRef>{{0, 1}}));  // and the midpoint after it
+  adg.on_progress(3, 0, 1.0);
+  EXPECT_EQ(adg.wait_cause(3), WaitCause::kAtLocation) << "robot 0 is leaving (1,1)";
+  adg.on_progress(0, 0, 2.0);
+  EXPECT_EQ(adg.wait_cause(0), WaitCause::kOnItsWayNear);
+  adg.on_progress(3, 1, 3.0);
+  EXPECT_EQ(adg.wait_cause(3), WaitCause::kAtLocationWaiting);
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kNoAction) << "robot 1 stays: it has no action";
+}
+
 // Robot 0 runs east along row 1 and is planned through (3,1) first; robot 1, above (3,1), waits
 // for it. Entries are sent two actions ahead, so robot 0's way into (3,1) (its 6th half-move) is
 // not sent yet: robot 1 may pass first.

@@ -91,6 +91,24 @@ TEST(Results, SummaryHasTheKeysUsersReadAndTheRightAverages) {
   EXPECT_DOUBLE_EQ(c["first_pose_contact"]["gap_m"].get<double>(), -0.01);
 }
 
+TEST(Results, TheWaitingIsSplitByCauseOnlyWhenTheExecutionTold) {
+  const auto in = tiny_instance();
+  auto r = finished_run(in);
+  EXPECT_FALSE(summary_json(in, r, {})["waiting_time_s"].contains("by_cause"));
+  r.waiting_by_cause_s.emplace();
+  (*r.waiting_by_cause_s)[std::size_t(WaitCause::kAtLocation)] = 2.0;
+  (*r.waiting_by_cause_s)[std::size_t(WaitCause::kNoAction)] = 1.0;
+  const auto by_cause = summary_json(in, r, {})["waiting_time_s"]["by_cause"];
+  EXPECT_EQ(by_cause, (nlohmann::json{{"at_location", 2.0},
+                                      {"at_location_waiting", 0.0},
+                                      {"entering", 0.0},
+                                      {"on_its_way_near", 0.0},
+                                      {"on_its_way_far", 0.0},
+                                      {"on_its_way_waiting", 0.0},
+                                      {"held", 0.0},
+                                      {"no_action", 1.0}}));
+}
+
 TEST(Results, WritesSummaryStatsAndRobotFiles) {
   const auto in = tiny_instance();
   const auto dir = temp_dir("files");

@@ -575,6 +575,8 @@ struct GrowingExecution final : Execution {
   uint32_t finished_ = 0;
   double next_s = 0, now_s = 0;
   std::vector<std::pair<double, std::vector<uint32_t>>> calls;  // on_time's time and `sent`
+  double period_s = 1;                                          // grows once this much time passed
+  std::optional<WaitCause> cause_told = {};  // why it says its robot waits (nullopt: not told)
   std::size_t robots() const override { return 1; }
   ProgressUpdate on_progress(uint32_t, int64_t seq, double) override {
     if (seq < int64_t{finished_}) return {ProgressResult::kStale, "old", {}};
@@ -586,7 +588,7 @@ struct GrowingExecution final : Execution {
     calls.emplace_back(t, sent);
     now_s = t;
     if (t < next_s) return {};
-    next_s = t + 1;
+    next_s = t + period_s;
     const auto seq = static_cast<uint32_t>(actions.size());
     actions.push_back({0, seq, grid::ActionType::kRotate, grid::Heading::kEast, {}, {}, t, t});
     return {0};
@@ -604,6 +606,7 @@ struct GrowingExecution final : Execution {
   bool complete() const override { return now_s >= 3; }
   bool deadlocked() const override { return false; }
   bool lifelong() const override { return true; }
+  std::optional<WaitCause> wait_cause(uint32_t) const override { return cause_told; }
 };
 
 TEST(RunSupervisor, ALifelongExecutionGrowsAsTimePassesAndSucceedsWhenItsDurationIsOver) {
@@ -631,6 +634,34 @@ TEST(RunSupervisor, ALifelongExecutionGrowsAsTimePassesAndSucceedsWhenItsDuratio
   EXPECT_EQ(sup.result().outcome, Outcome::kSuccess) << sup.result().error;
   EXPECT_TRUE(sup.result().goal_unverified.empty()) << "a lifelong run has no final goals";
   EXPECT_NE(sup.resume({}), "") << "a lifelong run is not resumed";
+}
+
+// A robot that finished its action and has none until the graph grows 2 s later waits 1 s at
+// the tick of 1 s; the execution says why, so the supervisor counts that second there.
+TEST(RunSupervisor, TheWaitingIsSplitByTheCauseTheExecutionTells) {
+  for (const auto told : {std::optional<WaitCause>{}, std::optional{WaitCause::kNoAction}}) {
+    GrowingExecution exec;
+    exec.period_s = 2;
+    exec.cause_told = told;
+    FakeWriter out;
+    RunSupervisor sup(exec, lockstep_config(), out);
+    sup.start(0);
+    sup.on_clock({kRun, 0, 0.0, 0, false}, 0);
+    sup.on_progress({0, kRun, 0}, 0);
+    sup.on_clock({kRun, 1, 1.0, 1, false}, 0);  // nothing new: it waited 1 s
+    sup.on_clock({kRun, 2, 2.0, 1, false}, 0);  // it grew: no longer waiting
+    EXPECT_EQ(sup.result().robots[0].waiting_time_s, 1.0);
+    if (!told) {
+      EXPECT_FALSE(sup.result().waiting_by_cause_s) << "an execution that does not tell";
+      continue;
+    }
+    ASSERT_TRUE(sup.result().waiting_by_cause_s);
+    const auto& by_cause = *sup.result().waiting_by_cause_s;
+    for (std::size_t c = 0; c < kWaitCauses; ++c) {
+      EXPECT_EQ(by_cause[c], c == std::size_t(WaitCause::kNoAction) ? 1.0 : 0.0)
+          << to_string(WaitCause(c));
+    }
+  }
 }
 
 }  // namespace

@@ -93,6 +93,9 @@ class LifelongExecution final : public monitor::Execution {
   bool deadlocked() const override { return adg_.deadlocked(); }
   bool lifelong() const override { return true; }
   const std::vector<monitor::PassingSwitch>* switches() const override { return adg_.switches(); }
+  std::optional<monitor::WaitCause> wait_cause(uint32_t r) const override {
+    return adg_.wait_cause(r);
+  }
 
   const LifelongStats& stats() const { return stats_; }
   TaskManager& tasks() { return tasks_; }

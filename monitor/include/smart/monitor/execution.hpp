@@ -6,7 +6,9 @@
 // stream in). Pure: times are given, never read.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,38 @@ struct ProgressUpdate {
   std::string reason;                    // why it was rejected or stale
   std::vector<uint32_t> robots_changed;  // robots whose window changed (to push to them)
 };
+
+// Why a robot waits now (not done, nothing enqueued to execute), as the run supervisor samples
+// it each tick (issue 29: where a lifelong run's waiting goes; the offline attribution of a plan
+// run is wait_causes.hpp, whose classes these follow). Its next action waits for the Type-2
+// predecessors' robots (the blockers) to leave a location; of several, the latest class counts:
+// - kAtLocation: the blocker entered the location (or stood there) and has not left: no passing
+//   order lets the waiting robot in sooner; it executes its actions there (turns, leaves, or is
+//   delayed doing so);
+// - kAtLocationWaiting: the same, but the blocker waits itself there (a queue: the waiting
+//   robot's wait ends when the blocker's ends);
+// - kEntering: the blocker is executing its move into the location;
+// - kOnItsWayNear / kOnItsWayFar: the blocker has not begun entering and executes its actions
+//   towards it, within / more than SwitchOptions::commit_actions of its entry (far: what a
+//   switchable execution would not have sent yet, the part its rule may still switch);
+// - kOnItsWayWaiting: the blocker has not begun entering and waits itself (a queue);
+// Not behind a robot:
+// - kHeld: its next action waits for nobody but is held back (a switchable execution sends a
+//   shared entry only near, or decides a due one first);
+// - kNoAction: it has no action to execute (a lifelong run: until the planner's next window).
+enum class WaitCause : uint8_t {
+  kAtLocation,
+  kAtLocationWaiting,
+  kEntering,
+  kOnItsWayNear,
+  kOnItsWayFar,
+  kOnItsWayWaiting,
+  kHeld,
+  kNoAction,
+};
+inline constexpr std::size_t kWaitCauses = 8;
+// summary.json's name of each (waiting_time_s.by_cause).
+const char* to_string(WaitCause cause);
 
 struct ActionWindowRange {
   uint32_t first = 0;  // seq of the first action in the window
@@ -61,6 +95,9 @@ class Execution {
   // The passing orders switched so far, in order (issue 29: switching.hpp); null when this
   // execution never switches (plain ADG).
   virtual const std::vector<PassingSwitch>* switches() const { return nullptr; }
+  // Why a waiting robot (enqueued == finished, not done) waits; nullopt when this execution does
+  // not tell (a plan's run: wait_causes.hpp reads its actions.csv afterwards).
+  virtual std::optional<WaitCause> wait_cause(uint32_t /*robot*/) const { return std::nullopt; }
 };
 
 // The checks every Execution makes of a robot's progress report: kAdvanced when `finished_seq`

@@ -135,6 +135,9 @@ class LiveAdg final : public Execution {
   Heading heading_after_finished(uint32_t r) const { return robots_[r].done_heading; }
   // Every robot's unfinished Type-2 predecessors of (r, seq) (tests and viewers: who it waits for).
   std::vector<NodeRef> waits_for(uint32_t r, uint32_t seq) const;
+  // Why robot r waits (execution.hpp WaitCause), if it does (enqueued == finished): nullopt when
+  // it has an action to execute. O(its blockers' actions up to their leaves).
+  std::optional<WaitCause> wait_cause(uint32_t r) const override;
 
   // --- growth ---
   CommitCut commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const;
@@ -212,6 +215,7 @@ class LiveAdg final : public Execution {
   void insert(const NewActions& acts, const std::vector<std::pair<NodeRef, NodeRef>>& edges);
 
   static void erase_ref(Refs& v, NodeRef x);
+  WaitCause blocker_state(NodeRef leave) const;
   static uint32_t pop_first(std::set<uint32_t>& robots);
   // Switching (live_adg_switching.cpp).
   bool held(uint32_t r, uint32_t seq) const;

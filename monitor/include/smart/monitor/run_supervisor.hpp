@@ -42,6 +42,7 @@
 //   monitor had sent, so no robot is sent into a location another holds an entry to.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -94,6 +95,9 @@ struct MonitorResult {
   std::size_t finished_actions = 0;
   std::size_t total_actions = 0;
   std::vector<RobotMetrics> robots;
+  // The robots' waiting split by why they waited (execution.hpp WaitCause; sums to their
+  // waiting_time_s), when the execution tells (lifelong runs).
+  std::optional<std::array<double, kWaitCauses>> waiting_by_cause_s;
   // Sim time each action finished, by ADG node (ActionPlan::offset[robot] + seq); NaN: not
   // finished, or finished before a resume. What a viewer needs to show a robot's current
   // action and who it waits for at any time of a replay (actions.csv).
@@ -256,6 +260,7 @@ class RunSupervisor {
   void apply_progress(const ProgressEvent& p, double sim_time_s);
   void try_answer(double now_s);
   void update_waiting(double sim_time_s);
+  void count_wait_cause(uint32_t robot, double dt);
   void check_end();
   void check_liveness(double now_s);
   std::string resume_check(const std::vector<ProgressEvent>& reported, std::vector<int64_t>& target,
