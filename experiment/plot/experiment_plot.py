@@ -34,6 +34,9 @@ Figures (each when its data exist):
                    sim speed, collisions, planner seconds, and throughput for lifelong runs;
                    with switching executions also waiting, switches and the paired changes
                    against plain ADG (waiting, and AET or, lifelong, tasks: mean +- sd in %)
+  waiting_causes   lifelong runs: the robots' total waiting split by what they waited for
+                   (summary.json waiting_time_s.by_cause), a stacked bar per cell, and
+                   waiting_causes.md: each cause's share of a run's waiting, mean +- sd
   figures.json     per figure: title, caption, and per panel its axes, scales, tick labels and
                    series of points {x, mean, sd, n} with the results.csv values they match
 Prints one JSON line naming the files written.
@@ -521,8 +524,8 @@ def time_figure(trows, out_dir, written, described):
            panels, written, described)
 
 
-def write_table(rows, out_dir, written):
-    """The paper-style table: repeats folded into mean +- sd (n = runs)."""
+def table_keys(rows):
+    """The columns that name a table's cell of the grid (repeats folded)."""
     keys = ["map", "scen", "agents", "plan", "robot", "qos", "uncertainty", "clock"]
     lifelong = any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows)
     switching = len(values_of(rows, "execution")) > 1
@@ -537,9 +540,31 @@ def write_table(rows, out_dir, written):
         keys.insert(keys.index("uncertainty") + 1, "replan_period_s")
     if len(values_of(rows, "lookahead")) > 1:
         keys.insert(keys.index("uncertainty") + 1 + lifelong, "lookahead")
+    return keys
+
+
+def grouped(rows, keys):
     groups = defaultdict(list)
     for r in rows:
         groups[tuple(r.get(k, "") for k in keys)].append(r)
+    return {k: groups[k] for k in sorted(groups, key=lambda k: [natural(str(x)) for x in k])}
+
+
+def stat(rs, field, fmt="{:.1f}"):
+    vs = [v for v in (number(r.get(field)) for r in rs) if v is not None]
+    if not vs:
+        return "-"
+    m, sd = mean_sd(vs)
+    sd_fmt = fmt.replace("+", "")  # a change is signed, its spread not
+    return (fmt + " \u00b1 " + sd_fmt).format(m, sd) if sd is not None else fmt.format(m)
+
+
+def write_table(rows, out_dir, written):
+    """The paper-style table: repeats folded into mean +- sd (n = runs)."""
+    keys = table_keys(rows)
+    lifelong = any(number(r.get("lifelong.throughput_per_min")) is not None for r in rows)
+    switching = "execution" in keys
+    groups = grouped(rows, keys)
     # The changes against plain ADG paired by seed (the paired figure's numbers), which the
     # means of two columns hide: each seed's own delays and tasks cancel out.
     paired = defaultdict(list)
@@ -549,22 +574,13 @@ def write_table(rows, out_dir, written):
                        ("paired.tasks_pct", "tasks against plain ADG (%)") if lifelong
                        else ("paired.aet_pct", "AET against plain ADG (%)")] if paired else [])
 
-    def stat(rs, field, fmt="{:.1f}"):
-        vs = [v for v in (number(r.get(field)) for r in rs) if v is not None]
-        if not vs:
-            return "-"
-        m, sd = mean_sd(vs)
-        sd_fmt = fmt.replace("+", "")  # a change is signed, its spread not
-        return (fmt + " \u00b1 " + sd_fmt).format(m, sd) if sd is not None else fmt.format(m)
-
     lines = ["| " + " | ".join(keys) + " | runs | success | AET (s) | makespan (s) | sim speed | "
              "collisions | planner (s) |" + (" throughput (tasks/min) |" if lifelong else "")
              + (" waiting (s) | switches |" if switching else "")
              + "".join(f" {title} |" for _, title in paired_columns),
              "|" + "---|" * (len(keys) + 7 + (1 if lifelong else 0) + (2 if switching else 0)
                              + len(paired_columns))]
-    for key in sorted(groups, key=lambda k: [natural(str(x)) for x in k]):
-        rs = groups[key]
+    for key, rs in groups.items():
         ok = sum(1 for r in rs if r.get("success") == "true")
         cells = [disturbance(k) if name == "uncertainty" else str(k) for name, k in zip(keys, key)]
         lines.append("| " + " | ".join(cells) + f" | {len(rs)} | {ok}/{len(rs)} | "
@@ -584,6 +600,87 @@ def write_table(rows, out_dir, written):
     written.append(path)
 
 
+# summary.json's waiting_time_s.by_cause (monitor/execution.hpp WaitCause): what the robots
+# waited for, as the run supervisor sampled it each tick (lifelong runs).
+WAIT_CAUSES = [("at_location", "at the location"),
+               ("at_location_waiting", "at the location, waiting itself"),
+               ("entering", "entering"),
+               ("on_its_way_near", "on its way, near"),
+               ("on_its_way_far", "on its way, far"),
+               ("on_its_way_waiting", "on its way, waiting itself"),
+               ("held", "held back by switching"),
+               ("no_action", "no action yet")]
+CAUSE_FIELD = "waiting_time_s.by_cause."
+
+
+def with_shares(rs):
+    """Each run's cause as a share of its own waiting (%), in fields share.<cause>."""
+    out = []
+    for r in rs:
+        total = number(r.get("waiting_time_s.total"))
+        if not total:
+            continue
+        out.append(dict(r, **{"share." + c: str(100 * (number(r.get(CAUSE_FIELD + c)) or 0)
+                                                / total) for c, _ in WAIT_CAUSES}))
+    return out
+
+
+def wait_causes(rows, out_dir, written, described):
+    """waiting_causes.md: per cell, the share of waiting each cause took (mean +- sd over the
+    runs' own shares); waiting_causes.png: their mean seconds, a stacked bar per cell."""
+    if not any(number(r.get(CAUSE_FIELD + "at_location")) is not None for r in rows):
+        return
+    keys = [k for k in table_keys(rows) if len(values_of(rows, k)) > 1] or ["map"]
+    groups = {k: with_shares([r for r in rs if number(r.get(CAUSE_FIELD + "at_location"))
+                              is not None]) for k, rs in grouped(rows, keys).items()}
+    groups = {k: rs for k, rs in groups.items() if rs}
+    lines = ["| " + " | ".join(keys) + " | runs | waiting (s) | "
+             + " | ".join(f"{title} (%)" for _, title in WAIT_CAUSES) + " |",
+             "|" + "---|" * (len(keys) + 2 + len(WAIT_CAUSES))]
+    bars = []
+    for key, rs in groups.items():
+        cells = [disturbance(k) if name == "uncertainty" else str(k) for name, k in zip(keys, key)]
+        lines.append("| " + " | ".join(cells) + f" | {len(rs)} | "
+                     + " | ".join([stat(rs, "waiting_time_s.total", "{:.0f}")]
+                                  + [stat(rs, "share." + c) for c, _ in WAIT_CAUSES]) + " |")
+        causes = {}
+        for c, _ in WAIT_CAUSES:
+            m, sd = mean_sd([number(r.get(CAUSE_FIELD + c)) or 0 for r in rs])
+            causes[c] = {"mean": m, "sd": sd}
+        bars.append({"label": ", ".join(cells), "match": dict(zip(keys, key)), "n": len(rs),
+                     "causes": causes})
+    path = os.path.join(out_dir, "waiting_causes.md")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    written.append(path)
+    causes_figure(bars, out_dir, written, described)
+
+
+def causes_figure(bars, out_dir, written, described):
+    fig, ax = plt.subplots(figsize=(9, 0.5 * len(bars) + 2.2), layout="constrained")
+    left = [0.0] * len(bars)
+    ys = list(range(len(bars)))[::-1]
+    for c, title in WAIT_CAUSES:
+        widths = [b["causes"][c]["mean"] for b in bars]
+        ax.barh(ys, widths, left=left, label=title)
+        left = [a + w for a, w in zip(left, widths)]
+    ax.set_yticks(ys, [f"{b['label']} (n = {b['n']})" for b in bars])
+    ax.set_xlabel("total waiting (robot s), mean over the runs")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))  # beside, not over, bars
+    title = "Where the waiting went"
+    caption = ("Each bar: the robots' total waiting of a cell, split by what each waiting robot "
+               "waited for at every tick (the robot it waits for: at the location, entering it, "
+               "or on its way, near or far from it; or no action to execute). Means over n runs.")
+    fig.suptitle(title)
+    fig.text(0.5, -0.01, caption, ha="center", va="top", fontsize=8, wrap=True)
+    for ext in FORMATS:
+        path = os.path.join(out_dir, f"waiting_causes.{ext}")
+        fig.savefig(path, dpi=120, bbox_inches="tight")
+        written.append(path)
+    plt.close(fig)
+    described["waiting_causes"] = {"title": title, "caption": caption, "bars": bars}
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -598,6 +695,7 @@ def main():
     sweep_figures(rows, out_dir, written, described)
     paired_figure(rows, out_dir, written, described)
     paired_uncertainty_figure(rows, out_dir, written, described)
+    wait_causes(rows, out_dir, written, described)
     lifelong_figures(results_dir, rows, out_dir, written, described)
     write_table(rows, out_dir, written)
     path = os.path.join(out_dir, "figures.json")

@@ -51,6 +51,8 @@ class ExperimentPlot(unittest.TestCase):
         for name, fig in figures.items():
             if name.startswith("paired"):  # derived from pairs of rows: test_paired_changes_...
                 continue
+            if name == "waiting_causes":  # bars, not panels: test_waiting_causes_...
+                continue
             for panel in fig["panels"]:
                 rows = table
                 if name == "planner_runtime":  # one per (map, scen, robots, plan)
@@ -268,6 +270,47 @@ class ExperimentPlot(unittest.TestCase):
         lines = (out / "table.md").read_text().splitlines()
         self.assertTrue(lines[0].endswith("| tasks against plain ADG (%) |"))
         self.assertIn("| +10.0 \u00b1 0.0 |", [line[line.rindex("|", 0, -1):] for line in lines])
+
+    def test_waiting_causes_are_each_runs_shares_and_the_bars_their_seconds(self):
+        # Lifelong runs split their waiting by cause (summary.json waiting_time_s.by_cause).
+        # Plain ADG waits 100 and 200 s, 60 and 100 of it behind robots at the location;
+        # switchable 80 s, 20 at the location: shares 60 and 50 % (55.0 +- 7.1), 25 %.
+        causes = ["at_location", "at_location_waiting", "entering", "on_its_way_near",
+                  "on_its_way_far", "on_its_way_waiting", "held", "no_action"]
+        columns = (COLUMNS + ["execution", "waiting_time_s.total"]
+                   + ["waiting_time_s.by_cause." + c for c in causes])
+
+        def run(execution, repeat, total, at_location):
+            r = row(agents=10, repeat=repeat, execution=execution,
+                    **{"waiting_time_s.total": total})
+            r.update({"waiting_time_s.by_cause." + c: 0 for c in causes})
+            r["waiting_time_s.by_cause.at_location"] = at_location
+            r["waiting_time_s.by_cause.no_action"] = total - at_location
+            r["cell"] += "-" + execution
+            return r
+
+        rows = [run("adg", 0, 100, 60), run("adg", 1, 200, 100), run("switchable", 0, 80, 20)]
+        out, figures, _ = self.plot(rows, columns)
+        lines = (out / "waiting_causes.md").read_text().splitlines()
+        header = [c.strip() for c in lines[0].strip("|").split("|")]
+        self.assertEqual(header[:3], ["execution", "runs", "waiting (s)"])
+        cells = {r[0]: r for r in ([c.strip() for c in line.strip("|").split("|")]
+                                   for line in lines[2:])}
+        at = header.index("at the location (%)")
+        self.assertEqual(cells["adg"][at], "55.0 \u00b1 7.1")
+        self.assertEqual(cells["adg"][header.index("no action yet (%)")], "45.0 \u00b1 7.1")
+        self.assertEqual(cells["adg"][header.index("entering (%)")], "0.0 \u00b1 0.0")
+        self.assertEqual(cells["switchable"][at], "25.0")
+        self.assertEqual(cells["adg"][2], "150 \u00b1 71")
+        bars = {b["label"]: b for b in figures["waiting_causes"]["bars"]}
+        self.assertEqual(bars["adg"]["n"], 2)
+        self.assertEqual(bars["adg"]["causes"]["at_location"]["mean"], 80)
+        self.assertEqual(bars["switchable"]["causes"]["no_action"]["mean"], 60)
+        self.assertTrue((out / "waiting_causes.png").is_file())
+        # Runs that do not split their waiting (plan runs) get neither.
+        out, figures, _ = self.plot([row(agents=10)])
+        self.assertFalse((out / "waiting_causes.md").exists())
+        self.assertNotIn("waiting_causes", figures)
 
     def test_commit_distances_of_switchable_are_lines_of_their_own(self):
         columns = COLUMNS + ["execution", "switch_commit_actions", "waiting_time_s.total"]
