@@ -602,7 +602,8 @@ def write_table(rows, out_dir, written):
 
 # summary.json's waiting_time_s.by_cause (monitor/execution.hpp WaitCause): what the robots
 # waited for, as the run supervisor sampled it each tick (lifelong runs).
-WAIT_CAUSES = [("at_location", "at the location"),
+WAIT_CAUSES = [("at_location", "at the location, leaving"),
+               ("at_location_turning", "at the location, turning"),
                ("at_location_waiting", "at the location, waiting itself"),
                ("entering", "entering"),
                ("on_its_way_near", "on its way, near"),
@@ -657,7 +658,7 @@ def wait_causes(rows, out_dir, written, described):
 
 
 def causes_figure(bars, out_dir, written, described):
-    fig, ax = plt.subplots(figsize=(9, 0.5 * len(bars) + 2.2), layout="constrained")
+    fig, ax = plt.subplots(figsize=(12, 0.5 * len(bars) + 2.2), layout="constrained")
     left = [0.0] * len(bars)
     ys = list(range(len(bars)))[::-1]
     for c, title in WAIT_CAUSES:
@@ -669,8 +670,9 @@ def causes_figure(bars, out_dir, written, described):
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))  # beside, not over, bars
     title = "Where the waiting went"
     caption = ("Each bar: the robots' total waiting of a cell, split by what each waiting robot "
-               "waited for at every tick (the robot it waits for: at the location, entering it, "
-               "or on its way, near or far from it; or no action to execute). Means over n runs.")
+               "waited for at every tick: the robot it waits for at the location (leaving it, "
+               "turning there or waiting itself), entering it, or on its way (near, far, or "
+               "waiting itself); or no action to execute. Means over n runs.")
     fig.suptitle(title)
     fig.text(0.5, -0.01, caption, ha="center", va="top", fontsize=8, wrap=True)
     for ext in FORMATS:

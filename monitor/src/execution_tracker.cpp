@@ -28,6 +28,8 @@ const char* to_string(WaitCause cause) {
   switch (cause) {
     case WaitCause::kAtLocation:
       return "at_location";
+    case WaitCause::kAtLocationTurning:
+      return "at_location_turning";
     case WaitCause::kAtLocationWaiting:
       return "at_location_waiting";
     case WaitCause::kEntering:

@@ -185,7 +185,10 @@ WaitCause LiveAdg::blocker_state(NodeRef leave) const {
   uint32_t enter = leave.seq;
   while (enter > ib.finished && action(leave.robot, enter - 1).type != ActionType::kMove) --enter;
   if (enter == ib.finished) {
-    return ib.enqueued == ib.finished ? WaitCause::kAtLocationWaiting : WaitCause::kAtLocation;
+    if (ib.enqueued == ib.finished) return WaitCause::kAtLocationWaiting;
+    return action(leave.robot, ib.finished).type == ActionType::kRotate
+               ? WaitCause::kAtLocationTurning
+               : WaitCause::kAtLocation;
   }
   --enter;  // the move that enters
   if (enter == ib.finished) {

@@ -275,7 +275,7 @@ class ExperimentPlot(unittest.TestCase):
         # Lifelong runs split their waiting by cause (summary.json waiting_time_s.by_cause).
         # Plain ADG waits 100 and 200 s, 60 and 100 of it behind robots at the location;
         # switchable 80 s, 20 at the location: shares 60 and 50 % (55.0 +- 7.1), 25 %.
-        causes = ["at_location", "at_location_waiting", "entering", "on_its_way_near",
+        causes = ["at_location", "at_location_turning", "at_location_waiting", "entering", "on_its_way_near",
                   "on_its_way_far", "on_its_way_waiting", "held", "no_action"]
         columns = (COLUMNS + ["execution", "waiting_time_s.total"]
                    + ["waiting_time_s.by_cause." + c for c in causes])
@@ -296,7 +296,7 @@ class ExperimentPlot(unittest.TestCase):
         self.assertEqual(header[:3], ["execution", "runs", "waiting (s)"])
         cells = {r[0]: r for r in ([c.strip() for c in line.strip("|").split("|")]
                                    for line in lines[2:])}
-        at = header.index("at the location (%)")
+        at = header.index("at the location, leaving (%)")
         self.assertEqual(cells["adg"][at], "55.0 \u00b1 7.1")
         self.assertEqual(cells["adg"][header.index("no action yet (%)")], "45.0 \u00b1 7.1")
         self.assertEqual(cells["adg"][header.index("entering (%)")], "0.0 \u00b1 0.0")

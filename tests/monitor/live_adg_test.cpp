@@ -89,6 +89,19 @@ TEST(LiveAdg, AWaitBehindARobotThatWaitsWhereItStandsIsAQueue) {
   EXPECT_EQ(adg.wait_cause(1), WaitCause::kNoAction) << "robot 1 stays: it has no action";
 }
 
+// Robot 0 turns south at (1,1) before it leaves; robot 1 follows into (1,1) from the west.
+TEST(LiveAdg, AWaitBehindARobotTurningWhereItStandsIsToldFromItsLeaving) {
+  const auto g = open_map(3, 3);
+  LiveAdg adg(g, {{1, 1}, {0, 1}}, Heading::kEast);
+  ASSERT_TRUE(adg.append({{{1, 1}, {1, 2}}, {{0, 1}, {0, 1}, {1, 1}}}, 0).empty());
+  ASSERT_EQ(adg.action(0, 0).type, ActionType::kRotate);
+  ASSERT_EQ(adg.waits_for(1, 1), (std::vector<NodeRef>{{0, 1}}));  // robot 0 leaving (1,1)
+  adg.on_progress(1, 0, 1.0);
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kAtLocationTurning);
+  adg.on_progress(0, 0, 2.0);
+  EXPECT_EQ(adg.wait_cause(1), WaitCause::kAtLocation) << "robot 0 is moving out";
+}
+
 // Robot 0 runs east along row 1 and is planned through (3,1) first; robot 1, above (3,1), waits
 // for it. Entries are sent two actions ahead, so robot 0's way into (3,1) (its 6th half-move) is
 // not sent yet: robot 1 may pass first.

@@ -100,6 +100,7 @@ TEST(Results, TheWaitingIsSplitByCauseOnlyWhenTheExecutionTold) {
   (*r.waiting_by_cause_s)[std::size_t(WaitCause::kNoAction)] = 1.0;
   const auto by_cause = summary_json(in, r, {})["waiting_time_s"]["by_cause"];
   EXPECT_EQ(by_cause, (nlohmann::json{{"at_location", 2.0},
+                                      {"at_location_turning", 0.0},
                                       {"at_location_waiting", 0.0},
                                       {"entering", 0.0},
                                       {"on_its_way_near", 0.0},

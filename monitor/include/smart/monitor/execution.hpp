@@ -30,8 +30,9 @@ struct ProgressUpdate {
 // run is wait_causes.hpp, whose classes these follow). Its next action waits for the Type-2
 // predecessors' robots (the blockers) to leave a location; of several, the latest class counts:
 // - kAtLocation: the blocker entered the location (or stood there) and has not left: no passing
-//   order lets the waiting robot in sooner; it executes its actions there (turns, leaves, or is
-//   delayed doing so);
+//   order lets the waiting robot in sooner; it is executing its move out (or is delayed doing
+//   so);
+// - kAtLocationTurning: the same, but it is turning there first;
 // - kAtLocationWaiting: the same, but the blocker waits itself there (a queue: the waiting
 //   robot's wait ends when the blocker's ends);
 // - kEntering: the blocker is executing its move into the location;
@@ -45,6 +46,7 @@ struct ProgressUpdate {
 // - kNoAction: it has no action to execute (a lifelong run: until the planner's next window).
 enum class WaitCause : uint8_t {
   kAtLocation,
+  kAtLocationTurning,
   kAtLocationWaiting,
   kEntering,
   kOnItsWayNear,
@@ -53,7 +55,7 @@ enum class WaitCause : uint8_t {
   kHeld,
   kNoAction,
 };
-inline constexpr std::size_t kWaitCauses = 8;
+inline constexpr std::size_t kWaitCauses = 9;
 // summary.json's name of each (waiting_time_s.by_cause).
 const char* to_string(WaitCause cause);
 
