@@ -1,7 +1,8 @@
 // Contract: turns a finished run into its result files (file edge):
 // - summary.json: success, robots, aet_s, makespan_s, sim_time_s, wall_time_s, sim_speed,
 //   collisions (robot-robot), wall_contacts, min_separation_m (closest approach between robot
-//   surfaces; negative = overlap), adg, plan, per-run flags and versions;
+//   surfaces; negative = overlap), waiting_time_s (mean, total and, when the execution tells
+//   why robots wait, by_cause: execution.hpp WaitCause), adg, plan, per-run flags and versions;
 // - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats); its
 //   two wall-clock columns hold sim time here and are named so ("makespan sim s", "sum of
 //   finish times sim s");
