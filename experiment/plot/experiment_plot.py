@@ -34,8 +34,8 @@ Figures (each when its data exist):
                    sim speed, collisions, planner seconds, and throughput for lifelong runs;
                    with switching executions also waiting, switches and the paired changes
                    against plain ADG (waiting, and AET or, lifelong, tasks: mean +- sd in %)
-  waiting_causes   lifelong runs: the robots' total waiting split by what they waited for
-                   (summary.json waiting_time_s.by_cause), a stacked bar per cell, and
+  waiting_causes   the robots' total waiting split by what they waited for (summary.json
+                   waiting_time_s.by_cause, when the run tells), a stacked bar per cell, and
                    waiting_causes.md: each cause's share of a run's waiting, mean +- sd
   figures.json     per figure: title, caption, and per panel its axes, scales, tick labels and
                    series of points {x, mean, sd, n} with the results.csv values they match
@@ -601,7 +601,7 @@ def write_table(rows, out_dir, written):
 
 
 # summary.json's waiting_time_s.by_cause (monitor/execution.hpp WaitCause): what the robots
-# waited for, as the run supervisor sampled it each tick (lifelong runs).
+# waited for, as the run supervisor sampled it each tick.
 WAIT_CAUSES = [("at_location", "at the location, leaving"),
                ("at_location_turning", "at the location, turning"),
                ("at_location_waiting", "at the location, waiting itself"),

@@ -48,6 +48,47 @@ const char* to_string(WaitCause cause) {
   return "unknown";
 }
 
+WaitCause blocker_cause(std::optional<uint32_t> enter_seq, uint32_t finished, uint32_t enqueued,
+                        bool turning, uint32_t commit_actions) {
+  if (!enter_seq || *enter_seq < finished) {
+    if (enqueued == finished) return WaitCause::kAtLocationWaiting;
+    return turning ? WaitCause::kAtLocationTurning : WaitCause::kAtLocation;
+  }
+  if (*enter_seq == finished) {
+    return enqueued > finished ? WaitCause::kEntering : WaitCause::kOnItsWayWaiting;
+  }
+  if (enqueued == finished) return WaitCause::kOnItsWayWaiting;
+  return *enter_seq - finished > commit_actions ? WaitCause::kOnItsWayFar
+                                                : WaitCause::kOnItsWayNear;
+}
+
+// A half-cell stay begins with the move that enters it and ends with the next move (adg.cpp), so
+// the blocker's entry is its last move before the leave; none unfinished: it is at the location.
+// The cells footprint's stays span several moves: not told.
+std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
+  if (robot_done(robot) || enqueued_[robot] > finished_[robot]) return std::nullopt;
+  if (adg_.footprint != Footprint::kHalfCells) return std::nullopt;
+  const uint32_t node = actions_.offset[robot] + enqueued_[robot];
+  if (pending_[node] == 0) return WaitCause::kHeld;
+  auto cause = WaitCause::kAtLocation;
+  for (uint32_t e = adg_.in_begin[node]; e < adg_.in_begin[node + 1]; ++e) {
+    const grid::Action& leave = actions_.actions[adg_.in[e]];
+    const uint32_t i = leave.robot;
+    if (leave.seq < finished_[i]) continue;
+    std::optional<uint32_t> enter;
+    for (uint32_t s = leave.seq; s-- > finished_[i];) {
+      if (actions_.at(i, s).type == grid::ActionType::kMove) {
+        enter = s;
+        break;
+      }
+    }
+    const bool turning = actions_.at(i, finished_[i]).type == grid::ActionType::kRotate;
+    cause = std::max(cause, blocker_cause(enter, finished_[i], enqueued_[i], turning,
+                                          SwitchOptions{}.commit_actions));
+  }
+  return cause;
+}
+
 ProgressUpdate check_progress(const Execution& e, uint32_t robot, int64_t finished_seq) {
   ProgressUpdate u;
   if (robot >= e.robots()) {

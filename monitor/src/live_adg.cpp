@@ -182,21 +182,16 @@ std::optional<WaitCause> LiveAdg::wait_cause(uint32_t r) const {
 // among its unfinished actions: it entered already, or stood there from the start.
 WaitCause LiveAdg::blocker_state(NodeRef leave) const {
   const auto& ib = robots_[leave.robot];
-  uint32_t enter = leave.seq;
-  while (enter > ib.finished && action(leave.robot, enter - 1).type != ActionType::kMove) --enter;
-  if (enter == ib.finished) {
-    if (ib.enqueued == ib.finished) return WaitCause::kAtLocationWaiting;
-    return action(leave.robot, ib.finished).type == ActionType::kRotate
-               ? WaitCause::kAtLocationTurning
-               : WaitCause::kAtLocation;
+  std::optional<uint32_t> enter;
+  for (uint32_t s = leave.seq; s-- > ib.finished;) {
+    if (action(leave.robot, s).type == ActionType::kMove) {
+      enter = s;
+      break;
+    }
   }
-  --enter;  // the move that enters
-  if (enter == ib.finished) {
-    return ib.enqueued > enter ? WaitCause::kEntering : WaitCause::kOnItsWayWaiting;
-  }
-  if (ib.enqueued == ib.finished) return WaitCause::kOnItsWayWaiting;
-  const uint32_t commit = switching_ ? switching_->commit_actions : SwitchOptions{}.commit_actions;
-  return enter - ib.finished > commit ? WaitCause::kOnItsWayFar : WaitCause::kOnItsWayNear;
+  const bool turning = action(leave.robot, ib.finished).type == ActionType::kRotate;
+  return blocker_cause(enter, ib.finished, ib.enqueued, turning,
+                       switching_ ? switching_->commit_actions : SwitchOptions{}.commit_actions);
 }
 
 CommitCut LiveAdg::commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const {

@@ -695,6 +695,29 @@ bool SwitchableTracker::deadlocked() const {
   return true;
 }
 
+// The robot before each stay the next action enters, as the orders are now: its stay's entry
+// tells where it is (execution.hpp blocker_cause; any footprint, as the stays are the
+// footprint's).
+std::optional<WaitCause> SwitchableTracker::wait_cause(uint32_t robot) const {
+  if (robot_done(robot) || enqueued_[robot] > finished_[robot]) return std::nullopt;
+  const uint32_t node = actions_.offset[robot] + enqueued_[robot];
+  if (pending_[node] == 0) return WaitCause::kHeld;  // sent near, or due and being decided
+  auto cause = WaitCause::kAtLocation;
+  for (uint32_t k = enter_begin_[node]; k < enter_begin_[node + 1]; ++k) {
+    const auto b = before(enter_stays_[k]);
+    if (!b.edge) continue;
+    const Stay& theirs = stay_[b.stay];
+    if (theirs.leave == kNoAction || finished_by(theirs.robot, theirs.leave)) continue;
+    const uint32_t base = actions_.offset[theirs.robot], done = finished_[theirs.robot];
+    const auto enter =
+        theirs.enter == kNoAction ? std::nullopt : std::optional<uint32_t>(theirs.enter - base);
+    const bool turning = actions_.actions[base + done].type == grid::ActionType::kRotate;
+    cause = std::max(cause, blocker_cause(enter, done, enqueued_[theirs.robot], turning,
+                                          options_.commit_actions));
+  }
+  return cause;
+}
+
 void SwitchableTracker::predecessors(uint32_t node, std::vector<uint32_t>& out) const {
   each_edge_in(node, [&](uint32_t leave) { out.push_back(leave); });
 }

@@ -272,7 +272,7 @@ class ExperimentPlot(unittest.TestCase):
         self.assertIn("| +10.0 \u00b1 0.0 |", [line[line.rindex("|", 0, -1):] for line in lines])
 
     def test_waiting_causes_are_each_runs_shares_and_the_bars_their_seconds(self):
-        # Lifelong runs split their waiting by cause (summary.json waiting_time_s.by_cause).
+        # Runs split their waiting by cause (summary.json waiting_time_s.by_cause).
         # Plain ADG waits 100 and 200 s, 60 and 100 of it behind robots at the location;
         # switchable 80 s, 20 at the location: shares 60 and 50 % (55.0 +- 7.1), 25 %.
         causes = ["at_location", "at_location_turning", "at_location_waiting", "entering", "on_its_way_near",
@@ -307,7 +307,7 @@ class ExperimentPlot(unittest.TestCase):
         self.assertEqual(bars["adg"]["causes"]["at_location"]["mean"], 80)
         self.assertEqual(bars["switchable"]["causes"]["no_action"]["mean"], 60)
         self.assertTrue((out / "waiting_causes.png").is_file())
-        # Runs that do not split their waiting (plan runs) get neither.
+        # Runs that do not split their waiting (older runs, the cells footprint) get neither.
         out, figures, _ = self.plot([row(agents=10)])
         self.assertFalse((out / "waiting_causes.md").exists())
         self.assertNotIn("waiting_causes", figures)

@@ -34,6 +34,19 @@ TEST(ExecutionTracker, FinishingReleasesTheOtherRobot) {
   EXPECT_EQ(t.window(0, 10).first, 1u);
 }
 
+TEST(ExecutionTracker, AWaitingRobotIsToldWhatItsBlockerDoes) {
+  Following f;
+  ExecutionTracker t(f.actions, f.adg);
+  EXPECT_EQ(t.wait_cause(1), std::nullopt) << "its first half-move is enqueued";
+  t.on_progress(1, 0);
+  // Robot 1 waits to enter (1,0), where robot 0 stands and is moving out.
+  EXPECT_EQ(t.wait_cause(1), WaitCause::kAtLocation);
+  t.on_progress(0, 0);
+  EXPECT_EQ(t.wait_cause(1), std::nullopt);
+  t.on_progress(0, 3);
+  EXPECT_EQ(t.wait_cause(0), std::nullopt) << "done: it does not wait";
+}
+
 TEST(ExecutionTracker, ProgressIsCumulative) {
   Following f;
   ExecutionTracker t(f.actions, f.adg);

@@ -705,6 +705,51 @@ TEST(SwitchableTrackerProperty, RandomPlansWithDelaysNeverCollideAndAlwaysFinish
   EXPECT_GT(chained, 300u) << "robots should pass robots going on ahead of them";  // 582
 }
 
+// Until the first switch (entries sent as soon as they may be: commit_actions beyond any plan, so
+// only a robot stuck before its entry is passed), the switchable tracker's wait causes, read from
+// its stays, are plain ADG's, read from its edges (execution.hpp WaitCause; near and far are one
+// class here: far needs a nearer commit).
+TEST(SwitchableTrackerProperty, WaitCausesAreThoseOfPlainAdgWhenNothingSwitches) {
+  const auto same = [](std::optional<WaitCause> c) {
+    return c == WaitCause::kOnItsWayFar ? std::optional{WaitCause::kOnItsWayNear} : c;
+  };
+  std::map<WaitCause, std::size_t> seen;
+  for (uint64_t seed = 1; seed <= 60; ++seed) {
+    std::mt19937_64 rng(seed);
+    const auto grid = planning::generate_random_grid(10, 10, 0.15, seed);
+    const auto inst = planning::generate_random_plan(grid, {12, 25, seed, 0.7, 0.3});
+    const auto actions = build_actions(inst.plan, Heading::kEast);
+    std::vector<Problem> problems;
+    const auto adg = build_adg(actions, grid, "random", problems);
+    ASSERT_TRUE(problems.empty());
+    ExecutionTracker plain(actions, adg);
+    SwitchableTracker sw(actions, passing_orders(actions, grid), {.commit_actions = 100000});
+    const auto robots = static_cast<uint32_t>(actions.robots());
+    while (!plain.complete() && sw.switches()->empty()) {
+      std::vector<uint32_t> ready;
+      for (uint32_t r = 0; r < robots; ++r) {
+        ASSERT_EQ(same(plain.wait_cause(r)), same(sw.wait_cause(r)))
+            << "seed " << seed << " robot " << r;
+        if (const auto c = plain.wait_cause(r)) ++seen[*c];
+        if (plain.enqueued(r) > plain.finished(r)) ready.push_back(r);
+      }
+      ASSERT_FALSE(ready.empty()) << "seed " << seed;
+      const uint32_t r = ready[rng() % ready.size()];
+      plain.on_progress(r, plain.finished(r));
+      sw.on_progress(r, plain.finished(r) - 1, 0.0);
+      ASSERT_EQ(sw.finished(r), plain.finished(r));
+    }
+  }
+  std::size_t waits = 0;
+  for (const auto& [c, n] : seen) waits += n;
+  EXPECT_GT(waits, 2000u) << "waits compared before the first switches";  // 5650
+  for (const auto c :
+       {WaitCause::kAtLocation, WaitCause::kAtLocationTurning, WaitCause::kAtLocationWaiting,
+        WaitCause::kEntering, WaitCause::kOnItsWayNear, WaitCause::kOnItsWayWaiting}) {
+    EXPECT_GT(seen[c], 0u) << to_string(c) << " never seen: the random plans should wait so";
+  }
+}
+
 // One location at a time (BTPG's pairs): the same guarantees.
 TEST(SwitchableTrackerProperty, OneLocationAtATimeNeverCollidesAndAlwaysFinishes) {
   std::size_t switches = 0;

@@ -58,6 +58,11 @@ enum class WaitCause : uint8_t {
 inline constexpr std::size_t kWaitCauses = 9;
 // summary.json's name of each (waiting_time_s.by_cause).
 const char* to_string(WaitCause cause);
+// A blocker's class from its stay at the location: `enter_seq` its move into it (nullopt: it
+// stood there from the start), its robot's progress, and whether the action it executes now
+// (seq `finished`) is a turn. Pure: every execution's wait_cause() decides with it.
+WaitCause blocker_cause(std::optional<uint32_t> enter_seq, uint32_t finished, uint32_t enqueued,
+                        bool turning, uint32_t commit_actions);
 
 struct ActionWindowRange {
   uint32_t first = 0;  // seq of the first action in the window
@@ -97,8 +102,8 @@ class Execution {
   // The passing orders switched so far, in order (issue 29: switching.hpp); null when this
   // execution never switches (plain ADG).
   virtual const std::vector<PassingSwitch>* switches() const { return nullptr; }
-  // Why a waiting robot (enqueued == finished, not done) waits; nullopt when this execution does
-  // not tell (a plan's run: wait_causes.hpp reads its actions.csv afterwards).
+  // Why a waiting robot (enqueued == finished, not done) waits; nullopt when it does not wait or
+  // this execution does not tell (plain ADG with the cells footprint).
   virtual std::optional<WaitCause> wait_cause(uint32_t /*robot*/) const { return std::nullopt; }
 };
 

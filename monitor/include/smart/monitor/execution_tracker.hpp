@@ -50,6 +50,7 @@ class ExecutionTracker final : public Execution {
   bool complete() const override { return finished_total_ == actions_.actions.size(); }
   // No robot has an enqueued unfinished action, yet not everything is finished.
   bool deadlocked() const override;
+  std::optional<WaitCause> wait_cause(uint32_t robot) const override;
 
  private:
   bool advance(uint32_t robot);  // enqueues what it can; true when something was enqueued

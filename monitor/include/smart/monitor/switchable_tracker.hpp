@@ -104,6 +104,7 @@ class SwitchableTracker final : public Execution {
   }
   bool complete() const override { return finished_total_ == actions_.actions.size(); }
   bool deadlocked() const override;
+  std::optional<WaitCause> wait_cause(uint32_t robot) const override;
 
   const std::vector<PassingSwitch>* switches() const override { return &switches_; }
   // Switches made by anticipation (a part of switches()).
