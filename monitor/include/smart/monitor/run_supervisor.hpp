@@ -260,7 +260,7 @@ class RunSupervisor {
   void apply_progress(const ProgressEvent& p, double sim_time_s);
   void try_answer(double now_s);
   void update_waiting(double sim_time_s);
-  void count_wait_cause(uint32_t robot, double dt);
+  void count_wait_cause(uint32_t robot, double dt, double sim_time_s, bool began);
   void check_end();
   void check_liveness(double now_s);
   std::string resume_check(const std::vector<ProgressEvent>& reported, std::vector<int64_t>& target,
@@ -281,6 +281,13 @@ class RunSupervisor {
   wire::SyncCounter sent_;                     // end of the windows published, per robot
   std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
   std::vector<uint8_t> waiting_;
+  // Why each robot waits, as last told, and when to ask again (count_wait_cause).
+  static constexpr double kWaitCauseRefreshS = 0.5;
+  struct ToldCause {
+    WaitCause cause = WaitCause::kAtLocation;
+    double next_s = 0;
+  };
+  std::vector<ToldCause> wait_cause_;
   std::vector<double> robot_seen_s_;         // real time: when each robot's host was last heard of
   std::vector<grid::WorldPoint> goal_;       // per robot, world frame
   std::vector<grid::WorldPoint> last_pose_;  // per robot, the last pose seen
