@@ -62,9 +62,8 @@ WaitCause blocker_cause(std::optional<uint32_t> enter_seq, uint32_t finished, ui
                                                 : WaitCause::kOnItsWayNear;
 }
 
-// A half-cell stay begins with the move that enters it and ends with the next move (adg.cpp), so
-// the blocker's entry is its last move before the leave; none unfinished: it is at the location.
-// The cells footprint's stays span several moves: not told.
+// Half-cell stays only: the cells footprint's span several moves, and its entries are not
+// read from the edges (not told).
 std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
   if (robot_done(robot) || enqueued_[robot] > finished_[robot]) return std::nullopt;
   if (adg_.footprint != Footprint::kHalfCells) return std::nullopt;
@@ -75,16 +74,10 @@ std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
     const grid::Action& leave = actions_.actions[adg_.in[e]];
     const uint32_t i = leave.robot;
     if (leave.seq < finished_[i]) continue;
-    std::optional<uint32_t> enter;
-    for (uint32_t s = leave.seq; s-- > finished_[i];) {
-      if (actions_.at(i, s).type == grid::ActionType::kMove) {
-        enter = s;
-        break;
-      }
-    }
-    const bool turning = actions_.at(i, finished_[i]).type == grid::ActionType::kRotate;
-    cause = std::max(cause, blocker_cause(enter, finished_[i], enqueued_[i], turning,
-                                          SwitchOptions{}.commit_actions));
+    cause =
+        std::max(cause, half_cell_blocker_cause(
+                            leave.seq, finished_[i], enqueued_[i], SwitchOptions{}.commit_actions,
+                            [&](uint32_t s) { return actions_.at(i, s).type; }));
   }
   return cause;
 }

@@ -177,21 +177,14 @@ std::optional<WaitCause> LiveAdg::wait_cause(uint32_t r) const {
   return cause;
 }
 
-// What the robot of an unfinished leave is doing: its stay began with its last move before the
-// leave (live_adg_switching.cpp: a stay runs from the move that enters to the next move); none
-// among its unfinished actions: it entered already, or stood there from the start.
+// What the robot of an unfinished leave is doing (its stays are half cells:
+// live_adg_switching.cpp).
 WaitCause LiveAdg::blocker_state(NodeRef leave) const {
   const auto& ib = robots_[leave.robot];
-  std::optional<uint32_t> enter;
-  for (uint32_t s = leave.seq; s-- > ib.finished;) {
-    if (action(leave.robot, s).type == ActionType::kMove) {
-      enter = s;
-      break;
-    }
-  }
-  const bool turning = action(leave.robot, ib.finished).type == ActionType::kRotate;
-  return blocker_cause(enter, ib.finished, ib.enqueued, turning,
-                       switching_ ? switching_->commit_actions : SwitchOptions{}.commit_actions);
+  return half_cell_blocker_cause(
+      leave.seq, ib.finished, ib.enqueued,
+      switching_ ? switching_->commit_actions : SwitchOptions{}.commit_actions,
+      [&](uint32_t s) { return action(leave.robot, s).type; });
 }
 
 CommitCut LiveAdg::commit_cut(const std::vector<uint32_t>& keep, uint32_t lookahead) const {

@@ -63,6 +63,22 @@ const char* to_string(WaitCause cause);
 // (seq `finished`) is a turn. Pure: every execution's wait_cause() decides with it.
 WaitCause blocker_cause(std::optional<uint32_t> enter_seq, uint32_t finished, uint32_t enqueued,
                         bool turning, uint32_t commit_actions);
+// The same for half-cell stays, which begin with the move that enters and end with the next move
+// (adg.cpp): the entry is the blocker's last move before `leave_seq` among its unfinished actions
+// (none: it is at the location). `type_of(seq)`: the blocker's action types.
+template <class TypeOf>
+WaitCause half_cell_blocker_cause(uint32_t leave_seq, uint32_t finished, uint32_t enqueued,
+                                  uint32_t commit_actions, TypeOf&& type_of) {
+  std::optional<uint32_t> enter;
+  for (uint32_t s = leave_seq; s-- > finished;) {
+    if (type_of(s) == grid::ActionType::kMove) {
+      enter = s;
+      break;
+    }
+  }
+  return blocker_cause(enter, finished, enqueued, type_of(finished) == grid::ActionType::kRotate,
+                       commit_actions);
+}
 
 struct ActionWindowRange {
   uint32_t first = 0;  // seq of the first action in the window
