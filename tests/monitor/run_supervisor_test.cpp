@@ -148,8 +148,11 @@ TEST(RunSupervisor, DuplicateStaleForeignAndOutOfRangeProgressChangeNothing) {
   r.sup.start(0);
   r.sup.on_clock(tick(0, 0), 0);
   r.sup.on_progress({1, kRun, 1}, 0);  // not enqueued yet: robot 0 is still in (1,0)
+  // Rejected at once: no honest host reports an action before it was sent, and held it would
+  // keep the tick from adding up.
+  EXPECT_EQ(r.sup.result().rejected_progress, 1u);
   r.sup.on_progress({0, kRun, 0}, 0);
-  EXPECT_EQ(r.sup.result().rejected_progress, 0u);  // lock-step: held until their tick
+  EXPECT_EQ(r.sup.result().finished_actions, 0u);  // lock-step: held until its tick
   r.sup.on_clock(tick(1, 1), 0);
   ASSERT_EQ(r.out.answers.size(), 2u);
   const int writes = r.out.window_writes;
@@ -685,6 +688,64 @@ TEST(RunSupervisor, AWaitingRobotIsAskedWhyWhenItBeginsAndEveryHalfSecondAfter) 
   EXPECT_DOUBLE_EQ(by_cause[std::size_t(WaitCause::kNoAction)], 1.25);
   EXPECT_DOUBLE_EQ(by_cause[std::size_t(WaitCause::kAtLocation)], 0.5);
   EXPECT_DOUBLE_EQ(sup.result().robots[0].waiting_time_s, 1.75);
+}
+
+// Robots with ten actions each, all enqueued; it keeps the order progress reached it in.
+struct RecordingExecution final : Execution {
+  std::vector<uint32_t> done = std::vector<uint32_t>(3, 0);
+  std::vector<std::pair<uint32_t, int64_t>> calls;  // robot, finished_seq
+  grid::Action rotate{};
+  std::size_t robots() const override { return done.size(); }
+  ProgressUpdate on_progress(uint32_t r, int64_t seq, double) override {
+    calls.emplace_back(r, seq);
+    if (seq < int64_t{done[r]}) return {ProgressResult::kStale, "old", {}};
+    done[r] = static_cast<uint32_t>(seq + 1);
+    return {ProgressResult::kAdvanced, "", {r}};
+  }
+  ActionWindowRange window(uint32_t r, uint32_t) const override { return {done[r], 10}; }
+  uint32_t finished(uint32_t r) const override { return done[r]; }
+  uint32_t enqueued(uint32_t) const override { return 10; }
+  uint32_t known(uint32_t) const override { return 10; }
+  const grid::Action& action(uint32_t, uint32_t) const override { return rotate; }
+  bool robot_done(uint32_t) const override { return false; }
+  std::size_t finished_total() const override { return done[0] + done[1] + done[2]; }
+  std::size_t total() const override { return 30; }
+  bool complete() const override { return false; }
+  bool deadlocked() const override { return false; }
+};
+
+// Bug: a lookahead run on the LoRR game problem did not reproduce in lock-step (seed 0: 356 068.5
+// then 359 289.7 s of waiting): each report reached the execution as it arrived, and what a
+// switchable execution decides depends on the order. Now a tick's progress reaches it once it
+// adds up, in robot order, each robot's newest report once, whatever order and split it came in.
+TEST(RunSupervisor, LockstepProgressOrderDidNotReproduceALookaheadRun) {
+  const std::vector<std::vector<ProgressEvent>> arrivals = {
+      {{2, kRun, 0}, {0, kRun, 0}, {0, kRun, 1}, {1, kRun, 2}},
+      {{1, kRun, 2}, {0, kRun, 0}, {2, kRun, 0}, {0, kRun, 1}},
+      {{0, kRun, 1}, {2, kRun, 0}, {1, kRun, 0}, {1, kRun, 2}}};
+  for (const bool tick_first : {true, false}) {
+    for (const auto& arrival : arrivals) {
+      RecordingExecution exec;
+      FakeWriter out;
+      RunSupervisor sup(exec, lockstep_config(), out);
+      sup.start(0);
+      sup.on_clock({kRun, 0, 0.0, 0, false}, 0);
+      if (tick_first) sup.on_clock({kRun, 1, 0.1, 6, false}, 0);
+      for (std::size_t i = 0; i < arrival.size(); ++i) {
+        sup.on_progress(arrival[i], 0);
+        if (i + 1 < arrival.size()) {
+          EXPECT_TRUE(exec.calls.empty()) << "taken before it adds up";
+        }
+      }
+      if (!tick_first) sup.on_clock({kRun, 1, 0.1, 6, false}, 0);
+      using Call = std::pair<uint32_t, int64_t>;
+      EXPECT_EQ(exec.calls, (std::vector<Call>{{0, 1}, {1, 2}, {2, 0}}));
+      ASSERT_EQ(out.answers.size(), 2u);
+      EXPECT_EQ(out.answers[1].tick, 1u);
+      sup.on_progress({0, kRun, 0}, 0);  // a stale report after its tick: nothing
+      EXPECT_EQ(exec.calls.size(), 3u);
+    }
+  }
 }
 
 }  // namespace

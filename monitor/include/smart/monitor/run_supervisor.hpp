@@ -9,9 +9,10 @@
 // the only clock the supervisor knows besides the sim time in ticks.
 //
 // Run policy, in one place:
-// - Lock-step: progress is taken at the sim time of the tick that announced it (buffered until
-//   that tick arrives), and the tick is answered once the progress taken adds up to its
-//   sync_total (wire/lockstep.hpp): runs are bit-identical whatever order samples arrive in.
+// - Lock-step: a tick's progress is held until it adds up to the tick's sync_total
+//   (wire/lockstep.hpp), then taken at the tick's sim time in robot order, each robot's newest
+//   report only, and the tick is answered: what the execution decides on progress (switches,
+//   anticipation) and so the run is bit-identical whatever order samples arrive in.
 //   The sim host's writers leaving, or no tick for timeout_s, loses the run (join_timeout_s until
 //   tick wire::kLastJoinTick is in: start-up, as the sim shards wait). With no newer tick
 //   for reanswer_s, the last answer goes out again (wire::MonitorHandshake::should_reanswer).
@@ -258,6 +259,8 @@ class RunSupervisor {
   void publish_window(uint32_t robot);
   void take_switches();  // the execution's new switches: into the results, said to the writer
   void apply_progress(const ProgressEvent& p, double sim_time_s);
+  void hold_progress(const ProgressEvent& p);
+  void take_held_progress(double now_s);
   void try_answer(double now_s);
   void update_waiting(double sim_time_s);
   void count_wait_cause(uint32_t robot, double dt, double sim_time_s, bool began);
@@ -279,10 +282,14 @@ class RunSupervisor {
   std::size_t unreplayed_switches_ = 0;  // of config.resume_switches: matched no pair
   wire::MonitorHandshake handshake_;
   wire::SyncCounter sent_;                     // end of the windows published, per robot
-  std::vector<ProgressEvent> early_progress_;  // lock-step: waiting for its tick
+  // Lock-step: the progress of the tick under way, held until it adds up (hold_progress).
+  std::vector<int64_t> held_seq_;      // per robot: newest finished_seq held, kNoneHeld if none
+  std::vector<uint32_t> held_robots_;  // robots with progress held
+  uint64_t held_gain_ = 0;             // finished actions the held progress adds
   std::vector<uint8_t> waiting_;
   // Why each robot waits, as last told, and when to ask again (count_wait_cause).
   static constexpr double kWaitCauseRefreshS = 0.5;
+  static constexpr int64_t kNoneHeld = INT64_MIN;
   struct ToldCause {
     WaitCause cause = WaitCause::kAtLocation;
     double next_s = 0;
