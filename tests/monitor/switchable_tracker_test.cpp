@@ -443,6 +443,48 @@ TEST(SwitchableTracker, LookaheadIsNotAskedWhenTheLocationLosesMoreThanAMove) {
   EXPECT_EQ(t.lookahead_comparisons(), 0u);
 }
 
+// A ready robot the comparison declined is tried again once the time it was expected to lose has
+// passed (at least 2 s): until then, reports elsewhere that change the expected times do not try
+// it. Robot 0 crosses (2, 1) west to east first and stalls at its start; robot 1 enters (2, 1)
+// from the north and turns back inside it (one half turn); robot 2 moves alone in row 2.
+// Rotations are learned to take 8 s, moves 1 s: robot 1, ready at 9 s, would hold the cell 10 s
+// while robot 0 is expected in 3 s and through 2 s later: robot 1 would save itself 5 s of
+// waiting and cost robot 0 7 s (declined). Robot 2's slow moves (10 s and 2 s) make every move
+// expected slower, so robot 0 later: at 10 s the retry is not due, at 12 s it is, and robot 1
+// passes.
+TEST(SwitchableTracker, ADeclinedRobotIsTriedAgainWhenTheTimeItWouldLoseHasPassed) {
+  const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
+  const auto actions =
+      build_actions(tracker_plan_of({{{0, 1}, {1, 1}, {2, 1}, {3, 1}},
+                                     {{2, 0}, {2, 0}, {2, 0}, {2, 0}, {2, 1}, {2, 0}},
+                                     {{0, 2}, {1, 2}}}),
+                    Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  SwitchableTracker t(actions, passing_orders(actions, grid),
+                      SwitchOptions{.commit_actions = 2, .anticipate = true});
+  ASSERT_EQ(t.order_at(cell), (std::vector<uint32_t>{0, 1}));
+  t.on_progress(1, 0, 8.0);  // its turn south: 8 s
+  t.on_progress(1, 1, 9.0);  // at the cell's edge: declined
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.enqueued(1), 2u);
+  t.on_progress(2, 0, 10.0);  // moves now expected slower, but the retry is due at 11 s
+  EXPECT_TRUE(t.switches()->empty());
+  EXPECT_EQ(t.enqueued(1), 2u);
+  t.on_progress(2, 1, 12.0);
+  ASSERT_EQ(t.switches()->size(), 1u);
+  const PassingSwitch& s = (*t.switches())[0];
+  EXPECT_DOUBLE_EQ(s.time_s, 12.0);
+  EXPECT_EQ(s.first, 1u);
+  EXPECT_EQ(s.second, 0u);
+  EXPECT_FALSE(s.anticipated);
+  EXPECT_EQ(t.order_at(cell), (std::vector<uint32_t>{1, 0}));
+  EXPECT_GT(t.enqueued(1), 2u);
+  run_robot(t, 1, 20.0);
+  run_robot(t, 0, 25.0);
+  run_robot(t, 2, 25.0);
+  EXPECT_TRUE(t.complete());
+}
+
 // The following case of the chain tests below: robot 0 goes north from (0, 2) and east along
 // row 1; robot 1 waits at (1, 0), then goes south into (1, 1), east to (2, 1) and south, planned
 // behind robot 0 at (1, 1), the midpoint (1.5, 1) and (2, 1).

@@ -281,7 +281,7 @@ class RunSupervisor {
   std::size_t taken_switches_ = 0;       // of exec_->switches()
   std::size_t unreplayed_switches_ = 0;  // of config.resume_switches: matched no pair
   wire::MonitorHandshake handshake_;
-  wire::SyncCounter sent_;                     // end of the windows published, per robot
+  wire::SyncCounter sent_;  // end of the windows published, per robot
   // Lock-step: the progress of the tick under way, held until it adds up (hold_progress).
   std::vector<int64_t> held_seq_;      // per robot: newest finished_seq held, kNoneHeld if none
   std::vector<uint32_t> held_robots_;  // robots with progress held
