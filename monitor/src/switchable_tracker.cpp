@@ -39,6 +39,8 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
       finished_(actions.robots(), 0),
       enqueued_(actions.robots(), 0),
       dirty_(actions.robots()),
+      declined_node_(options.anticipate ? actions.robots() : 0, kNoAction),
+      declines_(options.anticipate ? actions.robots() : 0, 0),
       mark_(actions.actions.size()),
       parent_(actions.actions.size(), 0),
       refused_(actions.robots()),
@@ -320,10 +322,6 @@ void SwitchableTracker::try_switches(double time_s, std::vector<uint32_t>& chang
 // CPU on SMART's plan). Not when it cannot be worth it (a cycle in the compared actions).
 void SwitchableTracker::decline(uint32_t robot, uint32_t node, double gain) {
   if (!std::isfinite(gain)) return;
-  if (declined_node_.empty()) {
-    declined_node_.assign(finished_.size(), kNoAction);
-    declines_.assign(finished_.size(), 0);
-  }
   uint8_t& n = declines_[robot];
   n = declined_node_[robot] == node ? static_cast<uint8_t>(std::min(n + 1, 16)) : 0;
   declined_node_[robot] = node;

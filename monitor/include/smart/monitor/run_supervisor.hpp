@@ -283,13 +283,13 @@ class RunSupervisor {
   wire::MonitorHandshake handshake_;
   wire::SyncCounter sent_;  // end of the windows published, per robot
   // Lock-step: the progress of the tick under way, held until it adds up (hold_progress).
+  static constexpr int64_t kNoneHeld = INT64_MIN;
   std::vector<int64_t> held_seq_;      // per robot: newest finished_seq held, kNoneHeld if none
   std::vector<uint32_t> held_robots_;  // robots with progress held
   uint64_t held_gain_ = 0;             // finished actions the held progress adds
   std::vector<uint8_t> waiting_;
   // Why each robot waits, as last told, and when to ask again (count_wait_cause).
   static constexpr double kWaitCauseRefreshS = 0.5;
-  static constexpr int64_t kNoneHeld = INT64_MIN;
   struct ToldCause {
     WaitCause cause = WaitCause::kAtLocation;
     double next_s = 0;

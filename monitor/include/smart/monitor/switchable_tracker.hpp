@@ -299,7 +299,8 @@ class SwitchableTracker final : public Execution {
   };
   std::priority_queue<Retry, std::vector<Retry>, std::greater<>> retries_;
   static constexpr double kRetryS = 2.0;
-  std::vector<uint32_t> declined_node_;  // per robot: the entry last declined, and how often
+  // Per robot (anticipating executions): the entry last declined, and how often in a row.
+  std::vector<uint32_t> declined_node_;
   std::vector<uint8_t> declines_;
   void decline(uint32_t robot, uint32_t node, double gain);
   void retry_declined(double time_s);
