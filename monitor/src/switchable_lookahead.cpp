@@ -199,10 +199,12 @@ double SwitchableTracker::cone_cost(const Swap& s) {
 }
 
 // The fleet's expected time saved by j passing i (i before j now, adjacent at one location) over
-// a cone of `nodes` actions.
-double SwitchableTracker::cone_saving(uint32_t i, uint32_t j, std::size_t nodes) {
+// a cone of `nodes` actions; with `window`, with the best setting of the window's pairs in each
+// order (SwitchOptions::window_pairs).
+double SwitchableTracker::cone_saving(uint32_t i, uint32_t j, std::size_t nodes, bool window) {
   const Swap s{i, j, false};
   collect_cone(s, nodes);
+  if (window && options_.window_pairs > 0) return window_saving(s);
   const double kept = cone_cost(s);
   const double swapped = cone_cost({i, j, true});
   return kept - swapped;
@@ -220,7 +222,52 @@ double SwitchableTracker::lookahead_saving(uint32_t i, uint32_t j) {
     if (near < -durations_.mean_s(grid::ActionType::kMove)) return near;
   }
   ++widened_;
-  return cone_saving(i, j, options_.lookahead_nodes);
+  return cone_saving(i, j, options_.lookahead_nodes, true);
+}
+
+// The window of `s`'s comparison: the cone's first stays x (in the cone's order, which does not
+// depend on which of s's stays is first now: the pair compared back gets the same window) whose
+// entry is not sent, with a stay y of another robot after it that is entered in the cone and
+// leaves again: the pair y may pass. At most one a location, none at s's: their swaps touch
+// neither each other's stays nor h, i, j, k, which s's orders read (next_in, prev_in).
+void SwitchableTracker::collect_window(const Swap& s) {
+  window_.clear();
+  const uint32_t here = location_[s.i];
+  for (std::size_t q = 0; q < cone_.size() && window_.size() < options_.window_pairs; ++q) {
+    const uint32_t u = cone_[q];
+    const Look& l = look_[u];
+    if (l.enters == 0 || l.enter == kNoAction) continue;
+    const uint32_t x = l.enter, y = link_[x].next;
+    if (y == kNoAction || location_[x] == here) continue;
+    const Stay& b = stay_[y];
+    if (b.robot == l.robot || b.enter == kNoAction || b.leave == kNoAction) continue;
+    if (look_[b.enter].cone != cone_id_ || sent_by(l.robot, u)) continue;
+    const bool taken = std::any_of(window_.begin(), window_.end(),
+                                   [&](uint32_t w) { return location_[w] == location_[x]; });
+    if (!taken) window_.push_back(x);
+  }
+}
+
+// The best expected cost over every setting of the window's pairs, with s's pair kept and with
+// it swapped: the saving of the swap. Each setting is made on the orders (relink), timed, and
+// undone, the last made first: nothing is sent in between, and the orders come back as they were.
+double SwitchableTracker::window_saving(const Swap& s) {
+  collect_window(s);
+  ++windowed_;
+  const auto n = static_cast<uint32_t>(window_.size());
+  double kept = std::numeric_limits<double>::infinity(), swapped = kept;
+  for (uint32_t setting = 0; setting < (1u << n); ++setting) {
+    for (uint32_t b = 0; b < n; ++b) {
+      if (setting >> b & 1u) relink(window_[b]);
+    }
+    kept = std::min(kept, cone_cost(s));
+    swapped = std::min(swapped, cone_cost({s.i, s.j, true}));
+    for (uint32_t b = n; b-- > 0;) {
+      if (setting >> b & 1u) relink(before(window_[b]).stay);
+    }
+  }
+  window_settings_ += std::size_t{1} << n;
+  return kept - swapped;
 }
 
 // The comparison switchable-opt decides by: the location's queue (expected_saving), or the

@@ -378,6 +378,34 @@ TEST(SwitchableTracker, LookaheadKeepsTheOrderWhenThePassedRobotHoldsUpOthersLat
   EXPECT_TRUE(t.complete());
 }
 
+// The window search (SwitchOptions::window_pairs): the crossing above, where the lookahead
+// keeps robot 0 first at (2, 1) because robot 0 later holds robots 2, 3 and 4 up at their
+// crossings. Those three pairs may switch too (robot 0 not sent its entries there; each follower
+// leaves again): with them in the window, the best setting has the followers pass robot 0 where
+// they are ready long before it, and then robot 1 passing first at (2, 1) costs nobody behind:
+// robot 1 passes. One pair's window is 2^3 settings.
+TEST(SwitchableTracker, WindowSearchSwitchesWhenThePairsAfterItMaySwitchToo) {
+  const Grid grid(9, 3, std::vector<uint8_t>(27, 0));
+  const auto actions = build_actions(crossing_with_followers(), Heading::kEast);
+  const auto cell = static_cast<uint32_t>(grid.half_index(HalfCell::of({2, 1})));
+  for (const uint32_t pairs : {0u, 3u}) {
+    SwitchableTracker t(
+        actions, passing_orders(actions, grid),
+        SwitchOptions{.anticipate = true, .lookahead_actions = 24, .window_pairs = pairs});
+    EXPECT_EQ(t.lookahead_widened(), 1u) << pairs;
+    EXPECT_EQ(t.lookahead_windowed(), pairs == 0 ? 0u : 1u);
+    EXPECT_EQ(t.window_settings(), pairs == 0 ? 0u : 8u);
+    EXPECT_EQ(t.order_at(cell),
+              (pairs == 0 ? std::vector<uint32_t>{0, 1} : std::vector<uint32_t>{1, 0}));
+    EXPECT_TRUE(t.order_holds());
+    EXPECT_TRUE(t.neighbours_hold());
+    for (int round = 0; round < 12 && !t.complete(); ++round) {
+      for (uint32_t r = 0; r < 5; ++r) run_robot(t, r, 1.0 + round);
+    }
+    EXPECT_TRUE(t.complete()) << pairs;
+  }
+}
+
 // Without the followers the lookahead agrees with the location's queue: robot 1 passes first.
 TEST(SwitchableTracker, LookaheadLetsTheRobotExpectedSoonerPassFirst) {
   const Grid grid(4, 3, std::vector<uint8_t>(12, 0));
@@ -607,6 +635,7 @@ std::vector<HalfCell> held(HalfCell h, Footprint footprint) {
 
 struct Outcome {
   std::size_t switches = 0, anticipated = 0, chained = 0;
+  std::size_t windowed = 0;  // comparisons searched over a window (SwitchOptions::window_pairs)
 };
 
 // One seeded random plan executed in a random order the tracker allows, a third of the robots
@@ -714,7 +743,7 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
     EXPECT_EQ(got, want) << "seed " << seed << " node " << node;
     if (got != want) return {};
   }
-  return {t.switches()->size(), t.anticipated(), t.chained()};
+  return {t.switches()->size(), t.anticipated(), t.chained(), t.lookahead_windowed()};
 }
 
 // A chain's cycle checks (switchable_chain.cpp) search a graph with the chain's new edges, which
@@ -836,6 +865,7 @@ Outcome run_anticipating(SwitchOptions options) {
         sum.switches += o.switches;
         sum.anticipated += o.anticipated;
         sum.chained += o.chained;
+        sum.windowed += o.windowed;
         if (::testing::Test::HasFailure()) {
           ADD_FAILURE() << "seed " << seed << " commit " << commit;
           return sum;
@@ -864,6 +894,18 @@ TEST(SwitchableTrackerProperty, LookaheadSwitchesNeverCollideAndAlwaysFinish) {
   EXPECT_GT(o.anticipated, 100u) << "of " << o.switches << " switches";
   EXPECT_GT(o.switches, o.anticipated) << "first come, first served still switches too";
   EXPECT_GT(o.chained, 100u) << "of " << o.switches << " switches";  // 484; 8 before
+}
+
+// The window search: every setting of a window's pairs is made on the orders and undone before
+// anything is sent; only the compared pair may switch, through every check. The same guarantees,
+// with the orders, their topological order and each action's copy of its neighbours checked
+// after every switch (run_random), and the replayed switches ending in the tracker's orders.
+TEST(SwitchableTrackerProperty, WindowSearchSwitchesNeverCollideAndAlwaysFinish) {
+  const auto o = run_anticipating(
+      {.anticipate = true, .lookahead_actions = 24, .lookahead_margin_s = 0.05, .window_pairs = 3});
+  EXPECT_GT(o.windowed, 100u) << "of " << o.switches << " switches";
+  EXPECT_GT(o.anticipated, 100u) << "of " << o.switches << " switches";
+  EXPECT_GT(o.switches, o.anticipated) << "first come, first served still switches too";
 }
 
 }  // namespace

@@ -60,6 +60,13 @@
 // does not lose more than one mean move there (most comparisons do, and few of those would have
 // gained over the whole cone, measured). An order whose compared actions form a cycle is
 // expected to take for ever; the deadlock search still decides.
+// Window search (options.window_pairs > 0, with the lookahead): the widened comparison also
+// sets other pairs in the cone either way (at most one a location, never the compared pair's,
+// the first of each not sent its entry, the second leaving again), every setting of them, and
+// compares the best setting with the pair swapped against the best with it kept, as SES's
+// search does over a graph's switchable edges, over a bounded window. Only the compared pair
+// may switch; the window's other pairs are set when their own turn comes, through every check
+// above (a setting that closes a cycle outside the cone is never made, only expected).
 // Pure.
 #pragma once
 
@@ -117,6 +124,10 @@ class SwitchableTracker final : public Execution {
   std::size_t lookahead_comparisons() const { return compared_; }
   // Of those, the ones compared over the whole cone, not the first lookahead_first_nodes alone.
   std::size_t lookahead_widened() const { return widened_; }
+  // Of those, the ones searched over a window of other pairs (SwitchOptions::window_pairs), and
+  // the settings of the window's pairs they compared in all.
+  std::size_t lookahead_windowed() const { return windowed_; }
+  std::size_t window_settings() const { return window_settings_; }
   const ActionDurations& durations() const { return durations_; }
   // The robots in location `location`'s current passing order (tests, the viewer).
   std::vector<uint32_t> order_at(uint32_t location) const;
@@ -241,7 +252,9 @@ class SwitchableTracker final : public Execution {
   double margin() const {
     return options_.lookahead_actions > 0 ? options_.lookahead_margin_s : options_.margin_s;
   }
-  double cone_saving(uint32_t i, uint32_t j, std::size_t nodes);
+  double cone_saving(uint32_t i, uint32_t j, std::size_t nodes, bool window = false);
+  void collect_window(const Swap& s);
+  double window_saving(const Swap& s);
   double lookahead_saving(uint32_t i, uint32_t j);
 
   const ActionPlan& actions_;
@@ -378,6 +391,9 @@ class SwitchableTracker final : public Execution {
   std::vector<Look> look_;
   uint32_t cone_id_ = 0, order_id_ = 0;
   std::size_t compared_ = 0, widened_ = 0;
+  // The window's pairs: each the stay its first robot holds, passed by the stay after it.
+  std::vector<uint32_t> window_;
+  std::size_t windowed_ = 0, window_settings_ = 0;
   std::size_t chained_ = 0;
 };
 

@@ -47,7 +47,17 @@ struct SwitchOptions {
   // next location) passes it there too, up to this many locations at once, when that closes
   // no cycle (switchable_chain.cpp). 1: one location, as BTPG's bidirectional pairs.
   uint32_t chain_locations = 8;
+  // Window search (`--switch-window-pairs`, switchable-lookahead): a pair's widened comparison
+  // also tries both orders of up to this many other pairs in its cone (at other locations, one
+  // a location, their first robot not yet sent its entry), every setting of them, and the pair
+  // swaps when the best setting with it swapped beats the best with it kept: SES's optimal
+  // search (Feng et al., ICAPS 2024, §5) over a bounded window, decided for the one edge due,
+  // the window's others left to their own turn (receding horizon). 2^n settings of n pairs,
+  // so bounded by kMaxWindowPairs. 0: off (one pair's two orders, as before).
+  uint32_t window_pairs = 0;
 };
+
+inline constexpr uint32_t kMaxWindowPairs = 6;
 
 // The execution's name in summary.json and results.csv (`smart run --execution`).
 inline const char* execution_name(const SwitchOptions& o) {
