@@ -263,6 +263,23 @@ TEST(RunOptions, AnticipationKnobsReachTheExecutionThatReadsThem) {
   EXPECT_THROW(parse("adg", {"--switch-horizon-actions", "24"}), std::invalid_argument);
   EXPECT_THROW(parse("switchable-opt", {"--switch-margin-s", "-1"}), CLI::ParseError);
   EXPECT_THROW(parse("switchable-lookahead", {"--switch-lookahead-actions", "0"}), CLI::ParseError);
+  // The window search (SwitchOptions::window_pairs): off unless told, the lookahead's alone,
+  // at most kMaxWindowPairs.
+  EXPECT_EQ(look.window_pairs, 0u);
+  EXPECT_EQ(parse("switchable-lookahead", {"--switch-window-pairs", "3"}).window_pairs, 3u);
+  EXPECT_THROW(parse("switchable-opt", {"--switch-window-pairs", "3"}), std::invalid_argument);
+  EXPECT_THROW(parse("switchable-lookahead", {"--switch-window-pairs", "7"}), CLI::ParseError);
+  // Plan runs only: a lifelong run is told so, not run without it.
+  MonitorCliOptions lifelong;
+  lifelong.execution = MonitorCliOptions::Execution::kSwitchableLookahead;
+  lifelong.switch_window_pairs = 3;
+  lifelong.sim.source.tasks = "random";
+  try {
+    (void)switch_options(lifelong);
+    ADD_FAILURE() << "a lifelong run took --switch-window-pairs";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("--switch-window-pairs: plan runs only"));
+  }
 }
 
 }  // namespace
