@@ -56,7 +56,7 @@ from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator  # noqa: 
 
 # The switching executions' knobs (`smart run --switch-*`), each an axis of its own.
 SWITCH_KNOBS = ["switch_commit_actions", "switch_chain_locations", "switch_margin_s",
-                "switch_horizon_actions", "switch_lookahead_actions"]
+                "switch_horizon_actions", "switch_lookahead_actions", "switch_window_pairs"]
 LINE_AXES = ["plan", "execution"] + SWITCH_KNOBS + ["robot", "qos", "uncertainty",
                                                     "replan_period_s", "lookahead", "clock"]
 PANEL_AXES = ["map"]
@@ -69,6 +69,7 @@ AXIS_NAMES = {"plan": "plan", "robot": "robot", "qos": "QoS", "uncertainty": "un
               "switch_margin_s": "anticipation margin (s)",
               "switch_horizon_actions": "anticipation horizon (actions)",
               "switch_lookahead_actions": "lookahead reach (actions)",
+              "switch_window_pairs": "window search (pairs)",
               "lookahead": "commit cut look-ahead (actions)"}
 RATE_FIELDS = {"success_rate"}
 FORMATS = ("png", "svg", "pdf")

@@ -254,6 +254,9 @@ const std::vector<KnobReaders>& knob_readers() {
       {"switch_lookahead_actions",
        {"switchable-lookahead"},
        "only switchable-lookahead takes it; add it to executions"},
+      {"switch_window_pairs",
+       {"switchable-lookahead"},
+       "only switchable-lookahead takes it; add it to executions"},
       {"switch_margin_s",
        {"switchable-opt", "switchable-lookahead"},
        "only switchable-opt and switchable-lookahead take it; add one of them to executions"},
@@ -289,11 +292,12 @@ void needs_a_reader(const YAML::Node& n, const std::string& src, const Spec& s,
 // A switching axis of whole numbers from 1 to `hi` (smart run's range); `example` shows a list.
 std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::string& src,
                                           const Spec& s, const std::string& field, long long hi,
-                                          const std::string& range, const std::string& example) {
+                                          const std::string& range, const std::string& example,
+                                          long long lo = 1) {
   const auto n = root[field];
   std::vector<uint32_t> out;
   if (!n) return out;
-  for (const auto k : whole_numbers(n, src, field, 1, hi, range)) {
+  for (const auto k : whole_numbers(n, src, field, lo, hi, range)) {
     out.push_back(static_cast<uint32_t>(k));
   }
   if (out.empty()) fail(src, n, field, "is empty; give at least one, e.g. " + example);
@@ -339,6 +343,12 @@ void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s
                                                  "from 1 to 1000 actions", "[12, 24]");
   s.switch_lookahead_actions = read_switching_axis(root, src, s, "switch_lookahead_actions", 1000,
                                                    "from 1 to 1000 actions", "[24, 48]");
+  s.switch_window_pairs = read_switching_axis(root, src, s, "switch_window_pairs", 6,
+                                              "from 0 (off) to 6 pairs", "[0, 3]", 0);
+  if (s.lifelong && !s.switch_window_pairs.empty()) {
+    fail(src, root["switch_window_pairs"], "switch_window_pairs",
+         "plan runs only: the lifelong ADG compares one pair's orders; drop it");
+  }
   if (const auto n = root["switch_margin_s"]) {
     const std::string field = "switch_margin_s";
     s.switch_margin_s = numbers(n, src, field, 0, 3600);
@@ -394,6 +404,7 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
                                              "switch_margin_s",
                                              "switch_horizon_actions",
                                              "switch_lookahead_actions",
+                                             "switch_window_pairs",
                                              "state_rate_hz"};
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
@@ -401,7 +412,7 @@ void read_options(const YAML::Node& root, const std::string& src, Spec& s) {
            "unknown field; the fields are name, maps, scens, agents, plan or plans, robots, qos, "
            "clock, uncertainty, executions, switch_commit_actions, switch_chain_locations, "
            "switch_margin_s, switch_horizon_actions, switch_lookahead_actions, "
-           "repeats, state_rate_hz "
+           "switch_window_pairs, repeats, state_rate_hz "
            "(lifelong: lifelong, agents, planners)");
     }
   }
@@ -539,6 +550,7 @@ const std::vector<std::string> kParams{"cell",
                                        "switch_margin_s",
                                        "switch_horizon_actions",
                                        "switch_lookahead_actions",
+                                       "switch_window_pairs",
                                        "replan_period_s",
                                        "lookahead",
                                        "planner_runtime_s"};
@@ -578,6 +590,7 @@ struct Knobs {
   uint32_t commit = 0, chain = 0;
   std::optional<double> margin_s;
   uint32_t horizon = 0, reach = 0;
+  std::optional<uint32_t> window;
 };
 
 // The knob settings of an execution: the product of the axes it reads (plain ADG reads none).
@@ -594,8 +607,10 @@ std::vector<Knobs> switching_axis(const Spec& s, const std::string& e) {
       for (const auto margin : read(s.switch_margin_s, "switch_margin_s")) {
         for (const auto horizon : read(s.switch_horizon_actions, "switch_horizon_actions")) {
           for (const auto reach : read(s.switch_lookahead_actions, "switch_lookahead_actions")) {
-            axis.push_back({commit.value_or(0), chain.value_or(0), margin, horizon.value_or(0),
-                            reach.value_or(0)});
+            for (const auto window : read(s.switch_window_pairs, "switch_window_pairs")) {
+              axis.push_back({commit.value_or(0), chain.value_or(0), margin, horizon.value_or(0),
+                              reach.value_or(0), window});
+            }
           }
         }
       }
@@ -612,6 +627,7 @@ std::string knobs_key(const std::string& e, const Knobs& k) {
   if (k.margin_s) key += "-m" + compact(*k.margin_s);
   if (k.horizon != 0) key += "-h" + std::to_string(k.horizon);
   if (k.reach != 0) key += "-a" + std::to_string(k.reach);
+  if (k.window) key += "-w" + std::to_string(*k.window);
   return key;
 }
 
@@ -638,7 +654,7 @@ std::vector<Cell> expand(const Spec& s) {
                         if (look != 0) key += "-l" + std::to_string(look);
                         key += knobs_key(e, k) + "-r" + std::to_string(r);
                         cells.push_back({i, n, p, robot, qos, u, r, t, key, e, k.commit, k.chain,
-                                         look, k.margin_s, k.horizon, k.reach});
+                                         look, k.margin_s, k.horizon, k.reach, k.window});
                       }
                     }
                   }
@@ -668,6 +684,9 @@ std::vector<std::string> execution_flags(const Cell& c) {
   if (c.switch_lookahead_actions != 0) {
     flags.insert(flags.end(),
                  {"--switch-lookahead-actions", std::to_string(c.switch_lookahead_actions)});
+  }
+  if (c.window_pairs) {
+    flags.insert(flags.end(), {"--switch-window-pairs", std::to_string(*c.window_pairs)});
   }
   return flags;
 }
@@ -716,6 +735,7 @@ json result_row(const Spec& s, const Cell& c, const json& summary,
   if (c.switch_lookahead_actions != 0) {
     row["switch_lookahead_actions"] = c.switch_lookahead_actions;
   }
+  if (c.window_pairs) row["switch_window_pairs"] = *c.window_pairs;
   if (planner_runtime_s) row["planner_runtime_s"] = *planner_runtime_s;
   if (s.lifelong) {
     row["replan_period_s"] = s.lifelong->replan_period_s.at(c.period);

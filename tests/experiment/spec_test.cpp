@@ -358,6 +358,40 @@ TEST(Spec, AnticipationKnobsAreAxesOfTheExecutionsThatReadThem) {
         "m.yaml:7: switch_horizon_actions: 0 is out of range: from 1 to 1000 actions");
 }
 
+// The lookahead's window search is an axis of switchable-lookahead from 0 (off) to 6 pairs, in
+// the folder name (-w) and results.csv; plan runs only (the lifelong ADG has none).
+TEST(Spec, WindowPairsAreAnAxisOfTheLookaheadInPlanRuns) {
+  const std::string base =
+      "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
+  const auto s = parse_spec(
+      base + "executions: [adg, switchable-lookahead]\nswitch_window_pairs: [0, 3]\n", "w.yaml");
+  const auto cells = expand(s);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[1].key, "0-s-n5-footbot-lan-switchable-lookahead-w0-r0");
+  EXPECT_EQ(cells[2].key, "0-s-n5-footbot-lan-switchable-lookahead-w3-r0");
+  EXPECT_EQ(execution_flags(cells[2]),
+            (std::vector<std::string>{"--execution", "switchable-lookahead",
+                                      "--switch-window-pairs", "3"}));
+  EXPECT_EQ(result_row(s, cells[1], nlohmann::json::object())["switch_window_pairs"], 0);
+  EXPECT_FALSE(result_row(s, cells[0], nlohmann::json::object()).contains("switch_window_pairs"));
+  const auto fails = [&](const std::string& text, const std::string& what) {
+    try {
+      (void)parse_spec(text, "w.yaml");
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(what));
+    }
+  };
+  fails(base + "executions: [switchable-opt]\nswitch_window_pairs: [3]\n",
+        "w.yaml:7: switch_window_pairs: only switchable-lookahead takes it");
+  fails(base + "executions: [switchable-lookahead]\nswitch_window_pairs: [7]\n",
+        "w.yaml:7: switch_window_pairs: 7 is out of range: from 0 (off) to 6 pairs");
+  fails(
+      "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable-lookahead]\n"
+      "switch_window_pairs: [3]\n",
+      "w.yaml:5: switch_window_pairs: plan runs only");
+}
+
 // Regression (2026-12-06): a margin was written into the folder name with six significant
 // digits, so margins that differ past the sixth shared one folder and one run.
 TEST(Spec, MarginsThatDifferPastTheSixthDigitGetFoldersOfTheirOwn) {
