@@ -30,7 +30,8 @@ mkdir -p "$out"
 # (docs/execution.md, "Cost"). needs_commit (whether a robot's next entry waits to be sent near
 # it: plain ADG sends it) was missing until 2026-12-03 (docs/execution.md, "A chain's cone
 # walked when it is compared"). RobotSet (the robots to try, robot_set.hpp) since 2026-12-06.
-switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|chain_floor|each_chain_edge|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|RobotSet::|ActionDurations::|queue_saving'
+# collect_window and window_saving (the window search, --switch-window-pairs) since 2026-12-07.
+switching='SwitchableTracker::(needs_commit|shares_next|try_switches|try_switch|blocking_stay|reaches|anticipate|expected_saving|queue_of|saving|lookahead_saving|collect_cone|walk_cone|cone_saving|collect_window|window_saving|cone_cost|next_mark|expect|next_in|prev_in|arrival|finish_estimate|observe|still_refused|forget_refusal|has_edge|decide|candidate|consider|take_first|swap_with_next|relink|settle|try_chain|chain_link|chain_cycle|chain_floor|each_chain_edge|undo_chain|redo_chain|chain_saves|init_look|path_holds|refuse|unsettle|unsettle_watchers|next_stamp|init_order|order_swapped|order_edge|order_walk|unordered)|RobotSet::|ActionDurations::|queue_saving'
 tracker='(ExecutionTracker|SwitchableTracker|RobotSet|ActionDurations)::|queue_saving'
 run_args=(--map "$bench/maps/warehouse-10-20-10-2-1.map"
   --scen "$bench/scens/warehouse-10-20-10-2-1-random-1.scen"
