@@ -50,14 +50,81 @@ double LiveAdg::lookahead_saving(const Pair& p) {
     if (near < -durations_.mean_s(ActionType::kMove)) return near;
   }
   ++widened_;
-  return cone_saving(p, o.lookahead_nodes);
+  return cone_saving(p, o.lookahead_nodes, true);
 }
 
-// The fleet's expected time saved by j passing i over a cone of `nodes` actions.
-double LiveAdg::cone_saving(const Pair& p, std::size_t nodes) {
+// The fleet's expected time saved by j passing i over a cone of `nodes` actions; with `window`,
+// with the best setting of the window's pairs in each order (SwitchOptions::window_pairs).
+double LiveAdg::cone_saving(const Pair& p, std::size_t nodes, bool window) {
   collect_cone(p, nodes);
+  if (window && switching_->window_pairs > 0 && !logging_) return window_saving(p);
   const double kept = cone_cost(p, false);
   return kept - cone_cost(p, true);
+}
+
+// The window of p's comparison (SwitchableTracker::collect_window says why each condition): in
+// the cone's order, the Type-2 edges from a cone action to another robot's entry in the cone
+// that may switch as try_switch's pairs may (switchable_pair: the first's entry not sent nor
+// due, the second leaves and does not come back), at most one a location and none at p's. Their
+// edges are all at their own locations, so a setting changes none that p's orders read.
+void LiveAdg::collect_window(const Pair& p) {
+  window_.clear();
+  const auto location_of = [this](const Pair& q) {
+    return grid_.half_index(action(q.j_enter.robot, q.j_enter.seq).to);
+  };
+  const auto here = location_of(p);
+  for (std::size_t c = 0; c < cone_.size() && window_.size() < switching_->window_pairs; ++c) {
+    const NodeRef v = cone_[c];
+    for (const NodeRef w : node(v.robot, v.seq).out) {
+      if (window_.size() >= switching_->window_pairs) break;
+      if (w.robot == v.robot || node(w.robot, w.seq).cone != cone_id_) continue;
+      const auto q = switchable_pair(v, w);
+      if (!q) continue;
+      const auto there = location_of(*q);
+      if (there == here || std::any_of(window_.begin(), window_.end(),
+                                       [&](const Pair& o) { return location_of(o) == there; })) {
+        continue;
+      }
+      window_.push_back(*q);
+    }
+  }
+}
+
+// The best expected cost over every setting of the window's pairs, with p kept and with p
+// swapped: the saving of the swap. Each setting's edges are exchanged, timed, and the nodes they
+// touched restored from a copy (their edge lists in their order, their pending counts).
+double LiveAdg::window_saving(const Pair& p) {
+  collect_window(p);
+  ++windowed_;
+  saved_.clear();
+  const auto save = [this](NodeRef r) {
+    const Node& n = node(r.robot, r.seq);
+    saved_.push_back({r, n.in, n.out, n.pending});
+  };
+  for (const Pair& q : window_) {
+    for (const NodeRef r : {q.i_enter, q.i_leave, q.j_enter, q.j_leave}) save(r);
+    for (const NodeRef k : node(q.j_leave.robot, q.j_leave.seq).out) save(k);
+  }
+  const std::size_t type2 = type2_total_;
+  const auto n = static_cast<uint32_t>(window_.size());
+  double kept = std::numeric_limits<double>::infinity(), swapped = kept;
+  for (uint32_t setting = 0; setting < (1u << n); ++setting) {
+    for (uint32_t b = 0; b < n; ++b) {
+      if (setting >> b & 1u) exchange_edges(window_[b]);
+    }
+    kept = std::min(kept, cone_cost(p, false));
+    swapped = std::min(swapped, cone_cost(p, true));
+    if (setting == 0) continue;
+    for (auto s = saved_.rbegin(); s != saved_.rend(); ++s) {  // the first copy of each last
+      Node& m = node(s->ref.robot, s->ref.seq);
+      m.in = s->in;
+      m.out = s->out;
+      m.pending = s->pending;
+    }
+    type2_total_ = type2;
+  }
+  window_settings_ += std::size_t{1} << n;
+  return kept - swapped;
 }
 
 // The successors of u in the pair's kept or swapped order.

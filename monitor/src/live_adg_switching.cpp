@@ -263,17 +263,23 @@ void LiveAdg::remove_edge(NodeRef from, NodeRef to) {
 // followed j follows i (robot i's own later stay needs no edge), and the leaves' pass keys are
 // exchanged so the order's last occupant is still the one with the greatest key.
 void LiveAdg::swap_order(NodeRef i_enter, NodeRef i_leave, NodeRef j_enter, NodeRef j_leave) {
-  remove_edge(i_leave, j_enter);
-  const Refs followers = node(j_leave.robot, j_leave.seq).out;
-  for (const NodeRef k : followers) {
-    remove_edge(j_leave, k);
-    if (k.robot != i_leave.robot) add_edge(i_leave, k);
-    dirty_.insert(k.robot);
-  }
-  add_edge(j_leave, i_enter);
+  for (const NodeRef k : node(j_leave.robot, j_leave.seq).out) dirty_.insert(k.robot);
+  exchange_edges({i_enter, i_leave, j_enter, j_leave});
   if (logging_) chain_keys_.emplace_back(i_leave, j_leave);
   std::swap(node(i_leave.robot, i_leave.seq).pass_key, node(j_leave.robot, j_leave.seq).pass_key);
   ++epoch_;
+}
+
+// swap_order's edges alone (the window search's settings, live_adg_lookahead.cpp, are made
+// with this and restored from a copy: no robot marked, no epoch, no pass key).
+void LiveAdg::exchange_edges(const Pair& p) {
+  remove_edge(p.i_leave, p.j_enter);
+  const Refs followers = node(p.j_leave.robot, p.j_leave.seq).out;
+  for (const NodeRef k : followers) {
+    remove_edge(p.j_leave, k);
+    if (k.robot != p.i_leave.robot) add_edge(p.i_leave, k);
+  }
+  add_edge(p.j_leave, p.i_enter);
 }
 
 }  // namespace smart::monitor

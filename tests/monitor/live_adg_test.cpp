@@ -446,6 +446,7 @@ struct StreamCase {
   bool anticipate = false;  // switchable-opt (margin 0.5 s: many anticipated switches)
   bool look = false;        // switchable-lookahead (24 actions)
   uint32_t chain = SwitchOptions{}.chain_locations;  // 1: one location at a time
+  uint32_t window = 0;  // the lookahead's window search (SwitchOptions::window_pairs)
 };
 
 // Random task streams on a cramped map, replanned every `period` ticks from the commit cut with
@@ -456,6 +457,7 @@ struct StreamCase {
 std::size_t anticipated_total = 0;  // anticipated switches of the streams run
 std::size_t compared_total = 0;     // and pairs compared over their cone
 std::size_t chained_total = 0;      // and switches made as parts of chains
+std::size_t windowed_total = 0;     // and comparisons searched over a window
 
 std::size_t run_stream(const StreamCase& c) {
   const auto g = planning::generate_random_map(16, 16, 0.2, c.seed);
@@ -472,6 +474,7 @@ std::size_t run_stream(const StreamCase& c) {
     o.margin_s = 0.5;
     if (c.look) o.lookahead_actions = 24;
     o.chain_locations = c.chain;
+    o.window_pairs = c.window;
     adg.enable_switching(o);
   }
   Executor ex(g, adg, starts, c.seed + 1, c.delay_p);
@@ -502,6 +505,7 @@ std::size_t run_stream(const StreamCase& c) {
   EXPECT_EQ(executed, adg.finished_total());
   EXPECT_GT(reached, robots) << "the stream stalled";
   compared_total += adg.lookahead_comparisons();
+  windowed_total += adg.lookahead_windowed();
   chained_total += adg.chained();
   if (c.chain == 1) {
     EXPECT_EQ(adg.chained(), 0u);
@@ -623,6 +627,35 @@ TEST(LiveAdgLookahead, TheOrderStaysWhenThePassedRobotHoldsUpOthersLater) {
                                    [&](const PassingSwitch& s) { return s.location == at_2_1; }));
 }
 
+// The window search on the growing graph (SwitchableTracker's
+// WindowSearchSwitchesWhenThePairsAfterItMaySwitchToo): with the followers' three crossings in
+// the window (8 settings), the best setting has them pass robot 0 where they are ready long
+// before it, and robot 1 passing first at (2,1) then costs nobody behind: robot 1 passes,
+// anticipated at the append. Every setting's edges are restored: the graph after the comparison
+// is the one-switch graph, and all finish without a conflict.
+TEST(LiveAdgLookahead, TheWindowSearchSwitchesWhenThePairsAfterItMaySwitchToo) {
+  const auto g = open_map(9, 3);
+  const auto paths = crossing_with_followers();
+  std::vector<Cell> starts;
+  for (const auto& p : paths) starts.push_back(p[0]);
+  const auto at_2_1 = static_cast<uint32_t>(g.half_index(HalfCell::of({2, 1})));
+  LiveAdg adg(g, starts, Heading::kEast);
+  SwitchOptions o = lookahead_options(true);
+  o.window_pairs = 3;
+  adg.enable_switching(o);
+  ASSERT_TRUE(adg.append(paths, 0).empty());
+  EXPECT_EQ(adg.lookahead_windowed(), 1u);
+  EXPECT_EQ(adg.window_settings(), 8u);
+  EXPECT_EQ(*adg.switches(), (std::vector<PassingSwitch>{{0, at_2_1, 1, 0, true}}));
+  // Robot 0's entry into (2,1) waits for robot 1's leaving it; each follower still waits for
+  // robot 0 at its crossing (their own turn has not come).
+  EXPECT_EQ(adg.waits_for(0, 3), (std::vector<NodeRef>{{1, 3}}));
+  Executor ex(g, adg, starts, 1);
+  for (int t = 0; t < 60; ++t) ex.tick(t);
+  EXPECT_EQ(ex.conflicts, 0u);
+  for (uint32_t r = 0; r < 5; ++r) EXPECT_EQ(adg.finished(r), adg.end(r)) << "robot " << r;
+}
+
 // Without robots behind (LateRobotFixture's crossing), the lookahead lets the robot expected
 // sooner pass first: robot 1 goes first, anticipated at the append, as switchable-opt does.
 TEST(LiveAdgLookahead, TheRobotExpectedSoonerPassesFirst) {
@@ -653,6 +686,25 @@ TEST(LiveAdgProperty, LookaheadStreamsStaySafeAndLive) {
   EXPECT_GT(anticipated_total, 20u);
   EXPECT_GT(compared_total, 100u);
   EXPECT_GT(chained_total, 100u);  // 1051; 3 before chains were compared as a whole
+}
+
+// The window search on the growing graph: the same streams with a window of 3 pairs, each
+// setting made on the graph's edges and restored before anything is sent: the same safety and
+// liveness, and windows searched.
+TEST(LiveAdgProperty, WindowSearchStreamsStaySafeAndLive) {
+  std::size_t switches = 0;
+  windowed_total = 0;
+  for (StreamCase c :
+       {StreamCase{41, 0.3, 4, 3, 1, false, true}, StreamCase{42, 0.5, 2, 7, 2, false, true},
+        StreamCase{43, 0.2, 10, 1, 6, false, true}, StreamCase{44, 0.4, 0, 5, 1, false, true},
+        StreamCase{45, 0.6, 8, 2, 6, false, true}, StreamCase{46, 0, 4, 4, 2, false, true}}) {
+    c.window = 3;
+    SCOPED_TRACE("seed " + std::to_string(c.seed) + " commit " + std::to_string(c.commit));
+    switches += run_stream(c);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(switches, 100u);
+  EXPECT_GT(windowed_total, 100u);
 }
 
 }  // namespace

@@ -60,6 +60,9 @@
 // lookahead_first_nodes of them; an anticipated switch must save lookahead_margin_s. The same
 // skips: the location's queue answers when j would not wait for i, or when it expects the swap to
 // lose more than one mean move. An order whose compared actions form a cycle costs for ever.
+// With SwitchOptions::window_pairs, the widened comparison also sets up to that many other pairs
+// of the cone either way (switchable_tracker.hpp, "Window search"): each setting's edges are
+// exchanged and the nodes they touched restored from a copy before anything is sent.
 #pragma once
 
 #include <boost/container/small_vector.hpp>
@@ -158,6 +161,10 @@ class LiveAdg final : public Execution {
   // (switchable-lookahead; tests, the bench).
   std::size_t lookahead_comparisons() const { return compared_; }
   std::size_t lookahead_widened() const { return widened_; }
+  // Of those, the ones searched over a window of other pairs (SwitchOptions::window_pairs), and
+  // the settings of the window's pairs they compared in all.
+  std::size_t lookahead_windowed() const { return windowed_; }
+  std::size_t window_settings() const { return window_settings_; }
   // Switches made as parts of chains (SwitchOptions::chain_locations; a part of switches()).
   std::size_t chained() const { return chained_; }
 
@@ -274,7 +281,10 @@ class LiveAdg final : public Execution {
   void clear_marks(uint32_t Node::*mark);  // every unfinished action's
   double saving(const Pair& p);
   double lookahead_saving(const Pair& p);
-  double cone_saving(const Pair& p, std::size_t nodes);
+  double cone_saving(const Pair& p, std::size_t nodes, bool window = false);
+  void collect_window(const Pair& p);
+  double window_saving(const Pair& p);
+  void exchange_edges(const Pair& p);
   void collect_cone(const Pair& p, std::size_t nodes, bool extend = false);
   void successors(const Pair& p, NodeRef u, bool swapped, std::vector<NodeRef>& out) const;
   double expect(NodeRef n, const Pair& p, bool swapped);
@@ -319,6 +329,16 @@ class LiveAdg final : public Execution {
   uint32_t order_id_ = 0;
   std::size_t compared_ = 0;
   std::size_t widened_ = 0;
+  // The window search: its pairs, the edges of the nodes a setting changes (restored exactly
+  // after each), and its counts.
+  std::vector<Pair> window_;
+  struct SavedEdges {
+    NodeRef ref{};
+    Refs in, out;
+    uint32_t pending = 0;
+  };
+  std::vector<SavedEdges> saved_;
+  std::size_t windowed_ = 0, window_settings_ = 0;
   // Chains: while logging_, every edge added or removed and every pass-key exchange is logged,
   // so a chain that closes a cycle is undone exactly; the last cycle search's path.
   struct EdgeOp {
