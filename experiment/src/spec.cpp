@@ -345,10 +345,6 @@ void read_switching_axes(const YAML::Node& root, const std::string& src, Spec& s
                                                    "from 1 to 1000 actions", "[24, 48]");
   s.switch_window_pairs = read_switching_axis(root, src, s, "switch_window_pairs", 6,
                                               "from 0 (off) to 6 pairs", "[0, 3]", 0);
-  if (s.lifelong && !s.switch_window_pairs.empty()) {
-    fail(src, root["switch_window_pairs"], "switch_window_pairs",
-         "plan runs only: the lifelong ADG compares one pair's orders; drop it");
-  }
   if (const auto n = root["switch_margin_s"]) {
     const std::string field = "switch_margin_s";
     s.switch_margin_s = numbers(n, src, field, 0, 3600);

@@ -359,8 +359,8 @@ TEST(Spec, AnticipationKnobsAreAxesOfTheExecutionsThatReadThem) {
 }
 
 // The lookahead's window search is an axis of switchable-lookahead from 0 (off) to 6 pairs, in
-// the folder name (-w) and results.csv; plan runs only (the lifelong ADG has none).
-TEST(Spec, WindowPairsAreAnAxisOfTheLookaheadInPlanRuns) {
+// the folder name (-w) and results.csv, in plan and lifelong runs.
+TEST(Spec, WindowPairsAreAnAxisOfTheLookahead) {
   const std::string base =
       "name: a\nmaps: [m]\nscens: [s]\nagents: [5]\nplan: {planner: builtin}\n";
   const auto s = parse_spec(
@@ -386,10 +386,13 @@ TEST(Spec, WindowPairsAreAnAxisOfTheLookaheadInPlanRuns) {
         "w.yaml:7: switch_window_pairs: only switchable-lookahead takes it");
   fails(base + "executions: [switchable-lookahead]\nswitch_window_pairs: [7]\n",
         "w.yaml:7: switch_window_pairs: 7 is out of range: from 0 (off) to 6 pairs");
-  fails(
-      "name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: [switchable-lookahead]\n"
-      "switch_window_pairs: [3]\n",
-      "w.yaml:5: switch_window_pairs: plan runs only");
+  // Lifelong runs too (LiveAdg's window search).
+  const auto lifelong =
+      expand(parse_spec("name: l\nlifelong: {map: m.map}\nagents: [5]\nexecutions: "
+                        "[switchable-lookahead]\nswitch_window_pairs: [3]\n",
+                        "w.yaml"));
+  ASSERT_EQ(lifelong.size(), 1u);
+  EXPECT_EQ(lifelong[0].window_pairs, 3u);
 }
 
 // Regression (2026-12-06): a margin was written into the folder name with six significant

@@ -201,9 +201,9 @@ void add_monitor_options(CLI::App* cmd, MonitorCliOptions& o) {
                   "many actions (default 24)")
       ->check(CLI::Range(1u, 1000u));
   cmd->add_option("--switch-window-pairs", o.switch_window_pairs,
-                  "switchable-lookahead, plan runs: a pair is compared with every setting of up "
-                  "to this many other pairs in its cone, SES's search over a bounded window "
-                  "(default 0: off; at most 6; docs/execution.md)")
+                  "switchable-lookahead: a pair is compared with every setting of up to this many "
+                  "other pairs in its cone, SES's search over a bounded window (default 0: off; "
+                  "at most 6; docs/execution.md)")
       ->check(CLI::Range(0u, monitor::kMaxWindowPairs));
   cmd->add_option("--stall-timeout-s", o.stall_timeout_s,
                   "sim seconds without a finished action before failing")
@@ -437,11 +437,6 @@ monitor::SwitchOptions switch_options(const MonitorCliOptions& o) {
                 "switchable-lookahead");
   refuse_unread(o.switch_window_pairs.has_value(), lookahead, "--switch-window-pairs",
                 "switchable-lookahead");
-  if (o.switch_window_pairs.value_or(0) > 0 && o.sim.source.active()) {
-    throw std::invalid_argument(
-        "--switch-window-pairs: plan runs only; the lifelong ADG compares one pair's orders "
-        "(docs/execution.md, \"Not yet\"): drop it from this lifelong run");
-  }
   s.horizon_actions = o.switch_horizon_actions.value_or(s.horizon_actions);
   s.window_pairs = o.switch_window_pairs.value_or(s.window_pairs);
   if (lookahead) {

@@ -22,7 +22,7 @@
 //   switch_margin_s: [1, 3, 10]       # `--switch-margin-s` of switchable-opt and -lookahead
 //   switch_horizon_actions: [12, 24]  # `--switch-horizon-actions` of the same two
 //   switch_lookahead_actions: [24, 48]  # `--switch-lookahead-actions` of switchable-lookahead
-//   switch_window_pairs: [0, 3]       # `--switch-window-pairs` of switchable-lookahead (plan runs)
+//   switch_window_pairs: [0, 3]       # `--switch-window-pairs` of switchable-lookahead
 //                                     # (each an axis for the executions that read it; the
 //                                     # others, and adg cells, run once); default: its default
 //   repeats: 3                        # repeat r of every cell, seed r; default 1
@@ -93,7 +93,7 @@ struct Spec {
   std::vector<double> switch_margin_s;             // switchable-opt, -lookahead; empty: default
   std::vector<uint32_t> switch_horizon_actions;    // the same two; empty: default
   std::vector<uint32_t> switch_lookahead_actions;  // switchable-lookahead; empty: default
-  std::vector<uint32_t> switch_window_pairs;       // the same, plan runs; 0: off; empty: default
+  std::vector<uint32_t> switch_window_pairs;       // the same; 0: off; empty: default
   std::optional<double> state_rate_hz;             // none: `smart run`'s default
   std::size_t repeats = 1;
 };

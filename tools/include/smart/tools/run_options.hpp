@@ -112,7 +112,7 @@ struct MonitorCliOptions {
   // lookahead's reach). The executions that do not read one refuse it.
   std::optional<double> switch_margin_s;
   std::optional<uint32_t> switch_horizon_actions, switch_lookahead_actions;
-  // --switch-window-pairs (the lookahead's window search, plan runs; SwitchOptions::window_pairs).
+  // --switch-window-pairs (the lookahead's window search; SwitchOptions::window_pairs).
   std::optional<uint32_t> switch_window_pairs;
   double stall_timeout_s = 300.0, max_sim_time_s = 0;
   bool resume = false;  // `smart monitor` only
