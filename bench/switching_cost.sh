@@ -49,7 +49,7 @@ if [ "${LIFELONG:-0}" = 1 ]; then
   # monitor/src/live_adg_switching.cpp, live_adg_chain.cpp, live_adg_anticipation.cpp and
   # live_adg_lookahead.cpp: all but the graph's growth and plain dispatch (advance, finish,
   # on_progress, append, commit_cut, truncate).
-  switching='LiveAdg::(queue_of|pop_first|try_switches|try_switch|held|shared|due|reach|next_move|stays_before|comes_back|dirty_after_release|reaches|has_edge|still_refused|add_edge|remove_edge|swap_order|observe|finish_estimate|arrival|expected_saving|anticipate|decide|settle_due|clear_marks|margin|saving|lookahead_saving|cone_saving|collect_cone|successors|expect|cone_cost|try_chain|chain_link|chain_swap|chain_cycle|undo_chain|chain_saves|switchable_pair)|ActionDurations::|queue_saving'
+  switching='LiveAdg::(queue_of|pop_first|try_switches|try_switch|held|shared|due|reach|next_move|stays_before|comes_back|dirty_after_release|reaches|has_edge|still_refused|add_edge|remove_edge|swap_order|observe|finish_estimate|arrival|expected_saving|anticipate|decide|settle_due|clear_marks|margin|saving|lookahead_saving|cone_saving|collect_window|window_saving|exchange_edges|collect_cone|successors|expect|cone_cost|try_chain|chain_link|chain_swap|chain_cycle|undo_chain|chain_saves|switchable_pair)|ActionDurations::|queue_saving'
   tracker='(LiveAdg|ActionDurations)::|queue_saving'
   run_args=(--tasks random --map "$bench/maps/warehouse-10-20-10-2-1.map" --agents 1000
     --task-errands 1 --duration-s 120 --delay-probability 0.01 --delay-min-s 1 --delay-max-s 4
