@@ -115,11 +115,11 @@ double LiveAdg::window_saving(const Pair& p) {
     kept = std::min(kept, cone_cost(p, false));
     swapped = std::min(swapped, cone_cost(p, true));
     if (setting == 0) continue;
-    for (auto s = saved_.rbegin(); s != saved_.rend(); ++s) {  // the first copy of each last
-      Node& m = node(s->ref.robot, s->ref.seq);
-      m.in = s->in;
-      m.out = s->out;
-      m.pending = s->pending;
+    for (const SavedEdges& s : saved_) {  // a node copied twice was copied twice the same
+      Node& m = node(s.ref.robot, s.ref.seq);
+      m.in = s.in;
+      m.out = s.out;
+      m.pending = s.pending;
     }
     type2_total_ = type2;
   }

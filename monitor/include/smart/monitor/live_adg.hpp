@@ -332,6 +332,7 @@ class LiveAdg final : public Execution {
   // The window search: its pairs, the edges of the nodes a setting changes (restored exactly
   // after each), and its counts.
   std::vector<Pair> window_;
+  // NOLINTNEXTLINE(bugprone-exception-escape): clang-tidy 14 flags the implicit special members
   struct SavedEdges {
     NodeRef ref{};
     Refs in, out;
