@@ -289,7 +289,8 @@ void needs_a_reader(const YAML::Node& n, const std::string& src, const Spec& s,
   }
 }
 
-// A switching axis of whole numbers from 1 to `hi` (smart run's range); `example` shows a list.
+// A switching axis of whole numbers from `lo` (1 unless told) to `hi` (smart run's range);
+// `example` shows a list.
 std::vector<uint32_t> read_switching_axis(const YAML::Node& root, const std::string& src,
                                           const Spec& s, const std::string& field, long long hi,
                                           const std::string& range, const std::string& example,

@@ -107,24 +107,25 @@ double LiveAdg::window_saving(const Pair& p) {
   }
   const std::size_t type2 = type2_total_;
   const auto n = static_cast<uint32_t>(window_.size());
-  double kept = std::numeric_limits<double>::infinity(), swapped = kept;
-  for (uint32_t setting = 0; setting < (1u << n); ++setting) {
-    for (uint32_t b = 0; b < n; ++b) {
-      if (setting >> b & 1u) exchange_edges(window_[b]);
-    }
-    kept = std::min(kept, cone_cost(p, false));
-    swapped = std::min(swapped, cone_cost(p, true));
-    if (setting == 0) continue;
-    for (const SavedEdges& s : saved_) {  // a node copied twice was copied twice the same
-      Node& m = node(s.ref.robot, s.ref.seq);
-      m.in = s.in;
-      m.out = s.out;
-      m.pending = s.pending;
-    }
-    type2_total_ = type2;
-  }
   window_settings_ += std::size_t{1} << n;
-  return kept - swapped;
+  return window_search_saving(
+      n,
+      [&](uint32_t setting) {
+        for (uint32_t b = 0; b < n; ++b) {
+          if (setting >> b & 1u) exchange_edges(window_[b]);
+        }
+      },
+      [&](uint32_t setting) {
+        if (setting == 0) return;
+        for (const SavedEdges& s : saved_) {  // a node copied twice was copied twice the same
+          Node& m = node(s.ref.robot, s.ref.seq);
+          m.in = s.in;
+          m.out = s.out;
+          m.pending = s.pending;
+        }
+        type2_total_ = type2;
+      },
+      [&](bool swapped) { return cone_cost(p, swapped); });
 }
 
 // The successors of u in the pair's kept or swapped order.

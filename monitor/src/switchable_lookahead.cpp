@@ -255,19 +255,22 @@ double SwitchableTracker::window_saving(const Swap& s) {
   collect_window(s);
   ++windowed_;
   const auto n = static_cast<uint32_t>(window_.size());
-  double kept = std::numeric_limits<double>::infinity(), swapped = kept;
-  for (uint32_t setting = 0; setting < (1u << n); ++setting) {
-    for (uint32_t b = 0; b < n; ++b) {
-      if (setting >> b & 1u) relink(window_[b]);
-    }
-    kept = std::min(kept, cone_cost(s));
-    swapped = std::min(swapped, cone_cost({s.i, s.j, true}));
-    for (uint32_t b = n; b-- > 0;) {
-      if (setting >> b & 1u) relink(before(window_[b]).stay);
-    }
-  }
   window_settings_ += std::size_t{1} << n;
-  return kept - swapped;
+  return window_search_saving(
+      n,
+      [&](uint32_t setting) {
+        for (uint32_t b = 0; b < n; ++b) {
+          if (setting >> b & 1u) relink(window_[b]);
+        }
+      },
+      [&](uint32_t setting) {
+        for (uint32_t b = n; b-- > 0;) {
+          if (setting >> b & 1u) relink(before(window_[b]).stay);
+        }
+      },
+      [&](bool swapped) {
+        return cone_cost({s.i, s.j, swapped});
+      });
 }
 
 // The comparison switchable-opt decides by: the location's queue (expected_saving), or the

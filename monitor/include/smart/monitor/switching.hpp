@@ -2,8 +2,10 @@
 // one-shot SwitchableTracker (switchable_tracker.hpp) and the lifelong LiveAdg (live_adg.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 namespace smart::monitor {
 
@@ -58,6 +60,22 @@ struct SwitchOptions {
 };
 
 inline constexpr uint32_t kMaxWindowPairs = 6;
+
+// The window search's rule, shared by SwitchableTracker and LiveAdg: over every setting of
+// `pairs` window pairs (bit b set: pair b in its other order, made by set(setting) and undone by
+// reset(setting)), the expected cost cost(swapped) of the compared pair kept and swapped; the
+// saving of the swap is the best kept setting's cost less the best swapped one's.
+template <class Set, class Reset, class Cost>
+double window_search_saving(uint32_t pairs, Set&& set, Reset&& reset, Cost&& cost) {
+  double kept = std::numeric_limits<double>::infinity(), swapped = kept;
+  for (uint32_t setting = 0; setting < (1u << pairs); ++setting) {
+    set(setting);
+    kept = std::min(kept, cost(false));
+    swapped = std::min(swapped, cost(true));
+    reset(setting);
+  }
+  return kept - swapped;
+}
 
 // The execution's name in summary.json and results.csv (`smart run --execution`).
 inline const char* execution_name(const SwitchOptions& o) {
