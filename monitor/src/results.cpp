@@ -72,6 +72,16 @@ nlohmann::json limits_json(const MotionLimits& l, const std::string& robot) {
           {"max_angular_accel_radps2", l.max_angular_accel_radps2}};
 }
 
+nlohmann::json execution_json(const MonitorResult& r, const RunInfo& info) {
+  nlohmann::json j = {{"mode", r.execution},
+                      {"switches", r.switches.size()},
+                      {"anticipated", std::ranges::count_if(r.switches, [](const auto& s) {
+                         return s.anticipated;
+                       })}};
+  if (info.switching) j["options"] = switch_options_json(*info.switching);
+  return j;
+}
+
 nlohmann::json motion_bound_json(const MonitorResult& r, const std::vector<double>& bound) {
   std::vector<double> ratio;
   double sum = 0, makespan = 0;
@@ -301,15 +311,26 @@ nlohmann::json origin_json(const RunInfo& info) {
 }
 }  // namespace
 
+nlohmann::json switch_options_json(const SwitchOptions& o) {
+  return {{"commit_actions", o.commit_actions},
+          {"search_budget", o.search_budget},
+          {"anticipate", o.anticipate},
+          {"margin_s", o.margin_s},
+          {"horizon_actions", o.horizon_actions},
+          {"lookahead_actions", o.lookahead_actions},
+          {"lookahead_nodes", o.lookahead_nodes},
+          {"lookahead_first_nodes", o.lookahead_first_nodes},
+          {"lookahead_margin_s", o.lookahead_margin_s},
+          {"chain_locations", o.chain_locations},
+          {"window_pairs", o.window_pairs}};
+}
+
 nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
   auto j = outcome_json(r);
   j.update(times_json(r));
   j.update(origin_json(info));
   j.update(pose_contacts_json(r));
-  j["execution"] = {{"mode", r.execution},
-                    {"switches", r.switches.size()},
-                    {"anticipated", std::ranges::count_if(
-                                        r.switches, [](const auto& s) { return s.anticipated; })}};
+  j["execution"] = execution_json(r, info);
   j.update(resources_json(r, info));
   if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;

@@ -80,7 +80,9 @@ TEST_F(SwitchableRun, SwitchingCutsWaitingUnderDelaysWithoutCollisionsAndIsDeter
   }
   EXPECT_EQ(plain["execution"]["mode"], "adg");
   EXPECT_EQ(plain["execution"]["switches"], 0);
+  EXPECT_FALSE(plain["execution"].contains("options"));
   EXPECT_EQ(a["execution"]["mode"], "switchable");
+  EXPECT_EQ(a["execution"]["options"]["anticipate"], false);
   const auto switches = a["execution"]["switches"].get<std::size_t>();
   EXPECT_GT(switches, 10u);
   // Less waiting: at least 5 % of plain ADG's total on these delays (measured: 26.9 %, 292
@@ -152,6 +154,9 @@ TEST_F(SwitchableRun, LifelongRunsSwitchTooAndStayDeterministic) {
   EXPECT_EQ(one["collisions"], 0);
   EXPECT_EQ(one["lifelong"]["windows_refused"], 0);
   EXPECT_GT(one["execution"]["switches"].get<std::size_t>(), 10u);
+  // The summary says which knobs made the switches (it did not before 2026-12-07).
+  EXPECT_EQ(one["execution"]["options"]["chain_locations"], 1);
+  EXPECT_EQ(a["execution"]["options"]["chain_locations"], 8);
   EXPECT_LT(one["waiting_time_s"]["total"].get<double>(),
             plain["waiting_time_s"]["total"].get<double>());
   // switchable-opt (LiveAdg's anticipation, durations learned in the run) and

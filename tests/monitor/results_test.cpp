@@ -168,6 +168,30 @@ TEST(Results, MotionBoundPerRobotAndItsRatiosWhenTheLimitsAreKnown) {
   std::filesystem::remove_all(dir);
 }
 
+// Regression: summary.json named the execution but not its knobs, so two switching runs with
+// different --switch-* flags could not be told apart from their results.
+TEST(Results, ASwitchingRunsSummaryNamesItsOptions) {
+  const auto in = tiny_instance();
+  const auto r = finished_run(in);
+  EXPECT_FALSE(summary_json(in, r, RunInfo{})["execution"].contains("options"));
+  RunInfo info;
+  SwitchOptions o;
+  o.anticipate = true;
+  o.lookahead_actions = 24;
+  o.window_pairs = 3;
+  o.chain_locations = 2;
+  o.lookahead_margin_s = 0.75;
+  info.switching = o;
+  const auto j = summary_json(in, r, info)["execution"]["options"];
+  EXPECT_EQ(j["anticipate"], true);
+  EXPECT_EQ(j["lookahead_actions"], 24);
+  EXPECT_EQ(j["window_pairs"], 3);
+  EXPECT_EQ(j["chain_locations"], 2);
+  EXPECT_DOUBLE_EQ(j["lookahead_margin_s"].get<double>(), 0.75);
+  EXPECT_EQ(j["commit_actions"], o.commit_actions);
+  EXPECT_EQ(j["search_budget"], o.search_budget);
+}
+
 TEST(Results, AResumedRunWithRobotsDoneBeforeHasNoAetAndSaysSo) {
   const auto in = tiny_instance();
   auto r = finished_run(in);

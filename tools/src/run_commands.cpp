@@ -228,6 +228,7 @@ monitor::RunInfo run_info(const MonitorCliOptions& o, const std::string& robot_f
   info.limits = monitor::MotionLimits{m.max_speed_mps, m.max_accel_mps2, m.max_decel_mps2,
                                       m.max_turn_rate_radps, m.max_angular_accel_radps2};
   info.robot_model = m.name;
+  if (o.execution != MonitorCliOptions::Execution::kAdg) info.switching = switch_options(o);
   info.qos = o.sim.dds.qos;
   info.clock = enum_name(o.sim.clock, kClockNames);
   info.run = o.sim.dds.run;

@@ -2,7 +2,8 @@
 // - summary.json: success, robots, aet_s, makespan_s, sim_time_s, wall_time_s, sim_speed,
 //   collisions (robot-robot), wall_contacts, min_separation_m (closest approach between robot
 //   surfaces; negative = overlap), waiting_time_s (mean, total and, when the execution tells
-//   why robots wait, by_cause: execution.hpp WaitCause), adg, plan, per-run flags and versions;
+//   why robots wait, by_cause: execution.hpp WaitCause), execution (mode, switches and, for a
+//   switching one, its options), adg, plan, per-run flags and versions;
 // - stats.csv: one row with SMART's stats columns (server/src/ADG_server.cpp saveStats); its
 //   two wall-clock columns hold sim time here and are named so ("makespan sim s", "sum of
 //   finish times sim s");
@@ -51,6 +52,9 @@ struct RunInfo {
   // The execution uncertainty the run had (agent/uncertainty.hpp to_json); null: none given.
   nlohmann::json uncertainty;
   nlohmann::json link;  // the link model (smart/wire/link.hpp to_json); null: not known
+  // A switching execution's knobs (switching.hpp), so a run's summary says which settings
+  // made its switches ("execution": "options"); none: plain ADG.
+  std::optional<SwitchOptions> switching;
 };
 
 // The "adg" and "plan" objects shared by summary.json and `smart check-plan`.
@@ -58,6 +62,8 @@ nlohmann::json adg_json(const AdgStats& stats);
 nlohmann::json plan_json(const Plan& plan, const PlanStats& stats);
 // How long loading the instance took: read, validate, actions, adg, acyclic, adg_total (ms).
 nlohmann::json build_time_json(const InstanceTimings& timings);
+// Every knob of a switching execution, named as SwitchOptions' fields.
+nlohmann::json switch_options_json(const SwitchOptions& options);
 
 nlohmann::json summary_json(const Instance& instance, const MonitorResult& result,
                             const RunInfo& info);
