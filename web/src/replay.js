@@ -232,12 +232,31 @@ export function limitsText(l) {
     `${n(l.max_turn_rate_radps, 'rad/s')}`;
 }
 
+// The run's execution as its summary records it (summary.json "execution"): plain ADG, or a
+// switching one with its switches and the knobs that made them (`smart run --switch-*`).
+export function executionText(e) {
+  if (!e || typeof e !== 'object' || typeof e.mode !== 'string') return 'execution: not recorded';
+  if (e.mode === 'adg') return 'execution: adg';
+  let text = `execution: ${e.mode}, ${e.switches ?? '?'} switches`;
+  if (e.anticipated) text += ` (${e.anticipated} anticipated)`;
+  const o = e.options;
+  if (!o || typeof o !== 'object') return text;
+  const knobs = [`commit ${o.commit_actions}`, `chains ${o.chain_locations}`];
+  if (o.anticipate && o.lookahead_actions > 0) {
+    knobs.push(`lookahead ${o.lookahead_actions} actions`, `margin ${o.lookahead_margin_s} s`);
+    if (o.window_pairs > 0) knobs.push(`window ${o.window_pairs} pairs`);
+  } else if (o.anticipate) {
+    knobs.push(`margin ${o.margin_s} s`, `horizon ${o.horizon_actions}`);
+  }
+  return `${text}; ${knobs.join(', ')}`;
+}
+
 function showStats(s) {
   const num = (v, unit) => `${(typeof v === 'number' ? v : NaN).toFixed(1)}${unit}`;
   setRows($('stats'), [['', `success: ${s.success}`], ['', `robots: ${s.robots}`], ['', `AET: ${num(s.aet_s, ' s')}`],
     ['', `makespan: ${num(s.makespan_s, ' s')}`], ['', `sim speed: ${num(s.sim_speed ?? 0, '×')}`],
     ['', `actions: ${s.finished_actions} / ${s.total_actions}`], ['', `collisions: ${s.collisions}`],
-    ['limits', limitsText(s.limits)]]);
+    ['limits', limitsText(s.limits)], ['execution', executionText(s.execution)]]);
 }
 
 // Every robot's start and goal cell from the run's plan (GET /api/runs/{id}/marks); a replay

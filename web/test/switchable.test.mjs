@@ -87,6 +87,11 @@ try {
   assert.ok(line && line.switched === true, JSON.stringify(lines));
   assert.ok(lines.filter((l) => l.switched).every((l) => pairs.has(l.kind === 'waits' ? `${l.robot}>${robot}` : `${robot}>${l.robot}`)),
     JSON.stringify(lines));
+  // The stats panel names the execution, its switches and its knobs, as summary.json has them.
+  const summary = JSON.parse(readFileSync(path.join(out, 'summary.json'), 'utf8'));
+  const stats = await page.$eval('#stats', (e) => e.textContent);
+  assert.ok(stats.includes(`execution: switchable, ${switches.length} switches; commit ` +
+    `${summary.execution.options.commit_actions}, chains ${summary.execution.options.chain_locations}`), stats);
   const legend = await page.$$eval('#legend div', (ds) => ds.map((d) => d.textContent));
   assert.ok(legend.includes('switched passing order (passed first → planned first)'), legend.join('; '));
   await page.screenshot({ path: path.join(artifacts, 'viewer-switched-edge.png') });

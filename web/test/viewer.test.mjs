@@ -183,6 +183,7 @@ async function checkPaperView(page, id, summary, name) {
   }
   const stats = await page.$eval('#stats', (e) => e.textContent);
   assert.match(stats, new RegExp(`limits \\(${summary.limits.robot}\\): ${Number(summary.limits.max_speed_mps.toPrecision(3))} m/s`));
+  assert.ok(stats.includes(`execution: ${summary.execution.mode}`), stats);
   await page.screenshot({ path: path.join(artifacts, `${name}.png`) });
   // Zoomed far out, robots grow to stay legible; back in, they are as they were.
   const before = await page.evaluate(() => window.__viewer.robotScale);
