@@ -73,12 +73,13 @@ nlohmann::json limits_json(const MotionLimits& l, const std::string& robot) {
 }
 
 nlohmann::json execution_json(const MonitorResult& r, const RunInfo& info) {
-  nlohmann::json j = {{"mode", r.execution},
-                      {"switches", r.switches.size()},
-                      {"anticipated", std::ranges::count_if(r.switches, [](const auto& s) {
+  namespace key = results::summary_key;
+  nlohmann::json j = {{key::kMode, r.execution},
+                      {key::kSwitches, r.switches.size()},
+                      {key::kAnticipated, std::ranges::count_if(r.switches, [](const auto& s) {
                          return s.anticipated;
                        })}};
-  if (info.switching) j["options"] = switch_options_json(*info.switching);
+  if (info.switching) j[key::kOptions] = switch_options_json(*info.switching);
   return j;
 }
 
@@ -330,7 +331,7 @@ nlohmann::json run_summary_json(const MonitorResult& r, const RunInfo& info) {
   j.update(times_json(r));
   j.update(origin_json(info));
   j.update(pose_contacts_json(r));
-  j["execution"] = execution_json(r, info);
+  j[results::summary_key::kExecution] = execution_json(r, info);
   j.update(resources_json(r, info));
   if (info.limits) j["limits"] = limits_json(*info.limits, info.robot_model);
   if (!info.uncertainty.is_null()) j["uncertainty"] = info.uncertainty;

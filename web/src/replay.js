@@ -232,8 +232,9 @@ export function limitsText(l) {
     `${n(l.max_turn_rate_radps, 'rad/s')}`;
 }
 
-// The run's execution as its summary records it (summary.json "execution"): plain ADG, or a
-// switching one with its switches and the knobs that made them (`smart run --switch-*`).
+// The run's execution as its summary records it (summary.json "execution", results_format.hpp
+// summary_key::kExecution): plain ADG, or a switching one with its switches and the knobs that
+// made them (`smart run --switch-*`).
 export function executionText(e) {
   if (!e || typeof e !== 'object' || typeof e.mode !== 'string') return 'execution: not recorded';
   if (e.mode === 'adg') return 'execution: adg';

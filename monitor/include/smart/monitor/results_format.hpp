@@ -96,6 +96,14 @@ inline constexpr const char* kOutcomeStopped = "stopped";
 inline constexpr const char* kLifelong = "lifelong";
 inline constexpr const char* kTasksFinished = "tasks_finished";
 inline constexpr const char* kThroughputPerMin = "throughput_per_min";
+// The execution object (`smart run --execution`), read by the viewer (web/src/replay.js): its
+// mode, switches made, how many anticipated, and a switching one's knobs (results.hpp
+// switch_options_json).
+inline constexpr const char* kExecution = "execution";
+inline constexpr const char* kMode = "mode";  // in "execution"
+inline constexpr const char* kSwitches = "switches";
+inline constexpr const char* kAnticipated = "anticipated";
+inline constexpr const char* kOptions = "options";
 }  // namespace summary_key
 
 // SMART's stats columns (smart-mapf/SMART server/src/ADG_server.cpp saveStats), in SMART's
