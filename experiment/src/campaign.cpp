@@ -166,6 +166,9 @@ std::vector<std::string> lifelong_argv(const Campaign& c, const Cell& cell) {
   if (planner.source == PlanSource::kCommand) {
     argv.insert(argv.end(), {"--planner-cmd", planner.text});
   }
+  if (planner.lns_passes > 0) {
+    argv.insert(argv.end(), {"--window-lns-passes", std::to_string(planner.lns_passes)});
+  }
   return argv;
 }
 

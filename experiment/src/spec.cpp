@@ -439,6 +439,16 @@ void read_lifelong_planners(const YAML::Node& root, const std::string& src, Spec
     PlanSpec plan{p["planner"] ? "builtin" : "command" + std::to_string(i),
                   p["planner"] ? PlanSource::kBuiltin : PlanSource::kCommand,
                   p["command"] ? p["command"].as<std::string>() : "", "xy"};
+    if (p["window_lns_passes"]) {
+      if (!p["planner"] || !p["window_lns_passes"].IsScalar()) {
+        fail(src, p["window_lns_passes"], field + ".window_lns_passes",
+             "only {planner: builtin} takes it, one whole number, e.g. 1");
+      }
+      plan.lns_passes =
+          static_cast<int>(whole_numbers(p["window_lns_passes"], src, field + ".window_lns_passes",
+                                         0, 16, "rounds run from 0 to 16")
+                               .at(0));
+    }
     if (p["name"]) plan.name = p["name"].as<std::string>("");
     if (!plain_name(plan.name)) fail(src, p, field + ".name", "1-64 of A-Z a-z 0-9 . _ -");
     if (!names.insert(plan.name).second) {

@@ -14,12 +14,13 @@ std::size_t pool_of(const LifelongOptions& o, std::size_t robots) {
 LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,
                                      std::function<double()> wall_ms)
-    : LifelongExecution(grid, starts, std::move(tasks), options,
-                        std::make_unique<BuiltinPlanner>(
-                            grid,
-                            BuiltinPlannerOptions{options.distance_budget_mb, options.seed,
-                                                  options.heuristic, starts.size()},
-                            std::move(wall_ms))) {}
+    : LifelongExecution(
+          grid, starts, std::move(tasks), options,
+          std::make_unique<BuiltinPlanner>(
+              grid,
+              BuiltinPlannerOptions{options.distance_budget_mb, options.seed, options.heuristic,
+                                    starts.size(), options.lns_passes},
+              std::move(wall_ms))) {}
 
 LifelongExecution::LifelongExecution(const grid::Grid& grid, const std::vector<grid::Cell>& starts,
                                      std::vector<grid::Task> tasks, const LifelongOptions& options,

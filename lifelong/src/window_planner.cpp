@@ -1,5 +1,6 @@
 #include "smart/lifelong/window_planner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <utility>
@@ -36,13 +37,18 @@ BuiltinPlanner::BuiltinPlanner(const grid::Grid& grid, const BuiltinPlannerOptio
     : wall_ms_(std::move(wall_ms)),
       distances_(grid, budget_bytes(options), tables_for(options.robots)),
       heuristic_(make_heuristic(grid, options, distances_)),
-      pibt_(grid, *heuristic_, options.seed) {}
+      pibt_(grid, *heuristic_, options.seed),
+      lns_passes_(options.lns_passes),
+      lns_(grid, distances_,
+           planning::WindowLnsOptions{.passes = std::max(1, options.lns_passes)}) {}
 
 void BuiltinPlanner::submit(planning::WindowRequest request) {
   PlannedWindow out;
   const double w0 = wall_ms_ ? wall_ms_() : 0;
   try {
-    out.paths = pibt_.plan(request).paths;
+    auto window = pibt_.plan(request);
+    if (lns_passes_ > 0) lns_.improve(request, window);
+    out.paths = std::move(window.paths);
   } catch (const std::invalid_argument& e) {
     out.error = e.what();
   }

@@ -259,6 +259,25 @@ TEST_F(Campaign, ALifelongLookaheadAxisIsPassedToEachRun) {
   }
 }
 
+// A built-in planner with window LNS passes reaches smart run: the run's summary says so.
+TEST_F(Campaign, ALifelongPlannersWindowLnsPassesArePassedToItsRuns) {
+  const auto spec = dir_ / "lns.yaml";
+  std::ofstream(spec) << "name: lns\nlifelong:\n  map: "
+                      << (b_ / "maps/random-32-32-20.map").string()
+                      << "\n  duration_s: 10\nagents: [6]\nplanners: [{planner: builtin}, "
+                         "{name: lns, planner: builtin, window_lns_passes: 1}]\n";
+  const auto r = run(spec, kExperimentWindowLns);
+  ASSERT_TRUE(r.complete()) << log_.str();
+  EXPECT_EQ(r.with_results, 2u);
+  for (const auto& [cell, passes] : {std::pair{"0-random-32-32-20-n6-footbot-lan-builtin-r0", 0},
+                                     std::pair{"0-random-32-32-20-n6-footbot-lan-lns-r0", 1}}) {
+    const auto summary =
+        nlohmann::json::parse(slurp(dir_ / "out" / "cells" / cell / "summary.json"));
+    EXPECT_EQ(summary["lifelong"]["planner"]["lns_passes"], passes) << cell;
+    EXPECT_TRUE(summary["success"].get<bool>()) << cell;
+  }
+}
+
 TEST_F(Campaign, BadInputIsNamedBeforeAnythingRuns) {
   EXPECT_THAT([&] { run(write_spec("clock: fast\n")); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spec.yaml:")));

@@ -554,6 +554,34 @@ TEST(Spec, ALifelongGridTakesTheCommitCutsLookaheadAsAnAxis) {
   EXPECT_FALSE(result_row(plain, expand(plain).at(0), json::object()).contains("lookahead"));
 }
 
+// The built-in planner's windows made better by LNS (`smart run --window-lns-passes`) is a
+// planner of the planner axis, so a grid compares PIBT's windows with and without it.
+TEST(Spec, ALifelongBuiltinPlannerTakesWindowLnsPasses) {
+  const auto s = parse_spec(
+      "name: l\nlifelong: {map: m.map}\nagents: [10]\n"
+      "planners: [{planner: builtin}, {name: lns, planner: builtin, window_lns_passes: 2}]\n",
+      "l.yaml");
+  ASSERT_EQ(s.plans.size(), 2u);
+  EXPECT_EQ(s.plans[0].lns_passes, 0);
+  EXPECT_EQ(s.plans[1].lns_passes, 2);
+  EXPECT_EQ(expand(s).at(1).key, "0-m-n10-footbot-lan-lns-r0");
+  const auto error = [](const std::string& planners) {
+    try {
+      parse_spec("name: l\nlifelong: {map: m.map}\nagents: [10]\nplanners: " + planners + "\n",
+                 "l.yaml");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(error("[{command: \"p {plan}\", window_lns_passes: 1}]"),
+              HasSubstr("l.yaml:4: planners[0].window_lns_passes: only {planner: builtin}"));
+  EXPECT_THAT(error("[{planner: builtin, window_lns_passes: 17}]"),
+              HasSubstr("planners[0].window_lns_passes: 17 is out of range: rounds run from 0"));
+  EXPECT_THAT(error("[{planner: builtin, window_lns_passes: [1, 2]}]"),
+              HasSubstr("one whole number, e.g. 1"));
+}
+
 TEST(Spec, ALorrProblemBringsItsTeam) {
   const auto s =
       parse_spec("name: lorr\nlifelong: {problem: maze.domain/maze-example_40.json}\n", "l.yaml");

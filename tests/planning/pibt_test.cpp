@@ -2,42 +2,20 @@
 
 #include <gtest/gtest.h>
 
-#include <set>
-
 #include "smart/grid/map_reader.hpp"
 #include "smart/grid/text_file.hpp"
 #include "smart/planning/generators.hpp"
 #include "smart/planning/guide_paths.hpp"
 #include "smart/planning/task_generator.hpp"
 #include "support/monitor_fixtures.hpp"
+#include "support/window_checks.hpp"
 
 namespace smart::planning {
 namespace {
 
 using grid::Cell;
 
-int manhattan(Cell a, Cell b) { return std::abs(a.x - b.x) + std::abs(a.y - b.y); }
-
-// No vertex conflict, no swap, every step to a free 4-neighbour or a wait.
-void expect_valid(const grid::Grid& g, const WindowPlan& w) {
-  const std::size_t steps = w.paths.at(0).size();
-  for (std::size_t t = 0; t < steps; ++t) {
-    std::set<Cell> at;
-    for (std::size_t r = 0; r < w.paths.size(); ++r) {
-      ASSERT_EQ(w.paths[r].size(), steps);
-      const Cell c = w.paths[r][t];
-      ASSERT_TRUE(g.free(c)) << "robot " << r << " t=" << t;
-      ASSERT_TRUE(at.insert(c).second) << "vertex conflict at t=" << t << " robot " << r;
-      if (t == 0) continue;
-      ASSERT_LE(manhattan(w.paths[r][t - 1], c), 1) << "jump, robot " << r << " t=" << t;
-      for (std::size_t q = 0; q < r; ++q) {
-        const bool swap =
-            w.paths[q][t] == w.paths[r][t - 1] && w.paths[q][t - 1] == c && c != w.paths[r][t - 1];
-        ASSERT_FALSE(swap) << "robots " << q << " and " << r << " swap at t=" << t;
-      }
-    }
-  }
-}
+void expect_valid(const grid::Grid& g, const WindowPlan& w) { test::expect_valid_window(g, w); }
 
 grid::Grid warehouse() {
   const auto dir = test::benchmarks_dir() / "maps";

@@ -108,7 +108,7 @@ void group_options(CLI::App* cmd) {
         "--cell-m"}},
       {"Lifelong runs (tasks stream in, windows are replanned)",
        {"--lifelong", "--tasks", "--task-errands", "--duration-s", "--replan-period-s",
-        "--heuristic", "--replan-when-left", "--window-steps", "--lookahead", "--plan-budget-s",
+        "--heuristic", "--replan-when-left", "--window-steps", "--window-lns-passes", "--lookahead", "--plan-budget-s",
         "--distance-budget-mb"}},
       {"Robots and execution uncertainty",
        {"--robot", "--stall-probability", "--stall-s", "--speed-sigma", "--slip-sigma",

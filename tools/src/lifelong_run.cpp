@@ -146,7 +146,8 @@ nlohmann::json lifelong_json(const LifelongProblem& p, const MonitorCliOptions& 
         {"budget_s", l.budget_s},
         {"distance_tables", s.distance_tables},
         {"heuristic", s.heuristic},
-        {"heuristic_mb", s.heuristic_mb}}},
+        {"heuristic_mb", s.heuristic_mb},
+        {"lns_passes", l.lns_passes}}},
       {"replan_period_s", l.period_s},
       {"replan_when_left", l.replan_when_left},
       {"window_steps", l.window_steps},
@@ -187,6 +188,7 @@ lifelong::LifelongOptions lifelong_options(const MonitorCliOptions& o, const Lif
   lo.task_pool = p.pool;
   lo.distance_budget_mb = l.distance_budget_mb;
   lo.heuristic = l.heuristic;
+  lo.lns_passes = l.lns_passes;
   lo.seed = seed;
   lo.initial_heading = o.sim.world.heading;
   if (o.execution != MonitorCliOptions::Execution::kAdg) {
@@ -285,7 +287,9 @@ std::unique_ptr<lifelong::WindowPlanner> window_planner(const MonitorCliOptions&
                                                         const lifelong::LifelongOptions& lo) {
   auto builtin = [&] {
     return std::make_unique<lifelong::BuiltinPlanner>(
-        grid, lifelong::BuiltinPlannerOptions{lo.distance_budget_mb, lo.seed, lo.heuristic, robots},
+        grid,
+        lifelong::BuiltinPlannerOptions{lo.distance_budget_mb, lo.seed, lo.heuristic, robots,
+                                        lo.lns_passes},
         steady_ms());
   };
   std::unique_ptr<lifelong::WindowPlanner> planner;

@@ -22,6 +22,7 @@ struct PlannerCliOptions {
   uint64_t seed = 1;
   double distance_budget_mb = 1024;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
+  int lns_passes = 0;
 };
 
 int run_planner(const PlannerCliOptions& o) {
@@ -31,7 +32,8 @@ int run_planner(const PlannerCliOptions& o) {
   prove_member(participant, o.dds, "planner");
   PlannerNode node(participant, profile, o.name, [&o](const grid::Grid& grid, std::size_t robots) {
     return std::make_unique<lifelong::BuiltinPlanner>(
-        grid, lifelong::BuiltinPlannerOptions{o.distance_budget_mb, o.seed, o.heuristic, robots});
+        grid, lifelong::BuiltinPlannerOptions{o.distance_budget_mb, o.seed, o.heuristic, robots,
+                                              o.lns_passes});
   });
   const auto out = node.serve(g_stop_requested);
   switch (out.end) {
@@ -72,6 +74,10 @@ void register_planner_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   add_enum_option(cmd, "--heuristic", o->heuristic, kHeuristicNames,
                   "how the planner ranks moves (as `smart run --lifelong`)")
+      ->capture_default_str();
+  cmd->add_option("--window-lns-passes", o->lns_passes,
+                  "rounds of replanning each robot in PIBT's window (as `smart run --lifelong`)")
+      ->check(CLI::Range(0, 16))
       ->capture_default_str();
   cmd->callback([&exit_code, o] {
     install_stop_handlers();

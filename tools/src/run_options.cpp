@@ -311,6 +311,12 @@ void add_lifelong_options(CLI::App* cmd, LifelongCliOptions& o) {
                   "cell), 'paths' (a shortest path per robot, A* with landmarks: maps too large "
                   "for tables), 'auto' (tables when one per robot fits --distance-budget-mb)")
       ->capture_default_str();
+  cmd->add_option("--window-lns-passes", o.lns_passes,
+                  "rounds of replanning each robot's path in PIBT's window by space-time A* "
+                  "against the others' (large neighbourhood search, planning/window_lns.hpp); 0: "
+                  "PIBT's window as it is")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
   cmd->add_option("--lorr-output", o.lorr_output,
                   "also write the run as a League of Robot Runners output JSON (PlanViz, LoRR "
                   "tools): actions discretised to 0.1 s ticks, as the file says");

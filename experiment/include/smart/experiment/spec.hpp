@@ -40,7 +40,9 @@
 //     lookahead: [4, 8]               # `smart run --lookahead` (actions the commit cut keeps
 //                                     # per robot), an axis; default: its default
 //   planners: [{planner: builtin}, {name: greedy, command: "python3 greedy_planner.py"}]
-//                                     # --planner-cmd per command; default [{planner: builtin}]
+//                                     # --planner-cmd per command; default [{planner: builtin}];
+//                                     # {planner: builtin, window_lns_passes: 1}: PIBT's windows
+//                                     # made better (`smart run --window-lns-passes`)
 //   uncertainty: [{}, {delay_probability: 0.01, delay_max_s: 2}]   # LoRR-style delays too
 // Errors name the spec file, the line and the field, and say what to write instead.
 #pragma once
@@ -64,6 +66,7 @@ struct PlanSpec {
   std::string text;  // the file, or the command template
   std::string axis = "xy";
   std::string algorithm = "pp";  // kBuiltin: `smart plan --algorithm` (pp or pibt)
+  int lns_passes = 0;  // lifelong kBuiltin: `smart run --window-lns-passes`; 0: not given
 };
 
 struct LifelongSpec {

@@ -45,6 +45,7 @@ struct LifelongOptions {
   std::size_t task_pool = 0;         // revealed unfinished tasks; 0: one per robot
   double distance_budget_mb = 1024;  // the planner's distance tables (one per goal cell)
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
+  int lns_passes = 0;  // the built-in planner's (window_planner.hpp BuiltinPlannerOptions)
   uint64_t seed = 1;
   grid::Heading initial_heading = grid::Heading::kEast;
   // Passing orders may switch while the run goes (issue 29, live_adg.hpp); empty: plan order.

@@ -1,8 +1,10 @@
 // Contract: where a lifelong run's windows are planned. The run (lifelong_execution.hpp) submits
 // one request at a time (every robot's commit-cut cell and its errands left) and polls for the
 // answer; poll() never blocks, so the run goes on while a planner works.
-// - BuiltinPlanner plans inside submit() with PIBT (planning/pibt.hpp) and its distance tables:
-//   pure and deterministic; the wall clock it may be given only measures it (lock-step runs).
+// - BuiltinPlanner plans inside submit() with PIBT (planning/pibt.hpp) and its distance tables,
+//   then, if asked (`lns_passes`), makes PIBT's window better one robot at a time
+//   (planning/window_lns.hpp): pure and deterministic; the wall clock it may be given only
+//   measures it (lock-step runs).
 // - ThreadedPlanner runs another planner's submit() on a worker thread (real-time runs: the
 //   monitor keeps dispatching and recording while the window is planned; issue 27 item 5). It
 //   owns the inner planner; nothing else touches it while a request is outstanding.
@@ -25,6 +27,7 @@
 #include "smart/planning/distance_cache.hpp"
 #include "smart/planning/goal_heuristic.hpp"
 #include "smart/planning/pibt.hpp"
+#include "smart/planning/window_lns.hpp"
 
 namespace smart::lifelong {
 
@@ -53,6 +56,7 @@ struct BuiltinPlannerOptions {
   uint64_t seed = 1;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
   std::size_t robots = 0;  // for kAuto (planning/goal_heuristic.hpp) and the tables kept
+  int lns_passes = 0;      // rounds of planning/window_lns.hpp over PIBT's window; 0: none
 };
 
 class BuiltinPlanner final : public WindowPlanner {
@@ -68,6 +72,8 @@ class BuiltinPlanner final : public WindowPlanner {
   planning::DistanceCache distances_;
   std::unique_ptr<planning::GoalHeuristic> heuristic_;
   planning::Pibt pibt_;
+  int lns_passes_;
+  planning::WindowLns lns_;
   std::optional<PlannedWindow> answer_;
 };
 

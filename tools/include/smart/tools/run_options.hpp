@@ -80,6 +80,7 @@ struct LifelongCliOptions {
   double budget_s = 0.1;
   double distance_budget_mb = 1024;
   planning::HeuristicKind heuristic = planning::HeuristicKind::kAuto;
+  int lns_passes = 0;  // --window-lns-passes: planning/window_lns.hpp over PIBT's windows
   // Where windows are planned: in this process, or by a `smart planner` of the run over DDS
   // (tools/dds_planner.hpp); --planner-cmd (tools/pipe_planner.hpp) replaces the built-in one.
   enum class Planner { kBuiltin, kExternal };
