@@ -14,6 +14,7 @@
 #include "smart/planning/guide_paths.hpp"
 #include "smart/planning/pibt.hpp"
 #include "smart/planning/task_generator.hpp"
+#include "smart/planning/window_lns.hpp"
 #include "smart/tools/machine.hpp"
 
 namespace {
@@ -129,6 +130,29 @@ void BM_PibtWindow(benchmark::State& state, const std::string& file) {
   }
 }
 
+// One pass of window LNS (planning/window_lns.hpp, `--window-lns-passes 1`) over the PIBT window
+// planned from the cut: what the option adds to each planning call. Its distance tables are the
+// scene's (warm, as in a run after its first windows).
+void BM_WindowLns(benchmark::State& state, const std::string& file) {
+  Scene& s = scene(file);
+  planning::WindowLns lns(s.problem.grid, *s.dist);
+  const planning::WindowRequest request{s.cut.cell, s.goals(), 10};
+  planning::WindowPlan window{s.next, 0};
+  lns.improve(request, window);  // the tables of goals reached in the window: warm, as in a run
+  for (auto _ : state) {
+    state.PauseTiming();
+    window.paths = s.next;
+    state.ResumeTiming();
+    lns.improve(request, window);
+  }
+  const auto& st = lns.stats();
+  state.counters["robots"] = static_cast<double>(s.problem.starts.size());
+  state.counters["improved_per_window"] =
+      static_cast<double>(st.improved) / static_cast<double>(std::max<uint64_t>(1, st.windows));
+  state.counters["expanded_per_robot"] =
+      static_cast<double>(st.expansions) / static_cast<double>(std::max<uint64_t>(1, st.replanned));
+}
+
 #define LIFELONG_BENCH(name, file)                                                            \
   BENCHMARK_CAPTURE(BM_CommitCut, name, std::string(file))->Unit(benchmark::kMillisecond);    \
   BENCHMARK_CAPTURE(BM_AppendWindow, name, std::string(file))->Unit(benchmark::kMillisecond); \
@@ -137,6 +161,14 @@ void BM_PibtWindow(benchmark::State& state, const std::string& file) {
 LIFELONG_BENCH(random_400, "random.domain/random-example_400.json");
 LIFELONG_BENCH(warehouse_2500, "warehouse.domain/fulfill-example_2500.json");
 LIFELONG_BENCH(sortation_10000, "sortation_10000");
+// Window LNS where the goals' distance tables fit (not iron: 10 000 goals of 3.4 M cells).
+BENCHMARK_CAPTURE(BM_WindowLns, random_400, std::string("random.domain/random-example_400.json"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WindowLns, warehouse_2500,
+                  std::string("warehouse.domain/fulfill-example_2500.json"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WindowLns, sortation_10000, std::string("sortation_10000"))
+    ->Unit(benchmark::kMillisecond);
 // 10 000 robots on 1800x1912 cells with 10 000 distinct goals: guide paths (a table per goal
 // would take 137 GB).
 LIFELONG_BENCH(iron_10000, "iron_harvest.domain/iron-example_10000.json");

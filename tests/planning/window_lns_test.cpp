@@ -112,6 +112,24 @@ TEST(WindowLns, LeavesAWindowThatCannotBeBetterAsItIs) {
   EXPECT_EQ(lns.stats().improved, 0u);
 }
 
+// A second errand's distance table is a BFS over the map: made only for a robot whose first
+// errand is within the window's reach (6 s a window for LoRR's 2500-robot warehouse otherwise).
+TEST(WindowLns, LooksAtASecondErrandOnlyWhenTheFirstIsWithinReach) {
+  const auto g = planning::generate_empty_map(12, 1);
+  DistanceCache dist(g);
+  WindowLns lns(g, dist);
+  WindowPlan far;
+  far.paths = {std::vector<Cell>(4, Cell{0, 0})};
+  lns.improve({{{0, 0}}, {{{11, 0}, {5, 0}}}, 3}, far);
+  EXPECT_EQ(dist.computed(), 1u);  // the first errand's only: 11 steps away, the window is 3
+  EXPECT_EQ(far.paths[0].back(), (Cell{3, 0}));
+  WindowPlan near;
+  near.paths = {std::vector<Cell>(6, Cell{0, 0})};
+  lns.improve({{{0, 0}}, {{{2, 0}, {0, 0}}}, 5}, near);
+  EXPECT_EQ(dist.computed(), 3u);
+  EXPECT_EQ(near.paths[0], (std::vector<Cell>{{0, 0}, {1, 0}, {2, 0}, {1, 0}, {0, 0}, {0, 0}}));
+}
+
 TEST(WindowLns, RefusesWindowsThatDoNotFit) {
   const auto g = grid::parse_map("type octile\nheight 1\nwidth 4\nmap\n....\n", "c");
   DistanceCache dist(g);
