@@ -126,8 +126,9 @@ int32_t WindowLns::cost(const Goals& goals, const std::vector<grid::Cell>& path)
 void WindowLns::reserve(const std::vector<grid::Cell>& path, bool add) {
   for (std::size_t t = 0; t < path.size(); ++t) {
     const auto cell = static_cast<uint64_t>(grid_.index(path[t]));
-    const auto v = vertex_key(cell, static_cast<int32_t>(t));
-    add ? (void)vertex_.insert(v) : (void)vertex_.erase(v);
+    const uint64_t bit = uint64_t{1} << (t % 64);
+    auto& word = taken_[cell * words_ + t / 64];
+    word = add ? word | bit : word & ~bit;
     if (t > 0 && path[t] != path[t - 1]) {
       const auto e = edge_key(static_cast<uint64_t>(grid_.index(path[t - 1])), cell,
                               static_cast<int32_t>(t - 1));
@@ -170,8 +171,11 @@ bool WindowLns::replan(const Goals& goals, int steps, Search& s, std::vector<gri
                                grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
       if (!grid_.free(m)) continue;
       const auto mc = static_cast<uint32_t>(grid_.index(m));
-      if (vertex_.count(vertex_key(mc, n.t + 1)) != 0) continue;
-      if (mc != n.cell && edge_.count(edge_key(mc, n.cell, n.t)) != 0) continue;  // a swap
+      if (taken(mc, n.t + 1)) continue;
+      if (mc != n.cell && taken(mc, n.t) && taken(n.cell, n.t + 1) &&
+          edge_.count(edge_key(mc, n.cell, n.t)) != 0) {
+        continue;  // a swap with the robot coming the other way
+      }
       push(mc, n.t + 1, n.k, id);
     }
   }
@@ -182,8 +186,8 @@ bool WindowLns::replan(const Goals& goals, int steps, Search& s, std::vector<gri
 void WindowLns::improve(const WindowRequest& r, WindowPlan& plan) {
   check(r, plan);
   ++stats_.windows;
-  vertex_.clear();
-  edge_.clear();
+  words_ = (static_cast<std::size_t>(r.steps) + 64) / 64;
+  taken_.resize(static_cast<std::size_t>(grid_.width()) * grid_.height() * words_);
   for (const auto& p : plan.paths) reserve(p, true);
   std::vector<Goals> goals;
   std::vector<std::pair<int32_t, uint32_t>> order;  // (distance left at the start, robot)
@@ -210,6 +214,7 @@ void WindowLns::improve(const WindowRequest& r, WindowPlan& plan) {
       reserve(old, true);
     }
   }
+  for (const auto& p : plan.paths) reserve(p, false);  // every bit zero again for the next call
   plan.moves = 0;
   for (const auto& p : plan.paths) {
     for (std::size_t t = 1; t < p.size(); ++t) plan.moves += p[t] != p[t - 1] ? 1 : 0;
