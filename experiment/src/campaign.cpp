@@ -72,9 +72,14 @@ struct Campaign {
 std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, const fs::path& map,
                                    const fs::path& scen, std::size_t agents, const fs::path& plan) {
   if (source.source == PlanSource::kBuiltin) {
-    return {c.smart.string(), "plan",           "--map",    map.string(),
-            "--scen",         scen.string(),    "--agents", std::to_string(agents),
-            "--algorithm",    source.algorithm, "--out",    plan.string()};
+    std::vector<std::string> argv{
+        c.smart.string(), "plan",           "--map",    map.string(),
+        "--scen",         scen.string(),    "--agents", std::to_string(agents),
+        "--algorithm",    source.algorithm, "--out",    plan.string()};
+    if (source.lns_passes > 0) {
+      argv.insert(argv.end(), {"--lns-passes", std::to_string(source.lns_passes)});
+    }
+    return argv;
   }
   std::string cmd = source.text;
   for (const auto& [k, v] : {std::pair{"{map}", shell_quote(map.string())},

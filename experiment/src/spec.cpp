@@ -128,6 +128,10 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
   if (p["algorithm"] && !p["planner"]) {
     fail(src, p["algorithm"], field + ".algorithm", "only {planner: builtin} takes an algorithm");
   }
+  if (p["lns_passes"] && (!p["planner"] || !p["lns_passes"].IsScalar())) {
+    fail(src, p["lns_passes"], field + ".lns_passes",
+         "only {planner: builtin} takes it, one whole number, e.g. 4");
+  }
   PlanSpec plan;
   if (p["file"]) {
     plan.source = PlanSource::kFile, plan.text = p["file"].as<std::string>();
@@ -144,6 +148,11 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
              "pp (prioritized planning), pibt or lacam (`smart plan --algorithm`)");
       }
       plan.name = "builtin-" + plan.algorithm;
+    }
+    if (p["lns_passes"]) {
+      plan.lns_passes = static_cast<int>(
+          whole_numbers(p["lns_passes"], src, field + ".lns_passes", 0, 16, "rounds run 0-16")
+              .at(0));
     }
   } else {
     plan.source = PlanSource::kCommand, plan.text = p["command"].as<std::string>();

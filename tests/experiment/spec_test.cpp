@@ -582,6 +582,29 @@ TEST(Spec, ALifelongBuiltinPlannerTakesWindowLnsPasses) {
               HasSubstr("one whole number, e.g. 1"));
 }
 
+// `smart plan --lns-passes` for a built-in planner's one-shot plans; a plan file has none.
+TEST(Spec, ABuiltinPlannerTakesLnsPasses) {
+  const auto s = parse_spec(
+      "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
+      "plans: [{planner: builtin, algorithm: lacam}, {name: lns, planner: builtin, algorithm: "
+      "lacam, lns_passes: 4}]\n",
+      "p.yaml");
+  ASSERT_EQ(s.plans.size(), 2u);
+  EXPECT_EQ(s.plans[0].lns_passes, 0);
+  EXPECT_EQ(s.plans[1].lns_passes, 4);
+  EXPECT_EQ(s.plans[1].algorithm, "lacam");
+  try {
+    parse_spec(
+        "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
+        "plan: {file: a.txt, lns_passes: 1}\n",
+        "p.yaml");
+    FAIL() << "a plan file took lns_passes";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(std::string(e.what()),
+                HasSubstr("p.yaml:5: plan.lns_passes: only {planner: builtin} takes it"));
+  }
+}
+
 TEST(Spec, ALorrProblemBringsItsTeam) {
   const auto s =
       parse_spec("name: lorr\nlifelong: {problem: maze.domain/maze-example_40.json}\n", "l.yaml");

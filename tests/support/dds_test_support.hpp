@@ -189,12 +189,13 @@ enum DomainId : int {
   kSwitchableResumeMismatch = 50,
   kExperimentLookahead = 48,  // and 49 (--jobs 2)
   kExperimentWindowLns = 46,  // and 47 (--jobs 2)
+  kExperimentPlanLns = 44,    // and 45 (--jobs 2)
 };
 
 // No test takes an id below this one: a test added under it moves it down. `smart experiment`'s
 // default ids (campaign.hpp) stay below it, so a campaign beside `make test` shares no discovery
 // with a test (CampaignDefaults.ItsDefaultDomainsStayBelowEveryTestsOwn).
-constexpr int kLowestTestDomain = kExperimentWindowLns;
+constexpr int kLowestTestDomain = kExperimentPlanLns;
 
 inline dds::DomainConfig loopback() { return dds::DomainConfig::loopback(); }
 

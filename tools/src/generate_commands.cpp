@@ -12,6 +12,7 @@
 #include "smart/planning/generators.hpp"
 #include "smart/planning/lacam.hpp"
 #include "smart/planning/pibt_plan.hpp"
+#include "smart/planning/plan_lns.hpp"
 #include "smart/planning/planner.hpp"
 #include "smart/planning/random_plan.hpp"
 #include "smart/tools/commands.hpp"
@@ -84,6 +85,7 @@ struct PlanOptions {
   uint64_t seed = 1;
   double time_limit_s = 120;
   PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized;
+  int lns_passes = 0;
 };
 
 const EnumNames<PlanAlgorithm> kPlanAlgorithmNames{{"pp", PlanAlgorithm::kPrioritized},
@@ -137,9 +139,29 @@ int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
   return kExitSuccess;
 }
 
+namespace {
+
+// The built-in planners' plans are per timestep from 0 (planner.hpp plan_from_timesteps): their
+// cells are the timesteps' paths plan_lns.hpp takes.
+planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r, int passes) {
+  std::vector<std::vector<grid::Cell>> paths;
+  for (const auto& p : r.plan.paths) {
+    paths.emplace_back();
+    for (const auto& s : p.steps) paths.back().push_back(s.cell);
+  }
+  planning::DistanceCache tables(g);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto st = planning::improve_plan(g, paths, tables, {.passes = passes});
+  r.runtime_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.plan = planning::plan_from_timesteps(paths, r.plan.source);
+  return st;
+}
+
+}  // namespace
+
 int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
                   uint64_t seed, double time_limit_s, const std::string& out,
-                  PlanAlgorithm algorithm) {
+                  PlanAlgorithm algorithm, int lns_passes) {
   const auto g = grid::parse_map(grid::read_text_file(map, "map"), map);
   const auto scen =
       grid::parse_scen(grid::read_text_file(scen_file, "scenario"), scen_file, agents);
@@ -167,6 +189,7 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
               << "; try another --seed, fewer --agents or a larger map\n";
     return kExitRunFailed;
   }
+  const auto lns = lns_passes > 0 ? improve(g, r, lns_passes) : planning::PlanLnsStats{};
   // The planner's output is checked like any other plan before it is written.
   grid::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
   write_file(out, planning::to_smart_plan_text(r.plan));
@@ -178,7 +201,10 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
                               {"makespan", st.makespan},
                               {"algorithm", enum_name(algorithm, kPlanAlgorithmNames)},
                               {"runtime_s", r.runtime_s},
-                              {"restarts", r.restarts_used}}
+                              {"restarts", r.restarts_used},
+                              {"lns_passes", lns_passes},
+                              {"lns_improved", lns.improved},
+                              {"lns_saved", lns.saved}}
                    .dump()
             << std::endl;
   return kExitSuccess;
@@ -261,10 +287,16 @@ void register_plan_command(CLI::App& app, int& exit_code) {
   pl->add_option("--time-limit-s", po->time_limit_s, "give up after this many wall seconds")
       ->check(finite_in(0.001, 1e6))
       ->capture_default_str();
+  pl->add_option("--lns-passes", po->lns_passes,
+                 "then rounds of replanning each robot by space-time A* against the others' "
+                 "paths, kept when it arrives earlier (MAPF-LNS with neighbourhoods of one robot, "
+                 "plan_lns.hpp); 0: the planner's plan as it is")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
   pl->add_option("--out", po->out, "the plan file to write")->required();
   pl->callback([&exit_code, po] {
     exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out,
-                              po->algorithm);
+                              po->algorithm, po->lns_passes);
   });
 }
 

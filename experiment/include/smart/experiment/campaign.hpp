@@ -29,7 +29,7 @@ struct CampaignOptions {
   std::filesystem::path spec;
   std::filesystem::path out;  // default: experiments/<name>
   int jobs = 1;
-  // first_domain + jobs - 1 must be at most 230. 10: below the tests' ids (46-230,
+  // first_domain + jobs - 1 must be at most 230. 10: below the tests' ids (44-230,
   // tests/support/dds_test_support.hpp), so a campaign beside `make test` shares no discovery.
   int first_domain = 10;
   std::filesystem::path smart;  // the `smart` executable that plans and runs the cells

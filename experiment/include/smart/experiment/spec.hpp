@@ -8,7 +8,8 @@
 //   maps: [a.map]                     # one map for every scen, or one map per scen (paired)
 //   scens: [a-random-1.scen]
 //   agents: [10, 100]                 # first N robots
-//   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin} (algorithm: pp or pibt), or
+//   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin} (algorithm: pp, pibt or lacam;
+//                                     # lns_passes: N, `smart plan --lns-passes`), or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
 //   plans: [{name: pp, planner: builtin}, {name: lns2, command: "...", axis: xy}]
 //                                     # instead of plan: a planner axis (names 1-64 plain)
@@ -66,7 +67,9 @@ struct PlanSpec {
   std::string text;  // the file, or the command template
   std::string axis = "xy";
   std::string algorithm = "pp";  // kBuiltin: `smart plan --algorithm` (pp or pibt)
-  int lns_passes = 0;  // lifelong kBuiltin: `smart run --window-lns-passes`; 0: not given
+  // kBuiltin: `smart plan --lns-passes` (lns_passes:), lifelong `smart run --window-lns-passes`
+  // (window_lns_passes:); 0: not given
+  int lns_passes = 0;
 };
 
 struct LifelongSpec {

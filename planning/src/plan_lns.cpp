@@ -1,0 +1,173 @@
+#include "smart/planning/plan_lns.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+
+namespace smart::planning {
+
+namespace {
+
+using Path = std::vector<grid::Cell>;
+
+// Who is where when: a bit per cell and timestep up to the horizon, where each robot parks from
+// its arrival, and the moves as (from, to, t) keys read only where the bits allow a swap.
+class Reservations {
+ public:
+  Reservations(const grid::Grid& g, std::size_t horizon)
+      : g_(g),
+        words_((horizon + 64) / 64),
+        bits_(cells(g) * words_, 0),
+        parked_from_(cells(g), INT32_MAX) {}
+
+  static std::size_t cells(const grid::Grid& g) {
+    return static_cast<std::size_t>(g.width()) * static_cast<std::size_t>(g.height());
+  }
+  bool taken(std::size_t cell, int32_t t) const {
+    if (parked_from_[cell] <= t) return true;
+    const auto w = static_cast<std::size_t>(t) / 64;
+    return w < words_ && (bits_[cell * words_ + w] >> (t % 64) & 1) != 0;
+  }
+  bool moved(std::size_t from, std::size_t to, int32_t t) const {
+    return moves_.count(key(from, to, t)) != 0;
+  }
+  // The last timestep anyone is on `cell` before parking there for good; -1: never.
+  int32_t last_use(std::size_t cell) const {
+    for (std::size_t w = words_; w-- > 0;) {
+      const uint64_t word = bits_[cell * words_ + w];
+      if (word != 0) return static_cast<int32_t>(w * 64 + 63 - std::size_t(__builtin_clzll(word)));
+    }
+    return -1;
+  }
+  void set(const Path& p, bool add) {
+    for (std::size_t t = 0; t < p.size(); ++t) {
+      const auto cell = g_.index(p[t]);
+      auto& word = bits_[cell * words_ + t / 64];
+      const uint64_t bit = uint64_t{1} << (t % 64);
+      word = add ? word | bit : word & ~bit;
+      if (t > 0 && p[t] != p[t - 1]) {
+        const auto k = key(g_.index(p[t - 1]), cell, static_cast<int32_t>(t - 1));
+        add ? (void)moves_.insert(k) : (void)moves_.erase(k);
+      }
+    }
+    parked_from_[g_.index(p.back())] = add ? static_cast<int32_t>(p.size() - 1) : INT32_MAX;
+  }
+
+ private:
+  static uint64_t key(std::size_t from, std::size_t to, int32_t t) {
+    return (uint64_t(from) << 40) | (uint64_t(to) << 16) | uint64_t(uint16_t(t));
+  }
+  const grid::Grid& g_;
+  std::size_t words_;
+  std::vector<uint64_t> bits_;
+  std::vector<int32_t> parked_from_;
+  std::unordered_set<uint64_t> moves_;
+};
+
+struct Node {
+  int32_t f, t;
+  uint32_t cell;
+  int32_t parent;
+};
+
+// Space-time A* from the path's start to its goal for an arrival before the path's own: f = t +
+// distance, only f < the old arrival pushed. Empty when there is none (within `max_expansions`).
+Path earlier_path(const grid::Grid& g, const Reservations& res, const Path& old,
+                  const std::vector<int32_t>& h, std::size_t max_expansions,
+                  std::size_t& expansions) {
+  const auto bound = static_cast<int32_t>(old.size() - 1);
+  const auto goal = g.index(old.back());
+  const int32_t last = res.last_use(goal);
+  std::vector<Node> nodes;
+  const auto later = [&nodes](int32_t a, int32_t b) {
+    const Node &x = nodes[std::size_t(a)], &y = nodes[std::size_t(b)];
+    return x.f != y.f ? x.f > y.f : (x.t != y.t ? x.t < y.t : a > b);
+  };
+  std::priority_queue<int32_t, std::vector<int32_t>, decltype(later)> open(later);
+  std::unordered_set<uint64_t> closed;
+  const auto push = [&](std::size_t cell, int32_t t, int32_t parent) {
+    const int32_t f = t + h[cell];
+    if (h[cell] < 0 || f >= bound) return;
+    nodes.push_back({f, t, static_cast<uint32_t>(cell), parent});
+    open.push(static_cast<int32_t>(nodes.size() - 1));
+  };
+  push(g.index(old.front()), 0, -1);
+  const auto width = static_cast<int32_t>(g.width());
+  for (std::size_t n_exp = 0; !open.empty() && n_exp < max_expansions;) {
+    const int32_t id = open.top();
+    open.pop();
+    const Node n = nodes[std::size_t(id)];
+    if (!closed.insert((uint64_t(n.cell) << 32) | uint32_t(n.t)).second) continue;
+    ++n_exp, ++expansions;
+    if (n.cell == goal && n.t > last) {
+      Path out(std::size_t(n.t) + 1);
+      for (int32_t i = id; i >= 0; i = nodes[std::size_t(i)].parent) {
+        const auto& m = nodes[std::size_t(i)];
+        out[std::size_t(m.t)] = {static_cast<int32_t>(m.cell) % width,
+                                 static_cast<int32_t>(m.cell) / width};
+      }
+      return out;
+    }
+    const grid::Cell c{static_cast<int32_t>(n.cell) % width, static_cast<int32_t>(n.cell) / width};
+    for (const grid::Cell m : {c, grid::Cell{c.x + 1, c.y}, grid::Cell{c.x - 1, c.y},
+                               grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
+      if (!g.free(m)) continue;
+      const auto mc = g.index(m);
+      if (res.taken(mc, n.t + 1)) continue;
+      if (mc != n.cell && res.taken(mc, n.t) && res.taken(n.cell, n.t + 1) &&
+          res.moved(mc, n.cell, n.t)) {
+        continue;  // a swap with the robot coming the other way
+      }
+      push(mc, n.t + 1, id);
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, DistanceCache& tables,
+                          const PlanLnsOptions& options) {
+  if (Reservations::cells(grid) >= (std::size_t{1} << 24)) {
+    throw std::invalid_argument("plan LNS: maps of 16 M cells or more are not supported");
+  }
+  std::size_t horizon = 0;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    if (paths[i].empty()) {
+      throw std::invalid_argument("plan LNS: robot " + std::to_string(i) + " has an empty path");
+    }
+    horizon = std::max(horizon, paths[i].size());
+  }
+  if (horizon >= 65535) throw std::invalid_argument("plan LNS: plans of 65535 steps or more");
+  Reservations res(grid, horizon);
+  for (const auto& p : paths) res.set(p, true);
+  std::vector<std::pair<int64_t, uint32_t>> order;  // (delay, robot): most delayed first
+  for (uint32_t i = 0; i < paths.size(); ++i) {
+    const int32_t d = tables.distance(paths[i].front(), paths[i].back());
+    const auto delay = static_cast<int64_t>(paths[i].size() - 1) - d;
+    if (d >= 0 && delay > 0) order.emplace_back(delay, i);
+  }
+  std::stable_sort(order.begin(), order.end(), [](auto a, auto b) { return a.first > b.first; });
+  PlanLnsStats st;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    for (const auto& [delay, i] : order) {
+      auto& old = paths[i];
+      res.set(old, false);
+      ++st.replanned;
+      const auto table = tables.to(old.back());
+      auto better = earlier_path(grid, res, old, *table, options.max_expansions, st.expansions);
+      if (!better.empty()) {
+        ++st.improved;
+        st.saved += static_cast<int64_t>(old.size()) - static_cast<int64_t>(better.size());
+        old = std::move(better);
+      }
+      res.set(old, true);
+    }
+  }
+  return st;
+}
+
+}  // namespace smart::planning
