@@ -10,9 +10,9 @@
 // worse, and never fails.
 // A robot's cost is where it ends the window: timesteps plus the exact distance left through
 // its errands (the first, and the second when the first is within the window's reach), the
-// objective of a windowed planner (RHCR: Li, Tinka, Kiesel,
-// Durham, Kumar, Koenig, AAAI 2021, §4); a robot past them, or with none, costs 0 where it
-// stands at the end, and is left as PIBT planned it. Robots go longest distance left first.
+// objective of a windowed planner (RHCR: Li, Tinka, Kiesel, Durham, Kumar, Koenig, AAAI 2021,
+// §4); a robot past them costs 0 where it stands at the end, and one with none is left as PIBT
+// planned it. Robots go longest distance left first.
 // Deterministic; no clock, no I/O. Needs a distance table per goal cell (distance_cache.hpp).
 #pragma once
 
