@@ -7,65 +7,13 @@
 #include <string>
 #include <unordered_set>
 
+#include "smart/planning/space_time_reservations.hpp"
+
 namespace smart::planning {
 
 namespace {
 
 using Path = std::vector<grid::Cell>;
-
-// Who is where when: a bit per cell and timestep up to the horizon, where each robot parks from
-// its arrival, and the moves as (from, to, t) keys read only where the bits allow a swap.
-class Reservations {
- public:
-  Reservations(const grid::Grid& g, std::size_t horizon)
-      : g_(g),
-        words_((horizon + 64) / 64),
-        bits_(cells(g) * words_, 0),
-        parked_from_(cells(g), INT32_MAX) {}
-
-  static std::size_t cells(const grid::Grid& g) {
-    return static_cast<std::size_t>(g.width()) * static_cast<std::size_t>(g.height());
-  }
-  bool taken(std::size_t cell, int32_t t) const {
-    if (parked_from_[cell] <= t) return true;
-    const auto w = static_cast<std::size_t>(t) / 64;
-    return w < words_ && (bits_[cell * words_ + w] >> (t % 64) & 1) != 0;
-  }
-  bool moved(std::size_t from, std::size_t to, int32_t t) const {
-    return moves_.count(key(from, to, t)) != 0;
-  }
-  // The last timestep anyone is on `cell` before parking there for good; -1: never.
-  int32_t last_use(std::size_t cell) const {
-    for (std::size_t w = words_; w-- > 0;) {
-      const uint64_t word = bits_[cell * words_ + w];
-      if (word != 0) return static_cast<int32_t>(w * 64 + 63 - std::size_t(__builtin_clzll(word)));
-    }
-    return -1;
-  }
-  void set(const Path& p, bool add) {
-    for (std::size_t t = 0; t < p.size(); ++t) {
-      const auto cell = g_.index(p[t]);
-      auto& word = bits_[cell * words_ + t / 64];
-      const uint64_t bit = uint64_t{1} << (t % 64);
-      word = add ? word | bit : word & ~bit;
-      if (t > 0 && p[t] != p[t - 1]) {
-        const auto k = key(g_.index(p[t - 1]), cell, static_cast<int32_t>(t - 1));
-        add ? (void)moves_.insert(k) : (void)moves_.erase(k);
-      }
-    }
-    parked_from_[g_.index(p.back())] = add ? static_cast<int32_t>(p.size() - 1) : INT32_MAX;
-  }
-
- private:
-  static uint64_t key(std::size_t from, std::size_t to, int32_t t) {
-    return (uint64_t(from) << 40) | (uint64_t(to) << 16) | uint64_t(uint16_t(t));
-  }
-  const grid::Grid& g_;
-  std::size_t words_;
-  std::vector<uint64_t> bits_;
-  std::vector<int32_t> parked_from_;
-  std::unordered_set<uint64_t> moves_;
-};
 
 struct Node {
   int32_t f, t;
@@ -75,7 +23,7 @@ struct Node {
 
 // Space-time A* from the path's start to its goal for an arrival before the path's own: f = t +
 // distance, only f < the old arrival pushed. Empty when there is none (within `max_expansions`).
-Path earlier_path(const grid::Grid& g, const Reservations& res, const Path& old,
+Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const Path& old,
                   const std::vector<int32_t>& h, std::size_t max_expansions,
                   std::size_t& expansions) {
   const auto bound = static_cast<int32_t>(old.size() - 1);
@@ -116,11 +64,7 @@ Path earlier_path(const grid::Grid& g, const Reservations& res, const Path& old,
                                grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
       if (!g.free(m)) continue;
       const auto mc = g.index(m);
-      if (res.taken(mc, n.t + 1)) continue;
-      if (mc != n.cell && res.taken(mc, n.t) && res.taken(n.cell, n.t + 1) &&
-          res.moved(mc, n.cell, n.t)) {
-        continue;  // a swap with the robot coming the other way
-      }
+      if (res.taken(mc, n.t + 1) || res.swaps(n.cell, mc, n.t)) continue;
       push(mc, n.t + 1, id);
     }
   }
@@ -131,7 +75,8 @@ Path earlier_path(const grid::Grid& g, const Reservations& res, const Path& old,
 
 PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, DistanceCache& tables,
                           const PlanLnsOptions& options) {
-  if (Reservations::cells(grid) >= (std::size_t{1} << 24)) {
+  if (static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()) >=
+      (std::size_t{1} << 24)) {
     throw std::invalid_argument("plan LNS: maps of 16 M cells or more are not supported");
   }
   std::size_t horizon = 0;
@@ -142,8 +87,8 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
     horizon = std::max(horizon, paths[i].size());
   }
   if (horizon >= 65535) throw std::invalid_argument("plan LNS: plans of 65535 steps or more");
-  Reservations res(grid, horizon);
-  for (const auto& p : paths) res.set(p, true);
+  SpaceTimeReservations res(grid, horizon);
+  for (const auto& p : paths) res.set(p, true, true);
   std::vector<std::pair<int64_t, uint32_t>> order;  // (delay, robot): most delayed first
   for (uint32_t i = 0; i < paths.size(); ++i) {
     const int32_t d = tables.distance(paths[i].front(), paths[i].back());
@@ -155,7 +100,7 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
   for (int pass = 0; pass < options.passes; ++pass) {
     for (const auto& [delay, i] : order) {
       auto& old = paths[i];
-      res.set(old, false);
+      res.set(old, false, true);
       ++st.replanned;
       const auto table = tables.to(old.back());
       auto better = earlier_path(grid, res, old, *table, options.max_expansions, st.expansions);
@@ -164,7 +109,7 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
         st.saved += static_cast<int64_t>(old.size()) - static_cast<int64_t>(better.size());
         old = std::move(better);
       }
-      res.set(old, true);
+      res.set(old, true, true);
     }
   }
   return st;

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "smart/planning/space_time_reservations.hpp"
+
 namespace smart::planning {
 
 namespace {
@@ -13,10 +15,6 @@ namespace {
 constexpr std::size_t kErrands = 2;  // errands a robot's cost looks at (RHCR: the next goals)
 
 uint64_t vertex_key(uint64_t cell, int32_t t) { return (cell << 16) | uint64_t(uint16_t(t)); }
-// A move from -> to during [t, t + 1]; cells below 2^24 (16 M cells: checked in check()).
-uint64_t edge_key(uint64_t from, uint64_t to, int32_t t) {
-  return (from << 40) | (to << 16) | uint64_t(uint16_t(t));
-}
 
 }  // namespace
 
@@ -123,24 +121,11 @@ int32_t WindowLns::cost(const Goals& goals, const std::vector<grid::Cell>& path)
   return h < 0 ? -1 : static_cast<int32_t>(path.size()) - 1 + h;
 }
 
-void WindowLns::reserve(const std::vector<grid::Cell>& path, bool add) {
-  for (std::size_t t = 0; t < path.size(); ++t) {
-    const auto cell = static_cast<uint64_t>(grid_.index(path[t]));
-    const uint64_t bit = uint64_t{1} << (t % 64);
-    auto& word = taken_[cell * words_ + t / 64];
-    word = add ? word | bit : word & ~bit;
-    if (t > 0 && path[t] != path[t - 1]) {
-      const auto e = edge_key(static_cast<uint64_t>(grid_.index(path[t - 1])), cell,
-                              static_cast<int32_t>(t - 1));
-      add ? (void)edge_.insert(e) : (void)edge_.erase(e);
-    }
-  }
-}
-
 // A* over (cell, t, errands reached) for t <= steps against the others' reservations; the first
 // state taken at t = steps ends the search (its cost, steps + distance left, is then the least).
 // False when none is reached within the expansion bound.
-bool WindowLns::replan(const Goals& goals, int steps, Search& s, std::vector<grid::Cell>& path) {
+bool WindowLns::replan(const Goals& goals, int steps, const SpaceTimeReservations& res, Search& s,
+                       std::vector<grid::Cell>& path) {
   s.clear();
   const auto push = [&](uint32_t cell, int32_t t, int32_t k, int32_t parent) {
     k = goals.reached(cell, k);
@@ -171,11 +156,7 @@ bool WindowLns::replan(const Goals& goals, int steps, Search& s, std::vector<gri
                                grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
       if (!grid_.free(m)) continue;
       const auto mc = static_cast<uint32_t>(grid_.index(m));
-      if (taken(mc, n.t + 1)) continue;
-      if (mc != n.cell && taken(mc, n.t) && taken(n.cell, n.t + 1) &&
-          edge_.count(edge_key(mc, n.cell, n.t)) != 0) {
-        continue;  // a swap with the robot coming the other way
-      }
+      if (res.taken(mc, n.t + 1) || res.swaps(n.cell, mc, n.t)) continue;
       push(mc, n.t + 1, n.k, id);
     }
   }
@@ -186,9 +167,8 @@ bool WindowLns::replan(const Goals& goals, int steps, Search& s, std::vector<gri
 void WindowLns::improve(const WindowRequest& r, WindowPlan& plan) {
   check(r, plan);
   ++stats_.windows;
-  words_ = (static_cast<std::size_t>(r.steps) + 64) / 64;
-  taken_.resize(static_cast<std::size_t>(grid_.width()) * grid_.height() * words_);
-  for (const auto& p : plan.paths) reserve(p, true);
+  SpaceTimeReservations res(grid_, static_cast<std::size_t>(r.steps));
+  for (const auto& p : plan.paths) res.set(p, true);
   std::vector<Goals> goals;
   std::vector<std::pair<int32_t, uint32_t>> order;  // (distance left at the start, robot)
   for (uint32_t i = 0; i < r.start.size(); ++i) {
@@ -203,18 +183,17 @@ void WindowLns::improve(const WindowRequest& r, WindowPlan& plan) {
     for (const auto& [h, i] : order) {
       auto& old = plan.paths[i];
       const int32_t before = cost(goals[i], old);
-      reserve(old, false);
+      res.set(old, false);
       path = old;
       ++stats_.replanned;
-      if (replan(goals[i], r.steps, search, path) && cost(goals[i], path) < before) {
+      if (replan(goals[i], r.steps, res, search, path) && cost(goals[i], path) < before) {
         ++stats_.improved;
         stats_.saved += before - cost(goals[i], path);
         old = path;
       }
-      reserve(old, true);
+      res.set(old, true);
     }
   }
-  for (const auto& p : plan.paths) reserve(p, false);  // every bit zero again for the next call
   plan.moves = 0;
   for (const auto& p : plan.paths) {
     for (std::size_t t = 1; t < p.size(); ++t) plan.moves += p[t] != p[t - 1] ? 1 : 0;

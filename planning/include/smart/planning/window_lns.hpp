@@ -17,12 +17,12 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
 
 #include "smart/grid/grid.hpp"
 #include "smart/planning/distance_cache.hpp"
 #include "smart/planning/pibt.hpp"
+#include "smart/planning/space_time_reservations.hpp"
 
 namespace smart::planning {
 
@@ -54,22 +54,12 @@ class WindowLns {
   void check(const WindowRequest& request, const WindowPlan& plan) const;
   Goals goals_of(const WindowRequest& request, uint32_t robot);
   int32_t cost(const Goals& goals, const std::vector<grid::Cell>& path) const;
-  bool replan(const Goals& goals, int steps, Search& search, std::vector<grid::Cell>& path);
-  void reserve(const std::vector<grid::Cell>& path, bool add);
+  bool replan(const Goals& goals, int steps, const SpaceTimeReservations& reservations,
+              Search& search, std::vector<grid::Cell>& path);
 
   const grid::Grid& grid_;
   DistanceCache& tables_;
   WindowLnsOptions options_;
-  bool taken(std::size_t cell, int32_t t) const {
-    return (taken_[cell * words_ + std::size_t(t) / 64] >> (t % 64) & 1) != 0;
-  }
-  // The window's reservations: per cell, a bit per timestep a robot is there (words_ words a
-  // cell, kept all zero between calls: 8 bytes a cell for windows of up to 63 steps), and the
-  // moves as (from, to, t) keys, looked up only where the bits allow a swap (a hash set per
-  // (cell, t) cost 4 PIBT windows a pass, smart_lifelong_bench).
-  std::vector<uint64_t> taken_;
-  std::size_t words_ = 0;
-  std::unordered_set<uint64_t> edge_;
   WindowLnsStats stats_;
 };
 
