@@ -1,11 +1,8 @@
 #include "smart/planning/plan_lns.hpp"
 
 #include <algorithm>
-#include <climits>
-#include <queue>
 #include <stdexcept>
 #include <string>
-#include <unordered_set>
 
 #include "smart/planning/space_time_reservations.hpp"
 
@@ -15,45 +12,86 @@ namespace {
 
 using Path = std::vector<grid::Cell>;
 
-struct Node {
-  int32_t f, t;
-  uint32_t cell;
-  int32_t parent;
+// One search's scratch, kept between robots (a pass replans every robot). The open list holds
+// its keys: comparing through node ids read two scattered nodes a comparison, half of a pass's
+// time on LaCAM's warehouse plan (docs/performance.md, "Plan LNS"). The closed list is a bit
+// per (cell, t), the reservations' shape; the words a search set are cleared after it.
+struct PathSearch {
+  struct Node {
+    uint32_t cell;
+    int32_t t, parent;
+  };
+  struct Open {
+    int32_t f, t, id;
+  };
+  // Lowest f; among equals the deepest, then the first pushed.
+  struct Later {
+    bool operator()(const Open& x, const Open& y) const {
+      return x.f != y.f ? x.f > y.f : (x.t != y.t ? x.t < y.t : x.id > y.id);
+    }
+  };
+  std::vector<Node> nodes;
+  std::vector<Open> open;
+  std::size_t words;
+  std::vector<uint64_t> closed;
+  std::vector<std::size_t> touched;
+
+  PathSearch(std::size_t cells, std::size_t horizon)
+      : words((horizon + 64) / 64), closed(cells * words, 0) {}
+  bool is_closed(std::size_t cell, int32_t t) const {
+    return (closed[cell * words + std::size_t(t) / 64] >> (t % 64) & 1) != 0;
+  }
+  void close(std::size_t cell, int32_t t) {
+    const std::size_t w = cell * words + std::size_t(t) / 64;
+    if (closed[w] == 0) touched.push_back(w);
+    closed[w] |= uint64_t{1} << (t % 64);
+  }
+  void clear() {
+    nodes.clear();
+    open.clear();
+    for (const std::size_t w : touched) closed[w] = 0;
+    touched.clear();
+  }
+  void push(uint32_t cell, int32_t t, int32_t f, int32_t parent) {
+    nodes.push_back({cell, t, parent});
+    open.push_back({f, t, static_cast<int32_t>(nodes.size() - 1)});
+    std::push_heap(open.begin(), open.end(), Later{});
+  }
+  Open pop() {
+    std::pop_heap(open.begin(), open.end(), Later{});
+    const Open o = open.back();
+    open.pop_back();
+    return o;
+  }
 };
 
 // Space-time A* from the path's start to its goal for an arrival before the path's own: f = t +
 // distance, only f < the old arrival pushed. Empty when there is none (within `max_expansions`).
+// A state already closed is not pushed again: the states popped are the same, in the same order.
 Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const Path& old,
-                  const std::vector<int32_t>& h, std::size_t max_expansions,
+                  const std::vector<int32_t>& h, std::size_t max_expansions, PathSearch& s,
                   std::size_t& expansions) {
   const auto bound = static_cast<int32_t>(old.size() - 1);
   const auto goal = g.index(old.back());
   const int32_t last = res.last_use(goal);
-  std::vector<Node> nodes;
-  const auto later = [&nodes](int32_t a, int32_t b) {
-    const Node &x = nodes[std::size_t(a)], &y = nodes[std::size_t(b)];
-    return x.f != y.f ? x.f > y.f : (x.t != y.t ? x.t < y.t : a > b);
-  };
-  std::priority_queue<int32_t, std::vector<int32_t>, decltype(later)> open(later);
-  std::unordered_set<uint64_t> closed;
+  s.clear();
   const auto push = [&](std::size_t cell, int32_t t, int32_t parent) {
     const int32_t f = t + h[cell];
-    if (h[cell] < 0 || f >= bound) return;
-    nodes.push_back({f, t, static_cast<uint32_t>(cell), parent});
-    open.push(static_cast<int32_t>(nodes.size() - 1));
+    if (h[cell] < 0 || f >= bound || s.is_closed(cell, t)) return;
+    s.push(static_cast<uint32_t>(cell), t, f, parent);
   };
   push(g.index(old.front()), 0, -1);
   const auto width = static_cast<int32_t>(g.width());
-  for (std::size_t n_exp = 0; !open.empty() && n_exp < max_expansions;) {
-    const int32_t id = open.top();
-    open.pop();
-    const Node n = nodes[std::size_t(id)];
-    if (!closed.insert((uint64_t(n.cell) << 32) | uint32_t(n.t)).second) continue;
+  for (std::size_t n_exp = 0; !s.open.empty() && n_exp < max_expansions;) {
+    const int32_t id = s.pop().id;
+    const PathSearch::Node n = s.nodes[std::size_t(id)];
+    if (s.is_closed(n.cell, n.t)) continue;
+    s.close(n.cell, n.t);
     ++n_exp, ++expansions;
     if (n.cell == goal && n.t > last) {
       Path out(std::size_t(n.t) + 1);
-      for (int32_t i = id; i >= 0; i = nodes[std::size_t(i)].parent) {
-        const auto& m = nodes[std::size_t(i)];
+      for (int32_t i = id; i >= 0; i = s.nodes[std::size_t(i)].parent) {
+        const auto& m = s.nodes[std::size_t(i)];
         out[std::size_t(m.t)] = {static_cast<int32_t>(m.cell) % width,
                                  static_cast<int32_t>(m.cell) / width};
       }
@@ -97,13 +135,16 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
   }
   std::stable_sort(order.begin(), order.end(), [](auto a, auto b) { return a.first > b.first; });
   PlanLnsStats st;
+  PathSearch search(
+      static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()), horizon);
   for (int pass = 0; pass < options.passes; ++pass) {
     for (const auto& [delay, i] : order) {
       auto& old = paths[i];
       res.set(old, false, true);
       ++st.replanned;
       const auto table = tables.to(old.back());
-      auto better = earlier_path(grid, res, old, *table, options.max_expansions, st.expansions);
+      auto better =
+          earlier_path(grid, res, old, *table, options.max_expansions, search, st.expansions);
       if (!better.empty()) {
         ++st.improved;
         st.saved += static_cast<int64_t>(old.size()) - static_cast<int64_t>(better.size());

@@ -70,6 +70,44 @@ TEST(PlanLns, ARobotArrivesEarlierButNeverParksWhereSomeonePassesLater) {
   EXPECT_EQ(st.improved, 0u);
 }
 
+// Regression: one search's scratch serves every robot of a pass, and a state the last search
+// closed must not stay closed for the next one. Robot 0 (delayed 3 steps) is replanned first and
+// finds nothing earlier, having closed (3,3) at t = 2 and (3,2) at t = 3; robot 6 (delayed 1)
+// then arrives a step earlier through those very states. With the closed bits left set, robot 6
+// kept its wait. (A plan of LaCAM on a generated 8 x 6 map, written out.)
+TEST(PlanLns, ARobotsSearchStartsWithNothingClosed) {
+  const auto g = grid::parse_map(
+      "type octile\nheight 6\nwidth 8\nmap\n........\n.......@\n......@@\n......@.\n"
+      ".....@..\n........\n",
+      "c");
+  Paths paths{{{3, 4}, {3, 3}, {3, 2}, {4, 2}, {4, 2}, {3, 2}, {4, 2}},
+              {{1, 0}, {2, 0}, {2, 1}, {3, 1}, {4, 1}, {5, 1}, {6, 1}},
+              {{0, 3}, {1, 3}, {2, 3}, {3, 3}, {4, 3}, {4, 2}, {4, 1}},
+              {{4, 2}, {4, 3}, {4, 4}, {4, 5}, {5, 5}, {6, 5}, {6, 4}},
+              {{3, 3}, {3, 2}, {3, 1}, {3, 0}, {3, 1}},
+              {{1, 1},
+               {1, 2},
+               {1, 3},
+               {2, 3},
+               {3, 3},
+               {4, 3},
+               {4, 4},
+               {4, 5},
+               {5, 5},
+               {6, 5},
+               {7, 5},
+               {7, 4}},
+              {{3, 5}, {3, 4}, {2, 4}, {2, 4}, {2, 3}, {2, 2}, {2, 1}},
+              {{1, 4}, {1, 4}, {1, 4}, {1, 3}, {1, 2}}};
+  auto expected = paths;
+  expected[6] = {{3, 5}, {3, 4}, {3, 3}, {3, 2}, {2, 2}, {2, 1}};
+  DistanceCache tables(g);
+  const auto st = improve_plan(g, paths, tables);
+  EXPECT_EQ(paths, expected);
+  EXPECT_EQ(st.improved, 1u);
+  EXPECT_EQ(st.saved, 1);
+}
+
 TEST(PlanLns, RefusesAnEmptyPath) {
   const auto g = grid::parse_map("type octile\nheight 1\nwidth 3\nmap\n...\n", "c");
   DistanceCache tables(g);
