@@ -1,6 +1,8 @@
 #include "smart/planning/plan_lns.hpp"
 
 #include <algorithm>
+#include <climits>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -13,61 +15,63 @@ namespace {
 using Path = std::vector<grid::Cell>;
 
 // One search's scratch, kept between robots (a pass replans every robot). The open list holds
-// its keys: comparing through node ids read two scattered nodes a comparison, half of a pass's
-// time on LaCAM's warehouse plan (docs/performance.md, "Plan LNS"). The closed list is a bit
-// per (cell, t), the reservations' shape; the words a search set are cleared after it.
+// its keys, each one integer: comparing through node ids read two scattered nodes a comparison,
+// half of a pass's time on LaCAM's warehouse plan (docs/performance.md, "Plan LNS"). A bit per
+// (cell, t), the reservations' shape, marks the states pushed; the words a search set are
+// cleared after it.
 struct PathSearch {
   struct Node {
     uint32_t cell;
     int32_t t, parent;
   };
-  struct Open {
-    int32_t f, t, id;
-  };
-  // Lowest f; among equals the deepest, then the first pushed.
-  struct Later {
-    bool operator()(const Open& x, const Open& y) const {
-      return x.f != y.f ? x.f > y.f : (x.t != y.t ? x.t < y.t : x.id > y.id);
-    }
-  };
+  // Lowest f first; among equals the deepest, then the first pushed: one integer (f and t are
+  // below 65 535, improve_plan checks; ids below 2^31, push stops there).
+  static uint64_t key(int32_t f, int32_t t, std::size_t id) {
+    return uint64_t(f) << 48 | uint64_t(0xFFFF - t) << 32 | uint64_t(id);
+  }
   std::vector<Node> nodes;
-  std::vector<Open> open;
+  std::vector<uint64_t> open;  // a min-heap of keys
   std::size_t words;
-  std::vector<uint64_t> closed;
+  std::vector<uint64_t> seen_bits;
   std::vector<std::size_t> touched;
 
   PathSearch(std::size_t cells, std::size_t horizon)
-      : words((horizon + 64) / 64), closed(cells * words, 0) {}
-  bool is_closed(std::size_t cell, int32_t t) const {
-    return (closed[cell * words + std::size_t(t) / 64] >> (t % 64) & 1) != 0;
+      : words((horizon + 64) / 64), seen_bits(cells * words, 0) {}
+  bool seen(std::size_t cell, int32_t t) const {
+    return (seen_bits[cell * words + std::size_t(t) / 64] >> (t % 64) & 1) != 0;
   }
-  void close(std::size_t cell, int32_t t) {
+  void see(std::size_t cell, int32_t t) {
     const std::size_t w = cell * words + std::size_t(t) / 64;
-    if (closed[w] == 0) touched.push_back(w);
-    closed[w] |= uint64_t{1} << (t % 64);
+    if (seen_bits[w] == 0) touched.push_back(w);
+    seen_bits[w] |= uint64_t{1} << (t % 64);
   }
   void clear() {
     nodes.clear();
     open.clear();
-    for (const std::size_t w : touched) closed[w] = 0;
+    for (const std::size_t w : touched) seen_bits[w] = 0;
     touched.clear();
   }
+  // Past 2^31 nodes nothing more is pushed: the search is cut, as by max_expansions.
   void push(uint32_t cell, int32_t t, int32_t f, int32_t parent) {
+    if (nodes.size() >= std::size_t{INT32_MAX}) return;
+    open.push_back(key(f, t, nodes.size()));
     nodes.push_back({cell, t, parent});
-    open.push_back({f, t, static_cast<int32_t>(nodes.size() - 1)});
-    std::push_heap(open.begin(), open.end(), Later{});
+    std::push_heap(open.begin(), open.end(), std::greater<>{});
   }
-  Open pop() {
-    std::pop_heap(open.begin(), open.end(), Later{});
-    const Open o = open.back();
+  // The id of the node of the lowest key, taken out of the open list.
+  int32_t pop() {
+    std::pop_heap(open.begin(), open.end(), std::greater<>{});
+    const auto id = static_cast<int32_t>(open.back() & 0xFFFFFFFFu);
     open.pop_back();
-    return o;
+    return id;
   }
 };
 
 // Space-time A* from the path's start to its goal for an arrival before the path's own: f = t +
 // distance, only f < the old arrival pushed. Empty when there is none (within `max_expansions`).
-// A state already closed is not pushed again: the states popped are the same, in the same order.
+// A state is pushed once: pushed again it would have the same f and t and a later id, so it
+// would be popped after the first and skipped; the states expanded are the same, in the same
+// order, as with a closed list.
 Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const Path& old,
                   const std::vector<int32_t>& h, std::size_t max_expansions, PathSearch& s,
                   std::size_t& expansions) {
@@ -77,16 +81,15 @@ Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const P
   s.clear();
   const auto push = [&](std::size_t cell, int32_t t, int32_t parent) {
     const int32_t f = t + h[cell];
-    if (h[cell] < 0 || f >= bound || s.is_closed(cell, t)) return;
+    if (h[cell] < 0 || f >= bound || s.seen(cell, t)) return;
+    s.see(cell, t);
     s.push(static_cast<uint32_t>(cell), t, f, parent);
   };
   push(g.index(old.front()), 0, -1);
   const auto width = static_cast<int32_t>(g.width());
   for (std::size_t n_exp = 0; !s.open.empty() && n_exp < max_expansions;) {
-    const int32_t id = s.pop().id;
+    const int32_t id = s.pop();
     const PathSearch::Node n = s.nodes[std::size_t(id)];
-    if (s.is_closed(n.cell, n.t)) continue;
-    s.close(n.cell, n.t);
     ++n_exp, ++expansions;
     if (n.cell == goal && n.t > last) {
       Path out(std::size_t(n.t) + 1);
