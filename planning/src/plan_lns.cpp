@@ -67,16 +67,15 @@ struct PathSearch {
   }
 };
 
-// Space-time A* from the path's start to its goal for an arrival before the path's own: f = t +
-// distance, only f < the old arrival pushed. Empty when there is none (within `max_expansions`).
-// A state is pushed once: pushed again it would have the same f and t and a later id, so it
-// would be popped after the first and skipped; the states expanded are the same, in the same
-// order, as with a closed list.
-Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const Path& old,
-                  const std::vector<int32_t>& h, std::size_t max_expansions, PathSearch& s,
-                  std::size_t& expansions) {
-  const auto bound = static_cast<int32_t>(old.size() - 1);
-  const auto goal = g.index(old.back());
+// Space-time A* from `start` to `goal` for an arrival before `bound`: f = t + distance, only f
+// < bound pushed; the robot parks at the goal, so it arrives only after every other path's last
+// visit there. Empty when there is none (within `max_expansions`). A state is pushed once:
+// pushed again it would have the same f and t and a later id, so it would be popped after the
+// first and skipped; the states expanded are the same, in the same order, as with a closed list.
+Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, grid::Cell start,
+                  grid::Cell goal_cell, int32_t bound, const std::vector<int32_t>& h,
+                  std::size_t max_expansions, PathSearch& s, std::size_t& expansions) {
+  const auto goal = g.index(goal_cell);
   const int32_t last = res.last_use(goal);
   s.clear();
   const auto push = [&](std::size_t cell, int32_t t, int32_t parent) {
@@ -85,7 +84,7 @@ Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const P
     s.see(cell, t);
     s.push(static_cast<uint32_t>(cell), t, f, parent);
   };
-  push(g.index(old.front()), 0, -1);
+  push(g.index(start), 0, -1);
   const auto width = static_cast<int32_t>(g.width());
   for (std::size_t n_exp = 0; !s.open.empty() && n_exp < max_expansions;) {
     const int32_t id = s.pop();
@@ -112,6 +111,149 @@ Path earlier_path(const grid::Grid& g, const SpaceTimeReservations& res, const P
   return {};
 }
 
+int64_t arrival(const Path& p) { return static_cast<int64_t>(p.size()) - 1; }
+
+// One improve_plan call: the plan, its reservations, which robots visit each cell (for the
+// neighbourhoods; entries of paths since replaced stay, and are checked against the path).
+class Lns {
+ public:
+  Lns(const grid::Grid& grid, std::vector<Path>& paths, DistanceCache& tables,
+      const PlanLnsOptions& options, std::size_t horizon)
+      : grid_(grid),
+        paths_(paths),
+        tables_(tables),
+        options_(options),
+        horizon_(static_cast<int32_t>(horizon)),
+        res_(grid, horizon),
+        search_(cells(grid), horizon),
+        visits_(cells(grid)) {
+    for (uint32_t i = 0; i < paths.size(); ++i) add(i);
+  }
+
+  // The robot with its neighbourhood, and alone when that finds nothing better.
+  void improve(uint32_t robot) {
+    if (options_.neighbourhood > 1) {
+      const auto group = neighbourhood(robot);
+      if (group.size() > 1 && improve_group(group)) return;
+    }
+    improve_group({robot});
+  }
+  PlanLnsStats stats() const { return st_; }
+
+ private:
+  static std::size_t cells(const grid::Grid& g) {
+    return static_cast<std::size_t>(g.width()) * static_cast<std::size_t>(g.height());
+  }
+  grid::Cell at(uint32_t robot, int32_t t) const {
+    const Path& p = paths_[robot];
+    return p[std::min(static_cast<std::size_t>(t), p.size() - 1)];
+  }
+  void add(uint32_t robot) {
+    res_.set(paths_[robot], true, true);
+    note_visits(robot);
+  }
+  void note_visits(uint32_t robot) {
+    for (std::size_t t = 0; t < paths_[robot].size(); ++t) {
+      if (t == 0 || paths_[robot][t] != paths_[robot][t - 1]) {
+        visits_[grid_.index(paths_[robot][t])].push_back(robot);
+      }
+    }
+  }
+  std::vector<uint32_t> neighbourhood(uint32_t robot) const;
+  bool improve_group(const std::vector<uint32_t>& group);
+  bool replan_group(const std::vector<uint32_t>& group);
+
+  const grid::Grid& grid_;
+  std::vector<Path>& paths_;
+  DistanceCache& tables_;
+  const PlanLnsOptions& options_;
+  int32_t horizon_;
+  SpaceTimeReservations res_;
+  PathSearch search_;
+  std::vector<std::vector<uint32_t>> visits_;
+  PlanLnsStats st_;
+};
+
+// The robot and the robots in the way of its shortest path, as if it went now (MAPF-LNS §4.3's
+// agent-based neighbourhood, without its random walk): walked down the robot's distance table,
+// each robot at the walk's cell at that time (or parked there by then) joins, up to
+// `neighbourhood` robots in all.
+std::vector<uint32_t> Lns::neighbourhood(uint32_t robot) const {
+  std::vector<uint32_t> group{robot};
+  const auto table = tables_.to(paths_[robot].back());
+  grid::Cell c = paths_[robot].front();
+  for (int32_t t = 1; (*table)[grid_.index(c)] > 0; ++t) {
+    const int32_t d = (*table)[grid_.index(c)];
+    for (const grid::Cell m : {grid::Cell{c.x + 1, c.y}, grid::Cell{c.x - 1, c.y},
+                               grid::Cell{c.x, c.y + 1}, grid::Cell{c.x, c.y - 1}}) {
+      if (grid_.free(m) && (*table)[grid_.index(m)] == d - 1) {
+        c = m;
+        break;
+      }
+    }
+    for (const uint32_t r : visits_[grid_.index(c)]) {
+      if (at(r, t) != c || std::find(group.begin(), group.end(), r) != group.end()) continue;
+      group.push_back(r);
+      if (group.size() == static_cast<std::size_t>(options_.neighbourhood)) return group;
+    }
+  }
+  return group;
+}
+
+// The group's paths taken out and planned again one after the other, each against the others'
+// (the ones planned first included), each bounded so that the group's sum of arrivals can still
+// come out lower (the ones after it at least their distance); kept when all are found, else put
+// back. True when kept.
+bool Lns::improve_group(const std::vector<uint32_t>& group) {
+  std::vector<Path> old;
+  for (const uint32_t r : group) {
+    old.push_back(paths_[r]);
+    res_.set(paths_[r], false, true);
+  }
+  ++st_.replanned;
+  if (replan_group(group)) {
+    ++st_.improved;
+    for (std::size_t k = 0; k < group.size(); ++k) {
+      st_.saved += arrival(old[k]) - arrival(paths_[group[k]]);
+      note_visits(group[k]);
+    }
+    return true;
+  }
+  for (std::size_t k = 0; k < group.size(); ++k) {
+    paths_[group[k]] = std::move(old[k]);
+    res_.set(paths_[group[k]], true, true);
+  }
+  return false;
+}
+
+// True when every robot of the group has a new path (in paths_ and the reservations) and their
+// arrivals sum lower than before; false with the group's reservations taken out.
+bool Lns::replan_group(const std::vector<uint32_t>& group) {
+  int64_t budget = 0, rest = 0;
+  for (const uint32_t r : group) {
+    budget += arrival(paths_[r]);
+    rest += tables_.distance(paths_[r].front(), paths_[r].back());
+  }
+  std::vector<Path> found;
+  for (const uint32_t r : group) {
+    rest -= tables_.distance(paths_[r].front(), paths_[r].back());
+    const auto bound = static_cast<int32_t>(std::min<int64_t>(budget - rest, horizon_));
+    auto p = earlier_path(grid_, res_, paths_[r].front(), paths_[r].back(), bound,
+                          *tables_.to(paths_[r].back()), options_.max_expansions, search_,
+                          st_.expansions);
+    if (p.empty()) break;
+    budget -= arrival(p);
+    res_.set(p, true, true);
+    found.push_back(std::move(p));
+  }
+  if (found.size() < group.size()) {
+    for (const auto& p : found) res_.set(p, false, true);
+    return false;
+  }
+  for (std::size_t k = 0; k < group.size(); ++k) paths_[group[k]] = std::move(found[k]);
+  return true;
+}
+
 }  // namespace
 
 PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, DistanceCache& tables,
@@ -119,6 +261,10 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
   if (static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()) >=
       (std::size_t{1} << 24)) {
     throw std::invalid_argument("plan LNS: maps of 16 M cells or more are not supported");
+  }
+  if (options.neighbourhood < 1 || options.neighbourhood > 64) {
+    throw std::invalid_argument("plan LNS: a neighbourhood of 1-64 robots, not " +
+                                std::to_string(options.neighbourhood));
   }
   std::size_t horizon = 0;
   for (std::size_t i = 0; i < paths.size(); ++i) {
@@ -128,35 +274,18 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
     horizon = std::max(horizon, paths[i].size());
   }
   if (horizon >= 65535) throw std::invalid_argument("plan LNS: plans of 65535 steps or more");
-  SpaceTimeReservations res(grid, horizon);
-  for (const auto& p : paths) res.set(p, true, true);
   std::vector<std::pair<int64_t, uint32_t>> order;  // (delay, robot): most delayed first
   for (uint32_t i = 0; i < paths.size(); ++i) {
     const int32_t d = tables.distance(paths[i].front(), paths[i].back());
-    const auto delay = static_cast<int64_t>(paths[i].size() - 1) - d;
+    const auto delay = arrival(paths[i]) - d;
     if (d >= 0 && delay > 0) order.emplace_back(delay, i);
   }
   std::stable_sort(order.begin(), order.end(), [](auto a, auto b) { return a.first > b.first; });
-  PlanLnsStats st;
-  PathSearch search(
-      static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()), horizon);
+  Lns lns(grid, paths, tables, options, horizon);
   for (int pass = 0; pass < options.passes; ++pass) {
-    for (const auto& [delay, i] : order) {
-      auto& old = paths[i];
-      res.set(old, false, true);
-      ++st.replanned;
-      const auto table = tables.to(old.back());
-      auto better =
-          earlier_path(grid, res, old, *table, options.max_expansions, search, st.expansions);
-      if (!better.empty()) {
-        ++st.improved;
-        st.saved += static_cast<int64_t>(old.size()) - static_cast<int64_t>(better.size());
-        old = std::move(better);
-      }
-      res.set(old, true, true);
-    }
+    for (const auto& [delay, i] : order) lns.improve(i);
   }
-  return st;
+  return lns.stats();
 }
 
 }  // namespace smart::planning
