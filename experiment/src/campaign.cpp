@@ -77,7 +77,8 @@ std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, co
         "--scen",         scen.string(),    "--agents", std::to_string(agents),
         "--algorithm",    source.algorithm, "--out",    plan.string()};
     if (source.lns_passes > 0) {
-      argv.insert(argv.end(), {"--lns-passes", std::to_string(source.lns_passes)});
+      argv.insert(argv.end(), {"--lns-passes", std::to_string(source.lns_passes),
+                               "--lns-neighbourhood", std::to_string(source.lns_neighbourhood)});
     }
     return argv;
   }

@@ -132,6 +132,10 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
     fail(src, p["lns_passes"], field + ".lns_passes",
          "only {planner: builtin} takes it, one whole number, e.g. 4");
   }
+  if (p["lns_neighbourhood"] && (!p["lns_passes"] || !p["lns_neighbourhood"].IsScalar())) {
+    fail(src, p["lns_neighbourhood"], field + ".lns_neighbourhood",
+         "only with lns_passes, one whole number, e.g. 8");
+  }
   PlanSpec plan;
   if (p["file"]) {
     plan.source = PlanSource::kFile, plan.text = p["file"].as<std::string>();
@@ -153,6 +157,12 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
       plan.lns_passes = static_cast<int>(
           whole_numbers(p["lns_passes"], src, field + ".lns_passes", 0, 16, "rounds run 0-16")
               .at(0));
+    }
+    if (p["lns_neighbourhood"]) {
+      plan.lns_neighbourhood =
+          static_cast<int>(whole_numbers(p["lns_neighbourhood"], src, field + ".lns_neighbourhood",
+                                         1, 64, "robots replanned together, 1-64")
+                               .at(0));
     }
   } else {
     plan.source = PlanSource::kCommand, plan.text = p["command"].as<std::string>();

@@ -579,12 +579,23 @@ TEST(Spec, ABuiltinPlannerTakesLnsPasses) {
   const auto s = parse_spec(
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plans: [{planner: builtin, algorithm: lacam}, {name: lns, planner: builtin, algorithm: "
-      "lacam, lns_passes: 4}]\n",
+      "lacam, lns_passes: 4}, {name: lns8, planner: builtin, algorithm: lacam, lns_passes: 4, "
+      "lns_neighbourhood: 8}]\n",
       "p.yaml");
-  ASSERT_EQ(s.plans.size(), 2u);
+  ASSERT_EQ(s.plans.size(), 3u);
   EXPECT_EQ(s.plans[0].lns_passes, 0);
   EXPECT_EQ(s.plans[1].lns_passes, 4);
+  EXPECT_EQ(s.plans[1].lns_neighbourhood, 1);
   EXPECT_EQ(s.plans[1].algorithm, "lacam");
+  EXPECT_EQ(s.plans[2].lns_neighbourhood, 8);
+  expect_refused(
+      "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
+      "plan: {planner: builtin, lns_neighbourhood: 4}\n",
+      "p.yaml:5: plan.lns_neighbourhood: only with lns_passes");
+  expect_refused(
+      "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
+      "plan: {planner: builtin, lns_passes: 2, lns_neighbourhood: 65}\n",
+      "plan.lns_neighbourhood");
   expect_refused(
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plan: {file: a.txt, lns_passes: 1}\n",

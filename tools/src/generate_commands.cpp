@@ -85,7 +85,7 @@ struct PlanOptions {
   uint64_t seed = 1;
   double time_limit_s = 120;
   PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized;
-  int lns_passes = 0;
+  planning::PlanLnsOptions lns{.passes = 0};  // --lns-passes 0: the planner's plan as it is
 };
 
 const EnumNames<PlanAlgorithm> kPlanAlgorithmNames{{"pp", PlanAlgorithm::kPrioritized},
@@ -143,7 +143,8 @@ namespace {
 
 // The built-in planners' plans are per timestep from 0 (planner.hpp plan_from_timesteps): their
 // cells are the timesteps' paths plan_lns.hpp takes.
-planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r, int passes) {
+planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r,
+                               const planning::PlanLnsOptions& o) {
   std::vector<std::vector<grid::Cell>> paths;
   for (const auto& p : r.plan.paths) {
     paths.emplace_back();
@@ -151,7 +152,7 @@ planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r, 
   }
   planning::DistanceCache tables(g);
   const auto t0 = std::chrono::steady_clock::now();
-  const auto st = planning::improve_plan(g, paths, tables, {.passes = passes});
+  const auto st = planning::improve_plan(g, paths, tables, o);
   r.runtime_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.plan = planning::plan_from_timesteps(paths, r.plan.source);
   return st;
@@ -161,7 +162,7 @@ planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r, 
 
 int plan_instance(const std::string& map, const std::string& scen_file, std::size_t agents,
                   uint64_t seed, double time_limit_s, const std::string& out,
-                  PlanAlgorithm algorithm, int lns_passes) {
+                  PlanAlgorithm algorithm, planning::PlanLnsOptions lns) {
   const auto g = grid::parse_map(grid::read_text_file(map, "map"), map);
   const auto scen =
       grid::parse_scen(grid::read_text_file(scen_file, "scenario"), scen_file, agents);
@@ -189,7 +190,7 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
               << "; try another --seed, fewer --agents or a larger map\n";
     return kExitRunFailed;
   }
-  const auto lns = lns_passes > 0 ? improve(g, r, lns_passes) : planning::PlanLnsStats{};
+  const auto lns_st = lns.passes > 0 ? improve(g, r, lns) : planning::PlanLnsStats{};
   // The planner's output is checked like any other plan before it is written.
   grid::throw_if_any(monitor::validate_plan(r.plan, g, &scen));
   write_file(out, planning::to_smart_plan_text(r.plan));
@@ -202,9 +203,11 @@ int plan_instance(const std::string& map, const std::string& scen_file, std::siz
                               {"algorithm", enum_name(algorithm, kPlanAlgorithmNames)},
                               {"runtime_s", r.runtime_s},
                               {"restarts", r.restarts_used},
-                              {"lns_passes", lns_passes},
-                              {"lns_improved", lns.improved},
-                              {"lns_saved", lns.saved}}
+                              {"lns_passes", lns.passes},
+                              {"lns_neighbourhood", lns.neighbourhood},
+                              {"lns_expansions", lns.max_expansions},
+                              {"lns_improved", lns_st.improved},
+                              {"lns_saved", lns_st.saved}}
                    .dump()
             << std::endl;
   return kExitSuccess;
@@ -287,16 +290,27 @@ void register_plan_command(CLI::App& app, int& exit_code) {
   pl->add_option("--time-limit-s", po->time_limit_s, "give up after this many wall seconds")
       ->check(finite_in(0.001, 1e6))
       ->capture_default_str();
-  pl->add_option("--lns-passes", po->lns_passes,
+  pl->add_option("--lns-passes", po->lns.passes,
                  "then rounds of replanning each robot by space-time A* against the others' "
                  "paths, kept when it arrives earlier (MAPF-LNS with neighbourhoods of one robot, "
                  "plan_lns.hpp); 0: the planner's plan as it is")
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
+  pl->add_option("--lns-neighbourhood", po->lns.neighbourhood,
+                 "robots each LNS step replans together: the most delayed robot and the robots "
+                 "in the way of its shortest path, kept when their arrivals sum lower; when they "
+                 "do not, the robot alone (MAPF-LNS's agent-based neighbourhood, plan_lns.hpp)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  pl->add_option("--lns-expansions", po->lns.max_expansions,
+                 "A* expansions a replanned robot may take before its path is kept; long plans "
+                 "of crowded maps gain from more (docs/execution.md)")
+      ->check(CLI::Range(std::size_t{100}, std::size_t{100'000'000}))
+      ->capture_default_str();
   pl->add_option("--out", po->out, "the plan file to write")->required();
   pl->callback([&exit_code, po] {
     exit_code = plan_instance(po->map, po->scen, po->agents, po->seed, po->time_limit_s, po->out,
-                              po->algorithm, po->lns_passes);
+                              po->algorithm, po->lns);
   });
 }
 

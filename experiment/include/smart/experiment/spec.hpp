@@ -9,7 +9,8 @@
 //   scens: [a-random-1.scen]
 //   agents: [10, 100]                 # first N robots
 //   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin} (algorithm: pp, pibt or lacam;
-//                                     # lns_passes: N, `smart plan --lns-passes`), or
+//                                     # lns_passes: N, `smart plan --lns-passes`;
+//                                     # lns_neighbourhood: N, `--lns-neighbourhood`), or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
 //   plans: [{name: pp, planner: builtin}, {name: lns2, command: "...", axis: xy}]
 //                                     # instead of plan: a planner axis (names 1-64 plain)
@@ -70,6 +71,7 @@ struct PlanSpec {
   // kBuiltin: `smart plan --lns-passes` (lns_passes:), lifelong `smart run --window-lns-passes`
   // (window_lns_passes:); 0: not given
   int lns_passes = 0;
+  int lns_neighbourhood = 1;  // kBuiltin, with lns_passes: `smart plan --lns-neighbourhood`
 };
 
 struct LifelongSpec {

@@ -7,6 +7,7 @@
 #include "smart/grid/grid.hpp"
 #include "smart/grid/scen_reader.hpp"
 #include "smart/planning/generators.hpp"
+#include "smart/planning/plan_lns.hpp"
 #include "smart/tools/cli_common.hpp"
 
 namespace smart::tools {
@@ -42,9 +43,10 @@ int generate_scen(const std::string& map, std::size_t agents, uint64_t seed,
                   const std::string& out);
 // `smart plan`'s planners: prioritized planning (planner.hpp) or PIBT alone (pibt_plan.hpp).
 enum class PlanAlgorithm { kPrioritized, kPibt, kLacam };
-// `lns_passes`: then rounds of planning/plan_lns.hpp over the plan (0: the planner's as it is).
+// `lns`: then rounds of planning/plan_lns.hpp over the plan (passes 0: the planner's as it is).
 int plan_instance(const std::string& map, const std::string& scen, std::size_t agents,
                   uint64_t seed, double time_limit_s, const std::string& out,
-                  PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized, int lns_passes = 0);
+                  PlanAlgorithm algorithm = PlanAlgorithm::kPrioritized,
+                  planning::PlanLnsOptions lns = {.passes = 0});
 
 }  // namespace smart::tools
