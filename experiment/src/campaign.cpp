@@ -79,6 +79,9 @@ std::vector<std::string> plan_argv(const Campaign& c, const PlanSpec& source, co
     if (source.lns_passes > 0) {
       argv.insert(argv.end(), {"--lns-passes", std::to_string(source.lns_passes),
                                "--lns-neighbourhood", std::to_string(source.lns_neighbourhood)});
+      if (source.lns_expansions > 0) {
+        argv.insert(argv.end(), {"--lns-expansions", std::to_string(source.lns_expansions)});
+      }
     }
     return argv;
   }

@@ -132,9 +132,10 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
     fail(src, p["lns_passes"], field + ".lns_passes",
          "only {planner: builtin} takes it, one whole number, e.g. 4");
   }
-  if (p["lns_neighbourhood"] && (!p["lns_passes"] || !p["lns_neighbourhood"].IsScalar())) {
-    fail(src, p["lns_neighbourhood"], field + ".lns_neighbourhood",
-         "only with lns_passes, one whole number, e.g. 8");
+  for (const char* key : {"lns_neighbourhood", "lns_expansions"}) {
+    if (p[key] && (!p["lns_passes"] || !p[key].IsScalar())) {
+      fail(src, p[key], field + "." + key, "only with lns_passes, one whole number, e.g. 8");
+    }
   }
   PlanSpec plan;
   if (p["file"]) {
@@ -163,6 +164,11 @@ PlanSpec read_one_plan(const YAML::Node& p, const std::string& src, const std::s
           static_cast<int>(whole_numbers(p["lns_neighbourhood"], src, field + ".lns_neighbourhood",
                                          1, 64, "robots replanned together, 1-64")
                                .at(0));
+    }
+    if (p["lns_expansions"]) {
+      plan.lns_expansions = whole_numbers(p["lns_expansions"], src, field + ".lns_expansions", 100,
+                                          100'000'000, "A* expansions a robot, 100-100000000")
+                                .at(0);
     }
   } else {
     plan.source = PlanSource::kCommand, plan.text = p["command"].as<std::string>();

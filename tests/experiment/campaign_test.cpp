@@ -278,20 +278,22 @@ TEST_F(Campaign, ALifelongPlannersWindowLnsPassesArePassedToItsRuns) {
   }
 }
 
-// A built-in planner's lns_passes and lns_neighbourhood reach `smart plan`: its log says how
-// many rounds it ran, with how many robots together, and what they saved; the plan runs.
+// A built-in planner's lns_passes, lns_neighbourhood and lns_expansions reach `smart plan`: its
+// log says how many rounds it ran, with how many robots together and how many expansions each,
+// and what they saved; the plan runs.
 TEST_F(Campaign, ABuiltinPlannersLnsPassesArePassedToSmartPlan) {
   const auto spec = dir_ / "plan-lns.yaml";
   std::ofstream(spec) << "name: pl\nmaps: [" << (b_ / "maps/random-32-32-20.map").string()
                       << "]\nscens: [" << (b_ / "scens/random-32-32-20-random-1.scen").string()
                       << "]\nagents: [40]\nplan: {planner: builtin, algorithm: lacam, "
-                         "lns_passes: 2, lns_neighbourhood: 4}\n";
+                         "lns_passes: 2, lns_neighbourhood: 4, lns_expansions: 3000}\n";
   const auto r = run(spec, kExperimentPlanLns);
   ASSERT_TRUE(r.complete()) << log_.str();
   EXPECT_EQ(r.with_results, 1u);
   const auto said = slurp(dir_ / "out" / "plans" / "0-n40.txt.log");
   EXPECT_THAT(said, HasSubstr("\"lns_passes\":2")) << said;
   EXPECT_THAT(said, HasSubstr("\"lns_neighbourhood\":4")) << said;
+  EXPECT_THAT(said, HasSubstr("\"lns_expansions\":3000")) << said;
   EXPECT_THAT(said, HasSubstr("\"algorithm\":\"lacam\"")) << said;
 }
 

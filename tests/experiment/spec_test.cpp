@@ -580,7 +580,7 @@ TEST(Spec, ABuiltinPlannerTakesLnsPasses) {
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plans: [{planner: builtin, algorithm: lacam}, {name: lns, planner: builtin, algorithm: "
       "lacam, lns_passes: 4}, {name: lns8, planner: builtin, algorithm: lacam, lns_passes: 4, "
-      "lns_neighbourhood: 8}]\n",
+      "lns_neighbourhood: 8, lns_expansions: 400000}]\n",
       "p.yaml");
   ASSERT_EQ(s.plans.size(), 3u);
   EXPECT_EQ(s.plans[0].lns_passes, 0);
@@ -588,6 +588,8 @@ TEST(Spec, ABuiltinPlannerTakesLnsPasses) {
   EXPECT_EQ(s.plans[1].lns_neighbourhood, 1);
   EXPECT_EQ(s.plans[1].algorithm, "lacam");
   EXPECT_EQ(s.plans[2].lns_neighbourhood, 8);
+  EXPECT_EQ(s.plans[1].lns_expansions, 0);
+  EXPECT_EQ(s.plans[2].lns_expansions, 400000);
   expect_refused(
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plan: {planner: builtin, lns_neighbourhood: 4}\n",
@@ -596,6 +598,10 @@ TEST(Spec, ABuiltinPlannerTakesLnsPasses) {
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plan: {planner: builtin, lns_passes: 2, lns_neighbourhood: 65}\n",
       "plan.lns_neighbourhood");
+  expect_refused(
+      "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
+      "plan: {planner: builtin, lns_passes: 2, lns_expansions: 99}\n",
+      "plan.lns_expansions");
   expect_refused(
       "name: p\nmaps: [m.map]\nscens: [s.scen]\nagents: [10]\n"
       "plan: {file: a.txt, lns_passes: 1}\n",

@@ -10,7 +10,8 @@
 //   agents: [10, 100]                 # first N robots
 //   plan: {file: paths.txt, axis: rowcol}   # or {planner: builtin} (algorithm: pp, pibt or lacam;
 //                                     # lns_passes: N, `smart plan --lns-passes`;
-//                                     # lns_neighbourhood: N, `--lns-neighbourhood`), or
+//                                     # lns_neighbourhood: N, lns_expansions: N, as
+//                                     # `--lns-neighbourhood`, `--lns-expansions`), or
 //         {command: "lns2 -m {map} -a {scen} -k {agents} -o {plan}", axis: xy}
 //   plans: [{name: pp, planner: builtin}, {name: lns2, command: "...", axis: xy}]
 //                                     # instead of plan: a planner axis (names 1-64 plain)
@@ -50,6 +51,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -71,7 +73,8 @@ struct PlanSpec {
   // kBuiltin: `smart plan --lns-passes` (lns_passes:), lifelong `smart run --window-lns-passes`
   // (window_lns_passes:); 0: not given
   int lns_passes = 0;
-  int lns_neighbourhood = 1;  // kBuiltin, with lns_passes: `smart plan --lns-neighbourhood`
+  int lns_neighbourhood = 1;   // kBuiltin, with lns_passes: `smart plan --lns-neighbourhood`
+  int64_t lns_expansions = 0;  // the same, `--lns-expansions`; 0: smart plan's default
 };
 
 struct LifelongSpec {
