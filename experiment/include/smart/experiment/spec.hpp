@@ -69,7 +69,7 @@ struct PlanSpec {
   PlanSource source = PlanSource::kFile;
   std::string text;  // the file, or the command template
   std::string axis = "xy";
-  std::string algorithm = "pp";  // kBuiltin: `smart plan --algorithm` (pp or pibt)
+  std::string algorithm = "pp";  // kBuiltin: `smart plan --algorithm` (pp, pibt or lacam)
   // kBuiltin: `smart plan --lns-passes` (lns_passes:), lifelong `smart run --window-lns-passes`
   // (window_lns_passes:); 0: not given
   int lns_passes = 0;
