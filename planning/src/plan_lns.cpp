@@ -25,7 +25,8 @@ struct PathSearch {
     int32_t t, parent;
   };
   // Lowest f first; among equals the deepest, then the first pushed: one integer (f and t are
-  // below 65 535, improve_plan checks; ids below 2^31, push stops there).
+  // below SpaceTimeReservations::kMaxHorizon, 65 535, improve_plan checks; ids below 2^31, push
+  // stops there).
   static uint64_t key(int32_t f, int32_t t, std::size_t id) {
     return uint64_t(f) << 48 | uint64_t(0xFFFF - t) << 32 | uint64_t(id);
   }
@@ -125,8 +126,8 @@ class Lns {
         options_(options),
         horizon_(static_cast<int32_t>(horizon)),
         res_(grid, horizon),
-        search_(cells(grid), horizon),
-        visits_(cells(grid)) {
+        search_(grid.cell_count(), horizon),
+        visits_(grid.cell_count()) {
     for (uint32_t i = 0; i < paths.size(); ++i) add(i);
   }
 
@@ -141,9 +142,6 @@ class Lns {
   PlanLnsStats stats() const { return st_; }
 
  private:
-  static std::size_t cells(const grid::Grid& g) {
-    return static_cast<std::size_t>(g.width()) * static_cast<std::size_t>(g.height());
-  }
   grid::Cell at(uint32_t robot, int32_t t) const {
     const Path& p = paths_[robot];
     return p[std::min(static_cast<std::size_t>(t), p.size() - 1)];
@@ -258,8 +256,7 @@ bool Lns::replan_group(const std::vector<uint32_t>& group) {
 
 PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, DistanceCache& tables,
                           const PlanLnsOptions& options) {
-  if (static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()) >=
-      (std::size_t{1} << 24)) {
+  if (grid.cell_count() >= SpaceTimeReservations::kMaxCells) {
     throw std::invalid_argument("plan LNS: maps of 16 M cells or more are not supported");
   }
   if (options.neighbourhood < 1 || options.neighbourhood > 64) {
@@ -273,7 +270,11 @@ PlanLnsStats improve_plan(const grid::Grid& grid, std::vector<Path>& paths, Dist
     }
     horizon = std::max(horizon, paths[i].size());
   }
-  if (horizon >= 65535) throw std::invalid_argument("plan LNS: plans of 65535 steps or more");
+  if (horizon >= SpaceTimeReservations::kMaxHorizon) {
+    throw std::invalid_argument("plan LNS: plans of " +
+                                std::to_string(SpaceTimeReservations::kMaxHorizon) +
+                                " steps or more are not supported");
+  }
   std::vector<std::pair<int64_t, uint32_t>> order;  // (delay, robot): most delayed first
   for (uint32_t i = 0; i < paths.size(); ++i) {
     const int32_t d = tables.distance(paths[i].front(), paths[i].back());

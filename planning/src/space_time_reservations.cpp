@@ -2,17 +2,11 @@
 
 namespace smart::planning {
 
-namespace {
-std::size_t cells(const grid::Grid& g) {
-  return static_cast<std::size_t>(g.width()) * static_cast<std::size_t>(g.height());
-}
-}  // namespace
-
 SpaceTimeReservations::SpaceTimeReservations(const grid::Grid& grid, std::size_t horizon)
     : grid_(grid),
       words_((horizon + 64) / 64),
-      bits_(cells(grid) * words_, 0),
-      parked_from_(cells(grid), INT32_MAX) {}
+      bits_(grid.cell_count() * words_, 0),
+      parked_from_(grid.cell_count(), INT32_MAX) {}
 
 void SpaceTimeReservations::set(const std::vector<grid::Cell>& p, bool add, bool park) {
   for (std::size_t t = 0; t < p.size(); ++t) {

@@ -81,7 +81,7 @@ void WindowLns::check(const WindowRequest& r, const WindowPlan& plan) const {
          " goal lists and " + std::to_string(plan.paths.size()) + " paths: give one each a robot");
   }
   if (r.steps < 1 || r.steps > 4096) fail("a window needs 1-4096 steps");
-  if (static_cast<std::size_t>(grid_.width()) * grid_.height() >= (std::size_t{1} << 24)) {
+  if (grid_.cell_count() >= SpaceTimeReservations::kMaxCells) {
     fail("maps of 16 M cells or more are not supported");
   }
   for (std::size_t i = 0; i < plan.paths.size(); ++i) {

@@ -1,5 +1,6 @@
 #include "smart/planning/plan_lns.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -134,6 +135,21 @@ TEST(PlanLns, RefusesANeighbourhoodOutside1To64) {
   for (const int n : {0, 65}) {
     EXPECT_THROW(improve_plan(g, paths, tables, {.neighbourhood = n}), std::invalid_argument);
   }
+}
+
+// The reservations' keys hold a timestep in 16 bits: a longer plan is refused, not misread.
+TEST(PlanLns, RefusesAPlanOf65535StepsOrMore) {
+  const auto g = grid::parse_map("type octile\nheight 1\nwidth 3\nmap\n...\n", "c");
+  DistanceCache tables(g);
+  Paths paths{std::vector<Cell>(65534, Cell{0, 0})};
+  paths[0].push_back({1, 0});
+  EXPECT_THAT([&] { improve_plan(g, paths, tables); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("plans of 65535 steps or more")));
+  paths[0].erase(paths[0].begin());  // 65 534 steps: planned, the robot's wait cut
+  const auto st = improve_plan(g, paths, tables);
+  EXPECT_EQ(paths[0].size(), 2u);
+  EXPECT_EQ(st.saved, 65532);
 }
 
 TEST(PlanLns, RefusesAnEmptyPath) {

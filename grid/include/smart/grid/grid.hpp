@@ -70,6 +70,10 @@ class Grid {
            static_cast<std::size_t>(c.x);
   }
   std::size_t free_cells() const;
+  // Cells of the map, free or not: the size of a per-cell table indexed by index().
+  std::size_t cell_count() const {
+    return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  }
 
   // Dense index of every half-cell location of the grid, for per-location tables.
   std::size_t half_cell_count() const {

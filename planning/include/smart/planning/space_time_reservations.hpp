@@ -18,7 +18,11 @@ namespace smart::planning {
 
 class SpaceTimeReservations {
  public:
-  // Maps below 16 M cells and horizons below 65 535 steps (the callers check).
+  // A move's key packs two cells in 24 bits each and a timestep in 16.
+  static constexpr std::size_t kMaxCells = std::size_t{1} << 24;  // maps below this
+  static constexpr std::size_t kMaxHorizon = 65535;               // horizons below this
+
+  // Maps below kMaxCells and horizons below kMaxHorizon (the callers check, naming themselves).
   SpaceTimeReservations(const grid::Grid& grid, std::size_t horizon);
 
   // Adds (or takes out) a path; `park`: its robot stays on its last cell for good after.
