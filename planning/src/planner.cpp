@@ -203,6 +203,15 @@ grid::Plan plan_from_timesteps(const std::vector<std::vector<grid::Cell>>& paths
   return plan;
 }
 
+std::vector<std::vector<grid::Cell>> timesteps_of(const grid::Plan& plan) {
+  std::vector<std::vector<grid::Cell>> out;
+  for (const auto& p : plan.paths) {
+    out.emplace_back();
+    for (const auto& s : p.steps) out.back().push_back(s.cell);
+  }
+  return out;
+}
+
 std::string to_smart_plan_text(const grid::Plan& plan) {
   std::ostringstream s;
   s << "# axis: xy\n";  // read back without --axis (monitor/plan_reader.hpp)

@@ -10,21 +10,13 @@
 #include "smart/grid/map_reader.hpp"
 #include "smart/planning/generators.hpp"
 #include "smart/planning/lacam.hpp"
+#include "smart/planning/planner.hpp"
 
 namespace smart::planning {
 namespace {
 
 using grid::Cell;
 using Paths = std::vector<std::vector<Cell>>;
-
-Paths timesteps(const grid::Plan& plan) {
-  Paths out;
-  for (const auto& p : plan.paths) {
-    out.emplace_back();
-    for (const auto& s : p.steps) out.back().push_back(s.cell);
-  }
-  return out;
-}
 
 std::size_t soc(const Paths& paths) {
   std::size_t sum = 0;
@@ -40,7 +32,7 @@ TEST(PlanLns, LacamsPlanStaysValidAndNoRobotArrivesLater) {
   const auto scen = generate_scenario(g, 250, 5, "random");
   auto r = plan_lacam(g, scen, {6});
   ASSERT_TRUE(r.solved) << r.error;
-  auto paths = timesteps(r.plan);
+  auto paths = timesteps_of(r.plan);
   const auto before = paths;
   DistanceCache tables(g);
   const auto st = improve_plan(g, paths, tables, {.passes = 2});
@@ -117,7 +109,7 @@ TEST(PlanLns, NeighbourhoodsOfEightDoBetterThanRobotsAlone) {
   const auto scen = generate_scenario(g, 250, 5, "random");
   auto r = plan_lacam(g, scen, {6});
   ASSERT_TRUE(r.solved) << r.error;
-  const auto lacam = timesteps(r.plan);
+  const auto lacam = timesteps_of(r.plan);
   DistanceCache tables(g);
   auto alone = lacam, together = lacam;
   improve_plan(g, alone, tables, {.passes = 2});

@@ -70,5 +70,14 @@ TEST(Planner, ParksOnlyWhereNobodyPassesLater) {
   EXPECT_TRUE(validate_plan(r2.plan, g, &ok).empty());
 }
 
+// plan_from_timesteps drops a robot's trailing waits; timesteps_of gives its cells back up to
+// its arrival.
+TEST(Planner, TimestepsOfUndoesPlanFromTimesteps) {
+  const std::vector<std::vector<grid::Cell>> paths{{{0, 0}, {1, 0}, {1, 0}},
+                                                   {{2, 2}, {2, 2}, {2, 1}}};
+  const std::vector<std::vector<grid::Cell>> back{{{0, 0}, {1, 0}}, {{2, 2}, {2, 2}, {2, 1}}};
+  EXPECT_EQ(timesteps_of(plan_from_timesteps(paths, "t")), back);
+}
+
 }  // namespace
 }  // namespace smart::planning

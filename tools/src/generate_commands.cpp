@@ -145,11 +145,7 @@ namespace {
 // cells are the timesteps' paths plan_lns.hpp takes.
 planning::PlanLnsStats improve(const grid::Grid& g, planning::PlannerResult& r,
                                const planning::PlanLnsOptions& o) {
-  std::vector<std::vector<grid::Cell>> paths;
-  for (const auto& p : r.plan.paths) {
-    paths.emplace_back();
-    for (const auto& s : p.steps) paths.back().push_back(s.cell);
-  }
+  auto paths = planning::timesteps_of(r.plan);
   planning::DistanceCache tables(g);
   const auto t0 = std::chrono::steady_clock::now();
   const auto st = planning::improve_plan(g, paths, tables, o);

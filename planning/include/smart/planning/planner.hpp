@@ -40,6 +40,9 @@ PlannerResult plan_prioritized(const grid::Grid& grid, const grid::Scenario& sce
 // on its last cell are dropped. `source` names the planner in errors.
 grid::Plan plan_from_timesteps(const std::vector<std::vector<grid::Cell>>& paths,
                                const std::string& source);
+// The inverse for a plan of plan_from_timesteps (a step per timestep from 0): each robot's cells,
+// up to its arrival (plan_lns.hpp's paths).
+std::vector<std::vector<grid::Cell>> timesteps_of(const grid::Plan& plan);
 
 // SMART timed plan text: "# axis: xy", then "Agent i:(x,y,t)->...", x = column (the reader takes
 // the axis from that line; a reader that wants only Agent lines may need it removed).
