@@ -13,7 +13,26 @@ ExecutionTracker::ExecutionTracker(const ActionPlan& actions, const Adg& adg)
   for (std::size_t v = 0; v < pending_.size(); ++v) {
     pending_[v] = adg.in_begin[v + 1] - adg.in_begin[v];
   }
+  init_look();
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
+}
+
+void ExecutionTracker::init_look() {
+  static_assert(grid::kMaxRobots < (int64_t{1} << 31),
+                "NodeLook::robot holds a robot id in 31 bits");
+  if (adg_.footprint != Footprint::kHalfCells) return;
+  look_.resize(actions_.actions.size());
+  turning_.assign(actions_.robots(), 0);
+  wait_look_.assign(actions_.robots(), {});
+  for (uint32_t r = 0; r < actions_.robots(); ++r) {
+    uint32_t prev_move = kNoMove;
+    for (uint32_t s = 0; s < actions_.count(r); ++s) {
+      const auto type = actions_.at(r, s).type;
+      look_[actions_.offset[r] + s] = {r, type == grid::ActionType::kRotate, prev_move};
+      if (type == grid::ActionType::kMove) prev_move = s;
+    }
+    turning_[r] = actions_.count(r) > 0 && look_[actions_.offset[r]].turn;
+  }
 }
 
 bool ExecutionTracker::advance(uint32_t robot) {
@@ -68,18 +87,39 @@ std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
   if (robot_done(robot) || enqueued_[robot] > finished_[robot]) return std::nullopt;
   if (adg_.footprint != Footprint::kHalfCells) return std::nullopt;
   const uint32_t node = actions_.offset[robot] + enqueued_[robot];
-  if (pending_[node] == 0) return WaitCause::kHeld;
-  auto cause = WaitCause::kAtLocation;
-  for (uint32_t e = adg_.in_begin[node]; e < adg_.in_begin[node + 1]; ++e) {
-    const grid::Action& leave = actions_.actions[adg_.in[e]];
-    const uint32_t i = leave.robot;
-    if (leave.seq < finished_[i]) continue;
-    cause =
-        std::max(cause, half_cell_blocker_cause(
-                            leave.seq, finished_[i], enqueued_[i], SwitchOptions{}.commit_actions,
-                            [&](uint32_t s) { return actions_.at(i, s).type; }));
+  WaitLook& w = wait_look_[robot];
+  if (w.node != node) {  // a new wait: its blockers read from the ADG once
+    w.node = node;
+    w.count = adg_.in_begin[node + 1] - adg_.in_begin[node];
+    for (uint32_t k = 0; k < std::min<uint32_t>(w.count, WaitLook::kKept); ++k) {
+      const uint32_t leave = adg_.in[adg_.in_begin[node] + k];
+      const NodeLook l = look_[leave];
+      w.blockers[k] = {l.robot, leave - actions_.offset[l.robot], l.prev_move};
+    }
   }
-  return cause;
+  auto cause = WaitCause::kAtLocation;
+  bool held = true;  // every blocker has left: pending_[node] == 0
+  const auto take = [&](const Blocker& b) {
+    const uint32_t done = finished_[b.robot];
+    if (b.leave_seq < done) return;
+    held = false;
+    // half_cell_blocker_cause's walk back, read from the leaving node's look_.
+    const auto enter = b.prev_move != kNoMove && b.prev_move >= done
+                           ? std::optional<uint32_t>(b.prev_move)
+                           : std::nullopt;
+    cause = std::max(cause, blocker_cause(enter, done, enqueued_[b.robot], turning_[b.robot] != 0,
+                                          SwitchOptions{}.commit_actions));
+  };
+  for (uint32_t k = 0; k < w.count; ++k) {
+    if (k < WaitLook::kKept) {
+      take(w.blockers[k]);
+    } else {
+      const uint32_t leave = adg_.in[adg_.in_begin[node] + k];
+      const NodeLook l = look_[leave];
+      take({l.robot, leave - actions_.offset[l.robot], l.prev_move});
+    }
+  }
+  return held ? WaitCause::kHeld : cause;
 }
 
 ProgressUpdate check_progress(const Execution& e, uint32_t robot, int64_t finished_seq) {
@@ -133,6 +173,7 @@ ExecutionTracker::Update ExecutionTracker::on_progress(uint32_t robot, int64_t f
   }
   finished_total_ += upto - finished_[robot];
   finished_[robot] = upto;
+  if (!turning_.empty()) turning_[robot] = upto < actions_.count(robot) && look_[base + upto].turn;
   std::sort(u.robots_changed.begin(), u.robots_changed.end());
   u.robots_changed.erase(std::unique(u.robots_changed.begin(), u.robots_changed.end()),
                          u.robots_changed.end());

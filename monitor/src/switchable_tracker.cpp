@@ -80,6 +80,8 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   init_order();
+  turning_.resize(actions.robots());
+  for (uint32_t r = 0; r < actions.robots(); ++r) turning_[r] = turn_at(r, 0);
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
   // First come, first served from the robots' first reports on: at the start nobody is late,
   // and the entries about to be sent are decided by anticipation (ahead_) alone.
@@ -281,6 +283,7 @@ ProgressUpdate SwitchableTracker::on_progress(uint32_t robot, int64_t finished_s
   if (options_.anticipate) observe(robot, from, upto, time_s);
   finished_total_ += upto - from;
   finished_[robot] = upto;  // first: release() reads finished_by()
+  turning_[robot] = turn_at(robot, upto);
   for (uint32_t s = from; s < upto; ++s) release(base + s, u.robots_changed);
   advance(robot);
   if (candidate(robot)) dirty_.set(robot);
@@ -615,6 +618,14 @@ grid::ActionType SwitchableTracker::kind(uint32_t node) const {
                                                        : grid::ActionType::kRotate;
 }
 
+// From the prefix sums when they are kept (the same cache line observe() read), else the plan.
+bool SwitchableTracker::turn_at(uint32_t robot, uint32_t seq) const {
+  if (seq >= actions_.count(robot)) return false;
+  const uint32_t node = actions_.offset[robot] + seq;
+  return (options_.anticipate ? kind(node) : actions_.actions[node].type) ==
+         grid::ActionType::kRotate;
+}
+
 // When `robot` is expected to finish action `seq` (not finished yet): O(1), the kinds of the
 // actions between counted by prefix sums.
 double SwitchableTracker::finish_estimate(uint32_t robot, uint32_t seq) const {
@@ -744,9 +755,8 @@ std::optional<WaitCause> SwitchableTracker::wait_cause(uint32_t robot) const {
     const uint32_t base = actions_.offset[theirs.robot], done = finished_[theirs.robot];
     const auto enter =
         theirs.enter == kNoAction ? std::nullopt : std::optional<uint32_t>(theirs.enter - base);
-    const bool turning = actions_.actions[base + done].type == grid::ActionType::kRotate;
-    cause = std::max(cause, blocker_cause(enter, done, enqueued_[theirs.robot], turning,
-                                          options_.commit_actions));
+    cause = std::max(cause, blocker_cause(enter, done, enqueued_[theirs.robot],
+                                          turning_[theirs.robot] != 0, options_.commit_actions));
   }
   return cause;
 }

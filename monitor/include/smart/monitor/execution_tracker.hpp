@@ -8,6 +8,8 @@
 // (execution.hpp).
 #pragma once
 
+#include <array>
+#include <climits>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,10 +56,35 @@ class ExecutionTracker final : public Execution {
 
  private:
   bool advance(uint32_t robot);  // enqueues what it can; true when something was enqueued
+  void init_look();
 
   const ActionPlan& actions_;
   const Adg& adg_;
   std::vector<uint32_t> pending_;  // unfinished Type-2 predecessors per node
+  // What wait_cause() reads of a blocker's action, per node (half-cell footprints only): its
+  // robot, whether it is a turn, and its robot's last move before it (kNoMove: none). One 8-byte
+  // read where the plan's 48-byte actions took one per action walked back: 6.7 % of the
+  // monitor's CPU under delays (docs/performance.md, "Wait causes in every run").
+  struct NodeLook {
+    uint32_t robot : 31;
+    uint32_t turn : 1;
+    uint32_t prev_move;
+  };
+  static constexpr uint32_t kNoMove = UINT32_MAX;
+  std::vector<NodeLook> look_;
+  std::vector<uint8_t> turning_;  // robot -> its action now (seq finished_) is a turn
+  // A waiting robot's blockers, read from the ADG when its wait begins and kept per robot: the
+  // run supervisor asks again every 0.5 s of a wait, and each ask read three node-indexed
+  // arrays, a cache miss each. Mutable: a cache of what the const ADG says.
+  struct Blocker {
+    uint32_t robot, leave_seq, prev_move;
+  };
+  struct WaitLook {
+    static constexpr uint32_t kKept = 4;  // more Type-2 predecessors are read each time
+    uint32_t node = UINT32_MAX, count = 0;
+    std::array<Blocker, kKept> blockers{};
+  };
+  mutable std::vector<WaitLook> wait_look_;
   std::vector<uint32_t> finished_;
   std::vector<uint32_t> enqueued_;
   std::size_t finished_total_ = 0;

@@ -230,6 +230,7 @@ class SwitchableTracker final : public Execution {
   void observe(uint32_t robot, uint32_t from, uint32_t upto, double time_s);
   double finish_estimate(uint32_t robot, uint32_t seq) const;
   grid::ActionType kind(uint32_t node) const;
+  bool turn_at(uint32_t robot, uint32_t seq) const;  // seq is a turn (false past the last)
   double arrival(uint32_t stay) const;
   PassQueue queue_of(uint32_t i, uint32_t j) const;
   static double expected_saving(const PassQueue& q);
@@ -361,8 +362,11 @@ class SwitchableTracker final : public Execution {
   ActionDurations durations_;
   double now_s_ = 0;
   std::vector<double> started_s_;  // robot -> when its first unfinished action started (or now)
-  std::vector<uint8_t> decided_;   // node -> its place was decided when it was to be sent
-  RobotSet ahead_;                 // robots whose next entry awaits that decision
+  // robot -> its action now (seq finished_) is a turn: wait_cause() read it from the plan's
+  // 48-byte action, a cache miss a blocker (docs/performance.md, "Wait causes in every run").
+  std::vector<uint8_t> turning_;
+  std::vector<uint8_t> decided_;  // node -> its place was decided when it was to be sent
+  RobotSet ahead_;                // robots whose next entry awaits that decision
   std::size_t anticipated_ = 0;
   std::vector<uint32_t> moves_before_;  // node -> moves before it in the plan (prefix sums)
   // Lookahead: the actions a pair's order affects (cone_); per action, the comparison whose cone
