@@ -10,13 +10,19 @@ HeuristicKind choose_heuristic(HeuristicKind kind, const grid::Grid& grid, std::
 }
 
 bool TableHeuristic::aim(uint32_t robot, grid::Cell at, grid::Cell goal) {
-  if (robot >= goal_.size()) goal_.resize(robot + 1);
+  if (robot >= goal_.size()) goal_.resize(robot + 1), holding_.resize(robot + 1);
   goal_[robot] = goal;
+  holding_[robot] = at == goal;
   if (robot == last_robot_) last_robot_ = UINT32_MAX;
-  return tables_.distance(at, goal) >= 0;
+  return at == goal || tables_.distance(at, goal) >= 0;
 }
 
+// A robot aimed at its own cell (no goal: it holds where it is) ranks it 0 and each free
+// neighbour 1, its table's values there: a BFS a cell it is pushed to took a third of the
+// monitor's CPU in lifelong runs, and evicted the tables of goals in use (docs/performance.md,
+// "Wait causes in every run").
 int64_t TableHeuristic::rank(uint32_t robot, grid::Cell c) {
+  if (holding_[robot]) return c == goal_[robot] ? 0 : 1;
   if (robot != last_robot_) {
     last_ = tables_.to(goal_[robot]);
     last_robot_ = robot;

@@ -52,6 +52,7 @@ class TableHeuristic final : public GoalHeuristic {
  private:
   DistanceCache& tables_;
   std::vector<grid::Cell> goal_;  // per robot
+  std::vector<uint8_t> holding_;  // per robot: aimed at the cell it stands on
   // The last robot ranked and its table: PIBT ranks one robot's candidates in a row. Only one
   // table is held here, so the cache's budget bounds the memory.
   uint32_t last_robot_ = UINT32_MAX;
