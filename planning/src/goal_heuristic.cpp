@@ -10,24 +10,25 @@ HeuristicKind choose_heuristic(HeuristicKind kind, const grid::Grid& grid, std::
 }
 
 bool TableHeuristic::aim(uint32_t robot, grid::Cell at, grid::Cell goal) {
-  if (robot >= goal_.size()) goal_.resize(robot + 1), holding_.resize(robot + 1);
+  if (robot >= goal_.size()) {
+    goal_.resize(robot + 1);
+    holding_.resize(robot + 1);
+    table_.resize(robot + 1);
+  }
   goal_[robot] = goal;
   holding_[robot] = at == goal;
-  if (robot == last_robot_) last_robot_ = UINT32_MAX;
-  return at == goal || tables_.distance(at, goal) >= 0;
+  if (at == goal) return true;
+  table_[robot] = tables_.to(goal);
+  return (*table_[robot])[tables_.grid().index(at)] >= 0;
 }
 
 // A robot aimed at its own cell (no goal: it holds where it is) ranks it 0 and each free
 // neighbour 1, its table's values there: a BFS a cell it is pushed to took a third of the
 // monitor's CPU in lifelong runs, and evicted the tables of goals in use (docs/performance.md,
-// "Wait causes in every run").
+// "Wait causes read from records, and robots without a goal ranked without a table").
 int64_t TableHeuristic::rank(uint32_t robot, grid::Cell c) {
   if (holding_[robot]) return c == goal_[robot] ? 0 : 1;
-  if (robot != last_robot_) {
-    last_ = tables_.to(goal_[robot]);
-    last_robot_ = robot;
-  }
-  return (*last_)[tables_.grid().index(c)];
+  return (*table_[robot])[tables_.grid().index(c)];
 }
 
 std::size_t TableHeuristic::memory_bytes() const {

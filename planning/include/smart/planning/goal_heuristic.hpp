@@ -53,10 +53,11 @@ class TableHeuristic final : public GoalHeuristic {
   DistanceCache& tables_;
   std::vector<grid::Cell> goal_;  // per robot
   std::vector<uint8_t> holding_;  // per robot: aimed at the cell it stands on
-  // The last robot ranked and its table: PIBT ranks one robot's candidates in a row. Only one
-  // table is held here, so the cache's budget bounds the memory.
-  uint32_t last_robot_ = UINT32_MAX;
-  DistanceCache::Table last_;
+  // Per robot, its goal's table, taken when it is aimed: rank() asked the cache again for each
+  // robot it ranked (a hash lookup and the LRU's splice). A robot holds its table while it
+  // heads there; the cache keeps a table per robot and a quarter more (window_planner.cpp), so a
+  // table held past its eviction is rare and at most one a robot.
+  std::vector<DistanceCache::Table> table_;
 };
 
 }  // namespace smart::planning
