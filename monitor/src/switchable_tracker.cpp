@@ -53,6 +53,8 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
   const auto count = static_cast<uint32_t>(stay_.size());
   location_.resize(count);
   link_.resize(count);
+  epoch_.assign(orders_.begin.empty() ? 0 : orders_.begin.size() - 1, 0);
+  wait_look_.resize(actions.robots());
   const std::size_t nodes = actions.actions.size();
   index_stays(stay_, nodes, true, enter_begin_, enter_stays_);  // before the links: link_prev()
   index_stays(stay_, nodes, false, leave_begin_, leave_stays_);
@@ -116,6 +118,7 @@ static_assert(grid::kMaxRobots < (int64_t{1} << 31),
               "Near::next_robot holds a robot id in 31 bits");
 void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
   link_[stay].prev = prev;
+  ++epoch_[location_[stay]];
   const uint32_t node = stay_[stay].enter;
   if (node == kNoAction || enter_stays_[enter_begin_[node]] != stay) return;
   near_[node].prev_robot = prev == kNoAction ? 0 : stay_[prev].robot;
@@ -124,6 +127,7 @@ void SwitchableTracker::link_prev(uint32_t stay, uint32_t prev) {
 
 void SwitchableTracker::link_next(uint32_t stay, uint32_t next) {
   link_[stay].next = next;
+  ++epoch_[location_[stay]];
   if (const uint32_t enter = stay_[stay].enter;
       enter != kNoAction && enter_stays_[enter_begin_[enter]] == stay) {
     near_[enter].shared_next = shares_next(stay);
@@ -741,24 +745,54 @@ bool SwitchableTracker::deadlocked() const {
 
 // The robot before each stay the next action enters, as the orders are now: its stay's entry
 // tells where it is (execution.hpp blocker_cause; any footprint, as the stays are the
-// footprint's).
+// footprint's). The stays before are kept with the waiting robot while their locations' orders
+// stay as they were (epoch_): asked again every 0.5 s, a wait reads per-robot arrays only.
 std::optional<WaitCause> SwitchableTracker::wait_cause(uint32_t robot) const {
   if (robot_done(robot) || enqueued_[robot] > finished_[robot]) return std::nullopt;
   const uint32_t node = actions_.offset[robot] + enqueued_[robot];
-  if (pending_[node] == 0) return WaitCause::kHeld;  // sent near, or due and being decided
+  WaitLook& w = wait_look_[robot];
+  if (!w.valid(node, epoch_)) w.fill(*this, node);
   auto cause = WaitCause::kAtLocation;
-  for (uint32_t k = enter_begin_[node]; k < enter_begin_[node + 1]; ++k) {
-    const auto b = before(enter_stays_[k]);
-    if (!b.edge) continue;
-    const Stay& theirs = stay_[b.stay];
-    if (theirs.leave == kNoAction || finished_by(theirs.robot, theirs.leave)) continue;
+  bool held = true;  // no blocker left to wait for: pending_[node] == 0
+  const auto take = [&](const Stay& theirs) {
+    if (theirs.leave == kNoAction || finished_by(theirs.robot, theirs.leave)) return;
+    held = false;
     const uint32_t base = actions_.offset[theirs.robot], done = finished_[theirs.robot];
     const auto enter =
         theirs.enter == kNoAction ? std::nullopt : std::optional<uint32_t>(theirs.enter - base);
     cause = std::max(cause, blocker_cause(enter, done, enqueued_[theirs.robot],
                                           turning_[theirs.robot] != 0, options_.commit_actions));
+  };
+  if (w.count <= WaitLook::kKept) {
+    for (uint32_t k = 0; k < w.count; ++k) {
+      if (w.before[k].edge) take(w.before[k].stay);
+    }
+  } else {  // more stays than are kept: read each time
+    for (uint32_t k = enter_begin_[node]; k < enter_begin_[node + 1]; ++k) {
+      const auto b = before(enter_stays_[k]);
+      if (b.edge) take(stay_[b.stay]);
+    }
   }
-  return cause;
+  return held ? WaitCause::kHeld : cause;
+}
+
+bool SwitchableTracker::WaitLook::valid(uint32_t at, const std::vector<uint32_t>& epoch) const {
+  if (node != at) return false;
+  for (uint32_t k = 0; k < std::min(count, kKept); ++k) {
+    if (epoch[before[k].location] != before[k].epoch) return false;
+  }
+  return true;
+}
+
+void SwitchableTracker::WaitLook::fill(const SwitchableTracker& t, uint32_t at) {
+  node = at;
+  count = t.enter_begin_[at + 1] - t.enter_begin_[at];
+  for (uint32_t k = 0; k < std::min(count, kKept); ++k) {
+    const uint32_t stay = t.enter_stays_[t.enter_begin_[at] + k];
+    const auto b = t.before(stay);
+    const uint32_t location = t.location_[stay];
+    before[k] = {location, t.epoch_[location], b.edge, b.edge ? t.stay_[b.stay] : Stay{}};
+  }
 }
 
 void SwitchableTracker::predecessors(uint32_t node, std::vector<uint32_t>& out) const {

@@ -641,6 +641,27 @@ struct Outcome {
 // One seeded random plan executed in a random order the tracker allows, a third of the robots
 // delayed (chosen ten times less often): robots start only enqueued actions, claim what they
 // enter when they start a move and release what they left when they finish it, report late.
+// What wait_cause() must tell on half cells, as the orders are now: the blockers from the
+// current edges (predecessors) and each blocker's actions walked back, as for plain ADG. The
+// tracker keeps a waiting robot's stays while their locations' orders hold (2026-12-08); this
+// reads everything afresh.
+std::optional<WaitCause> walked_wait_cause(const SwitchableTracker& t, const ActionPlan& actions,
+                                           uint32_t commit_actions, uint32_t r) {
+  if (t.robot_done(r) || t.enqueued(r) > t.finished(r)) return std::nullopt;
+  std::vector<uint32_t> leaves;
+  t.predecessors(actions.offset[r] + t.enqueued(r), leaves);
+  std::optional<WaitCause> cause;
+  for (const uint32_t leave : leaves) {
+    const Action& a = actions.actions[leave];
+    if (a.seq < t.finished(a.robot)) continue;
+    const auto c =
+        half_cell_blocker_cause(a.seq, t.finished(a.robot), t.enqueued(a.robot), commit_actions,
+                                [&](uint32_t s) { return actions.at(a.robot, s).type; });
+    cause = std::max(cause.value_or(WaitCause::kAtLocation), c);
+  }
+  return cause.value_or(WaitCause::kHeld);
+}
+
 Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = kNear) {
   std::mt19937_64 rng(seed);
   const auto w = static_cast<int32_t>(6 + rng() % 8), h = static_cast<int32_t>(6 + rng() % 8);
@@ -653,6 +674,7 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
   if (!problems.empty() || !check_acyclic(adg, actions, "random").empty()) return {};  // kCells
   SwitchableTracker t(actions, passing_orders(actions, grid, footprint), options);
   const auto robots = static_cast<uint32_t>(actions.robots());
+  const uint32_t commit_actions = options.commit_actions;
   std::map<HalfCell, uint32_t> occupied;
   for (uint32_t r = 0; r < robots; ++r) {
     for (const auto c : held(actions.start[r], footprint)) occupied[c] = r;
@@ -712,6 +734,14 @@ Outcome run_random(uint64_t seed, Footprint footprint, SwitchOptions options = k
         ADD_FAILURE() << "seed " << seed << ": an action's neighbours do not hold after switch "
                       << t.switches()->size();
         return {};
+      }
+      // And each waiting robot's kept stays (wait_cause).
+      for (uint32_t q = 0; footprint == Footprint::kHalfCells && q < robots; ++q) {
+        if (t.wait_cause(q) != walked_wait_cause(t, actions, commit_actions, q)) {
+          ADD_FAILURE() << "seed " << seed << ": robot " << q << "'s wait cause after switch "
+                        << t.switches()->size();
+          return {};
+        }
       }
     }
     time_s += 0.1;

@@ -71,6 +71,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <queue>
@@ -365,6 +366,26 @@ class SwitchableTracker final : public Execution {
   // robot -> its action now (seq finished_) is a turn: wait_cause() read it from the plan's
   // 48-byte action, a cache miss a blocker (docs/performance.md, "Wait causes in every run").
   std::vector<uint8_t> turning_;
+  // location -> changes of its order so far (link_prev and link_next count them).
+  std::vector<uint32_t> epoch_;
+  // A waiting robot's next action's stays and the stays before them, kept while their
+  // locations' orders do not change: the run supervisor asks a waiting robot every 0.5 s, and
+  // each ask read five stay- and node-indexed arrays, a cache miss each (docs/performance.md,
+  // "Wait causes read from records, and robots without a goal ranked without a table").
+  // Mutable: a cache of what the orders say.
+  struct WaitLook {
+    static constexpr uint32_t kKept = 4;  // a node entering more stays is read each time
+    struct Before {
+      uint32_t location = 0, epoch = 0;
+      bool edge = false;  // the stay before is another robot's
+      Stay stay;          // that stay (a copy: stays never change)
+    };
+    uint32_t node = kNoAction, count = 0;
+    std::array<Before, kKept> before{};
+    bool valid(uint32_t at, const std::vector<uint32_t>& epoch) const;
+    void fill(const SwitchableTracker& t, uint32_t at);
+  };
+  mutable std::vector<WaitLook> wait_look_;
   std::vector<uint8_t> decided_;  // node -> its place was decided when it was to be sent
   RobotSet ahead_;                // robots whose next entry awaits that decision
   std::size_t anticipated_ = 0;
