@@ -366,6 +366,7 @@ class SwitchableTracker final : public Execution {
   // robot -> its action now (seq finished_) is a turn: wait_cause() read it from the plan's
   // 48-byte action, a cache miss a blocker (docs/performance.md, "Wait causes in every run").
   std::vector<uint8_t> turning_;
+  std::vector<uint64_t> turn_bits_;  // node -> it is a turn, a bit each
   // location -> changes of its order so far (link_prev and link_next count them).
   std::vector<uint32_t> epoch_;
   // A waiting robot's next action's stays and the stays before them, kept while their
