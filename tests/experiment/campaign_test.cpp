@@ -23,7 +23,7 @@ class Campaign : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!fs::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(fs::exists(b_)) << smart::test::no_benchmarks(b_);
     dir_ = temp_file("experiment");
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -16,7 +16,7 @@ class Isolation : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   std::vector<std::string> random_map(int domain, const std::string& agents) const {
     return {"--map",        (b_ / "maps/random-32-32-20.map").string(),

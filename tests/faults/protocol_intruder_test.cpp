@@ -25,7 +25,7 @@ class Intrusion : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   // `smart COMMAND` on the 20-robot example, with its log in the output.
   std::vector<std::string> args(const std::string& command, int domain,

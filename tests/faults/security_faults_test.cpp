@@ -43,7 +43,7 @@ class SecureFaults : public ::testing::Test {
   }
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   std::vector<std::string> args(std::string command, int domain, bool plan, bool secure) const {
     std::vector<std::string> a{std::move(command),

@@ -23,7 +23,7 @@ using ::testing::HasSubstr;
 
 TEST(UntrustedSamples, MalformedStatesAndClocksAreDroppedAndCounted) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   const int d = kMonitorBadSamples;
   const std::vector<std::string> world{
       "--map",    (b / "maps/random-32-32-20.map").string(),

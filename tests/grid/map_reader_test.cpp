@@ -65,7 +65,7 @@ TEST(MapReaderErrors, TruncatedAndRaggedRows) {
 
 TEST(MapReader, ReadsEveryBenchmarkMap) {
   const auto dir = test::benchmarks_dir() / "maps";
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
+  ASSERT_TRUE(std::filesystem::exists(dir)) << smart::test::no_benchmarks(dir);
   const std::map<std::string, std::pair<int, int>> sizes = {
       {"den312d.map", {65, 81}},
       {"empty-32-32.map", {32, 32}},

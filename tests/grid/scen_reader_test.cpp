@@ -80,7 +80,7 @@ TEST(ScenReaderErrors, AgainstTheMap) {
 
 TEST(ScenReader, ReadsEveryBenchmarkScenarioAgainstItsMap) {
   const auto dir = test::benchmarks_dir();
-  if (!std::filesystem::exists(dir / "scens")) GTEST_SKIP() << "no benchmark data at " << dir;
+  ASSERT_TRUE(std::filesystem::exists(dir / "scens")) << smart::test::no_benchmarks(dir);
   std::size_t files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir / "scens")) {
     const auto name = entry.path().filename().string();

@@ -21,7 +21,7 @@ class Resume : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   // 100 robots of SMART's warehouse plan: ~540 s of sim time, several seconds of wall time.
   std::vector<std::string> world_args() const {

@@ -22,7 +22,7 @@ class Sharded : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   Plan plan(const std::string& map, const std::string& scen, const std::string& plan,
             const std::string& axis, const std::string& agents) const {

@@ -21,7 +21,7 @@ class SwitchableRun : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
   }
   // `smart COMMAND` of SMART's 100-robot warehouse plan with `execution`, results in `out`.
   std::vector<std::string> plan_args(const std::string& command, int domain,

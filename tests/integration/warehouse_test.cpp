@@ -12,7 +12,7 @@ using namespace std::chrono_literals;
 
 TEST(Warehouse, SmartFiveHundredRobotPlanSucceedsWithoutCollisions) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   const auto r =
       run_smart({"run", "--map", (b / "maps/warehouse-10-20-10-2-1.map").string(), "--scen",
                  (b / "scens/warehouse-10-20-10-2-1-random-1.scen").string(), "--plan",

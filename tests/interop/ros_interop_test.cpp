@@ -23,7 +23,7 @@ using namespace std::chrono_literals;
 
 TEST(RosInterop, FastDdsNodeReadsTheFleetPosesWrittenByCyclone) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   const auto out = temp_file("fastdds_listener.out");
   common::ChildProcess listener({FASTDDS_POSE_LISTENER, std::to_string(kFastDdsInterop), "4", "60"},
                                 out);

@@ -29,9 +29,8 @@ InstanceOptions smart_example(const std::string& plan, AxisOrder axis) {
 class SmartExamples : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::exists(test::benchmarks_dir())) {
-      GTEST_SKIP() << "no benchmark data at " << test::benchmarks_dir();
-    }
+    ASSERT_TRUE(std::filesystem::exists(test::benchmarks_dir()))
+        << smart::test::no_benchmarks(test::benchmarks_dir());
   }
 };
 

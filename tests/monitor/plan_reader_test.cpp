@@ -172,7 +172,7 @@ TEST(PlanReaderErrors, LacamAndYaml) {
 
 TEST(PlanReader, ReadsEverySmartExample) {
   const auto dir = test::benchmarks_dir() / "smart-examples";
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
+  ASSERT_TRUE(std::filesystem::exists(dir)) << smart::test::no_benchmarks(dir);
   struct Case {
     const char* file;
     AxisOrder axis;

@@ -100,7 +100,7 @@ TEST(PlanValidator, ContinuousTimeOverlapIsAConflict) {
 
 TEST(PlanValidator, EveryExamplePlanIsValidAndTheWrongAxisIsCaught) {
   const auto dir = test::benchmarks_dir();
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
+  ASSERT_TRUE(std::filesystem::exists(dir)) << smart::test::no_benchmarks(dir);
   const auto grid = parse_map(read_text_file(dir / "maps/random-32-32-20.map", "map"), "map");
   const auto scen =
       parse_scen(read_text_file(dir / "scens/random-32-32-20-random-1.scen", "scen"), "scen", 50);

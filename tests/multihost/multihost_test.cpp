@@ -46,7 +46,7 @@ class MultihostBenchmark : public Multihost {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
     Multihost::SetUp();
   }
   std::vector<std::string> world(const std::string& command, int domain) const {

@@ -13,7 +13,7 @@ using namespace grid;  // the vocabulary the planners work in
 
 TEST(Generators, DefaultWarehouseIsMovingAIsWarehouse10201021CellForCell) {
   const auto dir = test::benchmarks_dir() / "maps";
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no benchmark data at " << dir;
+  ASSERT_TRUE(std::filesystem::exists(dir)) << smart::test::no_benchmarks(dir);
   const auto original = parse_map(read_text_file(dir / "warehouse-10-20-10-2-1.map", "map"),
                                   "warehouse-10-20-10-2-1.map");
   const auto generated = generate_warehouse({});

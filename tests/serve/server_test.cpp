@@ -30,7 +30,7 @@ class Serve : public ::testing::Test {
  protected:
   void SetUp() override {
     b_ = benchmarks_dir();
-    if (!std::filesystem::exists(b_)) GTEST_SKIP() << "no benchmark data at " << b_;
+    ASSERT_TRUE(std::filesystem::exists(b_)) << smart::test::no_benchmarks(b_);
     data_ = temp_file("serve_data");
     std::filesystem::remove_all(data_);
   }

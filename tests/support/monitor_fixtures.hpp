@@ -49,6 +49,13 @@ inline grid::Scenario scen_of(const grid::Plan& plan, const grid::Grid& grid) {
   return s;
 }
 
+// Tests that read the shared benchmarks fail without them, naming where they looked: CI clones
+// the repository beside ../shared (README), and a skip would hide checks that did not run.
+inline std::string no_benchmarks(const std::filesystem::path& where) {
+  return "no benchmark data at " + where.string() +
+         ": clone the repository beside ../shared, or set SMART_BENCHMARKS";
+}
+
 inline std::filesystem::path benchmarks_dir() {
   if (const char* env = std::getenv("SMART_BENCHMARKS"); env != nullptr && *env != '\0') {
     return env;

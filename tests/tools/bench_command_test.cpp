@@ -17,7 +17,7 @@ using ::testing::HasSubstr;
 
 TEST(BenchCommand, SimReportsSpeedAwakeRobotsAndTheMachine) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   const auto r = run_smart({"bench", "sim", "--map", (b / "maps/random-32-32-20.map").string(),
                             "--robots", "20", "--sim-seconds", "2", "--system-capacity", "8"},
                            60s, "bench_sim");
@@ -36,15 +36,14 @@ TEST(BenchCommand, SimReportsSpeedAwakeRobotsAndTheMachine) {
 
 TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   const auto out = temp_file("bench_run_results");
-  const auto r =
-      run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
-                 (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
-                 (b / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents",
-                 "5,10", "--qos", "lan,sim-wifi", "--domain", std::to_string(kBenchRun), "--out",
-                 out.string()},
-                120s, "bench_run");
+  const auto r = run_smart(
+      {"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",
+       (b / "scens/random-32-32-20-random-1.scen").string(), "--plan",
+       (b / "smart-examples/example_paths_xy.txt").string(), "--axis", "xy", "--agents", "5,10",
+       "--qos", "lan,sim-wifi", "--domain", std::to_string(kBenchRun), "--out", out.string()},
+      120s, "bench_run");
   ASSERT_EQ(r.code, 0) << r.out;
   std::istringstream lines(r.out);
   std::vector<nlohmann::json> rows;
@@ -81,7 +80,7 @@ TEST(BenchCommand, RunPrintsALinePerFleetSizeThenATable) {
 
 TEST(BenchCommand, RunNamesTheFailingSize) {
   const auto b = benchmarks_dir();
-  if (!std::filesystem::exists(b)) GTEST_SKIP() << "no benchmark data at " << b;
+  ASSERT_TRUE(std::filesystem::exists(b)) << smart::test::no_benchmarks(b);
   // No --axis for a SMART path file: `smart run` refuses it (exit code 2).
   const auto r =
       run_smart({"bench", "run", "--map", (b / "maps/random-32-32-20.map").string(), "--scen",

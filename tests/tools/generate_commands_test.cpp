@@ -32,7 +32,8 @@ std::vector<std::string> plan_args(const std::filesystem::path& out) {
 // LaCAM's plan, then two passes of neighbourhoods of four robots with at most 2000 expansions
 // each: the output says what ran, the sum of costs fell by what LNS saved, and the plan is valid.
 TEST(PlanCommand, LnsRunsWithTheNeighbourhoodAndExpansionsItIsGiven) {
-  if (!std::filesystem::exists(benchmarks_dir())) GTEST_SKIP() << "no benchmark data";
+  ASSERT_TRUE(std::filesystem::exists(benchmarks_dir()))
+      << smart::test::no_benchmarks(benchmarks_dir());
   const auto plain = temp_file("lacam.txt"), improved = temp_file("lacam-lns.txt");
   const auto a = run_smart(plan_args(plain), 60s, "plan_lacam");
   ASSERT_EQ(a.code, 0) << a.out;
