@@ -81,6 +81,13 @@ WaitCause blocker_cause(std::optional<uint32_t> enter_seq, uint32_t finished, ui
                                                 : WaitCause::kOnItsWayNear;
 }
 
+// The robot leaving before the node of in-edge `e`, from its node's look_.
+ExecutionTracker::Blocker ExecutionTracker::blocker(uint32_t e) const {
+  const uint32_t leave = adg_.in[e];
+  const NodeLook l = look_[leave];
+  return {l.robot, leave - actions_.offset[l.robot], l.prev_move};
+}
+
 // Half-cell stays only: the cells footprint's span several moves, and its entries are not
 // read from the edges (not told).
 std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
@@ -92,9 +99,7 @@ std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
     w.node = node;
     w.count = adg_.in_begin[node + 1] - adg_.in_begin[node];
     for (uint32_t k = 0; k < std::min<uint32_t>(w.count, WaitLook::kKept); ++k) {
-      const uint32_t leave = adg_.in[adg_.in_begin[node] + k];
-      const NodeLook l = look_[leave];
-      w.blockers[k] = {l.robot, leave - actions_.offset[l.robot], l.prev_move};
+      w.blockers[k] = blocker(adg_.in_begin[node] + k);
     }
   }
   auto cause = WaitCause::kAtLocation;
@@ -111,13 +116,7 @@ std::optional<WaitCause> ExecutionTracker::wait_cause(uint32_t robot) const {
                                           SwitchOptions{}.commit_actions));
   };
   for (uint32_t k = 0; k < w.count; ++k) {
-    if (k < WaitLook::kKept) {
-      take(w.blockers[k]);
-    } else {
-      const uint32_t leave = adg_.in[adg_.in_begin[node] + k];
-      const NodeLook l = look_[leave];
-      take({l.robot, leave - actions_.offset[l.robot], l.prev_move});
-    }
+    take(k < WaitLook::kKept ? w.blockers[k] : blocker(adg_.in_begin[node] + k));
   }
   return held ? WaitCause::kHeld : cause;
 }

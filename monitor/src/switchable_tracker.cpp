@@ -68,6 +68,11 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   for (std::size_t n = 0; n < nodes; ++n) mark_[n].robot = actions.actions[n].robot;
+  turn_bits_.assign(nodes / 64 + 1, 0);
+  for (std::size_t n = 0; n < nodes; ++n) {
+    if (actions.actions[n].type == grid::ActionType::kRotate)
+      turn_bits_[n / 64] |= 1ULL << (n % 64);
+  }
   if (options_.anticipate) {
     moves_before_.assign(nodes + 1, 0);
     for (std::size_t n = 0; n < nodes; ++n) {
@@ -82,11 +87,6 @@ SwitchableTracker::SwitchableTracker(const ActionPlan& actions, PassingOrders or
     }
   }
   init_order();
-  turn_bits_.assign(nodes / 64 + 1, 0);
-  for (std::size_t n = 0; n < nodes; ++n) {
-    if (actions.actions[n].type == grid::ActionType::kRotate)
-      turn_bits_[n / 64] |= 1ULL << (n % 64);
-  }
   turning_.resize(actions.robots());
   for (uint32_t r = 0; r < actions.robots(); ++r) turning_[r] = turn_at(r, 0);
   for (uint32_t r = 0; r < actions.robots(); ++r) advance(r);
@@ -622,19 +622,16 @@ void SwitchableTracker::observe(uint32_t robot, uint32_t from, uint32_t upto, do
   started_s_[robot] = time_s;
 }
 
-// An action's kind from the prefix sums of moves (the plan's 48-byte action would be a cache
-// line of its own; finish_estimate reads these sums anyway).
+// An action's kind from a bit per node (27 KB for SMART's 1000-robot plan, where the prefix sums
+// of moves take 0.9 MB and the plan's actions 10 MB): read once a report, it stays in the cache.
 grid::ActionType SwitchableTracker::kind(uint32_t node) const {
-  return moves_before_[node + 1] > moves_before_[node] ? grid::ActionType::kMove
-                                                       : grid::ActionType::kRotate;
+  return (turn_bits_[node / 64] >> (node % 64) & 1) != 0 ? grid::ActionType::kRotate
+                                                         : grid::ActionType::kMove;
 }
 
-// A bit per node (27 KB for SMART's 1000-robot plan, where the prefix sums take 0.9 MB and the
-// plan's actions 10 MB): read once a report, it stays in the cache.
 bool SwitchableTracker::turn_at(uint32_t robot, uint32_t seq) const {
-  if (seq >= actions_.count(robot)) return false;
-  const uint32_t node = actions_.offset[robot] + seq;
-  return (turn_bits_[node / 64] >> (node % 64) & 1) != 0;
+  return seq < actions_.count(robot) &&
+         kind(actions_.offset[robot] + seq) == grid::ActionType::kRotate;
 }
 
 // When `robot` is expected to finish action `seq` (not finished yet): O(1), the kinds of the

@@ -17,7 +17,10 @@ bool TableHeuristic::aim(uint32_t robot, grid::Cell at, grid::Cell goal) {
   }
   goal_[robot] = goal;
   holding_[robot] = at == goal;
-  if (at == goal) return true;
+  if (at == goal) {
+    table_[robot].reset();  // the goal's table is no longer this robot's to keep
+    return true;
+  }
   table_[robot] = tables_.to(goal);
   return (*table_[robot])[tables_.grid().index(at)] >= 0;
 }

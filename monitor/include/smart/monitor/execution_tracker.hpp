@@ -64,7 +64,8 @@ class ExecutionTracker final : public Execution {
   // What wait_cause() reads of a blocker's action, per node (half-cell footprints only): its
   // robot, whether it is a turn, and its robot's last move before it (kNoMove: none). One 8-byte
   // read where the plan's 48-byte actions took one per action walked back: 6.7 % of the
-  // monitor's CPU under delays (docs/performance.md, "Wait causes in every run").
+  // monitor's CPU under delays (docs/performance.md, "Wait causes read from records, and robots
+  // without a goal ranked without a table").
   struct NodeLook {
     uint32_t robot : 31;
     uint32_t turn : 1;
@@ -85,6 +86,7 @@ class ExecutionTracker final : public Execution {
     std::array<Blocker, kKept> blockers{};
   };
   mutable std::vector<WaitLook> wait_look_;
+  Blocker blocker(uint32_t e) const;  // of in-edge e
   std::vector<uint32_t> finished_;
   std::vector<uint32_t> enqueued_;
   std::size_t finished_total_ = 0;

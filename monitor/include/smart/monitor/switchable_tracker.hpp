@@ -364,7 +364,8 @@ class SwitchableTracker final : public Execution {
   double now_s_ = 0;
   std::vector<double> started_s_;  // robot -> when its first unfinished action started (or now)
   // robot -> its action now (seq finished_) is a turn: wait_cause() read it from the plan's
-  // 48-byte action, a cache miss a blocker (docs/performance.md, "Wait causes in every run").
+  // 48-byte action, a cache miss a blocker (docs/performance.md, "Wait causes read from records,
+  // and robots without a goal ranked without a table").
   std::vector<uint8_t> turning_;
   std::vector<uint64_t> turn_bits_;  // node -> it is a turn, a bit each
   // location -> changes of its order so far (link_prev and link_next count them).
